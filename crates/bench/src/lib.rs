@@ -1,0 +1,1 @@
+//! Per-pass timing statistics.
