@@ -1,8 +1,39 @@
-pub fn compile_test() -> usize {
-    let c = shaderc::Compiler::new().unwrap();
-    let a = c.compile_into_spirv("#version 450\nvoid main(){}", shaderc::ShaderKind::Compute, "t.comp", "main", None).unwrap();
-    let _ = ash::vk::Format::R32_SFLOAT;
-    a.as_binary().len()
-}
-#[cfg(test)]
-mod t { #[test] fn c() { assert!(super::compile_test() > 0); } }
+//! vkcore: the only crate in causticlab that says `unsafe` or calls `ash`. Small RAII modules:
+//! an instance with counted validation messages, device choice with the features this project
+//! uses, gpu-allocator buffers and images, runtime GLSL, pipelines, frames of passes with
+//! automatic barriers and timestamps, transform feedback and compute stream compaction.
+
+mod buffer;
+pub mod compaction;
+mod context;
+mod device;
+mod error;
+mod features;
+mod frame;
+mod image;
+mod instance;
+mod pipeline;
+mod profiler;
+mod query;
+mod recorder;
+mod shader;
+mod tracker;
+mod transfer;
+
+pub use ash::vk::Format;
+pub use buffer::{Buffer, Memory};
+pub use compaction::{CompactStream, CompactionPath, Compactor, Source};
+
+pub use context::{Context, ContextOptions};
+pub use device::{choose_device, enumerate_devices};
+pub use error::{Result, VkError};
+pub use features::{DeviceInfo, Feature};
+pub use frame::{Frame, FrameOptions, Use};
+pub use image::{texel_size, Filter, Image, ImageDesc, ImageView, Sampler, ViewKind};
+pub use instance::{Instance, ValidationLog};
+pub use pipeline::{Blend, BindingKind, Cull, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout, PUSH_CONSTANT_BYTES};
+pub use profiler::{FrameReport, PassSummary, PassTiming, PipelineStats, Profiler};
+pub use query::QueryPool;
+pub use recorder::{Bind, Cmd, Targets};
+pub use shader::{ShaderCompiler, Spirv, Stage};
+pub use tracker::Access;

@@ -1,0 +1,131 @@
+//! `Context`: instance + device + queue + allocator + the barrier tracker. Everything else in
+//! vkcore hangs off it. Headless: every submission is waited for before returning.
+
+use crate::device::{choose_device, create_device, enumerate_devices, DeviceShared};
+use crate::error::{Result, VkError, VkResultExt};
+use crate::features::{DeviceInfo, Feature};
+use crate::instance::{Instance, ValidationLog};
+use crate::tracker::Tracker;
+use ash::vk;
+use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// How to open a device.
+#[derive(Debug, Clone, Default)]
+pub struct ContextOptions {
+    /// `--device`: an index or a name substring. None = hardware GPU if present, else lavapipe.
+    pub device: Option<String>,
+    /// `--validate`: Khronos validation with synchronization validation.
+    pub validation: bool,
+    /// Print validation messages as they arrive.
+    pub echo_validation: bool,
+    /// Pretend the device lacks these (`--without-feature`), to exercise error paths and fallbacks.
+    pub without: Vec<Feature>,
+}
+
+pub(crate) struct Shared {
+    pub device: DeviceShared,
+    pub allocator: Mutex<Option<Allocator>>,
+    pub tracker: Mutex<Tracker>,
+    pub command_pool: Mutex<vk::CommandPool>,
+    next_id: AtomicU64,
+}
+
+impl Shared {
+    pub fn new_id(&self) -> u64 {
+        self.next_id.fetch_add(1, Ordering::Relaxed)
+    }
+    pub fn raw(&self) -> &ash::Device {
+        &self.device.raw
+    }
+}
+
+impl Drop for Shared {
+    fn drop(&mut self) {
+        unsafe {
+            let _ = self.device.raw.device_wait_idle();
+            if let Ok(pool) = self.command_pool.lock() {
+                self.device.raw.destroy_command_pool(*pool, None);
+            }
+        }
+        // The allocator must go before the device (DeviceShared's Drop destroys the device).
+        if let Ok(mut a) = self.allocator.lock() {
+            a.take();
+        }
+    }
+}
+
+/// An open device. Clone is cheap; resources keep it alive.
+#[derive(Clone)]
+pub struct Context {
+    pub(crate) shared: Arc<Shared>,
+    instance: Instance,
+}
+
+impl Context {
+    pub fn new(opts: &ContextOptions) -> Result<Context> {
+        let instance = Instance::new(opts.validation, opts.echo_validation)?;
+        let devices = enumerate_devices(&instance)?;
+        let index = choose_device(&devices, opts.device.as_deref())?;
+        let device = create_device(&instance, index, &opts.without)?;
+        let allocator = Allocator::new(&AllocatorCreateDesc {
+            instance: instance.shared.raw.clone(),
+            device: device.raw.clone(),
+            physical_device: device.physical,
+            debug_settings: Default::default(),
+            buffer_device_address: false,
+            allocation_sizes: Default::default(),
+        })
+        .map_err(|e| VkError::Alloc { name: "allocator".into(), bytes: 0, message: e.to_string() })?;
+        let pool_info = vk::CommandPoolCreateInfo::default()
+            .queue_family_index(device.queue_family)
+            .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
+        let command_pool = unsafe { device.raw.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
+        Ok(Context {
+            shared: Arc::new(Shared {
+                device,
+                allocator: Mutex::new(Some(allocator)),
+                tracker: Mutex::new(Tracker::default()),
+                command_pool: Mutex::new(command_pool),
+                next_id: AtomicU64::new(1),
+            }),
+            instance,
+        })
+    }
+
+    /// The chosen device's name, driver, version, features and limits.
+    pub fn info(&self) -> &DeviceInfo {
+        &self.shared.device.info
+    }
+
+    /// Fails with a message naming the first missing feature.
+    pub fn require(&self, who: &str, features: &[Feature]) -> Result<()> {
+        self.info().require(who, features)
+    }
+
+    pub fn validation_log(&self) -> Arc<ValidationLog> {
+        self.instance.validation_log()
+    }
+
+    pub fn validation_enabled(&self) -> bool {
+        self.instance.validation_enabled()
+    }
+
+    /// Waits until the device is idle.
+    pub fn wait_idle(&self) -> Result<()> {
+        unsafe { self.shared.raw().device_wait_idle() }.call("vkDeviceWaitIdle")
+    }
+
+    /// Names a Vulkan object for validation messages and GPU debuggers.
+    pub(crate) fn set_name<H: vk::Handle>(&self, handle: H, name: &str) {
+        if let Some(du) = &self.shared.device.debug_utils {
+            if let Ok(cname) = std::ffi::CString::new(name) {
+                let info = vk::DebugUtilsObjectNameInfoEXT::default().object_handle(handle).object_name(&cname);
+                unsafe {
+                    let _ = du.set_debug_utils_object_name(&info);
+                }
+            }
+        }
+    }
+}

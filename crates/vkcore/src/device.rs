@@ -1,0 +1,278 @@
+//! Physical-device discovery (`causticlab devices`), device choice (`--device`), and the logical
+//! device with every feature this project uses that the hardware has.
+
+use crate::error::{Result, VkError, VkResultExt};
+use crate::features::{device_type_name, DeviceInfo, Feature};
+use crate::instance::{Instance, InstanceShared};
+use ash::{ext, khr, vk};
+use std::ffi::CStr;
+use std::sync::Arc;
+
+/// Everything the project reads off a physical device.
+pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, index: usize) -> DeviceInfo {
+    unsafe {
+        let ext_props = instance.enumerate_device_extension_properties(pd).unwrap_or_default();
+        let has_ext = |name: &CStr| ext_props.iter().any(|e| e.extension_name_as_c_str().ok() == Some(name));
+        let has_xfb = has_ext(ext::transform_feedback::NAME);
+        let has_atomic_float = has_ext(ext::shader_atomic_float::NAME);
+
+        let mut f11 = vk::PhysicalDeviceVulkan11Features::default();
+        let mut f12 = vk::PhysicalDeviceVulkan12Features::default();
+        let mut xfb = vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default();
+        let mut af = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default();
+        let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f11).push_next(&mut f12);
+        if has_xfb {
+            f2 = f2.push_next(&mut xfb);
+        }
+        if has_atomic_float {
+            f2 = f2.push_next(&mut af);
+        }
+        instance.get_physical_device_features2(pd, &mut f2);
+        let f = f2.features;
+
+        let mut driver = vk::PhysicalDeviceDriverProperties::default();
+        let mut xfb_props = vk::PhysicalDeviceTransformFeedbackPropertiesEXT::default();
+        let mut p2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);
+        if has_xfb {
+            p2 = p2.push_next(&mut xfb_props);
+        }
+        instance.get_physical_device_properties2(pd, &mut p2);
+        let props = p2.properties;
+        let limits = props.limits;
+
+        let families = instance.get_physical_device_queue_family_properties(pd);
+        let timestamp_valid_bits = graphics_family(&families).map(|i| families[i as usize].timestamp_valid_bits).unwrap_or(0);
+        let mem = instance.get_physical_device_memory_properties(pd);
+        let device_local_bytes = mem.memory_heaps[..mem.memory_heap_count as usize]
+            .iter()
+            .filter(|h| h.flags.contains(vk::MemoryHeapFlags::DEVICE_LOCAL))
+            .map(|h| h.size)
+            .max()
+            .unwrap_or(0);
+
+        let yes = |b: vk::Bool32| b == vk::TRUE;
+        let mut supported = vec![];
+        let mut add = |cond: bool, feat: Feature| {
+            if cond {
+                supported.push(feat)
+            }
+        };
+        add(yes(f.geometry_shader), Feature::GeometryShader);
+        add(has_xfb && yes(xfb.transform_feedback), Feature::TransformFeedback);
+        add(has_xfb && yes(xfb_props.transform_feedback_draw), Feature::TransformFeedbackDraw);
+        add(has_xfb && yes(xfb_props.transform_feedback_queries), Feature::TransformFeedbackQueries);
+        add(yes(f12.shader_output_layer), Feature::ShaderOutputLayer);
+        add(yes(f11.multiview), Feature::Multiview);
+        add(yes(f11.multiview_geometry_shader), Feature::MultiviewGeometryShader);
+        add(has_atomic_float && yes(af.shader_buffer_float32_atomic_add), Feature::BufferFloat32AtomicAdd);
+        add(has_atomic_float && yes(af.shader_image_float32_atomic_add), Feature::ImageFloat32AtomicAdd);
+        // Mesa 22.x lavapipe reports pipeline statistics but segfaults in its execution thread
+        // when such a query brackets some compute dispatches (found by tests/compaction.rs):
+        // treat it as absent there.
+        let mesa_major = driver
+            .driver_info_as_c_str()
+            .ok()
+            .and_then(|s| s.to_str().ok()?.strip_prefix("Mesa ")?.split('.').next()?.parse::<u32>().ok());
+        let broken_stats = driver.driver_id == vk::DriverId::MESA_LLVMPIPE && mesa_major.is_none_or(|m| m < 23);
+        add(yes(f.pipeline_statistics_query) && !broken_stats, Feature::PipelineStatisticsQuery);
+        add(yes(f.large_points), Feature::LargePoints);
+        add(timestamp_valid_bits > 0, Feature::Timestamps);
+        add(has_ext(khr::push_descriptor::NAME), Feature::PushDescriptor);
+        add(yes(f.fragment_stores_and_atomics), Feature::FragmentStoresAndAtomics);
+
+        let v = props.api_version;
+        DeviceInfo {
+            index,
+            name: props.device_name_as_c_str().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+            device_type: device_type_name(props.device_type).to_string(),
+            is_software: props.device_type == vk::PhysicalDeviceType::CPU,
+            api_version: format!("{}.{}.{}", vk::api_version_major(v), vk::api_version_minor(v), vk::api_version_patch(v)),
+            api_major_minor: (vk::api_version_major(v), vk::api_version_minor(v)),
+            driver_name: driver.driver_name_as_c_str().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+            driver_info: driver.driver_info_as_c_str().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+            driver_version: props.driver_version,
+            vendor_id: props.vendor_id,
+            device_id: props.device_id,
+            supported,
+            timestamp_valid_bits,
+            timestamp_period_ns: limits.timestamp_period,
+            point_size_range: limits.point_size_range,
+            point_size_granularity: limits.point_size_granularity,
+            max_image_dimension_2d: limits.max_image_dimension2_d,
+            max_image_array_layers: limits.max_image_array_layers,
+            max_framebuffer_layers: limits.max_framebuffer_layers,
+            max_geometry_output_vertices: limits.max_geometry_output_vertices,
+            max_geometry_total_output_components: limits.max_geometry_total_output_components,
+            max_transform_feedback_buffer_size: if has_xfb { xfb_props.max_transform_feedback_buffer_size } else { 0 },
+            max_transform_feedback_buffers: if has_xfb { xfb_props.max_transform_feedback_buffers } else { 0 },
+            max_compute_work_group_count: limits.max_compute_work_group_count,
+            max_storage_buffer_range: limits.max_storage_buffer_range,
+            device_local_bytes,
+        }
+    }
+}
+
+pub(crate) fn graphics_family(families: &[vk::QueueFamilyProperties]) -> Option<u32> {
+    families
+        .iter()
+        .position(|f| f.queue_flags.contains(vk::QueueFlags::GRAPHICS | vk::QueueFlags::COMPUTE))
+        .map(|i| i as u32)
+}
+
+/// Lists every physical device the loader sees, in enumeration order.
+pub fn enumerate_devices(instance: &Instance) -> Result<Vec<DeviceInfo>> {
+    let raw = &instance.shared.raw;
+    let pds = unsafe { raw.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
+    Ok(pds.iter().enumerate().map(|(i, pd)| query_device(raw, *pd, i)).collect())
+}
+
+/// Picks a device: `query` is an index or a case-insensitive substring of the name; without one,
+/// the first hardware GPU, else the first software device (lavapipe).
+pub fn choose_device(devices: &[DeviceInfo], query: Option<&str>) -> Result<usize> {
+    let available = || {
+        devices.iter().map(|d| format!("[{}] {}", d.index, d.name)).collect::<Vec<_>>().join(", ")
+    };
+    let usable: Vec<&DeviceInfo> = devices.iter().filter(|d| d.api_major_minor >= (1, 3)).collect();
+    match query {
+        Some(q) => {
+            let found = if let Ok(i) = q.trim().parse::<usize>() {
+                devices.iter().find(|d| d.index == i)
+            } else {
+                let ql = q.to_lowercase();
+                devices.iter().find(|d| d.name.to_lowercase().contains(&ql))
+            };
+            let d = found.ok_or_else(|| VkError::NoDevice { query: q.to_string(), available: available() })?;
+            if d.api_major_minor < (1, 3) {
+                return Err(VkError::Invalid(format!(
+                    "device `{}` supports Vulkan {} but causticlab needs 1.3 (dynamic rendering, synchronization2)",
+                    d.name, d.api_version
+                )));
+            }
+            Ok(d.index)
+        }
+        None => usable
+            .iter()
+            .find(|d| !d.is_software)
+            .or_else(|| usable.first())
+            .map(|d| d.index)
+            .ok_or_else(|| VkError::NoDevice { query: "(any Vulkan 1.3 device)".into(), available: available() }),
+    }
+}
+
+/// The logical device and the extension loaders the rest of vkcore calls through.
+pub(crate) struct DeviceShared {
+    /// Keeps the instance alive until the device is destroyed.
+    #[allow(dead_code)]
+    pub instance: Arc<InstanceShared>,
+    pub physical: vk::PhysicalDevice,
+    pub raw: ash::Device,
+    pub queue: vk::Queue,
+    pub queue_family: u32,
+    pub push_descriptor: khr::push_descriptor::Device,
+    pub xfb: Option<ext::transform_feedback::Device>,
+    pub debug_utils: Option<ext::debug_utils::Device>,
+    pub info: DeviceInfo,
+}
+
+impl Drop for DeviceShared {
+    fn drop(&mut self) {
+        unsafe {
+            let _ = self.raw.device_wait_idle();
+            self.raw.destroy_device(None);
+        }
+    }
+}
+
+/// Creates the logical device on physical device `index`, enabling every feature the project
+/// uses that the device has; `without` masks features as if the driver lacked them (tests and
+/// `--without-feature`).
+pub(crate) fn create_device(instance: &Instance, index: usize, without: &[Feature]) -> Result<DeviceShared> {
+    let raw_inst = &instance.shared.raw;
+    let pds = unsafe { raw_inst.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
+    let pd = *pds.get(index).ok_or_else(|| VkError::Invalid(format!("no device with index {index}")))?;
+    let mut info = query_device(raw_inst, pd, index);
+    info.supported.retain(|f| !without.contains(f));
+    if !info.has(Feature::PushDescriptor) {
+        return Err(VkError::MissingFeature {
+            who: "vkcore (descriptor binding)".into(),
+            feature: Feature::PushDescriptor.name(),
+            vulkan_name: Feature::PushDescriptor.vulkan_name(),
+            device: info.name.clone(),
+        });
+    }
+    let families = unsafe { raw_inst.get_physical_device_queue_family_properties(pd) };
+    let queue_family = graphics_family(&families)
+        .ok_or_else(|| VkError::Invalid(format!("device `{}` has no graphics+compute queue", info.name)))?;
+    let has = |f| info.has(f);
+    let b = |x: bool| if x { vk::TRUE } else { vk::FALSE };
+
+    let features = vk::PhysicalDeviceFeatures::default()
+        .geometry_shader(has(Feature::GeometryShader))
+        .pipeline_statistics_query(has(Feature::PipelineStatisticsQuery))
+        .large_points(has(Feature::LargePoints))
+        .fragment_stores_and_atomics(has(Feature::FragmentStoresAndAtomics))
+        .vertex_pipeline_stores_and_atomics(true)
+        .shader_storage_image_write_without_format(true)
+        .multi_draw_indirect(true)
+        .draw_indirect_first_instance(true);
+    let mut f11 = vk::PhysicalDeviceVulkan11Features::default()
+        .multiview(has(Feature::Multiview))
+        .multiview_geometry_shader(has(Feature::MultiviewGeometryShader))
+        .shader_draw_parameters(true);
+    let mut f12 = vk::PhysicalDeviceVulkan12Features::default()
+        .shader_output_layer(has(Feature::ShaderOutputLayer))
+        .host_query_reset(true)
+        .scalar_block_layout(true)
+        .draw_indirect_count(true);
+    let mut f13 = vk::PhysicalDeviceVulkan13Features::default()
+        .dynamic_rendering(true)
+        .synchronization2(true)
+        .maintenance4(true);
+    let mut xfb = vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default();
+    xfb.transform_feedback = b(has(Feature::TransformFeedback));
+    let mut af = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default();
+    af.shader_buffer_float32_atomics = b(has(Feature::BufferFloat32AtomicAdd));
+    af.shader_buffer_float32_atomic_add = b(has(Feature::BufferFloat32AtomicAdd));
+    af.shader_image_float32_atomics = b(has(Feature::ImageFloat32AtomicAdd));
+    af.shader_image_float32_atomic_add = b(has(Feature::ImageFloat32AtomicAdd));
+
+    let mut exts = vec![khr::push_descriptor::NAME.as_ptr()];
+    if has(Feature::TransformFeedback) {
+        exts.push(ext::transform_feedback::NAME.as_ptr());
+    }
+    let want_af = has(Feature::BufferFloat32AtomicAdd) || has(Feature::ImageFloat32AtomicAdd);
+    if want_af {
+        exts.push(ext::shader_atomic_float::NAME.as_ptr());
+    }
+    let priorities = [1.0f32];
+    let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
+    let mut create = vk::DeviceCreateInfo::default()
+        .queue_create_infos(&queues)
+        .enabled_extension_names(&exts)
+        .enabled_features(&features)
+        .push_next(&mut f11)
+        .push_next(&mut f12)
+        .push_next(&mut f13);
+    if has(Feature::TransformFeedback) {
+        create = create.push_next(&mut xfb);
+    }
+    if want_af {
+        create = create.push_next(&mut af);
+    }
+    let raw = unsafe { raw_inst.create_device(pd, &create, None) }.call("vkCreateDevice")?;
+    let queue = unsafe { raw.get_device_queue(queue_family, 0) };
+    let push_descriptor = khr::push_descriptor::Device::new(raw_inst, &raw);
+    let xfb = has(Feature::TransformFeedback).then(|| ext::transform_feedback::Device::new(raw_inst, &raw));
+    let debug_utils = instance.shared.debug_utils.as_ref().map(|_| ext::debug_utils::Device::new(raw_inst, &raw));
+    Ok(DeviceShared {
+        instance: instance.shared.clone(),
+        physical: pd,
+        raw,
+        queue,
+        queue_family,
+        push_descriptor,
+        xfb,
+        debug_utils,
+        info,
+    })
+}

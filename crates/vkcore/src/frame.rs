@@ -1,0 +1,207 @@
+//! A frame: one command buffer of passes, submitted and waited for. Each pass declares what it
+//! reads and writes (`Use`), and the frame emits the synchronization2 barriers (with mip/layer
+//! ranges), a debug label and a timestamp pair around it, plus an optional pipeline-statistics
+//! query. Headless: `submit` waits for the GPU and returns per-pass timings.
+
+use crate::buffer::Buffer;
+use crate::context::Context;
+use crate::error::{Result, VkError, VkResultExt};
+use crate::image::{aspect, Image, ImageView};
+use crate::profiler::{FrameReport, PassTiming, PipelineStats, QueryPools};
+use crate::recorder::Cmd;
+use crate::tracker::{Access, Transition};
+use ash::vk;
+use std::ops::Range;
+
+/// One resource a pass touches and how.
+pub enum Use<'a> {
+    Buffer(&'a Buffer, Access),
+    Image { image_id: u64, raw: vk::Image, format: vk::Format, total_layers: u32, mips: Range<u32>, layers: Range<u32>, access: Access },
+}
+
+impl<'a> Use<'a> {
+    pub fn buffer(b: &'a Buffer, access: Access) -> Use<'a> {
+        Use::Buffer(b, access)
+    }
+    /// Every subresource the view covers.
+    pub fn view(v: &'a ImageView, access: Access) -> Use<'a> {
+        Use::Image {
+            image_id: v.image_id,
+            raw: v.image,
+            format: v.format,
+            total_layers: v.total_layers,
+            mips: v.mips.clone(),
+            layers: v.layers.clone(),
+            access,
+        }
+    }
+    /// Some mips and layers of an image, without a view.
+    pub fn image(i: &'a Image, mips: Range<u32>, layers: Range<u32>, access: Access) -> Use<'a> {
+        Use::Image { image_id: i.id, raw: i.raw, format: i.desc.format, total_layers: i.desc.array_layers, mips, layers, access }
+    }
+}
+
+/// Emits the barriers `uses` need into `cb`.
+pub(crate) fn sync(ctx: &Context, cb: vk::CommandBuffer, uses: &[Use]) -> Result<()> {
+    let mut buffer_barriers = vec![];
+    let mut image_barriers = vec![];
+    let mut tracker = ctx.shared.tracker.lock().map_err(|_| VkError::Invalid("tracker lock poisoned".into()))?;
+    for u in uses {
+        match u {
+            Use::Buffer(b, access) => {
+                for (_, t) in tracker.access(b.id, std::iter::once(0), *access, false) {
+                    buffer_barriers.push(
+                        vk::BufferMemoryBarrier2::default()
+                            .src_stage_mask(t.src_stage)
+                            .src_access_mask(t.src_access)
+                            .dst_stage_mask(t.dst_stage)
+                            .dst_access_mask(t.dst_access)
+                            .buffer(b.raw)
+                            .offset(0)
+                            .size(vk::WHOLE_SIZE),
+                    );
+                }
+            }
+            Use::Image { image_id, raw, format, total_layers, mips, layers, access } => {
+                let subs = mips.clone().flat_map(|m| layers.clone().map(move |l| (m * total_layers + l) as usize));
+                for (i, t) in tracker.access(*image_id, subs, *access, true) {
+                    let (mip, layer) = (i as u32 / total_layers, i as u32 % total_layers);
+                    image_barriers.push(image_barrier(*raw, *format, mip, layer, &t));
+                }
+            }
+        }
+    }
+    drop(tracker);
+    if buffer_barriers.is_empty() && image_barriers.is_empty() {
+        return Ok(());
+    }
+    let dep = vk::DependencyInfo::default().buffer_memory_barriers(&buffer_barriers).image_memory_barriers(&image_barriers);
+    unsafe { ctx.shared.raw().cmd_pipeline_barrier2(cb, &dep) };
+    Ok(())
+}
+
+fn image_barrier(raw: vk::Image, format: vk::Format, mip: u32, layer: u32, t: &Transition) -> vk::ImageMemoryBarrier2<'static> {
+    vk::ImageMemoryBarrier2::default()
+        .src_stage_mask(t.src_stage)
+        .src_access_mask(t.src_access)
+        .dst_stage_mask(t.dst_stage)
+        .dst_access_mask(t.dst_access)
+        .old_layout(t.old_layout)
+        .new_layout(t.new_layout)
+        .image(raw)
+        .subresource_range(vk::ImageSubresourceRange {
+            aspect_mask: aspect(format),
+            base_mip_level: mip,
+            level_count: 1,
+            base_array_layer: layer,
+            layer_count: 1,
+        })
+}
+
+/// Options for recording a frame.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FrameOptions {
+    /// Timestamp pair around every pass (on when the device has timestamps).
+    pub timestamps: bool,
+    /// A pipeline-statistics query around every pass.
+    pub pipeline_statistics: bool,
+}
+
+pub struct Frame {
+    ctx: Context,
+    cb: vk::CommandBuffer,
+    queries: QueryPools,
+    passes: Vec<String>,
+    finished: bool,
+}
+
+impl Context {
+    /// Starts recording a frame (up to `max_passes` profiled passes).
+    pub fn frame(&self, opts: FrameOptions) -> Result<Frame> {
+        let pool = *self.shared.command_pool.lock().map_err(|_| VkError::Invalid("command pool lock poisoned".into()))?;
+        let info = vk::CommandBufferAllocateInfo::default().command_pool(pool).level(vk::CommandBufferLevel::PRIMARY).command_buffer_count(1);
+        let cb = unsafe { self.shared.raw().allocate_command_buffers(&info) }.call("vkAllocateCommandBuffers")?[0];
+        let timestamps = opts.timestamps && self.info().has(crate::Feature::Timestamps);
+        let stats = opts.pipeline_statistics && self.info().has(crate::Feature::PipelineStatisticsQuery);
+        let queries = match QueryPools::new(self, timestamps, stats) {
+            Ok(q) => q,
+            Err(e) => {
+                unsafe { self.shared.raw().free_command_buffers(pool, &[cb]) };
+                return Err(e);
+            }
+        };
+        let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+        unsafe { self.shared.raw().begin_command_buffer(cb, &begin) }.call("vkBeginCommandBuffer")?;
+        Ok(Frame { ctx: self.clone(), cb, queries, passes: vec![], finished: false })
+    }
+}
+
+impl Frame {
+    /// Records one pass: barriers for `uses`, then a label, timestamps and statistics around
+    /// whatever `record` does.
+    pub fn pass<F>(&mut self, name: &str, uses: &[Use], record: F) -> Result<()>
+    where
+        F: FnOnce(&mut Cmd) -> Result<()>,
+    {
+        sync(&self.ctx, self.cb, uses)?;
+        let index = self.passes.len() as u32;
+        self.passes.push(name.to_string());
+        self.queries.begin(&self.ctx, self.cb, index)?;
+        let mut cmd = Cmd::new(&self.ctx, self.cb);
+        cmd.begin_label(name);
+        let result = record(&mut cmd);
+        cmd.end_label();
+        result?;
+        self.queries.end(&self.ctx, self.cb, index);
+        Ok(())
+    }
+
+    /// Submits, waits for the GPU, and returns each pass's time and statistics.
+    pub fn submit(mut self) -> Result<FrameReport> {
+        self.finished = true;
+        let d = self.ctx.shared.raw();
+        unsafe { d.end_command_buffer(self.cb) }.call("vkEndCommandBuffer")?;
+        let fence = unsafe { d.create_fence(&vk::FenceCreateInfo::default(), None) }.call("vkCreateFence")?;
+        let cbs = [vk::CommandBufferSubmitInfo::default().command_buffer(self.cb)];
+        let submit = vk::SubmitInfo2::default().command_buffer_infos(&cbs);
+        let result = unsafe { d.queue_submit2(self.ctx.shared.device.queue, &[submit], fence) }
+            .call("vkQueueSubmit2")
+            .and_then(|_| {
+                // Ten minutes: lavapipe at 4096^2 photons is slow, but a hang must not block CI forever.
+                unsafe { d.wait_for_fences(&[fence], true, 600_000_000_000) }.map_err(|e| {
+                    VkError::Call { call: "vkWaitForFences (passes in this frame: see error context)", result: e }
+                })
+            });
+        unsafe { d.destroy_fence(fence, None) };
+        if let Err(e) = result {
+            return Err(VkError::Invalid(format!("{e}; the frame held passes: {}", self.passes.join(", "))));
+        }
+        let (times, stats) = self.queries.read(&self.ctx, self.passes.len())?;
+        let passes = self
+            .passes
+            .iter()
+            .enumerate()
+            .map(|(i, name)| PassTiming {
+                name: name.clone(),
+                gpu_ms: times.as_ref().and_then(|t| t.get(i).copied()),
+                stats: stats.as_ref().and_then(|s| s.get(i).copied()).map(PipelineStats::from_raw),
+            })
+            .collect();
+        Ok(FrameReport { passes })
+    }
+}
+
+impl Drop for Frame {
+    fn drop(&mut self) {
+        let d = self.ctx.shared.raw();
+        unsafe {
+            if !self.finished {
+                let _ = d.end_command_buffer(self.cb);
+            }
+            if let Ok(pool) = self.ctx.shared.command_pool.lock() {
+                d.free_command_buffers(*pool, &[self.cb]);
+            }
+        }
+        self.queries.destroy(&self.ctx);
+    }
+}

@@ -1,0 +1,114 @@
+//! Uploads and readbacks through staging buffers: whole buffers, and any mip level / array
+//! layer of an image. Each is its own small frame, waited for.
+
+use crate::buffer::{Buffer, Memory};
+use crate::context::Context;
+use crate::error::{Result, VkError};
+use crate::frame::{FrameOptions, Use};
+use crate::image::{texel_size, Image};
+use crate::tracker::Access;
+
+impl Context {
+    /// Creates a device buffer holding `data`.
+    pub fn buffer_with_data(&self, name: &str, data: &[u8]) -> Result<Buffer> {
+        let buf = Buffer::new(self, name, data.len() as u64, Memory::Gpu)?;
+        self.upload_buffer(&buf, data)?;
+        Ok(buf)
+    }
+
+    /// Copies `data` into the start of `dst`.
+    pub fn upload_buffer(&self, dst: &Buffer, data: &[u8]) -> Result<()> {
+        if data.len() as u64 > dst.size() {
+            return Err(VkError::Invalid(format!("upload of {} bytes into `{}` ({} bytes)", data.len(), dst.name(), dst.size())));
+        }
+        if data.is_empty() {
+            return Ok(());
+        }
+        let mut staging = Buffer::new(self, "staging upload", data.len() as u64, Memory::Upload)?;
+        staging.write_mapped(0, data)?;
+        let mut f = self.frame(FrameOptions::default())?;
+        f.pass("upload", &[Use::buffer(&staging, Access::TRANSFER_READ), Use::buffer(dst, Access::TRANSFER_WRITE)], |c| {
+            c.copy_buffer(&staging, dst, data.len() as u64);
+            Ok(())
+        })?;
+        f.submit()?;
+        Ok(())
+    }
+
+    /// Reads the whole of `src` back.
+    pub fn read_buffer(&self, src: &Buffer) -> Result<Vec<u8>> {
+        let staging = Buffer::new(self, "staging readback", src.size(), Memory::Readback)?;
+        let mut f = self.frame(FrameOptions::default())?;
+        f.pass("readback", &[Use::buffer(src, Access::TRANSFER_READ), Use::buffer(&staging, Access::TRANSFER_WRITE)], |c| {
+            c.copy_buffer(src, &staging, src.size());
+            Ok(())
+        })?;
+        f.submit()?;
+        let bytes = staging.mapped().ok_or_else(|| VkError::Invalid("readback buffer is not mapped".into()))?;
+        Ok(bytes[..src.size() as usize].to_vec())
+    }
+
+    /// Reads `src` back as `T`s.
+    pub fn read_buffer_as<T: bytemuck::Pod>(&self, src: &Buffer) -> Result<Vec<T>> {
+        let bytes = self.read_buffer(src)?;
+        let n = bytes.len() / std::mem::size_of::<T>();
+        Ok(bytemuck::pod_collect_to_vec(&bytes[..n * std::mem::size_of::<T>()]))
+    }
+
+    fn image_bytes(image: &Image, mip: u32, layer: u32) -> Result<u64> {
+        if mip >= image.desc.mip_levels || layer >= image.desc.array_layers {
+            return Err(VkError::Invalid(format!(
+                "image `{}` has {} mips and {} layers; asked for mip {mip} layer {layer}",
+                image.desc.name, image.desc.mip_levels, image.desc.array_layers
+            )));
+        }
+        let ts = texel_size(image.desc.format)
+            .ok_or_else(|| VkError::Invalid(format!("image `{}`: format {:?} cannot be read back", image.desc.name, image.desc.format)))?;
+        let (w, h) = image.mip_extent(mip);
+        Ok(w as u64 * h as u64 * ts as u64)
+    }
+
+    /// Writes tightly packed texels into one mip/layer of `image`.
+    pub fn upload_image(&self, image: &Image, mip: u32, layer: u32, data: &[u8]) -> Result<()> {
+        let bytes = Self::image_bytes(image, mip, layer)?;
+        if data.len() as u64 != bytes {
+            return Err(VkError::Invalid(format!("upload into `{}` mip {mip}: {} bytes given, {bytes} expected", image.desc.name, data.len())));
+        }
+        let mut staging = Buffer::new(self, "staging image upload", bytes, Memory::Upload)?;
+        staging.write_mapped(0, data)?;
+        let mut f = self.frame(FrameOptions::default())?;
+        f.pass(
+            "upload image",
+            &[Use::buffer(&staging, Access::TRANSFER_READ), Use::image(image, mip..mip + 1, layer..layer + 1, Access::TRANSFER_WRITE)],
+            |c| {
+                c.copy_buffer_to_image(&staging, image, mip, layer);
+                Ok(())
+            },
+        )?;
+        f.submit()?;
+        Ok(())
+    }
+
+    /// Reads one mip/layer of `image` back, tightly packed, row 0 first.
+    pub fn read_image(&self, image: &Image, mip: u32, layer: u32) -> Result<Vec<u8>> {
+        let bytes = Self::image_bytes(image, mip, layer)?;
+        let staging = Buffer::new(self, "staging image readback", bytes, Memory::Readback)?;
+        let mut f = self.frame(FrameOptions::default())?;
+        f.pass(
+            "readback image",
+            &[Use::image(image, mip..mip + 1, layer..layer + 1, Access::TRANSFER_READ), Use::buffer(&staging, Access::TRANSFER_WRITE)],
+            |c| {
+                c.copy_image_to_buffer(image, mip, layer, &staging);
+                Ok(())
+            },
+        )?;
+        f.submit()?;
+        let m = staging.mapped().ok_or_else(|| VkError::Invalid("readback buffer is not mapped".into()))?;
+        Ok(m[..bytes as usize].to_vec())
+    }
+
+    /// `read_image` as f32 texels (for R32/RG32/RGBA32_SFLOAT and D32 images).
+    pub fn read_image_f32(&self, image: &Image, mip: u32, layer: u32) -> Result<Vec<f32>> {
+        Ok(bytemuck::pod_collect_to_vec(&self.read_image(image, mip, layer)?))
+    }
+}

@@ -1,0 +1,40 @@
+//! Shared by vkcore's GPU tests: a lavapipe-or-GPU context with the Khronos validation layer
+//! (synchronization validation on) and a check that no message was reported.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use vkcore::{Context, ContextOptions, ShaderCompiler};
+
+pub fn shader_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shaders_glsl")
+}
+
+/// A validated context on `$CAUSTICLAB_TEST_DEVICE` (default: the default device).
+pub fn context() -> (Context, ShaderCompiler) {
+    let opts = ContextOptions {
+        device: std::env::var("CAUSTICLAB_TEST_DEVICE").ok(),
+        validation: true,
+        echo_validation: true,
+        without: vec![],
+    };
+    let ctx = Context::new(&opts).expect("a Vulkan 1.3 device with the validation layer (run scripts/setup.sh)");
+    let shaders = ShaderCompiler::new(&shader_root()).expect("shaderc");
+    (ctx, shaders)
+}
+
+/// Fails the test if the validation layer reported anything.
+pub fn assert_no_validation_messages(ctx: &Context) {
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}
+
+/// A tiny deterministic PRNG (xorshift64*), so tests need no crates.
+pub struct Rng(pub u64);
+impl Rng {
+    pub fn next_u32(&mut self) -> u32 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 32) as u32
+    }
+}

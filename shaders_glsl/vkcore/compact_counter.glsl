@@ -1,0 +1,10 @@
+// Layout of a compute append counter (48 bytes), shared by compact_append.comp and
+// compact_finalize.comp; mirrored by `AppendCounter` in crates/vkcore/src/compaction.rs.
+struct CompactCounter {
+    uint count;         // elements appended (may exceed capacity: overflow is visible)
+    uint capacity;      // slots in the output buffer
+    uint _pad0;
+    uint _pad1;
+    uvec4 dispatch;     // VkDispatchIndirectCommand (x, y, z) for 64-wide groups, w unused
+    uvec4 draw;         // VkDrawIndirectCommand (vertexCount, instanceCount, firstVertex, firstInstance)
+};
