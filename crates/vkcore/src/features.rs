@@ -100,6 +100,8 @@ pub struct DeviceInfo {
     pub vendor_id: u32,
     pub device_id: u32,
     pub supported: Vec<Feature>,
+    /// Features the driver reports but this project treats as absent, with the reason.
+    pub quirks: Vec<String>,
     pub timestamp_valid_bits: u32,
     pub timestamp_period_ns: f32,
     pub point_size_range: [f32; 2],

@@ -1,0 +1,8 @@
+#version 450
+#extension GL_EXT_multiview : require
+layout(location = 0) flat out int g_layer;
+void main() {
+    vec2 p = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+    g_layer = int(gl_ViewIndex);
+}
