@@ -1,0 +1,543 @@
+//! Writing (and reading back) every buffer the renderer dumps, atomically.
+//!
+//! * [`write_exr`] / [`read_exr`]: f32 OpenEXR with named layers. Our files are one
+//!   part (ZIP16 scanlines) whose channels are named `layer.channel` (`R` for the
+//!   unnamed main layer); the original channel order is kept in a `causticlab.channels`
+//!   string-vector attribute, since EXR stores channels sorted by name.
+//! * [`write_png_tonemapped`]: linear RGB -> exposure -> ACES (Narkowicz fit) ->
+//!   sRGB 8-bit PNG.
+//! * [`OutputDir`]: a directory whose files appear only when the whole run succeeded.
+//!
+//! Single files are written to a temporary file in the destination directory, flushed
+//! to disk and renamed over the destination, so a reader never sees a partial file.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use anyhow::{bail, ensure, Context, Result};
+
+/// Attribute holding the full channel names of our files in their original order.
+const CHANNEL_ORDER_ATTRIBUTE: &str = "causticlab.channels";
+
+/// One named layer of an image: channel names (e.g. `["R","G","B"]`, `["X","Y","Z"]`,
+/// `["distance"]`) and interleaved f32 pixels, row 0 = top row of the image as stored
+/// in the EXR (the caller decides orientation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layer {
+    /// `None` = unnamed main layer.
+    pub name: Option<String>,
+    pub channels: Vec<String>,
+    /// `width * height * channels.len()` values, interleaved per pixel.
+    pub data: Vec<f32>,
+}
+
+impl Layer {
+    pub fn new(name: Option<&str>, channels: &[&str], data: Vec<f32>) -> Layer {
+        Layer {
+            name: name.map(str::to_owned),
+            channels: channels.iter().map(|&c| c.to_owned()).collect(),
+            data,
+        }
+    }
+
+    /// Channel `c` of pixel `(x, y)` for an image `width` wide.
+    pub fn sample(&self, width: u32, x: u32, y: u32, c: usize) -> f32 {
+        self.data[(y as usize * width as usize + x as usize) * self.channels.len() + c]
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImageF32 {
+    pub width: u32,
+    pub height: u32,
+    pub layers: Vec<Layer>,
+}
+
+impl ImageF32 {
+    /// The layer with this name (`None` = the unnamed main layer).
+    pub fn layer(&self, name: Option<&str>) -> Option<&Layer> {
+        self.layers.iter().find(|l| l.name.as_deref() == name)
+    }
+}
+
+static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+fn unique_suffix() -> String {
+    format!(
+        "{}-{}",
+        std::process::id(),
+        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
+    )
+}
+
+/// Writes `path` through a temporary file in the same directory, synced and renamed
+/// into place; on any error the temporary file is removed and `path` is untouched.
+fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<File>) -> Result<()>,
+) -> Result<()> {
+    let file_name = path
+        .file_name()
+        .with_context(|| format!("{} has no file name", path.display()))?;
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        file_name.to_string_lossy(),
+        unique_suffix()
+    ));
+    let result = (|| -> Result<()> {
+        let file = File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
+        let mut w = BufWriter::new(file);
+        write(&mut w)?;
+        let file = w.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
+        drop(file);
+        std::fs::rename(&tmp, path)
+            .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.with_context(|| format!("writing {}", path.display()))
+}
+
+fn validate(image: &ImageF32) -> Result<Vec<String>> {
+    ensure!(
+        image.width > 0 && image.height > 0,
+        "image is {}x{}: both sizes must be positive",
+        image.width,
+        image.height
+    );
+    ensure!(!image.layers.is_empty(), "image has no layers");
+    let pixels = image.width as usize * image.height as usize;
+    let mut full_names = Vec::new();
+    for layer in &image.layers {
+        let lname = layer.name.as_deref().unwrap_or("<main>");
+        if let Some(n) = &layer.name {
+            ensure!(
+                !n.is_empty() && !n.starts_with('.') && !n.ends_with('.'),
+                "invalid layer name {n:?}"
+            );
+        }
+        ensure!(!layer.channels.is_empty(), "layer {lname} has no channels");
+        ensure!(
+            layer.data.len() == pixels * layer.channels.len(),
+            "layer {lname}: {} values for {}x{} pixels x {} channels (expected {})",
+            layer.data.len(),
+            image.width,
+            image.height,
+            layer.channels.len(),
+            pixels * layer.channels.len()
+        );
+        for c in &layer.channels {
+            ensure!(
+                !c.is_empty() && !c.contains('.'),
+                "layer {lname}: invalid channel name {c:?} (empty or contains '.')"
+            );
+            let full = match &layer.name {
+                Some(n) => format!("{n}.{c}"),
+                None => c.clone(),
+            };
+            ensure!(full.is_ascii(), "channel name {full:?} is not ASCII");
+            ensure!(!full_names.contains(&full), "duplicate channel {full:?}");
+            full_names.push(full);
+        }
+    }
+    Ok(full_names)
+}
+
+/// Writes all layers as f32 channels into one EXR file (one part, channels named
+/// `layer.channel`), atomically. Size mismatches and bad names are errors.
+pub fn write_exr(path: &Path, image: &ImageF32) -> Result<()> {
+    use exr::prelude::{
+        AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, LayerAttributes, Text,
+        WritableImage,
+    };
+
+    let full_names = validate(image).with_context(|| format!("writing {}", path.display()))?;
+    let pixels = image.width as usize * image.height as usize;
+    let mut channels = Vec::with_capacity(full_names.len());
+    let mut names = full_names.iter();
+    for layer in &image.layers {
+        let nc = layer.channels.len();
+        for c in 0..nc {
+            let samples: Vec<f32> = (0..pixels).map(|p| layer.data[p * nc + c]).collect();
+            channels.push(AnyChannel::new(
+                Text::from(names.next().unwrap().as_str()),
+                FlatSamples::F32(samples),
+            ));
+        }
+    }
+    let mut attributes = LayerAttributes::default();
+    attributes.other.insert(
+        Text::from(CHANNEL_ORDER_ATTRIBUTE),
+        AttributeValue::TextVector(full_names.iter().map(|n| Text::from(n.as_str())).collect()),
+    );
+    let layer = exr::prelude::Layer::new(
+        (image.width as usize, image.height as usize),
+        attributes,
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(channels.into_iter().collect()),
+    );
+    let exr_image = exr::prelude::Image::from_layer(layer);
+    write_atomically(path, |w| {
+        exr_image.write().to_buffered(w)?;
+        Ok(())
+    })
+}
+
+/// Order for channels of files without our order attribute: grouped by layer, then
+/// R, G, B, A, X, Y, Z first within a layer, then by name.
+fn default_channel_rank(full: &str) -> (String, u8, String) {
+    let (prefix, base) = split_channel(full);
+    let rank = ["R", "G", "B", "A", "X", "Y", "Z"]
+        .iter()
+        .position(|&c| c == base)
+        .unwrap_or(7) as u8;
+    (prefix.unwrap_or("").to_owned(), rank, base.to_owned())
+}
+
+fn split_channel(full: &str) -> (Option<&str>, &str) {
+    match full.rsplit_once('.') {
+        Some((prefix, base)) => (Some(prefix), base),
+        None => (None, full),
+    }
+}
+
+/// Reads every layer (all parts, channel-name prefixes) and channel as f32. Layer names
+/// come from the file: a part's `name` attribute and/or a `layer.` channel prefix,
+/// joined with '.'. Files written by [`write_exr`] come back exactly as written
+/// (layer order, channel order and bit-exact values). All parts must share one size.
+pub fn read_exr(path: &Path) -> Result<ImageF32> {
+    read_exr_inner(path).with_context(|| format!("reading {}", path.display()))
+}
+
+fn read_exr_inner(path: &Path) -> Result<ImageF32> {
+    use exr::prelude::{read, AttributeValue, ReadChannels, ReadLayers};
+
+    let file = File::open(path)?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .all_layers()
+        .all_attributes()
+        .from_buffered(std::io::BufReader::new(file))?;
+
+    let mut size: Option<(usize, usize)> = None;
+    let mut layers: Vec<Layer> = Vec::new();
+    for part in &image.layer_data {
+        let (w, h) = (part.size.0, part.size.1);
+        match size {
+            None => size = Some((w, h)),
+            Some(s) => ensure!(
+                s == (w, h),
+                "parts of different sizes ({}x{} and {w}x{h}) are not supported",
+                s.0,
+                s.1
+            ),
+        }
+        let part_name = part.attributes.layer_name.as_ref().map(|t| t.to_string());
+        let list = &part.channel_data.list;
+        let names: Vec<String> = list.iter().map(|c| c.name.to_string()).collect();
+
+        // Channel order: ours if the attribute matches this part's channels exactly.
+        let mut order: Vec<usize> = (0..list.len()).collect();
+        let stored = match part
+            .attributes
+            .other
+            .get(&exr::prelude::Text::from(CHANNEL_ORDER_ATTRIBUTE))
+        {
+            Some(AttributeValue::TextVector(v)) => {
+                Some(v.iter().map(|t| t.to_string()).collect::<Vec<_>>())
+            }
+            _ => None,
+        };
+        let mut sorted_stored = stored.clone().unwrap_or_default();
+        sorted_stored.sort();
+        let mut sorted_names = names.clone();
+        sorted_names.sort();
+        if let (Some(stored), true) = (&stored, sorted_stored == sorted_names) {
+            order = stored
+                .iter()
+                .map(|s| names.iter().position(|n| n == s).unwrap())
+                .collect();
+        } else {
+            order.sort_by_key(|&i| default_channel_rank(&names[i]));
+        }
+
+        // Group into layers in order of first appearance.
+        let first_layer = layers.len();
+        let mut columns: Vec<Vec<Vec<f32>>> = Vec::new();
+        for &i in &order {
+            let (prefix, base) = split_channel(&names[i]);
+            let lname = match (&part_name, prefix) {
+                (Some(p), Some(q)) => Some(format!("{p}.{q}")),
+                (Some(p), None) => Some(p.clone()),
+                (None, Some(q)) => Some(q.to_owned()),
+                (None, None) => None,
+            };
+            let k = match layers[first_layer..].iter().position(|l| l.name == lname) {
+                Some(k) => k,
+                None => {
+                    layers.push(Layer {
+                        name: lname,
+                        channels: Vec::new(),
+                        data: Vec::new(),
+                    });
+                    columns.push(Vec::new());
+                    layers.len() - 1 - first_layer
+                }
+            };
+            layers[first_layer + k].channels.push(base.to_owned());
+            let samples: Vec<f32> = list[i].sample_data.values_as_f32().collect();
+            ensure!(
+                samples.len() == w * h,
+                "channel {} has {} samples for {w}x{h}",
+                names[i],
+                samples.len()
+            );
+            columns[k].push(samples);
+        }
+        for (layer, cols) in layers[first_layer..].iter_mut().zip(columns) {
+            let nc = cols.len();
+            layer.data = vec![0.0; w * h * nc];
+            for (c, col) in cols.iter().enumerate() {
+                for (p, &v) in col.iter().enumerate() {
+                    layer.data[p * nc + c] = v;
+                }
+            }
+        }
+    }
+    let Some((w, h)) = size else {
+        bail!("file has no layers")
+    };
+    Ok(ImageF32 {
+        width: u32::try_from(w)?,
+        height: u32::try_from(h)?,
+        layers,
+    })
+}
+
+/// ACES filmic tone curve, Narkowicz 2015 fit, clamped to [0, 1].
+pub fn tonemap_aces(x: f32) -> f32 {
+    if x >= 1.0e6 {
+        // The curve reaches 1 at x ~ 7.24; avoid inf/inf for huge x.
+        return 1.0;
+    }
+    let (a, b, c, d, e) = (2.51f32, 0.03f32, 2.43f32, 0.59f32, 0.14f32);
+    ((x * (a * x + b)) / (x * (c * x + d) + e)).clamp(0.0, 1.0)
+}
+
+/// Linear [0, 1] -> sRGB-encoded [0, 1] (IEC 61966-2-1).
+pub fn srgb_encode(x: f32) -> f32 {
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// One linear radiance value (already multiplied by exposure) -> 8-bit sRGB code.
+/// NaN, infinities and negative values become 0.
+pub fn tonemap_to_srgb8(x: f32) -> u8 {
+    if !(x.is_finite() && x > 0.0) {
+        return 0;
+    }
+    (srgb_encode(tonemap_aces(x)) * 255.0)
+        .round()
+        .clamp(0.0, 255.0) as u8
+}
+
+/// Writes linear RGB radiance (`width*height*3`, row 0 = top) as an 8-bit sRGB PNG:
+/// `value * exposure` -> [`tonemap_aces`] -> [`srgb_encode`]. Non-finite and negative
+/// inputs become black; a finite input that overflows after exposure saturates. Atomic.
+pub fn write_png_tonemapped(
+    path: &Path,
+    width: u32,
+    height: u32,
+    rgb: &[f32],
+    exposure: f32,
+) -> Result<()> {
+    let check = || -> Result<()> {
+        ensure!(
+            width > 0 && height > 0,
+            "image is {width}x{height}: both sizes must be positive"
+        );
+        let expected = width as usize * height as usize * 3;
+        ensure!(
+            rgb.len() == expected,
+            "{} values for {width}x{height} RGB (expected {expected})",
+            rgb.len()
+        );
+        ensure!(
+            exposure.is_finite() && exposure >= 0.0,
+            "exposure {exposure} must be finite and non-negative"
+        );
+        Ok(())
+    };
+    check().with_context(|| format!("writing {}", path.display()))?;
+    let bytes: Vec<u8> = rgb
+        .iter()
+        .map(|&v| {
+            if v.is_finite() && v > 0.0 {
+                tonemap_to_srgb8((v * exposure).min(f32::MAX))
+            } else {
+                0
+            }
+        })
+        .collect();
+    write_atomically(path, |w| {
+        let mut encoder = png::Encoder::new(w, width, height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(&bytes)?;
+        writer.finish()?;
+        Ok(())
+    })
+}
+
+/// An output directory whose files appear only when the whole run succeeded.
+///
+/// Files are written into a staging directory beside the final one
+/// (`.<name>.partial-<pid>-<n>`); [`OutputDir::commit`] moves them in. Dropping an
+/// uncommitted `OutputDir` (error, panic unwinding) removes the staging directory.
+/// When the final directory does not exist yet, commit is a single atomic rename;
+/// otherwise each file is renamed in (each file atomic, overwriting same-named files).
+#[derive(Debug)]
+pub struct OutputDir {
+    final_dir: PathBuf,
+    staging: PathBuf,
+    committed: bool,
+}
+
+impl OutputDir {
+    pub fn create(final_dir: &Path) -> Result<OutputDir> {
+        let run = || -> Result<OutputDir> {
+            let final_dir = match final_dir.file_name() {
+                Some(_) => final_dir.to_path_buf(),
+                // "." / ".." / "dir/..": name the directory through its absolute path.
+                None => final_dir.canonicalize()?,
+            };
+            let name = final_dir
+                .file_name()
+                .context("output directory has no name")?
+                .to_string_lossy()
+                .into_owned();
+            let staging = final_dir.with_file_name(format!(".{name}.partial-{}", unique_suffix()));
+            if staging.exists() {
+                std::fs::remove_dir_all(&staging)?;
+            }
+            std::fs::create_dir_all(&staging)
+                .with_context(|| format!("creating {}", staging.display()))?;
+            Ok(OutputDir {
+                final_dir,
+                staging,
+                committed: false,
+            })
+        };
+        run().with_context(|| format!("creating output directory {}", final_dir.display()))
+    }
+
+    /// Path of `file` inside the staging directory (subdirectories are the caller's
+    /// to create, e.g. with `create_dir_all(out.path("sub"))`).
+    pub fn path(&self, file: &str) -> PathBuf {
+        self.staging.join(file)
+    }
+
+    pub fn final_dir(&self) -> &Path {
+        &self.final_dir
+    }
+
+    pub fn staging_dir(&self) -> &Path {
+        &self.staging
+    }
+
+    /// Moves every staged file into the final directory (created if needed;
+    /// same-named files are replaced), then removes the staging directory.
+    pub fn commit(mut self) -> Result<()> {
+        let result = (|| -> Result<()> {
+            if !self.final_dir.exists() {
+                if let Some(parent) = self
+                    .final_dir
+                    .parent()
+                    .filter(|p| !p.as_os_str().is_empty())
+                {
+                    std::fs::create_dir_all(parent)
+                        .with_context(|| format!("creating {}", parent.display()))?;
+                }
+                if std::fs::rename(&self.staging, &self.final_dir).is_ok() {
+                    return Ok(());
+                }
+                // Lost a race with another creator, or a filesystem without directory
+                // renames: fall back to moving files one by one.
+                std::fs::create_dir_all(&self.final_dir)
+                    .with_context(|| format!("creating {}", self.final_dir.display()))?;
+            }
+            move_contents(&self.staging, &self.final_dir)?;
+            std::fs::remove_dir_all(&self.staging)
+                .with_context(|| format!("removing {}", self.staging.display()))?;
+            Ok(())
+        })();
+        // On error, Drop removes whatever is still staged.
+        self.committed = result.is_ok();
+        result.with_context(|| format!("committing output directory {}", self.final_dir.display()))
+    }
+}
+
+fn move_contents(from: &Path, to: &Path) -> Result<()> {
+    let mut entries: Vec<_> = std::fs::read_dir(from)
+        .with_context(|| format!("listing {}", from.display()))?
+        .collect::<std::io::Result<Vec<_>>>()?;
+    entries.sort_by_key(|e| e.file_name());
+    for entry in entries {
+        let src = entry.path();
+        let dst = to.join(entry.file_name());
+        let is_dir = entry.file_type()?.is_dir();
+        if is_dir && dst.is_dir() {
+            move_contents(&src, &dst)?;
+        } else {
+            ensure!(
+                !dst.is_dir(),
+                "{} is a directory; cannot replace it with a file",
+                dst.display()
+            );
+            std::fs::rename(&src, &dst)
+                .with_context(|| format!("moving {} to {}", src.display(), dst.display()))?;
+        }
+    }
+    Ok(())
+}
+
+impl Drop for OutputDir {
+    fn drop(&mut self) {
+        if !self.committed && self.staging.exists() {
+            if let Err(e) = std::fs::remove_dir_all(&self.staging) {
+                log::warn!(
+                    "could not remove staging directory {}: {e}",
+                    self.staging.display()
+                );
+            }
+        }
+    }
+}
+
+/// Writes arbitrary bytes (JSON, CSV, ...) with the same atomic temp-file-and-rename
+/// behaviour as the image writers.
+pub fn write_file_atomically(path: &Path, contents: &[u8]) -> Result<()> {
+    write_atomically(path, |w| {
+        w.write_all(contents)?;
+        Ok(())
+    })
+}
+
+#[cfg(test)]
+mod tests;
