@@ -4,5 +4,6 @@ pub mod error;
 pub mod scene;
 pub mod bvh;
 pub mod image_io;
+pub mod render;
 
 pub use error::InputError;

@@ -1,0 +1,70 @@
+//! The eye render with `--technique none`: a shadow map per light, Lambertian shading with
+//! physically scaled irradiance, two-sided image-space refraction (Wyman 2005) and reflection
+//! lookups, and the receiver map E/E0 that every caustic technique is validated with.
+
+use crate::image_io::ImageF32;
+use crate::scene::Scene;
+use anyhow::Result;
+use vkcore::{Context, FrameReport, ShaderCompiler};
+
+/// Every intermediate buffer `--dump` accepts (`all` = every one).
+pub const DUMP_NAMES: &[&str] = &["shadow_map", "background", "refractor_back_faces", "refractor_front_faces", "eye_gbuffer", "receiver"];
+
+/// Techniques `--technique` accepts, with the device features each needs.
+pub const TECHNIQUES: &[&str] = &["none"];
+
+#[derive(Debug, Clone, Default)]
+pub struct RenderRequest {
+    /// Names from `DUMP_NAMES` (already validated by the caller).
+    pub dumps: Vec<String>,
+    /// Frames rendered (timings are kept for each; the image is the last frame's).
+    pub frames: u32,
+}
+
+pub struct Rendered {
+    /// Linear radiance, RGB, row 0 = top of the image.
+    pub final_image: ImageF32,
+    /// (file stem, image) for each requested dump, e.g. ("shadow_map", ...) -> shadow_map.exr.
+    pub dumps: Vec<(String, ImageF32)>,
+    /// Per-pass GPU timings of every frame.
+    pub frames: Vec<FrameReport>,
+}
+
+/// The device features technique `name` needs (checked by the caller with `ctx.require`).
+pub fn required_features(name: &str) -> Option<&'static [vkcore::Feature]> {
+    match name {
+        "none" => Some(&[vkcore::Feature::ShaderOutputLayer]),
+        _ => None,
+    }
+}
+
+/// Renders `scene`.
+pub fn render(_ctx: &Context, _shaders: &ShaderCompiler, _scene: &Scene, _req: &RenderRequest) -> Result<Rendered> {
+    anyhow::bail!("render: not written yet")
+}
+
+/// The shader folder: `$CAUSTICLAB_SHADERS`, else `shaders_glsl/` found by walking up from the
+/// current directory and from the executable, else the source tree this binary was built from.
+pub fn shader_root() -> std::path::PathBuf {
+    if let Some(p) = std::env::var_os("CAUSTICLAB_SHADERS") {
+        return p.into();
+    }
+    let mut starts = vec![];
+    if let Ok(cwd) = std::env::current_dir() {
+        starts.push(cwd);
+    }
+    if let Ok(exe) = std::env::current_exe() {
+        if let Some(d) = exe.parent() {
+            starts.push(d.to_path_buf());
+        }
+    }
+    for s in starts {
+        for dir in s.ancestors() {
+            let c = dir.join("shaders_glsl");
+            if c.join("vkcore").is_dir() {
+                return c;
+            }
+        }
+    }
+    std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl"))
+}
