@@ -29,7 +29,9 @@ const ALL_SHADERS: S = S::from_raw(GFX_SHADERS.as_raw() | S::COMPUTE_SHADER.as_r
 impl Access {
     /// Sampled (texture()) or read as a storage buffer/image by any shader stage.
     pub const SHADER_READ: Access = acc(ALL_SHADERS, A::SHADER_READ, L::SHADER_READ_ONLY_OPTIMAL);
-    /// Storage image/buffer read and written by compute.
+    /// A uniform buffer read by any shader stage.
+    pub const UNIFORM_READ: Access = acc(ALL_SHADERS, A::UNIFORM_READ, L::UNDEFINED);
+    /// Storage image/buffer written (and read) by compute.
     pub const COMPUTE_READ_WRITE: Access =
         acc(S::COMPUTE_SHADER, A::from_raw(A::SHADER_STORAGE_READ.as_raw() | A::SHADER_STORAGE_WRITE.as_raw()), L::GENERAL);
     /// Storage image/buffer read and written by graphics shaders (atomics in fragment shaders).

@@ -541,3 +541,30 @@ pub fn write_file_atomically(path: &Path, contents: &[u8]) -> Result<()> {
 
 #[cfg(test)]
 mod tests;
+
+/// Decodes a PNG into linear RGBA in [0, 1] (sRGB decoded), for projected spot-light textures.
+pub fn read_png_rgba(path: &Path) -> Result<(u32, u32, Vec<f32>)> {
+    let file = std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))?;
+    let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
+    decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
+    let mut reader = decoder.read_info().with_context(|| format!("reading PNG {}", path.display()))?;
+    let mut buf = vec![0u8; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).with_context(|| format!("decoding PNG {}", path.display()))?;
+    let channels = info.color_type.samples();
+    let (w, h) = (info.width, info.height);
+    let to_linear = |v: u8| {
+        let c = v as f32 / 255.0;
+        if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+    };
+    let mut out = Vec::with_capacity((w * h * 4) as usize);
+    for px in buf[..info.buffer_size()].chunks(channels) {
+        let (r, g, b, a) = match channels {
+            1 => (px[0], px[0], px[0], 255),
+            2 => (px[0], px[0], px[0], px[1]),
+            3 => (px[0], px[1], px[2], 255),
+            _ => (px[0], px[1], px[2], px[3]),
+        };
+        out.extend_from_slice(&[to_linear(r), to_linear(g), to_linear(b), a as f32 / 255.0]);
+    }
+    Ok((w, h, out))
+}

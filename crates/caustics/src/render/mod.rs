@@ -2,10 +2,17 @@
 //! physically scaled irradiance, two-sided image-space refraction (Wyman 2005) and reflection
 //! lookups, and the receiver map E/E0 that every caustic technique is validated with.
 
+mod dumps;
+mod eye;
+pub mod gpu;
+mod pipelines;
+pub mod setup;
+mod targets;
+
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use anyhow::Result;
-use vkcore::{Context, FrameReport, ShaderCompiler};
+use vkcore::{Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler};
 
 /// Every intermediate buffer `--dump` accepts (`all` = every one).
 pub const DUMP_NAMES: &[&str] = &["shadow_map", "background", "refractor_back_faces", "refractor_front_faces", "eye_gbuffer", "receiver"];
@@ -38,9 +45,38 @@ pub fn required_features(name: &str) -> Option<&'static [vkcore::Feature]> {
     }
 }
 
-/// Renders `scene`.
-pub fn render(_ctx: &Context, _shaders: &ShaderCompiler, _scene: &Scene, _req: &RenderRequest) -> Result<Rendered> {
-    anyhow::bail!("render: not written yet")
+/// Renders `scene` `req.frames` times (at least once) and reads back the last frame.
+pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &RenderRequest) -> Result<Rendered> {
+    ctx.require("technique `none`", required_features("none").unwrap_or(&[]))?;
+    if scene.lights.len() > gpu::MAX_LIGHTS {
+        return Err(crate::input_error!("{}: {} lights; at most {} are supported", scene.path.display(), scene.lights.len(), gpu::MAX_LIGHTS).into());
+    }
+    let pipelines = pipelines::EyePipelines::new(ctx, shaders)?;
+    let meshes = setup::upload_meshes(ctx, scene)?;
+    let uniforms = ctx.buffer_with_data("frame uniforms", bytemuck::bytes_of(&setup::frame_uniforms(scene)))?;
+    let targets = targets::EyeTargets::new(ctx, scene)?;
+    let spot = setup::spot_texture_layers(scene)?;
+    for l in 0..targets.shadow.lights {
+        let n = (setup::SPOT_TEXTURE_SIZE * setup::SPOT_TEXTURE_SIZE * 4) as usize;
+        ctx.upload_image(&targets.spot_textures.image, 0, l, bytemuck::cast_slice(&spot[l as usize * n..(l as usize + 1) * n]))?;
+    }
+    let nearest = Sampler::new(ctx, Filter::Nearest)?;
+    let linear = Sampler::new(ctx, Filter::Linear)?;
+    let inputs = eye::EyeInputs { uniforms: &uniforms, meshes: &meshes, nearest: &nearest, linear: &linear };
+    let mut frames = vec![];
+    for _ in 0..req.frames.max(1) {
+        let mut f = ctx.frame(FrameOptions { timestamps: true, pipeline_statistics: true })?;
+        eye::record(&mut f, &pipelines, &targets, &inputs)?;
+        frames.push(f.submit()?);
+    }
+    let final_image = dumps::final_image(ctx, &targets)?;
+    let mut out = vec![];
+    for name in &req.dumps {
+        if let Some(img) = dumps::dump(ctx, &targets, name)? {
+            out.push((name.clone(), img));
+        }
+    }
+    Ok(Rendered { final_image, dumps: out, frames })
 }
 
 /// The shader folder: `$CAUSTICLAB_SHADERS`, else `shaders_glsl/` found by walking up from the

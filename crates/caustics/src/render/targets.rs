@@ -1,0 +1,92 @@
+//! Images of the eye render and the views passes use.
+
+use super::pipelines::{COLOR, DEPTH, DISTANCE};
+use super::setup::SPOT_TEXTURE_SIZE;
+use crate::scene::Scene;
+use anyhow::Result;
+use vkcore::{Context, Image, ImageDesc, ImageView, ViewKind};
+
+/// An image with its full view.
+pub struct Target {
+    pub image: Image,
+    pub view: ImageView,
+}
+
+impl Target {
+    pub fn new(ctx: &Context, desc: ImageDesc) -> Result<Target> {
+        let image = Image::new(ctx, desc)?;
+        let view = image.full_view()?;
+        Ok(Target { image, view })
+    }
+    /// A 2D-array view even for one layer (for `sampler2DArray` bindings).
+    pub fn array(ctx: &Context, desc: ImageDesc) -> Result<Target> {
+        let image = Image::new(ctx, desc)?;
+        let view = image.view(ViewKind::D2Array, 0..1, 0..image.desc.array_layers)?;
+        Ok(Target { image, view })
+    }
+    fn color(ctx: &Context, name: &str, w: u32, h: u32) -> Result<Target> {
+        Target::new(ctx, ImageDesc::new_2d(name, COLOR, w, h))
+    }
+    fn depth(ctx: &Context, name: &str, w: u32, h: u32) -> Result<Target> {
+        Target::new(ctx, ImageDesc::new_2d(name, DEPTH, w, h))
+    }
+}
+
+/// Shadow maps of every light: distances in layers 6l..6l+6, plus per-light layer views.
+pub struct ShadowMaps {
+    pub distance: Target,
+    /// Kept alive for the per-light depth views.
+    #[allow(dead_code)]
+    pub depth: Image,
+    /// Per light: (distance view, depth view) over its six layers.
+    pub per_light: Vec<(ImageView, ImageView)>,
+    pub lights: u32,
+}
+
+pub struct EyeTargets {
+    pub shadow: ShadowMaps,
+    pub spot_textures: Target,
+    pub background: Target,
+    pub position: Target,
+    pub normal: Target,
+    pub depth: Target,
+    pub back_faces: Target,
+    pub back_depth: Target,
+    pub surface: Target,
+    pub final_image: Target,
+    /// (E/E0, E and mean E0) over the receiver grid.
+    pub receiver: Option<(Target, Target)>,
+}
+
+impl EyeTargets {
+    pub fn new(ctx: &Context, scene: &Scene) -> Result<EyeTargets> {
+        let (w, h) = (scene.camera.width, scene.camera.height);
+        let lights = scene.lights.len().clamp(1, super::gpu::MAX_LIGHTS) as u32;
+        let res = scene.render.shadow_map_resolution;
+        let distance = Target::array(ctx, ImageDesc::new_2d("shadow_map", DISTANCE, res, res).layers(6 * lights))?;
+        let depth = Image::new(ctx, ImageDesc::new_2d("shadow_map depth", DEPTH, res, res).layers(6 * lights))?;
+        let per_light = (0..lights)
+            .map(|l| {
+                let layers = 6 * l..6 * l + 6;
+                Ok((distance.image.view(ViewKind::D2Array, 0..1, layers.clone())?, depth.view(ViewKind::D2Array, 0..1, layers)?))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let receiver = match &scene.receiver_map {
+            Some(r) => Some((Target::color(ctx, "receiver E/E0", r.resolution, r.resolution)?, Target::color(ctx, "receiver E", r.resolution, r.resolution)?)),
+            None => None,
+        };
+        Ok(EyeTargets {
+            shadow: ShadowMaps { distance, depth, per_light, lights },
+            spot_textures: Target::array(ctx, ImageDesc::new_2d("spot textures", COLOR, SPOT_TEXTURE_SIZE, SPOT_TEXTURE_SIZE).layers(lights))?,
+            background: Target::color(ctx, "background radiance", w, h)?,
+            position: Target::color(ctx, "eye position", w, h)?,
+            normal: Target::color(ctx, "eye normal", w, h)?,
+            depth: Target::depth(ctx, "eye depth", w, h)?,
+            back_faces: Target::color(ctx, "refractor back faces", w, h)?,
+            back_depth: Target::depth(ctx, "refractor back-face depth", w, h)?,
+            surface: Target::color(ctx, "refractor front faces", w, h)?,
+            final_image: Target::color(ctx, "final", w, h)?,
+            receiver,
+        })
+    }
+}

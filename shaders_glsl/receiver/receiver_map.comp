@@ -1,0 +1,28 @@
+// The receiver map: for texel (i, j) of an N x N grid over [x0,x1] x [z0,z1] at height
+// plane_y (texel centres at x0 + (i + 0.5)(x1 - x0)/N, row 0 at z0), E/E0 per channel, where
+// E is the irradiance arriving there (direct light where the shadow map says unshadowed; caustic
+// light once a technique adds it) and E0 the irradiance from all lights with no occluders.
+#version 450
+#define SHADOW_BINDING 1
+#define SPOT_BINDING 2
+#include "common/lighting.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 3, rgba32f) uniform writeonly image2D ratio_map;       // rgb E/E0
+layout(binding = 4, rgba32f) uniform writeonly image2D irradiance_map;  // rgb E (W/m^2), a: mean E0
+
+void main() {
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    int n = int(frame.receiver.y);
+    if (ij.x >= n || ij.y >= n) return;
+    vec4 r = frame.receiver_range;
+    vec3 p = vec3(r.x + (float(ij.x) + 0.5) * (r.y - r.x) / float(n),
+                  frame.receiver.x,
+                  r.z + (float(ij.y) + 0.5) * (r.w - r.z) / float(n));
+    vec3 up = vec3(0.0, 1.0, 0.0);
+    vec3 e0 = vec3(0.0);
+    for (uint l = 0u; l < frame.counts.x; ++l) e0 += unoccluded_irradiance(l, p, up);
+    vec3 e = direct_irradiance(p, up);
+    vec3 ratio = vec3(e0.r > 0.0 ? e.r / e0.r : 0.0, e0.g > 0.0 ? e.g / e0.g : 0.0, e0.b > 0.0 ? e.b / e0.b : 0.0);
+    imageStore(ratio_map, ij, vec4(ratio, 1.0));
+    imageStore(irradiance_map, ij, vec4(e, (e0.r + e0.g + e0.b) / 3.0));
+}
