@@ -40,8 +40,8 @@ vec3 background_lookup(vec3 o, vec3 d) {
         if (hit.w < 0.5) return frame.background.rgb;
         t = distance(hit.xyz, o);
     }
-    // Accept only if the last step agrees with the ray direction (else the ray left the image).
-    if (dot(normalize(hit.xyz - o), d) < 0.95) return frame.background.rgb;
+    // The search converges to the surface the ray meets where the background image can see it;
+    // where it cannot (hidden or behind the camera), the last estimate is the best there is.
     return texture(background_radiance, uv).rgb;
 }
 
