@@ -59,7 +59,8 @@ impl Buffer {
             Memory::Readback => MemoryLocation::GpuToCpu,
         };
         let allocation = {
-            let mut guard = ctx.shared.allocator.lock().map_err(|_| VkError::Invalid("allocator lock poisoned".into()))?;
+            let mut guard =
+                ctx.shared.allocator.lock().map_err(|_| VkError::Invalid("allocator lock poisoned".into()))?;
             let alloc = guard.as_mut().ok_or_else(|| VkError::Invalid("allocator gone".into()))?;
             alloc.allocate(&AllocationCreateDesc {
                 name,
@@ -111,7 +112,10 @@ impl Buffer {
             .ok_or_else(|| VkError::Invalid(format!("buffer `{name}` is not host-visible")))?;
         let end = offset as usize + data.len();
         if end > slice.len() {
-            return Err(VkError::Invalid(format!("write of {} bytes at {offset} overflows buffer `{name}`", data.len())));
+            return Err(VkError::Invalid(format!(
+                "write of {} bytes at {offset} overflows buffer `{name}`",
+                data.len()
+            )));
         }
         slice[offset as usize..end].copy_from_slice(data);
         Ok(())

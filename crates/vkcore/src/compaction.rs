@@ -98,11 +98,7 @@ impl Compactor {
                     "stream compaction (xfb path)",
                     &[Feature::GeometryShader, Feature::TransformFeedback, Feature::TransformFeedbackDraw],
                 )?;
-                let mut desc = GraphicsDesc::new(
-                    "compact.xfb",
-                    shaders.compile("vkcore/compact.vert", &[])?,
-                    None,
-                );
+                let mut desc = GraphicsDesc::new("compact.xfb", shaders.compile("vkcore/compact.vert", &[])?, None);
                 desc.geometry = Some(shaders.compile("vkcore/compact.geom", &defines)?);
                 desc.topology = Topology::Points;
                 desc.rasterizer_discard = true;
@@ -110,21 +106,50 @@ impl Compactor {
                     stride: ELEMENT_BYTES as u32,
                     attributes: vec![VertexAttribute { location: 0, format: vk::Format::R32G32B32A32_UINT, offset: 0 }],
                 });
-                Ok(Compactor { path, xfb: Some(Pipeline::graphics(ctx, &desc)?), append: None, finalize: None, dummy_counter: None })
+                Ok(Compactor {
+                    path,
+                    xfb: Some(Pipeline::graphics(ctx, &desc)?),
+                    append: None,
+                    finalize: None,
+                    dummy_counter: None,
+                })
             }
             CompactionPath::Compute => {
                 use BindingKind::StorageBuffer as SB;
-                let append = Pipeline::compute(ctx, "compact.append", &shaders.compile("vkcore/compact_append.comp", &defines)?, &[SB, SB, SB, SB])?;
-                let finalize = Pipeline::compute(ctx, "compact.finalize", &shaders.compile("vkcore/compact_finalize.comp", &[])?, &[SB])?;
+                let append = Pipeline::compute(
+                    ctx,
+                    "compact.append",
+                    &shaders.compile("vkcore/compact_append.comp", &defines)?,
+                    &[SB, SB, SB, SB],
+                )?;
+                let finalize = Pipeline::compute(
+                    ctx,
+                    "compact.finalize",
+                    &shaders.compile("vkcore/compact_finalize.comp", &[])?,
+                    &[SB],
+                )?;
                 let dummy = ctx.buffer_with_data("compact dummy counter", &[0u8; COUNTER_BYTES as usize])?;
-                Ok(Compactor { path, xfb: None, append: Some(append), finalize: Some(finalize), dummy_counter: Some(dummy) })
+                Ok(Compactor {
+                    path,
+                    xfb: None,
+                    append: Some(append),
+                    finalize: Some(finalize),
+                    dummy_counter: Some(dummy),
+                })
             }
         }
     }
 
     /// Records the compaction of `src` into `out` as passes of `frame`. With `query`, the xfb
     /// path also records primitives written/needed into query `query.1` of the pool.
-    pub fn record(&self, frame: &mut Frame, name: &str, src: Source, out: &CompactStream, query: Option<(&QueryPool, u32)>) -> Result<()> {
+    pub fn record(
+        &self,
+        frame: &mut Frame,
+        name: &str,
+        src: Source,
+        out: &CompactStream,
+        query: Option<(&QueryPool, u32)>,
+    ) -> Result<()> {
         if let Some(p) = &self.xfb {
             let (input, input_counter) = match &src {
                 Source::Array(b, _) => (*b, None),
@@ -185,7 +210,12 @@ impl Compactor {
         }
         frame.pass(name, &uses, |cmd| {
             cmd.bind_pipeline(append);
-            cmd.bind(&[Bind::Buffer(input), Bind::Buffer(in_counter), Bind::Buffer(&out.data), Bind::Buffer(&out.counter)])?;
+            cmd.bind(&[
+                Bind::Buffer(input),
+                Bind::Buffer(in_counter),
+                Bind::Buffer(&out.data),
+                Bind::Buffer(&out.counter),
+            ])?;
             cmd.push(&[n, indirect as u32, out.capacity, 0u32])?;
             if indirect {
                 cmd.dispatch_indirect(in_counter, 16);

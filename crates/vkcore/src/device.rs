@@ -41,7 +41,8 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
         let limits = props.limits;
 
         let families = instance.get_physical_device_queue_family_properties(pd);
-        let timestamp_valid_bits = graphics_family(&families).map(|i| families[i as usize].timestamp_valid_bits).unwrap_or(0);
+        let timestamp_valid_bits =
+            graphics_family(&families).map(|i| families[i as usize].timestamp_valid_bits).unwrap_or(0);
         let mem = instance.get_physical_device_memory_properties(pd);
         let device_local_bytes = mem.memory_heaps[..mem.memory_heap_count as usize]
             .iter()
@@ -68,7 +69,10 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
         add(yes(f11.multiview_geometry_shader) && !broken(Feature::Multiview), Feature::MultiviewGeometryShader);
         add(has_atomic_float && yes(af.shader_buffer_float32_atomic_add), Feature::BufferFloat32AtomicAdd);
         add(has_atomic_float && yes(af.shader_image_float32_atomic_add), Feature::ImageFloat32AtomicAdd);
-        add(yes(f.pipeline_statistics_query) && !broken(Feature::PipelineStatisticsQuery), Feature::PipelineStatisticsQuery);
+        add(
+            yes(f.pipeline_statistics_query) && !broken(Feature::PipelineStatisticsQuery),
+            Feature::PipelineStatisticsQuery,
+        );
         add(yes(f.large_points), Feature::LargePoints);
         add(timestamp_valid_bits > 0, Feature::Timestamps);
         add(has_ext(khr::push_descriptor::NAME), Feature::PushDescriptor);
@@ -80,7 +84,12 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
             name: props.device_name_as_c_str().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
             device_type: device_type_name(props.device_type).to_string(),
             is_software: props.device_type == vk::PhysicalDeviceType::CPU,
-            api_version: format!("{}.{}.{}", vk::api_version_major(v), vk::api_version_minor(v), vk::api_version_patch(v)),
+            api_version: format!(
+                "{}.{}.{}",
+                vk::api_version_major(v),
+                vk::api_version_minor(v),
+                vk::api_version_patch(v)
+            ),
             api_major_minor: (vk::api_version_major(v), vk::api_version_minor(v)),
             driver_name: driver.driver_name_as_c_str().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
             driver_info: driver.driver_info_as_c_str().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
@@ -147,9 +156,7 @@ pub fn enumerate_devices(instance: &Instance) -> Result<Vec<DeviceInfo>> {
 /// Picks a device: `query` is an index or a case-insensitive substring of the name; without one,
 /// the first hardware GPU, else the first software device (lavapipe).
 pub fn choose_device(devices: &[DeviceInfo], query: Option<&str>) -> Result<usize> {
-    let available = || {
-        devices.iter().map(|d| format!("[{}] {}", d.index, d.name)).collect::<Vec<_>>().join(", ")
-    };
+    let available = || devices.iter().map(|d| format!("[{}] {}", d.index, d.name)).collect::<Vec<_>>().join(", ");
     let usable: Vec<&DeviceInfo> = devices.iter().filter(|d| d.api_major_minor >= (1, 3)).collect();
     match query {
         Some(q) => {
@@ -222,7 +229,6 @@ pub(crate) fn create_device(instance: &Instance, index: usize, without: &[Featur
     let queue_family = graphics_family(&families)
         .ok_or_else(|| VkError::Invalid(format!("device `{}` has no graphics+compute queue", info.name)))?;
     let has = |f| info.has(f);
-    let b = |x: bool| if x { vk::TRUE } else { vk::FALSE };
 
     let features = vk::PhysicalDeviceFeatures::default()
         .geometry_shader(has(Feature::GeometryShader))
@@ -242,17 +248,15 @@ pub(crate) fn create_device(instance: &Instance, index: usize, without: &[Featur
         .host_query_reset(true)
         .scalar_block_layout(true)
         .draw_indirect_count(true);
-    let mut f13 = vk::PhysicalDeviceVulkan13Features::default()
-        .dynamic_rendering(true)
-        .synchronization2(true)
-        .maintenance4(true);
-    let mut xfb = vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default();
-    xfb.transform_feedback = b(has(Feature::TransformFeedback));
-    let mut af = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default();
-    af.shader_buffer_float32_atomics = b(has(Feature::BufferFloat32AtomicAdd));
-    af.shader_buffer_float32_atomic_add = b(has(Feature::BufferFloat32AtomicAdd));
-    af.shader_image_float32_atomics = b(has(Feature::ImageFloat32AtomicAdd));
-    af.shader_image_float32_atomic_add = b(has(Feature::ImageFloat32AtomicAdd));
+    let mut f13 =
+        vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true).synchronization2(true).maintenance4(true);
+    let mut xfb =
+        vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default().transform_feedback(has(Feature::TransformFeedback));
+    let mut af = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default()
+        .shader_buffer_float32_atomics(has(Feature::BufferFloat32AtomicAdd))
+        .shader_buffer_float32_atomic_add(has(Feature::BufferFloat32AtomicAdd))
+        .shader_image_float32_atomics(has(Feature::ImageFloat32AtomicAdd))
+        .shader_image_float32_atomic_add(has(Feature::ImageFloat32AtomicAdd));
 
     let mut exts = vec![khr::push_descriptor::NAME.as_ptr()];
     if has(Feature::TransformFeedback) {

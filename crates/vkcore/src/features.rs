@@ -66,7 +66,9 @@ impl Feature {
         match self {
             Feature::GeometryShader => "VkPhysicalDeviceFeatures::geometryShader",
             Feature::TransformFeedback => "VK_EXT_transform_feedback: transformFeedback",
-            Feature::TransformFeedbackDraw => "VK_EXT_transform_feedback: transformFeedbackDraw (vkCmdDrawIndirectByteCountEXT)",
+            Feature::TransformFeedbackDraw => {
+                "VK_EXT_transform_feedback: transformFeedbackDraw (vkCmdDrawIndirectByteCountEXT)"
+            }
             Feature::TransformFeedbackQueries => "VK_EXT_transform_feedback: transformFeedbackQueries",
             Feature::ShaderOutputLayer => "VkPhysicalDeviceVulkan12Features::shaderOutputLayer",
             Feature::Multiview => "VkPhysicalDeviceVulkan11Features::multiview",

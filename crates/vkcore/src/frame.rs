@@ -16,7 +16,15 @@ use std::ops::Range;
 /// One resource a pass touches and how.
 pub enum Use<'a> {
     Buffer(&'a Buffer, Access),
-    Image { image_id: u64, raw: vk::Image, format: vk::Format, total_layers: u32, mips: Range<u32>, layers: Range<u32>, access: Access },
+    Image {
+        image_id: u64,
+        raw: vk::Image,
+        format: vk::Format,
+        total_layers: u32,
+        mips: Range<u32>,
+        layers: Range<u32>,
+        access: Access,
+    },
 }
 
 impl<'a> Use<'a> {
@@ -37,7 +45,15 @@ impl<'a> Use<'a> {
     }
     /// Some mips and layers of an image, without a view.
     pub fn image(i: &'a Image, mips: Range<u32>, layers: Range<u32>, access: Access) -> Use<'a> {
-        Use::Image { image_id: i.id, raw: i.raw, format: i.desc.format, total_layers: i.desc.array_layers, mips, layers, access }
+        Use::Image {
+            image_id: i.id,
+            raw: i.raw,
+            format: i.desc.format,
+            total_layers: i.desc.array_layers,
+            mips,
+            layers,
+            access,
+        }
     }
 }
 
@@ -75,12 +91,19 @@ pub(crate) fn sync(ctx: &Context, cb: vk::CommandBuffer, uses: &[Use]) -> Result
     if buffer_barriers.is_empty() && image_barriers.is_empty() {
         return Ok(());
     }
-    let dep = vk::DependencyInfo::default().buffer_memory_barriers(&buffer_barriers).image_memory_barriers(&image_barriers);
+    let dep =
+        vk::DependencyInfo::default().buffer_memory_barriers(&buffer_barriers).image_memory_barriers(&image_barriers);
     unsafe { ctx.shared.raw().cmd_pipeline_barrier2(cb, &dep) };
     Ok(())
 }
 
-fn image_barrier(raw: vk::Image, format: vk::Format, mip: u32, layer: u32, t: &Transition) -> vk::ImageMemoryBarrier2<'static> {
+fn image_barrier(
+    raw: vk::Image,
+    format: vk::Format,
+    mip: u32,
+    layer: u32,
+    t: &Transition,
+) -> vk::ImageMemoryBarrier2<'static> {
     vk::ImageMemoryBarrier2::default()
         .src_stage_mask(t.src_stage)
         .src_access_mask(t.src_access)
@@ -118,8 +141,12 @@ pub struct Frame {
 impl Context {
     /// Starts recording a frame (up to `max_passes` profiled passes).
     pub fn frame(&self, opts: FrameOptions) -> Result<Frame> {
-        let pool = *self.shared.command_pool.lock().map_err(|_| VkError::Invalid("command pool lock poisoned".into()))?;
-        let info = vk::CommandBufferAllocateInfo::default().command_pool(pool).level(vk::CommandBufferLevel::PRIMARY).command_buffer_count(1);
+        let pool =
+            *self.shared.command_pool.lock().map_err(|_| VkError::Invalid("command pool lock poisoned".into()))?;
+        let info = vk::CommandBufferAllocateInfo::default()
+            .command_pool(pool)
+            .level(vk::CommandBufferLevel::PRIMARY)
+            .command_buffer_count(1);
         let cb = unsafe { self.shared.raw().allocate_command_buffers(&info) }.call("vkAllocateCommandBuffers")?[0];
         let timestamps = opts.timestamps && self.info().has(crate::Feature::Timestamps);
         let stats = opts.pipeline_statistics && self.info().has(crate::Feature::PipelineStatisticsQuery);
@@ -168,8 +195,9 @@ impl Frame {
             .call("vkQueueSubmit2")
             .and_then(|_| {
                 // Ten minutes: lavapipe at 4096^2 photons is slow, but a hang must not block CI forever.
-                unsafe { d.wait_for_fences(&[fence], true, 600_000_000_000) }.map_err(|e| {
-                    VkError::Call { call: "vkWaitForFences (passes in this frame: see error context)", result: e }
+                unsafe { d.wait_for_fences(&[fence], true, 600_000_000_000) }.map_err(|e| VkError::Call {
+                    call: "vkWaitForFences (passes in this frame: see error context)",
+                    result: e,
                 })
             });
         unsafe { d.destroy_fence(fence, None) };

@@ -9,7 +9,6 @@ use gpu_allocator::MemoryLocation;
 use std::ops::Range;
 use std::sync::Arc;
 
-
 #[derive(Debug, Clone)]
 pub struct ImageDesc {
     pub name: String,
@@ -41,7 +40,10 @@ impl ImageDesc {
 }
 
 pub(crate) fn is_depth(format: vk::Format) -> bool {
-    matches!(format, vk::Format::D32_SFLOAT | vk::Format::D16_UNORM | vk::Format::D24_UNORM_S8_UINT | vk::Format::D32_SFLOAT_S8_UINT)
+    matches!(
+        format,
+        vk::Format::D32_SFLOAT | vk::Format::D16_UNORM | vk::Format::D24_UNORM_S8_UINT | vk::Format::D32_SFLOAT_S8_UINT
+    )
 }
 
 pub(crate) fn aspect(format: vk::Format) -> vk::ImageAspectFlags {
@@ -83,14 +85,22 @@ impl Image {
             )));
         }
         if desc.array_layers == 0 || desc.array_layers > info.max_image_array_layers {
-            return Err(VkError::Invalid(format!("image `{}`: {} layers is outside 1..={}", desc.name, desc.array_layers, info.max_image_array_layers)));
+            return Err(VkError::Invalid(format!(
+                "image `{}`: {} layers is outside 1..={}",
+                desc.name, desc.array_layers, info.max_image_array_layers
+            )));
         }
         let full_mips = 32 - desc.width.max(desc.height).leading_zeros();
         if desc.mip_levels == 0 || desc.mip_levels > full_mips {
-            return Err(VkError::Invalid(format!("image `{}`: {} mip levels is outside 1..={full_mips}", desc.name, desc.mip_levels)));
+            return Err(VkError::Invalid(format!(
+                "image `{}`: {} mip levels is outside 1..={full_mips}",
+                desc.name, desc.mip_levels
+            )));
         }
         let usage = if is_depth(desc.format) {
-            vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_SRC
+            vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT
+                | vk::ImageUsageFlags::SAMPLED
+                | vk::ImageUsageFlags::TRANSFER_SRC
         } else {
             let mut u = vk::ImageUsageFlags::SAMPLED
                 | vk::ImageUsageFlags::COLOR_ATTACHMENT
@@ -117,7 +127,8 @@ impl Image {
         let raw = unsafe { dev.create_image(&create, None) }.call("vkCreateImage")?;
         let requirements = unsafe { dev.get_image_memory_requirements(raw) };
         let allocation = {
-            let mut guard = ctx.shared.allocator.lock().map_err(|_| VkError::Invalid("allocator lock poisoned".into()))?;
+            let mut guard =
+                ctx.shared.allocator.lock().map_err(|_| VkError::Invalid("allocator lock poisoned".into()))?;
             let alloc = guard.as_mut().ok_or_else(|| VkError::Invalid("allocator gone".into()))?;
             alloc.allocate(&AllocationCreateDesc {
                 name: &desc.name,
@@ -131,7 +142,11 @@ impl Image {
             Ok(a) => a,
             Err(e) => {
                 unsafe { dev.destroy_image(raw, None) };
-                return Err(VkError::Alloc { name: desc.name.clone(), bytes: requirements.size, message: e.to_string() });
+                return Err(VkError::Alloc {
+                    name: desc.name.clone(),
+                    bytes: requirements.size,
+                    message: e.to_string(),
+                });
             }
         };
         if let Err(e) = unsafe { dev.bind_image_memory(raw, allocation.memory(), allocation.offset()) } {
@@ -153,7 +168,11 @@ impl Image {
 
     /// A view of mips `mips` and layers `layers`, as a 2D, 2D-array or cube view.
     pub fn view(&self, kind: ViewKind, mips: Range<u32>, layers: Range<u32>) -> Result<ImageView> {
-        if mips.start >= mips.end || mips.end > self.desc.mip_levels || layers.start >= layers.end || layers.end > self.desc.array_layers {
+        if mips.start >= mips.end
+            || mips.end > self.desc.mip_levels
+            || layers.start >= layers.end
+            || layers.end > self.desc.array_layers
+        {
             return Err(VkError::Invalid(format!(
                 "view of `{}`: mips {:?} / layers {:?} outside the image ({} mips, {} layers)",
                 self.desc.name, mips, layers, self.desc.mip_levels, self.desc.array_layers

@@ -105,19 +105,16 @@ impl Instance {
     /// message is printed to stderr as it arrives.
     pub fn new(validation: bool, echo: bool) -> Result<Instance> {
         let entry = unsafe { ash::Entry::load() }.map_err(|e| VkError::Loader(e.to_string()))?;
-        let layers_avail = unsafe { entry.enumerate_instance_layer_properties() }
-            .call("vkEnumerateInstanceLayerProperties")?;
+        let layers_avail =
+            unsafe { entry.enumerate_instance_layer_properties() }.call("vkEnumerateInstanceLayerProperties")?;
         let exts_avail = unsafe { entry.enumerate_instance_extension_properties(None) }
             .call("vkEnumerateInstanceExtensionProperties")?;
-        let has_layer = layers_avail
-            .iter()
-            .any(|l| l.layer_name_as_c_str().ok() == Some(VALIDATION_LAYER));
+        let has_layer = layers_avail.iter().any(|l| l.layer_name_as_c_str().ok() == Some(VALIDATION_LAYER));
         if validation && !has_layer {
             return Err(VkError::NoValidationLayer);
         }
-        let has_debug_utils = exts_avail
-            .iter()
-            .any(|e| e.extension_name_as_c_str().ok() == Some(ext::debug_utils::NAME));
+        let has_debug_utils =
+            exts_avail.iter().any(|e| e.extension_name_as_c_str().ok() == Some(ext::debug_utils::NAME));
 
         let app = vk::ApplicationInfo::default()
             .application_name(c"causticlab")
@@ -129,8 +126,7 @@ impl Instance {
             exts.push(ext::debug_utils::NAME.as_ptr());
         }
         let log = Arc::new(ValidationLog { echo, ..Default::default() });
-        let severity = vk::DebugUtilsMessageSeverityFlagsEXT::WARNING
-            | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR;
+        let severity = vk::DebugUtilsMessageSeverityFlagsEXT::WARNING | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR;
         let types = vk::DebugUtilsMessageTypeFlagsEXT::GENERAL
             | vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION
             | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE;
@@ -169,9 +165,7 @@ impl Instance {
                 }
             };
         }
-        Ok(Instance {
-            shared: Arc::new(InstanceShared { entry, raw, debug_utils, messenger, log, validation }),
-        })
+        Ok(Instance { shared: Arc::new(InstanceShared { entry, raw, debug_utils, messenger, log, validation }) })
     }
 
     /// The messenger's counters (all zero when validation is off).

@@ -31,7 +31,9 @@ pub use features::{DeviceInfo, Feature};
 pub use frame::{Frame, FrameOptions, Use};
 pub use image::{texel_size, Filter, Image, ImageDesc, ImageView, Sampler, ViewKind};
 pub use instance::{Instance, ValidationLog};
-pub use pipeline::{Blend, BindingKind, Cull, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout, PUSH_CONSTANT_BYTES};
+pub use pipeline::{
+    BindingKind, Blend, Cull, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout, PUSH_CONSTANT_BYTES,
+};
 pub use profiler::{FrameReport, PassSummary, PassTiming, PipelineStats, Profiler};
 pub use query::QueryPool;
 pub use recorder::{Bind, Cmd, Targets};

@@ -241,14 +241,24 @@ impl Pipeline {
         let mut stages = vec![];
         for s in [Some(&desc.vertex), desc.geometry.as_ref(), desc.fragment.as_ref()].into_iter().flatten() {
             let m = modules.add(s)?;
-            stages.push(vk::PipelineShaderStageCreateInfo::default().stage(stage_flags(s.stage)).module(m).name(c"main"));
+            stages
+                .push(vk::PipelineShaderStageCreateInfo::default().stage(stage_flags(s.stage)).module(m).name(c"main"));
         }
         let (vb, va) = match &desc.vertex_layout {
             Some(l) => (
-                vec![vk::VertexInputBindingDescription { binding: 0, stride: l.stride, input_rate: vk::VertexInputRate::VERTEX }],
+                vec![vk::VertexInputBindingDescription {
+                    binding: 0,
+                    stride: l.stride,
+                    input_rate: vk::VertexInputRate::VERTEX,
+                }],
                 l.attributes
                     .iter()
-                    .map(|a| vk::VertexInputAttributeDescription { location: a.location, binding: 0, format: a.format, offset: a.offset })
+                    .map(|a| vk::VertexInputAttributeDescription {
+                        location: a.location,
+                        binding: 0,
+                        format: a.format,
+                        offset: a.offset,
+                    })
                     .collect(),
             ),
             None => (vec![], vec![]),
@@ -274,13 +284,16 @@ impl Pipeline {
             .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
             .line_width(1.0)
             .rasterizer_discard_enable(desc.rasterizer_discard);
-        let multisample = vk::PipelineMultisampleStateCreateInfo::default().rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let multisample =
+            vk::PipelineMultisampleStateCreateInfo::default().rasterization_samples(vk::SampleCountFlags::TYPE_1);
         let depth = vk::PipelineDepthStencilStateCreateInfo::default()
             .depth_test_enable(desc.depth_test)
             .depth_write_enable(desc.depth_write)
             .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL);
         let attachment = match desc.blend {
-            Blend::Replace => vk::PipelineColorBlendAttachmentState::default().color_write_mask(vk::ColorComponentFlags::RGBA),
+            Blend::Replace => {
+                vk::PipelineColorBlendAttachmentState::default().color_write_mask(vk::ColorComponentFlags::RGBA)
+            }
             Blend::Additive => vk::PipelineColorBlendAttachmentState::default()
                 .blend_enable(true)
                 .src_color_blend_factor(vk::BlendFactor::ONE)
@@ -322,7 +335,10 @@ impl Pipeline {
         let build = || -> Result<vk::Pipeline> {
             let mut modules = Modules { device: d, list: vec![] };
             let m = modules.add(shader)?;
-            let stage = vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::COMPUTE).module(m).name(c"main");
+            let stage = vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::COMPUTE)
+                .module(m)
+                .name(c"main");
             let info = vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout);
             let p = unsafe { d.create_compute_pipelines(vk::PipelineCache::null(), &[info], None) }
                 .map_err(|(_, e)| VkError::Call { call: "vkCreateComputePipelines", result: e })?;
@@ -351,4 +367,3 @@ impl Pipeline {
         }
     }
 }
-

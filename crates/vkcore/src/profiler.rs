@@ -74,7 +74,8 @@ impl QueryPools {
         let d = ctx.shared.raw();
         let mut pools = QueryPools { timestamps: None, stats: None };
         if timestamps {
-            let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2 * MAX_PASSES);
+            let info =
+                vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2 * MAX_PASSES);
             let p = unsafe { d.create_query_pool(&info, None) }.call("vkCreateQueryPool")?;
             unsafe { d.reset_query_pool(p, 0, 2 * MAX_PASSES) };
             pools.timestamps = Some(p);
@@ -145,8 +146,10 @@ impl QueryPools {
         let mut times = None;
         if let (Some(p), true) = (self.timestamps, n > 0) {
             let mut raw = vec![0u64; 2 * n];
-            unsafe { d.get_query_pool_results(p, 0, &mut raw, vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT) }
-                .call("vkGetQueryPoolResults(timestamps)")?;
+            unsafe {
+                d.get_query_pool_results(p, 0, &mut raw, vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT)
+            }
+            .call("vkGetQueryPoolResults(timestamps)")?;
             let mask = if info.timestamp_valid_bits >= 64 { u64::MAX } else { (1u64 << info.timestamp_valid_bits) - 1 };
             let period = info.timestamp_period_ns as f64;
             times = Some(
@@ -162,11 +165,13 @@ impl QueryPools {
             // IA vertices, IA primitives, VS, [GS invocations, GS primitives], clip inv, clip prims, FS, CS.
             let rows: Vec<[u64; 9]> = if count == 9 {
                 let mut raw = vec![[0u64; 9]; n];
-                unsafe { d.get_query_pool_results(p, 0, &mut raw, flags) }.call("vkGetQueryPoolResults(pipeline statistics)")?;
+                unsafe { d.get_query_pool_results(p, 0, &mut raw, flags) }
+                    .call("vkGetQueryPoolResults(pipeline statistics)")?;
                 raw
             } else {
                 let mut raw = vec![[0u64; 7]; n];
-                unsafe { d.get_query_pool_results(p, 0, &mut raw, flags) }.call("vkGetQueryPoolResults(pipeline statistics)")?;
+                unsafe { d.get_query_pool_results(p, 0, &mut raw, flags) }
+                    .call("vkGetQueryPoolResults(pipeline statistics)")?;
                 raw.iter().map(|c| [c[0], c[1], c[2], 0, 0, c[3], c[4], c[5], c[6]]).collect()
             };
             stats = Some(rows);
@@ -249,7 +254,9 @@ mod tests {
     use super::*;
 
     fn frame(ms: &[(&str, f64)]) -> FrameReport {
-        FrameReport { passes: ms.iter().map(|(n, t)| PassTiming { name: n.to_string(), gpu_ms: Some(*t), stats: None }).collect() }
+        FrameReport {
+            passes: ms.iter().map(|(n, t)| PassTiming { name: n.to_string(), gpu_ms: Some(*t), stats: None }).collect(),
+        }
     }
 
     #[test]

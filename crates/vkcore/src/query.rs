@@ -41,9 +41,12 @@ impl QueryPool {
     pub fn read_xfb(&self) -> Result<Vec<(u64, u64)>> {
         let mut raw = vec![[0u64; 2]; self.count as usize];
         unsafe {
-            self.shared
-                .raw()
-                .get_query_pool_results(self.raw, 0, &mut raw, vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT)
+            self.shared.raw().get_query_pool_results(
+                self.raw,
+                0,
+                &mut raw,
+                vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+            )
         }
         .call("vkGetQueryPoolResults(transform feedback)")?;
         Ok(raw.iter().map(|c| (c[0], c[1])).collect())

@@ -137,7 +137,10 @@ impl<'f> Cmd<'f> {
                 None => a.load_op(vk::AttachmentLoadOp::LOAD),
             }
         });
-        let area = vk::Rect2D { offset: vk::Offset2D { x: 0, y: 0 }, extent: vk::Extent2D { width: extent.0, height: extent.1 } };
+        let area = vk::Rect2D {
+            offset: vk::Offset2D { x: 0, y: 0 },
+            extent: vk::Extent2D { width: extent.0, height: extent.1 },
+        };
         let mut info = vk::RenderingInfo::default()
             .render_area(area)
             .layer_count(if t.view_mask != 0 { 1 } else { t.layers.max(1) })
@@ -179,7 +182,8 @@ impl<'f> Cmd<'f> {
 
     /// Pushes descriptors for the bound pipeline: `binds[i]` goes to binding i.
     pub fn bind(&mut self, binds: &[Bind]) -> Result<()> {
-        let (point, layout, kinds) = self.bound.as_ref().ok_or_else(|| VkError::Invalid("bind() before bind_pipeline()".into()))?;
+        let (point, layout, kinds) =
+            self.bound.as_ref().ok_or_else(|| VkError::Invalid("bind() before bind_pipeline()".into()))?;
         if binds.len() != kinds.len() {
             return Err(VkError::Invalid(format!("pipeline declares {} bindings, {} given", kinds.len(), binds.len())));
         }
@@ -191,13 +195,18 @@ impl<'f> Cmd<'f> {
         for b in binds {
             match b {
                 Bind::Sampled(v, s) => image_infos.push(
-                    vk::DescriptorImageInfo::default().image_view(v.raw).sampler(s.raw).image_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL),
+                    vk::DescriptorImageInfo::default()
+                        .image_view(v.raw)
+                        .sampler(s.raw)
+                        .image_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL),
                 ),
-                Bind::Storage(v) => image_infos.push(vk::DescriptorImageInfo::default().image_view(v.raw).image_layout(vk::ImageLayout::GENERAL)),
-                Bind::Buffer(buf) | Bind::Uniform(buf) => {
-                    buffer_infos.push(vk::DescriptorBufferInfo::default().buffer(buf.raw).offset(0).range(vk::WHOLE_SIZE))
+                Bind::Storage(v) => image_infos
+                    .push(vk::DescriptorImageInfo::default().image_view(v.raw).image_layout(vk::ImageLayout::GENERAL)),
+                Bind::Buffer(buf) | Bind::Uniform(buf) => buffer_infos
+                    .push(vk::DescriptorBufferInfo::default().buffer(buf.raw).offset(0).range(vk::WHOLE_SIZE)),
+                Bind::BufferRange(buf, o, s) => {
+                    buffer_infos.push(vk::DescriptorBufferInfo::default().buffer(buf.raw).offset(*o).range(*s))
                 }
-                Bind::BufferRange(buf, o, s) => buffer_infos.push(vk::DescriptorBufferInfo::default().buffer(buf.raw).offset(*o).range(*s)),
             }
         }
         let (mut ii, mut bi) = (0, 0);
@@ -217,7 +226,9 @@ impl<'f> Cmd<'f> {
                     | (Bind::Uniform(..), BindingKind::UniformBuffer)
             );
             if !ok {
-                return Err(VkError::Invalid(format!("binding {i}: descriptor does not match the pipeline's {kind:?}")));
+                return Err(VkError::Invalid(format!(
+                    "binding {i}: descriptor does not match the pipeline's {kind:?}"
+                )));
             }
             match b {
                 Bind::Sampled(..) | Bind::Storage(..) => {
@@ -238,9 +249,13 @@ impl<'f> Cmd<'f> {
     pub fn push<T: bytemuck::Pod>(&mut self, data: &T) -> Result<()> {
         let bytes = bytemuck::bytes_of(data);
         if bytes.len() as u32 > PUSH_CONSTANT_BYTES {
-            return Err(VkError::Invalid(format!("push constants of {} bytes exceed {PUSH_CONSTANT_BYTES}", bytes.len())));
+            return Err(VkError::Invalid(format!(
+                "push constants of {} bytes exceed {PUSH_CONSTANT_BYTES}",
+                bytes.len()
+            )));
         }
-        let (_, layout, _) = self.bound.as_ref().ok_or_else(|| VkError::Invalid("push() before bind_pipeline()".into()))?;
+        let (_, layout, _) =
+            self.bound.as_ref().ok_or_else(|| VkError::Invalid("push() before bind_pipeline()".into()))?;
         let mut stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT | vk::ShaderStageFlags::COMPUTE;
         if self.ctx.info().has(crate::Feature::GeometryShader) {
             stages |= vk::ShaderStageFlags::GEOMETRY;
@@ -286,8 +301,16 @@ impl<'f> Cmd<'f> {
 
     /// vkCmdUpdateBuffer: writes up to 65536 bytes (a multiple of 4) at `offset`, outside rendering.
     pub fn update_buffer(&mut self, b: &Buffer, offset: u64, data: &[u8]) -> Result<()> {
-        if data.is_empty() || data.len() % 4 != 0 || data.len() > 65536 || offset + data.len() as u64 > b.size() {
-            return Err(VkError::Invalid(format!("update_buffer: {} bytes at {offset} into `{}`", data.len(), b.name())));
+        if data.is_empty()
+            || !data.len().is_multiple_of(4)
+            || data.len() > 65536
+            || offset + data.len() as u64 > b.size()
+        {
+            return Err(VkError::Invalid(format!(
+                "update_buffer: {} bytes at {offset} into `{}`",
+                data.len(),
+                b.name()
+            )));
         }
         unsafe { self.d().cmd_update_buffer(self.cb, b.raw, offset, data) };
         Ok(())
@@ -318,13 +341,17 @@ impl<'f> Cmd<'f> {
     /// Copies one mip/layer of `image` (in TRANSFER_SRC layout, see `Access::TRANSFER_READ`) into `dst`.
     pub fn copy_image_to_buffer(&mut self, image: &Image, mip: u32, layer: u32, dst: &Buffer) {
         let r = Self::image_region(image, mip, layer);
-        unsafe { self.d().cmd_copy_image_to_buffer(self.cb, image.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, dst.raw, &[r]) };
+        unsafe {
+            self.d().cmd_copy_image_to_buffer(self.cb, image.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, dst.raw, &[r])
+        };
     }
 
     /// Copies `src` into one mip/layer of `image` (in TRANSFER_DST layout).
     pub fn copy_buffer_to_image(&mut self, src: &Buffer, image: &Image, mip: u32, layer: u32) {
         let r = Self::image_region(image, mip, layer);
-        unsafe { self.d().cmd_copy_buffer_to_image(self.cb, src.raw, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[r]) };
+        unsafe {
+            self.d().cmd_copy_buffer_to_image(self.cb, src.raw, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[r])
+        };
     }
 
     /// Clears every subresource of `view` (in TRANSFER_DST layout) to `color`.
@@ -337,7 +364,9 @@ impl<'f> Cmd<'f> {
             layer_count: view.layers.end - view.layers.start,
         };
         let c = vk::ClearColorValue { float32: color };
-        unsafe { self.d().cmd_clear_color_image(self.cb, view.image, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &c, &[range]) };
+        unsafe {
+            self.d().cmd_clear_color_image(self.cb, view.image, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &c, &[range])
+        };
     }
 
     fn xfb(&self) -> Result<&ash::ext::transform_feedback::Device> {
@@ -355,7 +384,16 @@ impl<'f> Cmd<'f> {
         let offsets = vec![0u64; buffers.len()];
         let sizes: Vec<u64> = buffers.iter().map(|b| b.size()).collect();
         let x = self.xfb()?;
-        unsafe { (x.fp().cmd_bind_transform_feedback_buffers_ext)(self.cb, 0, raws.len() as u32, raws.as_ptr(), offsets.as_ptr(), sizes.as_ptr()) };
+        unsafe {
+            (x.fp().cmd_bind_transform_feedback_buffers_ext)(
+                self.cb,
+                0,
+                raws.len() as u32,
+                raws.as_ptr(),
+                offsets.as_ptr(),
+                sizes.as_ptr(),
+            )
+        };
         Ok(())
     }
 
@@ -367,7 +405,13 @@ impl<'f> Cmd<'f> {
         let x = self.xfb()?;
         unsafe {
             if resume {
-                (x.fp().cmd_begin_transform_feedback_ext)(self.cb, 0, raws.len() as u32, raws.as_ptr(), offsets.as_ptr())
+                (x.fp().cmd_begin_transform_feedback_ext)(
+                    self.cb,
+                    0,
+                    raws.len() as u32,
+                    raws.as_ptr(),
+                    offsets.as_ptr(),
+                )
             } else {
                 (x.fp().cmd_begin_transform_feedback_ext)(self.cb, 0, 0, std::ptr::null(), std::ptr::null())
             }
@@ -380,7 +424,9 @@ impl<'f> Cmd<'f> {
         let raws: Vec<vk::Buffer> = counters.iter().map(|b| b.raw).collect();
         let offsets = vec![0u64; counters.len()];
         let x = self.xfb()?;
-        unsafe { (x.fp().cmd_end_transform_feedback_ext)(self.cb, 0, raws.len() as u32, raws.as_ptr(), offsets.as_ptr()) };
+        unsafe {
+            (x.fp().cmd_end_transform_feedback_ext)(self.cb, 0, raws.len() as u32, raws.as_ptr(), offsets.as_ptr())
+        };
         Ok(())
     }
 
@@ -397,7 +443,9 @@ impl<'f> Cmd<'f> {
     pub fn begin_query(&mut self, pool: &QueryPool, index: u32) -> Result<()> {
         if pool.is_xfb() {
             let x = self.xfb()?;
-            unsafe { (x.fp().cmd_begin_query_indexed_ext)(self.cb, pool.raw, index, vk::QueryControlFlags::empty(), 0) };
+            unsafe {
+                (x.fp().cmd_begin_query_indexed_ext)(self.cb, pool.raw, index, vk::QueryControlFlags::empty(), 0)
+            };
         } else {
             unsafe { self.d().cmd_begin_query(self.cb, pool.raw, index, vk::QueryControlFlags::empty()) };
         }

@@ -55,7 +55,8 @@ pub struct ShaderCompiler {
 
 impl ShaderCompiler {
     pub fn new(root: &Path) -> Result<ShaderCompiler> {
-        let compiler = shaderc::Compiler::new().ok_or_else(|| VkError::Shader("could not initialise shaderc".into()))?;
+        let compiler =
+            shaderc::Compiler::new().ok_or_else(|| VkError::Shader("could not initialise shaderc".into()))?;
         Ok(ShaderCompiler {
             root: root.to_path_buf(),
             compiler: Mutex::new(compiler),
@@ -81,8 +82,9 @@ impl ShaderCompiler {
         if let Some(s) = self.cache.lock().ok().and_then(|c| c.get(&key).cloned()) {
             return Ok(s);
         }
-        let stage = Stage::from_path(file)
-            .ok_or_else(|| VkError::Shader(format!("{file}:1: unknown shader stage (expected .vert/.geom/.frag/.comp)")))?;
+        let stage = Stage::from_path(file).ok_or_else(|| {
+            VkError::Shader(format!("{file}:1: unknown shader stage (expected .vert/.geom/.frag/.comp)"))
+        })?;
         let path = self.root.join(file);
         let source = std::fs::read_to_string(&path)
             .map_err(|source| VkError::ShaderIo { path: path.display().to_string(), source })?;
@@ -96,7 +98,9 @@ impl ShaderCompiler {
         let root = self.root.clone();
         options.set_include_callback(move |requested, kind, requester, _depth| {
             let base = match kind {
-                shaderc::IncludeType::Relative => root.join(requester).parent().map(Path::to_path_buf).unwrap_or(root.clone()),
+                shaderc::IncludeType::Relative => {
+                    root.join(requester).parent().map(Path::to_path_buf).unwrap_or(root.clone())
+                }
                 shaderc::IncludeType::Standard => root.clone(),
             };
             let mut candidate = base.join(requested);

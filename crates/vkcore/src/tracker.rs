@@ -21,9 +21,8 @@ const fn acc(stage: S, access: A, layout: L) -> Access {
     Access { stage, access, layout }
 }
 
-const GFX_SHADERS: S = S::from_raw(
-    S::VERTEX_SHADER.as_raw() | S::GEOMETRY_SHADER.as_raw() | S::FRAGMENT_SHADER.as_raw(),
-);
+const GFX_SHADERS: S =
+    S::from_raw(S::VERTEX_SHADER.as_raw() | S::GEOMETRY_SHADER.as_raw() | S::FRAGMENT_SHADER.as_raw());
 const ALL_SHADERS: S = S::from_raw(GFX_SHADERS.as_raw() | S::COMPUTE_SHADER.as_raw());
 
 impl Access {
@@ -32,8 +31,11 @@ impl Access {
     /// A uniform buffer read by any shader stage.
     pub const UNIFORM_READ: Access = acc(ALL_SHADERS, A::UNIFORM_READ, L::UNDEFINED);
     /// Storage image/buffer written (and read) by compute.
-    pub const COMPUTE_READ_WRITE: Access =
-        acc(S::COMPUTE_SHADER, A::from_raw(A::SHADER_STORAGE_READ.as_raw() | A::SHADER_STORAGE_WRITE.as_raw()), L::GENERAL);
+    pub const COMPUTE_READ_WRITE: Access = acc(
+        S::COMPUTE_SHADER,
+        A::from_raw(A::SHADER_STORAGE_READ.as_raw() | A::SHADER_STORAGE_WRITE.as_raw()),
+        L::GENERAL,
+    );
     /// Storage image/buffer read and written by graphics shaders (atomics in fragment shaders).
     pub const GRAPHICS_READ_WRITE: Access =
         acc(GFX_SHADERS, A::from_raw(A::SHADER_STORAGE_READ.as_raw() | A::SHADER_STORAGE_WRITE.as_raw()), L::GENERAL);
@@ -49,11 +51,8 @@ impl Access {
         A::from_raw(A::DEPTH_STENCIL_ATTACHMENT_READ.as_raw() | A::DEPTH_STENCIL_ATTACHMENT_WRITE.as_raw()),
         L::DEPTH_ATTACHMENT_OPTIMAL,
     );
-    pub const VERTEX_INPUT: Access = acc(
-        S::VERTEX_INPUT,
-        A::from_raw(A::VERTEX_ATTRIBUTE_READ.as_raw() | A::INDEX_READ.as_raw()),
-        L::UNDEFINED,
-    );
+    pub const VERTEX_INPUT: Access =
+        acc(S::VERTEX_INPUT, A::from_raw(A::VERTEX_ATTRIBUTE_READ.as_raw() | A::INDEX_READ.as_raw()), L::UNDEFINED);
     /// Indirect draw/dispatch arguments, including the transform-feedback counter read by
     /// vkCmdDrawIndirectByteCountEXT.
     pub const INDIRECT: Access = acc(
@@ -201,7 +200,13 @@ impl Tracker {
         self.states.remove(&id);
     }
     /// Applies `access` to the listed subresource indices; returns (index, transition) pairs.
-    pub fn access(&mut self, id: u64, subs: impl Iterator<Item = usize>, access: Access, is_image: bool) -> Vec<(usize, Transition)> {
+    pub fn access(
+        &mut self,
+        id: u64,
+        subs: impl Iterator<Item = usize>,
+        access: Access,
+        is_image: bool,
+    ) -> Vec<(usize, Transition)> {
         let Some(states) = self.states.get_mut(&id) else { return vec![] };
         let mut out = vec![];
         for i in subs {

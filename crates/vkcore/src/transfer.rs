@@ -19,7 +19,12 @@ impl Context {
     /// Copies `data` into the start of `dst`.
     pub fn upload_buffer(&self, dst: &Buffer, data: &[u8]) -> Result<()> {
         if data.len() as u64 > dst.size() {
-            return Err(VkError::Invalid(format!("upload of {} bytes into `{}` ({} bytes)", data.len(), dst.name(), dst.size())));
+            return Err(VkError::Invalid(format!(
+                "upload of {} bytes into `{}` ({} bytes)",
+                data.len(),
+                dst.name(),
+                dst.size()
+            )));
         }
         if data.is_empty() {
             return Ok(());
@@ -27,10 +32,14 @@ impl Context {
         let mut staging = Buffer::new(self, "staging upload", data.len() as u64, Memory::Upload)?;
         staging.write_mapped(0, data)?;
         let mut f = self.frame(FrameOptions::default())?;
-        f.pass("upload", &[Use::buffer(&staging, Access::TRANSFER_READ), Use::buffer(dst, Access::TRANSFER_WRITE)], |c| {
-            c.copy_buffer(&staging, dst, data.len() as u64);
-            Ok(())
-        })?;
+        f.pass(
+            "upload",
+            &[Use::buffer(&staging, Access::TRANSFER_READ), Use::buffer(dst, Access::TRANSFER_WRITE)],
+            |c| {
+                c.copy_buffer(&staging, dst, data.len() as u64);
+                Ok(())
+            },
+        )?;
         f.submit()?;
         Ok(())
     }
@@ -39,10 +48,14 @@ impl Context {
     pub fn read_buffer(&self, src: &Buffer) -> Result<Vec<u8>> {
         let staging = Buffer::new(self, "staging readback", src.size(), Memory::Readback)?;
         let mut f = self.frame(FrameOptions::default())?;
-        f.pass("readback", &[Use::buffer(src, Access::TRANSFER_READ), Use::buffer(&staging, Access::TRANSFER_WRITE)], |c| {
-            c.copy_buffer(src, &staging, src.size());
-            Ok(())
-        })?;
+        f.pass(
+            "readback",
+            &[Use::buffer(src, Access::TRANSFER_READ), Use::buffer(&staging, Access::TRANSFER_WRITE)],
+            |c| {
+                c.copy_buffer(src, &staging, src.size());
+                Ok(())
+            },
+        )?;
         f.submit()?;
         let bytes = staging.mapped().ok_or_else(|| VkError::Invalid("readback buffer is not mapped".into()))?;
         Ok(bytes[..src.size() as usize].to_vec())
@@ -62,8 +75,9 @@ impl Context {
                 image.desc.name, image.desc.mip_levels, image.desc.array_layers
             )));
         }
-        let ts = texel_size(image.desc.format)
-            .ok_or_else(|| VkError::Invalid(format!("image `{}`: format {:?} cannot be read back", image.desc.name, image.desc.format)))?;
+        let ts = texel_size(image.desc.format).ok_or_else(|| {
+            VkError::Invalid(format!("image `{}`: format {:?} cannot be read back", image.desc.name, image.desc.format))
+        })?;
         let (w, h) = image.mip_extent(mip);
         Ok(w as u64 * h as u64 * ts as u64)
     }
@@ -72,14 +86,21 @@ impl Context {
     pub fn upload_image(&self, image: &Image, mip: u32, layer: u32, data: &[u8]) -> Result<()> {
         let bytes = Self::image_bytes(image, mip, layer)?;
         if data.len() as u64 != bytes {
-            return Err(VkError::Invalid(format!("upload into `{}` mip {mip}: {} bytes given, {bytes} expected", image.desc.name, data.len())));
+            return Err(VkError::Invalid(format!(
+                "upload into `{}` mip {mip}: {} bytes given, {bytes} expected",
+                image.desc.name,
+                data.len()
+            )));
         }
         let mut staging = Buffer::new(self, "staging image upload", bytes, Memory::Upload)?;
         staging.write_mapped(0, data)?;
         let mut f = self.frame(FrameOptions::default())?;
         f.pass(
             "upload image",
-            &[Use::buffer(&staging, Access::TRANSFER_READ), Use::image(image, mip..mip + 1, layer..layer + 1, Access::TRANSFER_WRITE)],
+            &[
+                Use::buffer(&staging, Access::TRANSFER_READ),
+                Use::image(image, mip..mip + 1, layer..layer + 1, Access::TRANSFER_WRITE),
+            ],
             |c| {
                 c.copy_buffer_to_image(&staging, image, mip, layer);
                 Ok(())
@@ -96,7 +117,10 @@ impl Context {
         let mut f = self.frame(FrameOptions::default())?;
         f.pass(
             "readback image",
-            &[Use::image(image, mip..mip + 1, layer..layer + 1, Access::TRANSFER_READ), Use::buffer(&staging, Access::TRANSFER_WRITE)],
+            &[
+                Use::image(image, mip..mip + 1, layer..layer + 1, Access::TRANSFER_READ),
+                Use::buffer(&staging, Access::TRANSFER_WRITE),
+            ],
             |c| {
                 c.copy_image_to_buffer(image, mip, layer, &staging);
                 Ok(())

@@ -9,14 +9,17 @@ const SIZES: [u32; 6] = [1, 27, 64, 2049, 100_003, 0];
 
 fn input(n: u32, seed: u64) -> Vec<[u32; 4]> {
     let mut r = Rng(seed);
-    (0..n).map(|i| [i, r.next_u32(), r.next_u32(), (r.next_u32() % 3 == 0) as u32]).collect()
+    (0..n).map(|i| [i, r.next_u32(), r.next_u32(), r.next_u32().is_multiple_of(3) as u32]).collect()
 }
 
 /// Step 1 keeps `w != 0`; step 2 keeps odd `y`.
 const STEP1: &str = "(v.w != 0u)";
 const STEP2: &str = "((v.y & 1u) == 1u)";
 
-fn run(path: CompactionPath, n: u32) -> (Vec<[u32; 4]>, Vec<[u32; 4]>, Option<(u64, u64)>) {
+/// (step-1 output, step-2 output, xfb query (written, needed)).
+type Outcome = (Vec<[u32; 4]>, Vec<[u32; 4]>, Option<(u64, u64)>);
+
+fn run(path: CompactionPath, n: u32) -> Outcome {
     let (ctx, shaders) = context();
     let data = input(n, 0x9E37_79B9 ^ n as u64);
     let bytes: Vec<u8> = bytemuck::cast_slice(&data).to_vec();

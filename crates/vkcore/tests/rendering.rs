@@ -18,10 +18,18 @@ const LAYERS: u32 = 4;
 fn layered(vert: &str, geom: Option<&str>, multiview: bool) {
     let (ctx, _) = context();
     let sh = test_shaders();
-    let image = Image::new(&ctx, ImageDesc::new_2d("layered target", Format::R32G32B32A32_SFLOAT, 16, 16).layers(LAYERS).mips(3)).unwrap();
+    let image = Image::new(
+        &ctx,
+        ImageDesc::new_2d("layered target", Format::R32G32B32A32_SFLOAT, 16, 16).layers(LAYERS).mips(3),
+    )
+    .unwrap();
     let all = image.full_view().unwrap();
     let mip1 = image.view(ViewKind::D2Array, 1..2, 0..LAYERS).unwrap();
-    let mut desc = GraphicsDesc::new("layered", sh.compile(vert, &[]).unwrap(), Some(sh.compile("layer_value.frag", &[]).unwrap()));
+    let mut desc = GraphicsDesc::new(
+        "layered",
+        sh.compile(vert, &[]).unwrap(),
+        Some(sh.compile("layer_value.frag", &[]).unwrap()),
+    );
     desc.geometry = geom.map(|g| sh.compile(g, &[]).unwrap());
     desc.color_formats = vec![Format::R32G32B32A32_SFLOAT];
     desc.view_mask = if multiview { (1 << LAYERS) - 1 } else { 0 };
@@ -51,7 +59,12 @@ fn layered(vert: &str, geom: Option<&str>, multiview: bool) {
             assert_eq!(texels.len(), (w * h * 4) as usize);
             let want = if mip == 1 { (layer + 1) as f32 } else { -1.0 };
             for (i, t) in texels.chunks(4).enumerate() {
-                assert_eq!(t[0], want, "{vert}: mip {mip} layer {layer} texel {i} (layer values: {:?})", (0..LAYERS).map(|l| ctx.read_image_f32(&image, 1, l).unwrap()[0]).collect::<Vec<_>>());
+                assert_eq!(
+                    t[0],
+                    want,
+                    "{vert}: mip {mip} layer {layer} texel {i} (layer values: {:?})",
+                    (0..LAYERS).map(|l| ctx.read_image_f32(&image, 1, l).unwrap()[0]).collect::<Vec<_>>()
+                );
             }
         }
     }
@@ -119,14 +132,15 @@ fn instanced_fetch(n: u32, width: u32, verts: u32) {
     let mut want = vec![0f32; (size * size) as usize];
     for id in 0..n {
         let (x, y) = (rng.next_u32() % size, rng.next_u32() % size);
-        let valid = rng.next_u32() % 5 != 0;
+        let valid = !rng.next_u32().is_multiple_of(5);
         let t = &mut texels[id as usize * 4..id as usize * 4 + 4];
         t.copy_from_slice(&[x as f32, y as f32, 0.0, if valid { 1.0 } else { 0.0 }]);
         if valid {
             want[(y * size + x) as usize] += 1.0;
         }
     }
-    let photons = Image::new(&ctx, ImageDesc::new_2d("photon texture", Format::R32G32B32A32_SFLOAT, width, height)).unwrap();
+    let photons =
+        Image::new(&ctx, ImageDesc::new_2d("photon texture", Format::R32G32B32A32_SFLOAT, width, height)).unwrap();
     ctx.upload_image(&photons, 0, 0, bytemuck::cast_slice(&texels)).unwrap();
     let photon_view = photons.full_view().unwrap();
     let sampler = Sampler::new(&ctx, Filter::Nearest).unwrap();
@@ -134,17 +148,28 @@ fn instanced_fetch(n: u32, width: u32, verts: u32) {
     let vb = ctx.buffer_with_data("small vertex buffer", bytemuck::cast_slice(&vertex_ids)).unwrap();
     let target = Image::new(&ctx, ImageDesc::new_2d("count", Format::R32G32B32A32_SFLOAT, size, size)).unwrap();
     let tv = target.full_view().unwrap();
-    let mut desc = GraphicsDesc::new("fetch", sh.compile("instanced_fetch.vert", &[]).unwrap(), Some(sh.compile("count.frag", &[]).unwrap()));
+    let mut desc = GraphicsDesc::new(
+        "fetch",
+        sh.compile("instanced_fetch.vert", &[]).unwrap(),
+        Some(sh.compile("count.frag", &[]).unwrap()),
+    );
     desc.bindings = vec![BindingKind::SampledImage];
     desc.topology = Topology::Points;
     desc.blend = Blend::Additive;
     desc.color_formats = vec![Format::R32G32B32A32_SFLOAT];
-    desc.vertex_layout = Some(VertexLayout { stride: 4, attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }] });
+    desc.vertex_layout = Some(VertexLayout {
+        stride: 4,
+        attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }],
+    });
     let p = Pipeline::graphics(&ctx, &desc).unwrap();
     let mut f = ctx.frame(FrameOptions::default()).unwrap();
     f.pass(
         "splat",
-        &[Use::view(&photon_view, Access::SHADER_READ), Use::buffer(&vb, Access::VERTEX_INPUT), Use::view(&tv, Access::COLOR_ATTACHMENT)],
+        &[
+            Use::view(&photon_view, Access::SHADER_READ),
+            Use::buffer(&vb, Access::VERTEX_INPUT),
+            Use::view(&tv, Access::COLOR_ATTACHMENT),
+        ],
         |c| {
             c.begin_rendering(&Targets::color(&tv, Some([0.0; 4])))?;
             c.bind_pipeline(&p);
@@ -177,7 +202,11 @@ fn validation_messages_are_counted() {
     // type: the validation layer must report it, or our "zero messages" checks prove nothing.
     let (ctx, _) = context();
     let sh = test_shaders();
-    let mut desc = GraphicsDesc::new("mismatch", sh.compile("fullscreen_layer.vert", &[]).unwrap(), Some(sh.compile("count.frag", &[]).unwrap()));
+    let mut desc = GraphicsDesc::new(
+        "mismatch",
+        sh.compile("fullscreen_layer.vert", &[]).unwrap(),
+        Some(sh.compile("count.frag", &[]).unwrap()),
+    );
     desc.color_formats = vec![Format::R32G32B32A32_SFLOAT];
     let p = Pipeline::graphics(&ctx, &desc).unwrap();
     // Drawing with a pipeline made for RGBA32F into an R32F target is invalid.

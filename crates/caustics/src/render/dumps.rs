@@ -8,7 +8,14 @@ use vkcore::Context;
 const FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
 /// RGBA32F texels of `t` (mip 0, `layer`), keeping the channels at `pick` under `names`.
-fn layer(ctx: &Context, t: &Target, layer_index: u32, name: Option<&str>, names: &[&str], pick: &[usize]) -> Result<Layer> {
+fn layer(
+    ctx: &Context,
+    t: &Target,
+    layer_index: u32,
+    name: Option<&str>,
+    names: &[&str],
+    pick: &[usize],
+) -> Result<Layer> {
     let texels = ctx.read_image_f32(&t.image, 0, layer_index)?;
     let stride = texels.len() / (t.view.extent.0 * t.view.extent.1) as usize;
     let data = texels.chunks(stride).flat_map(|px| pick.iter().map(move |&c| px[c])).collect();
@@ -46,8 +53,13 @@ pub fn dump(ctx: &Context, t: &EyeTargets, name: &str) -> Result<Option<ImageF32
                 layer(ctx, &t.normal, 0, Some("normal"), &["X", "Y", "Z"], &[0, 1, 2])?,
             ],
         ),
-        "refractor_back_faces" => image(&t.back_faces, vec![layer(ctx, &t.back_faces, 0, None, &["NX", "NY", "NZ", "distance"], &[0, 1, 2, 3])?]),
-        "refractor_front_faces" => image(&t.surface, vec![layer(ctx, &t.surface, 0, None, &["R", "G", "B", "A"], &[0, 1, 2, 3])?]),
+        "refractor_back_faces" => image(
+            &t.back_faces,
+            vec![layer(ctx, &t.back_faces, 0, None, &["NX", "NY", "NZ", "distance"], &[0, 1, 2, 3])?],
+        ),
+        "refractor_front_faces" => {
+            image(&t.surface, vec![layer(ctx, &t.surface, 0, None, &["R", "G", "B", "A"], &[0, 1, 2, 3])?])
+        }
         "receiver" => match &t.receiver {
             None => return Ok(None),
             Some((ratio, irradiance)) => {
@@ -57,7 +69,10 @@ pub fn dump(ctx: &Context, t: &EyeTargets, name: &str) -> Result<Option<ImageF32
                 let main = r.chunks(4).zip(e.chunks(4)).flat_map(|(a, b)| [a[0], a[1], a[2], b[3]]).collect();
                 image(
                     ratio,
-                    vec![Layer::new(None, &["R", "G", "B", "E0"], main), layer(ctx, irradiance, 0, Some("irradiance"), &rgb, &[0, 1, 2])?],
+                    vec![
+                        Layer::new(None, &["R", "G", "B", "E0"], main),
+                        layer(ctx, irradiance, 0, Some("irradiance"), &rgb, &[0, 1, 2])?,
+                    ],
                 )
             }
         },

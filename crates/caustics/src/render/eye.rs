@@ -16,7 +16,12 @@ pub struct EyeInputs<'a> {
     pub linear: &'a Sampler,
 }
 
-fn draw_meshes<'m>(cmd: &mut Cmd, meshes: impl Iterator<Item = &'m GpuMesh>, instances: u32, light: u32) -> vkcore::Result<()> {
+fn draw_meshes<'m>(
+    cmd: &mut Cmd,
+    meshes: impl Iterator<Item = &'m GpuMesh>,
+    instances: u32,
+    light: u32,
+) -> vkcore::Result<()> {
     for m in meshes {
         let mut c = m.constants;
         c.info[1] = light;
@@ -29,7 +34,10 @@ fn draw_meshes<'m>(cmd: &mut Cmd, meshes: impl Iterator<Item = &'m GpuMesh>, ins
 }
 
 fn mesh_uses(meshes: &[GpuMesh]) -> Vec<Use<'_>> {
-    meshes.iter().flat_map(|m| [Use::buffer(&m.vertices, Access::VERTEX_INPUT), Use::buffer(&m.indices, Access::VERTEX_INPUT)]).collect()
+    meshes
+        .iter()
+        .flat_map(|m| [Use::buffer(&m.vertices, Access::VERTEX_INPUT), Use::buffer(&m.indices, Access::VERTEX_INPUT)])
+        .collect()
 }
 
 pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) -> Result<()> {
@@ -38,7 +46,11 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
 
     // Shadow map per light: all six cube faces in one instanced draw (gl_Layer per instance).
     for (l, (dist, depth)) in t.shadow.per_light.iter().enumerate() {
-        let mut uses = vec![Use::buffer(inp.uniforms, Access::UNIFORM_READ), Use::view(dist, Access::COLOR_ATTACHMENT), Use::view(depth, Access::DEPTH_ATTACHMENT)];
+        let mut uses = vec![
+            Use::buffer(inp.uniforms, Access::UNIFORM_READ),
+            Use::view(dist, Access::COLOR_ATTACHMENT),
+            Use::view(depth, Access::DEPTH_ATTACHMENT),
+        ];
         uses.extend(mesh_uses(meshes));
         f.pass(&format!("shadow_map.light{l}"), &uses, |cmd| {
             cmd.begin_rendering(&Targets::color(dist, Some([f32::MAX; 4])).with_depth(depth, Some(1.0)).layered(6))?;
@@ -50,27 +62,43 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
         })?;
     }
 
-    let shadow_read = || [Use::view(&t.shadow.distance.view, Access::SHADER_READ), Use::view(&t.spot_textures.view, Access::SHADER_READ)];
+    let shadow_read = || {
+        [Use::view(&t.shadow.distance.view, Access::SHADER_READ), Use::view(&t.spot_textures.view, Access::SHADER_READ)]
+    };
     let mut uses = vec![Use::buffer(inp.uniforms, Access::UNIFORM_READ)];
     uses.extend(shadow_read());
     uses.extend([&t.background, &t.position, &t.normal].map(|x| Use::view(&x.view, Access::COLOR_ATTACHMENT)));
     uses.push(Use::view(&t.depth.view, Access::DEPTH_ATTACHMENT));
     uses.extend(mesh_uses(meshes));
     f.pass("background", &uses, |cmd| {
-        let targets = Targets::colors(vec![(&t.background.view, Some([0.0; 4])), (&t.position.view, Some([0.0; 4])), (&t.normal.view, Some([0.0; 4]))]);
+        let targets = Targets::colors(vec![
+            (&t.background.view, Some([0.0; 4])),
+            (&t.position.view, Some([0.0; 4])),
+            (&t.normal.view, Some([0.0; 4])),
+        ]);
         cmd.begin_rendering(&targets.with_depth(&t.depth.view, Some(1.0)))?;
         cmd.bind_pipeline(&p.background);
-        cmd.bind(&[Bind::Uniform(inp.uniforms), Bind::Sampled(&t.shadow.distance.view, inp.nearest), Bind::Sampled(&t.spot_textures.view, inp.linear)])?;
+        cmd.bind(&[
+            Bind::Uniform(inp.uniforms),
+            Bind::Sampled(&t.shadow.distance.view, inp.nearest),
+            Bind::Sampled(&t.spot_textures.view, inp.linear),
+        ])?;
         draw_meshes(cmd, meshes.iter().filter(|m| m.kind() == MATERIAL_DIFFUSE), 1, 0)?;
         cmd.end_rendering();
         Ok(())
     })?;
 
     let refractors = || meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE);
-    let mut uses = vec![Use::buffer(inp.uniforms, Access::UNIFORM_READ), Use::view(&t.back_faces.view, Access::COLOR_ATTACHMENT), Use::view(&t.back_depth.view, Access::DEPTH_ATTACHMENT)];
+    let mut uses = vec![
+        Use::buffer(inp.uniforms, Access::UNIFORM_READ),
+        Use::view(&t.back_faces.view, Access::COLOR_ATTACHMENT),
+        Use::view(&t.back_depth.view, Access::DEPTH_ATTACHMENT),
+    ];
     uses.extend(mesh_uses(meshes));
     f.pass("refractor_back_faces", &uses, |cmd| {
-        cmd.begin_rendering(&Targets::color(&t.back_faces.view, Some([0.0; 4])).with_depth(&t.back_depth.view, Some(1.0)))?;
+        cmd.begin_rendering(
+            &Targets::color(&t.back_faces.view, Some([0.0; 4])).with_depth(&t.back_depth.view, Some(1.0)),
+        )?;
         cmd.bind_pipeline(&p.back_faces);
         cmd.bind(&[Bind::Uniform(inp.uniforms)])?;
         draw_meshes(cmd, refractors(), 1, 0)?;
@@ -104,7 +132,11 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
     ];
     f.pass("composite", &uses, |cmd| {
         cmd.bind_pipeline(&p.composite);
-        cmd.bind(&[Bind::Sampled(&t.background.view, inp.nearest), Bind::Sampled(&t.surface.view, inp.nearest), Bind::Storage(&t.final_image.view)])?;
+        cmd.bind(&[
+            Bind::Sampled(&t.background.view, inp.nearest),
+            Bind::Sampled(&t.surface.view, inp.nearest),
+            Bind::Storage(&t.final_image.view),
+        ])?;
         let (w, h) = t.final_image.view.extent;
         cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);
         Ok(())

@@ -77,9 +77,18 @@ mod tests {
 
     #[test]
     fn glsl_mirrors_agree() {
-        let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/frame.glsl")).unwrap();
+        let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/frame.glsl"))
+            .unwrap();
         let light: Vec<_> = glsl_members(&src, "struct Light {");
-        let want_light = [("vec4", "position"), ("vec4", "intensity"), ("vec4", "spot"), ("vec4", "spot_u"), ("vec4", "spot_v"), ("vec4", "shadow"), ("mat4", "face_view_proj[6]")];
+        let want_light = [
+            ("vec4", "position"),
+            ("vec4", "intensity"),
+            ("vec4", "spot"),
+            ("vec4", "spot_u"),
+            ("vec4", "spot_v"),
+            ("vec4", "shadow"),
+            ("mat4", "face_view_proj[6]"),
+        ];
         assert_eq!(light, want_light.map(|(a, b)| (a.to_string(), b.to_string())).to_vec());
         let frame = glsl_members(&src, "uniform Frame {");
         let want_frame = [
@@ -96,14 +105,25 @@ mod tests {
         assert_eq!(frame, want_frame.map(|(a, b)| (a.to_string(), b.to_string())).to_vec());
         assert!(src.contains(&format!("#define MAX_LIGHTS {}", super::MAX_LIGHTS)));
         let object = glsl_members(&src, "uniform Object {");
-        assert_eq!(object, [("vec4", "colour"), ("vec4", "ior"), ("uvec4", "info")].map(|(a, b)| (a.to_string(), b.to_string())).to_vec());
-        for (name, value) in [("MATERIAL_DIFFUSE", super::MATERIAL_DIFFUSE), ("MATERIAL_REFRACTIVE", super::MATERIAL_REFRACTIVE), ("MATERIAL_REFLECTIVE", super::MATERIAL_REFLECTIVE)] {
+        assert_eq!(
+            object,
+            [("vec4", "colour"), ("vec4", "ior"), ("uvec4", "info")]
+                .map(|(a, b)| (a.to_string(), b.to_string()))
+                .to_vec()
+        );
+        for (name, value) in [
+            ("MATERIAL_DIFFUSE", super::MATERIAL_DIFFUSE),
+            ("MATERIAL_REFRACTIVE", super::MATERIAL_REFRACTIVE),
+            ("MATERIAL_REFLECTIVE", super::MATERIAL_REFLECTIVE),
+        ] {
             assert!(src.contains(&format!("#define {name} {value}u")), "{name}");
         }
         // Field sizes on the Rust side, in the same order (each vec4 = 16 bytes, mat4 = 64).
         let light_rust = std::mem::size_of::<super::LightUniforms>();
         assert_eq!(light_rust, 6 * 16 + 6 * 64);
-        let vs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/mesh_vertex.glsl")).unwrap();
+        let vs =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/mesh_vertex.glsl"))
+                .unwrap();
         for (loc, ty) in [(0, "vec3 a_position"), (1, "vec3 a_normal"), (2, "float a_thickness")] {
             assert!(vs.contains(&format!("layout(location = {loc}) in {ty};")), "{ty}");
         }

@@ -15,7 +15,8 @@ use anyhow::Result;
 use vkcore::{Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler};
 
 /// Every intermediate buffer `--dump` accepts (`all` = every one).
-pub const DUMP_NAMES: &[&str] = &["shadow_map", "background", "refractor_back_faces", "refractor_front_faces", "eye_gbuffer", "receiver"];
+pub const DUMP_NAMES: &[&str] =
+    &["shadow_map", "background", "refractor_back_faces", "refractor_front_faces", "eye_gbuffer", "receiver"];
 
 /// Techniques `--technique` accepts, with the device features each needs.
 pub const TECHNIQUES: &[&str] = &["none"];
@@ -49,7 +50,13 @@ pub fn required_features(name: &str) -> Option<&'static [vkcore::Feature]> {
 pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &RenderRequest) -> Result<Rendered> {
     ctx.require("technique `none`", required_features("none").unwrap_or(&[]))?;
     if scene.lights.len() > gpu::MAX_LIGHTS {
-        return Err(crate::input_error!("{}: {} lights; at most {} are supported", scene.path.display(), scene.lights.len(), gpu::MAX_LIGHTS).into());
+        return Err(crate::input_error!(
+            "{}: {} lights; at most {} are supported",
+            scene.path.display(),
+            scene.lights.len(),
+            gpu::MAX_LIGHTS
+        )
+        .into());
     }
     let pipelines = pipelines::EyePipelines::new(ctx, shaders)?;
     let meshes = setup::upload_meshes(ctx, scene)?;
@@ -58,7 +65,12 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
     let spot = setup::spot_texture_layers(scene)?;
     for l in 0..targets.shadow.lights {
         let n = (setup::SPOT_TEXTURE_SIZE * setup::SPOT_TEXTURE_SIZE * 4) as usize;
-        ctx.upload_image(&targets.spot_textures.image, 0, l, bytemuck::cast_slice(&spot[l as usize * n..(l as usize + 1) * n]))?;
+        ctx.upload_image(
+            &targets.spot_textures.image,
+            0,
+            l,
+            bytemuck::cast_slice(&spot[l as usize * n..(l as usize + 1) * n]),
+        )?;
     }
     let nearest = Sampler::new(ctx, Filter::Nearest)?;
     let linear = Sampler::new(ctx, Filter::Linear)?;

@@ -1,7 +1,10 @@
 //! The pipelines of the eye render (`--technique none`), built once per run.
 
 use anyhow::Result;
-use vkcore::{BindingKind as K, Blend, Context, Cull, Format, GraphicsDesc, Pipeline, ShaderCompiler, Topology, VertexAttribute, VertexLayout};
+use vkcore::{
+    BindingKind as K, Blend, Context, Cull, Format, GraphicsDesc, Pipeline, ShaderCompiler, Topology, VertexAttribute,
+    VertexLayout,
+};
 
 pub const COLOR: Format = Format::R32G32B32A32_SFLOAT;
 pub const DISTANCE: Format = Format::R32_SFLOAT;
@@ -27,7 +30,18 @@ fn mesh_layout() -> VertexLayout {
     }
 }
 
-fn mesh_pipeline(ctx: &Context, sh: &ShaderCompiler, name: &str, vert: &str, frag: &str, bindings: Vec<K>, colors: Vec<Format>, cull: Cull) -> Result<Pipeline> {
+/// A depth-tested pass over scene meshes.
+struct MeshPass<'a> {
+    name: &'a str,
+    vert: &'a str,
+    frag: &'a str,
+    bindings: Vec<K>,
+    colors: Vec<Format>,
+    cull: Cull,
+}
+
+fn mesh_pipeline(ctx: &Context, sh: &ShaderCompiler, pass: MeshPass) -> Result<Pipeline> {
+    let MeshPass { name, vert, frag, bindings, colors, cull } = pass;
     let mut d = GraphicsDesc::new(name, sh.compile(vert, &[])?, Some(sh.compile(frag, &[])?));
     d.bindings = bindings;
     d.vertex_layout = Some(mesh_layout());
@@ -43,30 +57,54 @@ fn mesh_pipeline(ctx: &Context, sh: &ShaderCompiler, name: &str, vert: &str, fra
 
 impl EyePipelines {
     pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<EyePipelines> {
+        let eye =
+            |name, frag, bindings, colors, cull| MeshPass { name, vert: "eye/mesh.vert", frag, bindings, colors, cull };
         Ok(EyePipelines {
-            shadow_map: mesh_pipeline(ctx, sh, "shadow_map", "shadow/shadow_map.vert", "shadow/shadow_map.frag", vec![K::UniformBuffer], vec![DISTANCE], Cull::None)?,
+            shadow_map: mesh_pipeline(
+                ctx,
+                sh,
+                MeshPass {
+                    name: "shadow_map",
+                    vert: "shadow/shadow_map.vert",
+                    frag: "shadow/shadow_map.frag",
+                    bindings: vec![K::UniformBuffer],
+                    colors: vec![DISTANCE],
+                    cull: Cull::None,
+                },
+            )?,
             background: mesh_pipeline(
                 ctx,
                 sh,
-                "background",
-                "eye/mesh.vert",
-                "eye/background.frag",
-                vec![K::UniformBuffer, K::SampledImage, K::SampledImage],
-                vec![COLOR, COLOR, COLOR],
-                Cull::None,
+                eye(
+                    "background",
+                    "eye/background.frag",
+                    vec![K::UniformBuffer, K::SampledImage, K::SampledImage],
+                    vec![COLOR, COLOR, COLOR],
+                    Cull::None,
+                ),
             )?,
-            back_faces: mesh_pipeline(ctx, sh, "refractor_back_faces", "eye/mesh.vert", "eye/back_faces.frag", vec![K::UniformBuffer], vec![COLOR], Cull::Front)?,
+            back_faces: mesh_pipeline(
+                ctx,
+                sh,
+                eye("refractor_back_faces", "eye/back_faces.frag", vec![K::UniformBuffer], vec![COLOR], Cull::Front),
+            )?,
             front_faces: mesh_pipeline(
                 ctx,
                 sh,
-                "refractor_front_faces",
-                "eye/mesh.vert",
-                "eye/front_faces.frag",
-                vec![K::UniformBuffer, K::SampledImage, K::SampledImage, K::SampledImage],
-                vec![COLOR],
-                Cull::Back,
+                eye(
+                    "refractor_front_faces",
+                    "eye/front_faces.frag",
+                    vec![K::UniformBuffer, K::SampledImage, K::SampledImage, K::SampledImage],
+                    vec![COLOR],
+                    Cull::Back,
+                ),
             )?,
-            composite: Pipeline::compute(ctx, "composite", &sh.compile("eye/composite.comp", &[])?, &[K::SampledImage, K::SampledImage, K::StorageImage])?,
+            composite: Pipeline::compute(
+                ctx,
+                "composite",
+                &sh.compile("eye/composite.comp", &[])?,
+                &[K::SampledImage, K::SampledImage, K::StorageImage],
+            )?,
             receiver_map: Pipeline::compute(
                 ctx,
                 "receiver_map",

@@ -38,16 +38,28 @@ pub fn upload_meshes(ctx: &Context, scene: &Scene) -> Result<Vec<GpuMesh>> {
             vec![0.0; m.positions.len()]
         };
         let vertices: Vec<MeshVertex> = (0..m.positions.len())
-            .map(|i| MeshVertex { position: m.positions[i].to_array(), normal: m.normals[i].to_array(), thickness: thickness[i] })
+            .map(|i| MeshVertex {
+                position: m.positions[i].to_array(),
+                normal: m.normals[i].to_array(),
+                thickness: thickness[i],
+            })
             .collect();
-        let vb = ctx.buffer_with_data(&format!("{} vertices", obj.name), bytemuck::cast_slice(&vertices)).with_context(|| format!("uploading object `{}`", obj.name))?;
-        let ib = ctx.buffer_with_data(&format!("{} indices", obj.name), bytemuck::cast_slice(&m.indices)).with_context(|| format!("uploading object `{}`", obj.name))?;
+        let vb = ctx
+            .buffer_with_data(&format!("{} vertices", obj.name), bytemuck::cast_slice(&vertices))
+            .with_context(|| format!("uploading object `{}`", obj.name))?;
+        let ib = ctx
+            .buffer_with_data(&format!("{} indices", obj.name), bytemuck::cast_slice(&m.indices))
+            .with_context(|| format!("uploading object `{}`", obj.name))?;
         out.push(GpuMesh {
             name: obj.name.clone(),
             vertices: vb,
             indices: ib,
             index_count: m.indices.len() as u32,
-            constants: ObjectConstants { colour: colour.extend(1.0).to_array(), ior: ior.extend(1.0).to_array(), info: [kind, 0, 0, 0] },
+            constants: ObjectConstants {
+                colour: colour.extend(1.0).to_array(),
+                ior: ior.extend(1.0).to_array(),
+                info: [kind, 0, 0, 0],
+            },
         });
     }
     Ok(out)
@@ -109,7 +121,9 @@ pub fn frame_uniforms(scene: &Scene) -> FrameUniforms {
         }
     }
     let (receiver, range) = match &scene.receiver_map {
-        Some(r) => ([r.plane_y, r.resolution as f32, 0.0, 0.0], [r.x_range[0], r.x_range[1], r.z_range[0], r.z_range[1]]),
+        Some(r) => {
+            ([r.plane_y, r.resolution as f32, 0.0, 0.0], [r.x_range[0], r.x_range[1], r.z_range[0], r.z_range[1]])
+        }
         None => ([0.0; 4], [0.0; 4]),
     };
     FrameUniforms {
@@ -136,7 +150,8 @@ pub fn spot_texture_layers(scene: &Scene) -> Result<Vec<f32>> {
     let mut out = vec![1.0f32; layers * n * n * 4];
     for (l, light) in scene.lights.iter().take(MAX_LIGHTS).enumerate() {
         if let LightKind::Spot { texture: Some(path), .. } = &light.kind {
-            let (w, h, rgba) = crate::image_io::read_png_rgba(path).with_context(|| format!("spot-light texture {}", path.display()))?;
+            let (w, h, rgba) = crate::image_io::read_png_rgba(path)
+                .with_context(|| format!("spot-light texture {}", path.display()))?;
             for y in 0..n {
                 for x in 0..n {
                     let sx = (x * w as usize / n).min(w as usize - 1);

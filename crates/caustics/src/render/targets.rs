@@ -68,16 +68,25 @@ impl EyeTargets {
         let per_light = (0..lights)
             .map(|l| {
                 let layers = 6 * l..6 * l + 6;
-                Ok((distance.image.view(ViewKind::D2Array, 0..1, layers.clone())?, depth.view(ViewKind::D2Array, 0..1, layers)?))
+                Ok((
+                    distance.image.view(ViewKind::D2Array, 0..1, layers.clone())?,
+                    depth.view(ViewKind::D2Array, 0..1, layers)?,
+                ))
             })
             .collect::<Result<Vec<_>>>()?;
         let receiver = match &scene.receiver_map {
-            Some(r) => Some((Target::color(ctx, "receiver E/E0", r.resolution, r.resolution)?, Target::color(ctx, "receiver E", r.resolution, r.resolution)?)),
+            Some(r) => Some((
+                Target::color(ctx, "receiver E/E0", r.resolution, r.resolution)?,
+                Target::color(ctx, "receiver E", r.resolution, r.resolution)?,
+            )),
             None => None,
         };
         Ok(EyeTargets {
             shadow: ShadowMaps { distance, depth, per_light, lights },
-            spot_textures: Target::array(ctx, ImageDesc::new_2d("spot textures", COLOR, SPOT_TEXTURE_SIZE, SPOT_TEXTURE_SIZE).layers(lights))?,
+            spot_textures: Target::array(
+                ctx,
+                ImageDesc::new_2d("spot textures", COLOR, SPOT_TEXTURE_SIZE, SPOT_TEXTURE_SIZE).layers(lights),
+            )?,
             background: Target::color(ctx, "background radiance", w, h)?,
             position: Target::color(ctx, "eye position", w, h)?,
             normal: Target::color(ctx, "eye normal", w, h)?,
