@@ -1,10 +1,14 @@
 // Diffuse surfaces seen from the eye: Lambertian radiance L = albedo / pi * E, with E the
 // physically scaled irradiance from every light (I cos(theta) / r^2) where the shadow map
-// says the light is visible. Also writes the geometry buffer that refraction looks up.
+// says the light is visible, plus the caustic irradiance from the caustic maps. Also writes the geometry buffer that refraction looks up.
 #version 450
 #define SHADOW_BINDING 1
 #define SPOT_BINDING 2
+#define CAUSTICS_BINDING 3
+#define CAUSTIC_MAP_BINDING 4
+#define RECEIVER_POSITIONS_BINDING 5
 #include "common/lighting.glsl"
+#include "common/caustic_lookup.glsl"
 layout(location = 0) in vec3 v_world;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in float v_thickness;
@@ -17,7 +21,7 @@ const float PI = 3.14159265358979;
 void main() {
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
-    vec3 e = direct_irradiance(v_world, n);
+    vec3 e = direct_irradiance(v_world, n) + caustic_irradiance(v_world, n);
     o_radiance = vec4(object.colour.rgb / PI * e, 1.0);
     o_position = vec4(v_world, 1.0);
     o_normal = vec4(n, 0.0);

@@ -5,10 +5,15 @@
 #version 450
 #define SHADOW_BINDING 1
 #define SPOT_BINDING 2
+#define CAUSTICS_BINDING 6
+#define CAUSTIC_MAP_BINDING 7
+#define RECEIVER_POSITIONS_BINDING 8
 #include "common/lighting.glsl"
+#include "common/caustic_lookup.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 3, rgba32f) uniform writeonly image2D ratio_map;       // rgb E/E0
 layout(binding = 4, rgba32f) uniform writeonly image2D irradiance_map;  // rgb E (W/m^2), a: mean E0
+layout(binding = 5, rgba32f) uniform writeonly image2D caustic_only;    // rgb caustic E (W/m^2)
 
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
@@ -21,8 +26,10 @@ void main() {
     vec3 up = vec3(0.0, 1.0, 0.0);
     vec3 e0 = vec3(0.0);
     for (uint l = 0u; l < frame.counts.x; ++l) e0 += unoccluded_irradiance(l, p, up);
-    vec3 e = direct_irradiance(p, up);
+    vec3 ec = caustic_irradiance(p, up);
+    vec3 e = direct_irradiance(p, up) + ec;
     vec3 ratio = vec3(e0.r > 0.0 ? e.r / e0.r : 0.0, e0.g > 0.0 ? e.g / e0.g : 0.0, e0.b > 0.0 ? e.b / e0.b : 0.0);
     imageStore(ratio_map, ij, vec4(ratio, 1.0));
     imageStore(irradiance_map, ij, vec4(e, (e0.r + e0.g + e0.b) / 3.0));
+    imageStore(caustic_only, ij, vec4(ec, 1.0));
 }

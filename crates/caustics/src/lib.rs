@@ -1,9 +1,12 @@
 //! causticlab's techniques, one module per paper, plus the scene description and CPU references.
 
-pub mod error;
-pub mod scene;
 pub mod bvh;
+pub mod caustic_map;
+pub mod error;
 pub mod image_io;
 pub mod render;
+pub mod scene;
+pub mod reference;
+pub mod compare;
 
 pub use error::InputError;

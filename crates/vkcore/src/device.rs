@@ -77,6 +77,7 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
         add(timestamp_valid_bits > 0, Feature::Timestamps);
         add(has_ext(khr::push_descriptor::NAME), Feature::PushDescriptor);
         add(yes(f.fragment_stores_and_atomics), Feature::FragmentStoresAndAtomics);
+        add(yes(f.vertex_pipeline_stores_and_atomics), Feature::VertexPipelineStoresAndAtomics);
 
         let v = props.api_version;
         DeviceInfo {
@@ -235,7 +236,7 @@ pub(crate) fn create_device(instance: &Instance, index: usize, without: &[Featur
         .pipeline_statistics_query(has(Feature::PipelineStatisticsQuery))
         .large_points(has(Feature::LargePoints))
         .fragment_stores_and_atomics(has(Feature::FragmentStoresAndAtomics))
-        .vertex_pipeline_stores_and_atomics(true)
+        .vertex_pipeline_stores_and_atomics(has(Feature::VertexPipelineStoresAndAtomics))
         .shader_storage_image_write_without_format(true)
         .multi_draw_indirect(true)
         .draw_indirect_first_instance(true);

@@ -21,10 +21,11 @@ pub enum Feature {
     Timestamps,
     PushDescriptor,
     FragmentStoresAndAtomics,
+    VertexPipelineStoresAndAtomics,
 }
 
 impl Feature {
-    pub const ALL: [Feature; 14] = [
+    pub const ALL: [Feature; 15] = [
         Feature::GeometryShader,
         Feature::TransformFeedback,
         Feature::TransformFeedbackDraw,
@@ -39,6 +40,7 @@ impl Feature {
         Feature::Timestamps,
         Feature::PushDescriptor,
         Feature::FragmentStoresAndAtomics,
+        Feature::VertexPipelineStoresAndAtomics,
     ];
 
     /// The name used on the command line (`--without-feature`) and in `causticlab devices`.
@@ -58,6 +60,7 @@ impl Feature {
             Feature::Timestamps => "timestamps",
             Feature::PushDescriptor => "push_descriptor",
             Feature::FragmentStoresAndAtomics => "fragment_stores_and_atomics",
+            Feature::VertexPipelineStoresAndAtomics => "vertex_pipeline_stores_and_atomics",
         }
     }
 
@@ -80,6 +83,7 @@ impl Feature {
             Feature::Timestamps => "VkQueueFamilyProperties::timestampValidBits > 0",
             Feature::PushDescriptor => "VK_KHR_push_descriptor",
             Feature::FragmentStoresAndAtomics => "VkPhysicalDeviceFeatures::fragmentStoresAndAtomics",
+            Feature::VertexPipelineStoresAndAtomics => "VkPhysicalDeviceFeatures::vertexPipelineStoresAndAtomics",
         }
     }
 

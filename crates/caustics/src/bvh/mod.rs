@@ -74,10 +74,7 @@ struct Aabb {
 }
 
 impl Aabb {
-    const EMPTY: Aabb = Aabb {
-        min: Vec3::splat(f32::INFINITY),
-        max: Vec3::splat(f32::NEG_INFINITY),
-    };
+    const EMPTY: Aabb = Aabb { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
     fn grow_point(&mut self, p: Vec3) {
         // f32::min/max ignore NaN operands, so NaN vertices never poison a box.
         self.min = self.min.min(p);
@@ -111,10 +108,7 @@ impl Bvh {
     /// an empty BVH that never reports hits.
     pub fn build(triangles: Vec<Triangle>) -> Bvh {
         let n = triangles.len();
-        assert!(
-            n <= u32::MAX as usize / 2,
-            "too many triangles for a u32-indexed BVH"
-        );
+        assert!(n <= u32::MAX as usize / 2, "too many triangles for a u32-indexed BVH");
         if n == 0 {
             return Bvh::default();
         }
@@ -129,18 +123,8 @@ impl Bvh {
         let centroids: Vec<Vec3> = boxes.iter().map(|b| (b.min + b.max) * 0.5).collect();
         let mut order: Vec<u32> = (0..n as u32).collect();
         let mut nodes = Vec::with_capacity(2 * n.div_ceil(MAX_LEAF.max(2)) + 1);
-        nodes.push(Node {
-            min: Vec3::ZERO,
-            max: Vec3::ZERO,
-            first: 0,
-            count: 0,
-        });
-        let mut tasks = vec![BuildTask {
-            node: 0,
-            start: 0,
-            end: n,
-            depth: 0,
-        }];
+        nodes.push(Node { min: Vec3::ZERO, max: Vec3::ZERO, first: 0, count: 0 });
+        let mut tasks = vec![BuildTask { node: 0, start: 0, end: n, depth: 0 }];
         let mut max_depth = 0;
 
         while let Some(task) = tasks.pop() {
@@ -185,46 +169,18 @@ impl Bvh {
             };
             debug_assert!(mid > 0 && mid < count);
             let left = nodes.len();
-            nodes.push(Node {
-                min: Vec3::ZERO,
-                max: Vec3::ZERO,
-                first: 0,
-                count: 0,
-            });
-            nodes.push(Node {
-                min: Vec3::ZERO,
-                max: Vec3::ZERO,
-                first: 0,
-                count: 0,
-            });
+            nodes.push(Node { min: Vec3::ZERO, max: Vec3::ZERO, first: 0, count: 0 });
+            nodes.push(Node { min: Vec3::ZERO, max: Vec3::ZERO, first: 0, count: 0 });
             nodes[task.node].first = left as u32;
             nodes[task.node].count = 0;
             let depth = task.depth + 1;
-            tasks.push(BuildTask {
-                node: left + 1,
-                start: task.start + mid,
-                end: task.end,
-                depth,
-            });
-            tasks.push(BuildTask {
-                node: left,
-                start: task.start,
-                end: task.start + mid,
-                depth,
-            });
+            tasks.push(BuildTask { node: left + 1, start: task.start + mid, end: task.end, depth });
+            tasks.push(BuildTask { node: left, start: task.start, end: task.start + mid, depth });
         }
 
         let triangles: Vec<Triangle> = order.iter().map(|&i| triangles[i as usize]).collect();
-        let edges = triangles
-            .iter()
-            .map(|t| [t.v[0], t.v[1] - t.v[0], t.v[2] - t.v[0]])
-            .collect();
-        Bvh {
-            nodes,
-            triangles,
-            edges,
-            depth: max_depth,
-        }
+        let edges = triangles.iter().map(|t| [t.v[0], t.v[1] - t.v[0], t.v[2] - t.v[0]]).collect();
+        Bvh { nodes, triangles, edges, depth: max_depth }
     }
 
     /// Triangle `i` of the BVH's reordered list (the index reported in [`Hit::triangle`]).
@@ -264,14 +220,7 @@ impl Bvh {
             if let Some((t, u, v)) = moller_trumbore(origin, dir, v0, e1, e2, t_min, *t_max) {
                 *t_max = t;
                 let tri = &self.triangles[i];
-                best = Some(Hit {
-                    t,
-                    u,
-                    v,
-                    triangle: i as u32,
-                    object: tri.object,
-                    prim: tri.prim,
-                });
+                best = Some(Hit { t, u, v, triangle: i as u32, object: tri.object, prim: tri.prim });
             }
             false
         });
@@ -373,13 +322,7 @@ enum SahResult {
     Unsplittable,
 }
 
-fn sah_split(
-    range: &mut [u32],
-    boxes: &[Aabb],
-    centroids: &[Vec3],
-    cbounds: &Aabb,
-    parent_area: f32,
-) -> SahResult {
+fn sah_split(range: &mut [u32], boxes: &[Aabb], centroids: &[Vec3], cbounds: &Aabb, parent_area: f32) -> SahResult {
     #[derive(Clone, Copy)]
     struct Bin {
         bounds: Aabb,
@@ -396,10 +339,7 @@ fn sah_split(
         if !(extent[axis] > 0.0) || !extent[axis].is_finite() {
             continue;
         }
-        let mut bins = [Bin {
-            bounds: Aabb::EMPTY,
-            count: 0,
-        }; BINS];
+        let mut bins = [Bin { bounds: Aabb::EMPTY, count: 0 }; BINS];
         for &i in range.iter() {
             let b = &mut bins[bin_of(centroids[i as usize][axis], axis)];
             b.count += 1;
@@ -412,11 +352,7 @@ fn sah_split(
         for k in (1..BINS).rev() {
             acc.grow(&bins[k].bounds);
             cnt += bins[k].count;
-            right_cost[k - 1] = if cnt > 0 {
-                acc.half_area() * cnt as f32
-            } else {
-                f32::NAN
-            };
+            right_cost[k - 1] = if cnt > 0 { acc.half_area() * cnt as f32 } else { f32::NAN };
         }
         let mut acc = Aabb::EMPTY;
         let mut cnt = 0u32;
@@ -459,9 +395,7 @@ fn median_split(range: &mut [u32], centroids: &[Vec3], cbounds: &Aabb) -> usize 
         2
     };
     let mid = range.len() / 2;
-    range.select_nth_unstable_by(mid, |&a, &b| {
-        centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis])
-    });
+    range.select_nth_unstable_by(mid, |&a, &b| centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis]));
     mid
 }
 
@@ -488,11 +422,7 @@ struct SlabRay {
 impl SlabRay {
     fn new(origin: Vec3, dir: Vec3) -> SlabRay {
         let zero = [dir.x == 0.0, dir.y == 0.0, dir.z == 0.0];
-        SlabRay {
-            origin,
-            inv: dir.recip(),
-            zero,
-        }
+        SlabRay { origin, inv: dir.recip(), zero }
     }
 
     /// Entry distance into the box if the ray overlaps it within `[t_min, t_max]`.
@@ -565,22 +495,8 @@ pub fn moller_trumbore(
 }
 
 /// [`moller_trumbore`] on a [`Triangle`] (the same arithmetic as [`Bvh::intersect`]).
-pub fn intersect_triangle(
-    origin: Vec3,
-    dir: Vec3,
-    tri: &Triangle,
-    t_min: f32,
-    t_max: f32,
-) -> Option<(f32, f32, f32)> {
-    moller_trumbore(
-        origin,
-        dir,
-        tri.v[0],
-        tri.v[1] - tri.v[0],
-        tri.v[2] - tri.v[0],
-        t_min,
-        t_max,
-    )
+pub fn intersect_triangle(origin: Vec3, dir: Vec3, tri: &Triangle, t_min: f32, t_max: f32) -> Option<(f32, f32, f32)> {
+    moller_trumbore(origin, dir, tri.v[0], tri.v[1] - tri.v[0], tri.v[2] - tri.v[0], t_min, t_max)
 }
 
 /// Per-vertex thickness `d_N` (Wyman 2005): for each vertex, the distance from the
@@ -598,11 +514,7 @@ pub fn vertex_thickness(positions: &[Vec3], normals: &[Vec3], indices: &[u32]) -
         .enumerate()
         .filter(|(_, c)| c.iter().all(|&i| (i as usize) < nv))
         .map(|(k, c)| Triangle {
-            v: [
-                positions[c[0] as usize],
-                positions[c[1] as usize],
-                positions[c[2] as usize],
-            ],
+            v: [positions[c[0] as usize], positions[c[1] as usize], positions[c[2] as usize]],
             object: 0,
             prim: k as u32,
         })
@@ -617,19 +529,11 @@ pub fn vertex_thickness(positions: &[Vec3], normals: &[Vec3], indices: &[u32]) -
         return out;
     };
     let diag = (bmax - bmin).length();
-    let eps = if diag.is_finite() && diag > 0.0 {
-        diag * 1e-5
-    } else {
-        1e-6
-    };
+    let eps = if diag.is_finite() && diag > 0.0 { diag * 1e-5 } else { 1e-6 };
 
     let thickness = |i: usize| -> f32 {
         let p = positions[i];
-        let n = normals
-            .get(i)
-            .copied()
-            .unwrap_or(Vec3::ZERO)
-            .normalize_or_zero();
+        let n = normals.get(i).copied().unwrap_or(Vec3::ZERO).normalize_or_zero();
         if n == Vec3::ZERO || !p.is_finite() {
             return 0.0;
         }
@@ -642,28 +546,16 @@ pub fn vertex_thickness(positions: &[Vec3], normals: &[Vec3], indices: &[u32]) -
         // Retry with directions tilted by 1e-4 rad (distance error ~5e-9 relative).
         let (t, b) = n.any_orthonormal_pair();
         const TILT: f32 = 1e-4;
-        [
-            t,
-            -t,
-            b,
-            -b,
-            (t + b) * std::f32::consts::FRAC_1_SQRT_2,
-            -(t + b) * std::f32::consts::FRAC_1_SQRT_2,
-        ]
-        .iter()
-        .find_map(|&off| bvh.intersect(origin, (-n + off * TILT).normalize(), 0.0, f32::INFINITY))
-        .map_or(0.0, |h| h.t + eps)
+        [t, -t, b, -b, (t + b) * std::f32::consts::FRAC_1_SQRT_2, -(t + b) * std::f32::consts::FRAC_1_SQRT_2]
+            .iter()
+            .find_map(|&off| bvh.intersect(origin, (-n + off * TILT).normalize(), 0.0, f32::INFINITY))
+            .map_or(0.0, |h| h.t + eps)
     };
 
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(nv.div_ceil(256))
-        .max(1);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(nv.div_ceil(256)).max(1);
     let chunk = nv.div_ceil(threads).max(1);
     if threads == 1 {
-        out.iter_mut()
-            .enumerate()
-            .for_each(|(i, d)| *d = thickness(i));
+        out.iter_mut().enumerate().for_each(|(i, d)| *d = thickness(i));
         return out;
     }
     std::thread::scope(|s| {

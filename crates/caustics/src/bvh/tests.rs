@@ -11,9 +11,7 @@ impl Pcg {
     }
     fn next_u32(&mut self) -> u32 {
         let old = self.0;
-        self.0 = old
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
+        self.0 = old.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
         let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
         xorshifted.rotate_right((old >> 59) as u32)
     }
@@ -43,11 +41,7 @@ fn soup(rng: &mut Pcg, n: usize, extent: f32, size: f32) -> Vec<Triangle> {
         .map(|k| {
             let c = rng.vec(-extent, extent);
             Triangle {
-                v: [
-                    c + rng.vec(-size, size),
-                    c + rng.vec(-size, size),
-                    c + rng.vec(-size, size),
-                ],
+                v: [c + rng.vec(-size, size), c + rng.vec(-size, size), c + rng.vec(-size, size)],
                 object: (k % 3) as u32,
                 prim: k as u32,
             }
@@ -74,20 +68,11 @@ fn check_ray(bvh: &Bvh, o: Vec3, d: Vec3, t_min: f32, t_max: f32) -> bool {
     match (got, want) {
         (None, None) => {}
         (Some(h), Some((t, id))) => {
-            assert!(
-                (h.t - t).abs() <= 1e-5 * t.abs().max(1e-6),
-                "t mismatch: bvh {} brute {} ray {o} {d}",
-                h.t,
-                t
-            );
+            assert!((h.t - t).abs() <= 1e-5 * t.abs().max(1e-6), "t mismatch: bvh {} brute {} ray {o} {d}", h.t, t);
             if h.triangle != id {
                 // Only exact (or rounding-level) ties may pick another triangle.
-                let (t2, _, _) =
-                    intersect_triangle(o, d, bvh.triangle(h.triangle), t_min, t_max).unwrap();
-                assert!(
-                    (t2 - t).abs() <= 1e-6 * t.abs(),
-                    "different triangle without a tie"
-                );
+                let (t2, _, _) = intersect_triangle(o, d, bvh.triangle(h.triangle), t_min, t_max).unwrap();
+                assert!((t2 - t).abs() <= 1e-6 * t.abs(), "different triangle without a tie");
             }
             let tri = bvh.triangle(h.triangle);
             assert_eq!((h.object, h.prim), (tri.object, tri.prim));
@@ -98,24 +83,16 @@ fn check_ray(bvh: &Bvh, o: Vec3, d: Vec3, t_min: f32, t_max: f32) -> bool {
         }
         (g, w) => panic!("bvh {g:?} vs brute {w:?} for ray {o} {d} [{t_min}, {t_max}]"),
     }
-    assert_eq!(
-        bvh.occluded(o, d, t_min, t_max),
-        want.is_some(),
-        "occluded disagrees for ray {o} {d}"
-    );
+    assert_eq!(bvh.occluded(o, d, t_min, t_max), want.is_some(), "occluded disagrees for ray {o} {d}");
     want.is_some()
 }
 
 #[test]
 fn random_soups_match_brute_force() {
     let mut rng = Pcg::new(7);
-    for (n, extent, size) in [
-        (2usize, 1.0f32, 0.5f32),
-        (5, 1.0, 0.3),
-        (37, 2.0, 0.4),
-        (500, 2.0, 0.5),
-        (3000, 4.0, 0.4),
-    ] {
+    for (n, extent, size) in
+        [(2usize, 1.0f32, 0.5f32), (5, 1.0, 0.3), (37, 2.0, 0.4), (500, 2.0, 0.5), (3000, 4.0, 0.4)]
+    {
         let tris = soup(&mut rng, n, extent, size);
         let bvh = Bvh::build(tris.clone());
         assert_eq!(bvh.len(), n);
@@ -143,10 +120,7 @@ fn random_soups_match_brute_force() {
             check_ray(&bvh, o, d, 0.1, extent);
         }
         if n >= 500 {
-            assert!(
-                hits > rays / 5,
-                "test rays should mostly hit ({hits}/{rays})"
-            );
+            assert!(hits > rays / 5, "test rays should mostly hit ({hits}/{rays})");
         }
     }
 }
@@ -167,20 +141,9 @@ fn rays_that_miss() {
     // Empty / NaN interval and NaN / zero rays.
     assert!(bvh.intersect(Vec3::ZERO, Vec3::X, 1.0, 0.5).is_none());
     assert!(bvh.intersect(Vec3::ZERO, Vec3::X, f32::NAN, 1.0).is_none());
-    assert!(bvh
-        .intersect(Vec3::ZERO, Vec3::ZERO, 0.0, f32::INFINITY)
-        .is_none());
-    assert!(bvh
-        .intersect(Vec3::NAN, Vec3::X, 0.0, f32::INFINITY)
-        .is_none());
-    assert!(bvh
-        .intersect(
-            Vec3::ZERO,
-            Vec3::new(f32::NAN, 0.0, 1.0),
-            0.0,
-            f32::INFINITY
-        )
-        .is_none());
+    assert!(bvh.intersect(Vec3::ZERO, Vec3::ZERO, 0.0, f32::INFINITY).is_none());
+    assert!(bvh.intersect(Vec3::NAN, Vec3::X, 0.0, f32::INFINITY).is_none());
+    assert!(bvh.intersect(Vec3::ZERO, Vec3::new(f32::NAN, 0.0, 1.0), 0.0, f32::INFINITY).is_none());
     assert!(!bvh.occluded(Vec3::ZERO, Vec3::ZERO, 0.0, f32::INFINITY));
 }
 
@@ -198,16 +161,8 @@ fn axis_aligned_directions_with_zeros() {
             let c = Vec3::new(x + 1.0, y + 1.0, z);
             let d = Vec3::new(x, y + 1.0, z);
             let p = tris.len() as u32;
-            tris.push(Triangle {
-                v: [a, b, c],
-                object: k,
-                prim: p,
-            });
-            tris.push(Triangle {
-                v: [a, c, d],
-                object: k,
-                prim: p + 1,
-            });
+            tris.push(Triangle { v: [a, b, c], object: k, prim: p });
+            tris.push(Triangle { v: [a, c, d], object: k, prim: p + 1 });
         }
     }
     let bvh = Bvh::build(tris);
@@ -233,52 +188,20 @@ fn axis_aligned_directions_with_zeros() {
                 }
             }
             // Outside the x/y extent: misses, even though the z slab is crossed.
-            assert!(!check_ray(
-                &bvh,
-                Vec3::new(2.01, 0.5, -1.0),
-                d,
-                0.0,
-                f32::INFINITY
-            ));
-            assert!(!check_ray(
-                &bvh,
-                Vec3::new(0.5, -0.01, -1.0),
-                d,
-                0.0,
-                f32::INFINITY
-            ));
+            assert!(!check_ray(&bvh, Vec3::new(2.01, 0.5, -1.0), d, 0.0, f32::INFINITY));
+            assert!(!check_ray(&bvh, Vec3::new(0.5, -0.01, -1.0), d, 0.0, f32::INFINITY));
         }
     }
     // Rays along x and y lie parallel to every quad: no hits.
-    for d in [
-        Vec3::X,
-        Vec3::NEG_X,
-        Vec3::Y,
-        Vec3::NEG_Y,
-        Vec3::new(1.0, -0.0, 0.0),
-    ] {
-        assert!(!check_ray(
-            &bvh,
-            Vec3::new(-1.0, 0.5, 0.5),
-            d,
-            0.0,
-            f32::INFINITY
-        ));
+    for d in [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::new(1.0, -0.0, 0.0)] {
+        assert!(!check_ray(&bvh, Vec3::new(-1.0, 0.5, 0.5), d, 0.0, f32::INFINITY));
     }
     // Axis-aligned rays with zeros on a random soup.
     let mut rng = Pcg::new(3);
     let bvh = Bvh::build(soup(&mut rng, 400, 1.0, 0.3));
     for _ in 0..500 {
         let o = rng.vec(-1.5, 1.5);
-        for d in [
-            Vec3::X,
-            Vec3::NEG_X,
-            Vec3::Y,
-            Vec3::NEG_Y,
-            Vec3::Z,
-            Vec3::NEG_Z,
-            Vec3::new(-0.0, 1.0, -0.0),
-        ] {
+        for d in [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z, Vec3::new(-0.0, 1.0, -0.0)] {
             check_ray(&bvh, o, d, 0.0, f32::INFINITY);
         }
     }
@@ -290,17 +213,11 @@ fn zero_and_one_triangle() {
     assert!(empty.is_empty());
     assert_eq!(empty.len(), 0);
     assert!(empty.bounds().is_none());
-    assert!(empty
-        .intersect(Vec3::ZERO, Vec3::X, 0.0, f32::INFINITY)
-        .is_none());
+    assert!(empty.intersect(Vec3::ZERO, Vec3::X, 0.0, f32::INFINITY).is_none());
     assert!(!empty.occluded(Vec3::ZERO, Vec3::X, 0.0, f32::INFINITY));
 
     let tri = Triangle {
-        v: [
-            Vec3::new(-1.0, -1.0, 2.0),
-            Vec3::new(1.0, -1.0, 2.0),
-            Vec3::new(0.0, 1.0, 2.0),
-        ],
+        v: [Vec3::new(-1.0, -1.0, 2.0), Vec3::new(1.0, -1.0, 2.0), Vec3::new(0.0, 1.0, 2.0)],
         object: 4,
         prim: 9,
     };
@@ -308,14 +225,10 @@ fn zero_and_one_triangle() {
     assert_eq!(one.len(), 1);
     assert!(!one.is_empty());
     assert_eq!(*one.triangle(0), tri);
-    let h = one
-        .intersect(Vec3::ZERO, Vec3::Z, 0.0, f32::INFINITY)
-        .unwrap();
+    let h = one.intersect(Vec3::ZERO, Vec3::Z, 0.0, f32::INFINITY).unwrap();
     assert_eq!((h.t, h.triangle, h.object, h.prim), (2.0, 0, 4, 9));
     // Back face is hit too (no culling).
-    let h = one
-        .intersect(Vec3::new(0.0, 0.0, 4.0), Vec3::NEG_Z, 0.0, f32::INFINITY)
-        .unwrap();
+    let h = one.intersect(Vec3::new(0.0, 0.0, 4.0), Vec3::NEG_Z, 0.0, f32::INFINITY).unwrap();
     assert_eq!(h.t, 2.0);
     assert!(one.occluded(Vec3::ZERO, Vec3::Z, 0.0, 3.0));
     assert!(!one.occluded(Vec3::ZERO, Vec3::Z, 0.0, 1.5));
@@ -328,35 +241,19 @@ fn degenerate_triangles() {
     let p = Vec3::new(0.1, 0.2, 0.3);
     let mut tris = Vec::new();
     // Many exact duplicates (identical centroids: SAH cannot split them).
-    let dup = Triangle {
-        v: [Vec3::ZERO, Vec3::X, Vec3::Y],
-        object: 0,
-        prim: 0,
-    };
+    let dup = Triangle { v: [Vec3::ZERO, Vec3::X, Vec3::Y], object: 0, prim: 0 };
     for k in 0..1000 {
         tris.push(Triangle { prim: k, ..dup });
     }
     // Zero-area: points and collinear.
     for k in 0..300 {
-        tris.push(Triangle {
-            v: [p, p, p],
-            object: 1,
-            prim: 1000 + k,
-        });
+        tris.push(Triangle { v: [p, p, p], object: 1, prim: 1000 + k });
         let a = rng.vec(-1.0, 1.0);
         let b = rng.vec(-1.0, 1.0);
-        tris.push(Triangle {
-            v: [a, b, (a + b) * 0.5],
-            object: 2,
-            prim: 2000 + k,
-        });
+        tris.push(Triangle { v: [a, b, (a + b) * 0.5], object: 2, prim: 2000 + k });
     }
     // A few normal ones.
-    tris.extend(
-        soup(&mut rng, 50, 1.0, 0.3)
-            .into_iter()
-            .map(|t| Triangle { object: 3, ..t }),
-    );
+    tris.extend(soup(&mut rng, 50, 1.0, 0.3).into_iter().map(|t| Triangle { object: 3, ..t }));
     let bvh = Bvh::build(tris.clone());
     assert_eq!(bvh.len(), tris.len());
     assert!(bvh.depth() < 100);
@@ -364,34 +261,16 @@ fn degenerate_triangles() {
         let o = rng.vec(-2.0, 2.0);
         check_ray(&bvh, o, rng.dir(), 0.0, f32::INFINITY);
     }
-    let h = bvh
-        .intersect(Vec3::new(0.25, 0.25, 1.0), Vec3::NEG_Z, 0.0, f32::INFINITY)
-        .unwrap();
+    let h = bvh.intersect(Vec3::new(0.25, 0.25, 1.0), Vec3::NEG_Z, 0.0, f32::INFINITY).unwrap();
     assert_eq!(h.object, 0);
     assert!((h.t - 1.0).abs() < 1e-6);
 
     // Only degenerate / non-finite triangles.
     let only_bad = vec![
-        Triangle {
-            v: [p, p, p],
-            object: 0,
-            prim: 0,
-        },
-        Triangle {
-            v: [Vec3::NAN, p, p],
-            object: 0,
-            prim: 1,
-        },
-        Triangle {
-            v: [Vec3::INFINITY, Vec3::NEG_INFINITY, p],
-            object: 0,
-            prim: 2,
-        },
-        Triangle {
-            v: [Vec3::ZERO, Vec3::X, Vec3::X * 2.0],
-            object: 0,
-            prim: 3,
-        },
+        Triangle { v: [p, p, p], object: 0, prim: 0 },
+        Triangle { v: [Vec3::NAN, p, p], object: 0, prim: 1 },
+        Triangle { v: [Vec3::INFINITY, Vec3::NEG_INFINITY, p], object: 0, prim: 2 },
+        Triangle { v: [Vec3::ZERO, Vec3::X, Vec3::X * 2.0], object: 0, prim: 3 },
     ];
     let many_bad: Vec<Triangle> = (0..200).map(|k| only_bad[k % 4]).collect();
     for tris in [only_bad, many_bad] {
@@ -426,11 +305,7 @@ fn uv_sphere(radius: f32, stacks: u32, slices: u32) -> (Vec<Vec3>, Vec<Vec3>, Ve
         let theta = std::f32::consts::PI * i as f32 / stacks as f32;
         for j in 0..=slices {
             let phi = 2.0 * std::f32::consts::PI * j as f32 / slices as f32;
-            let n = Vec3::new(
-                theta.sin() * phi.cos(),
-                theta.cos(),
-                theta.sin() * phi.sin(),
-            );
+            let n = Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
             pos.push(n * radius);
             nrm.push(n);
         }
@@ -458,11 +333,7 @@ fn thickness_of_sphere_is_diameter() {
     let d = vertex_thickness(&pos, &nrm, &idx);
     assert_eq!(d.len(), pos.len());
     for (i, &t) in d.iter().enumerate() {
-        assert!(
-            (t - 1.0).abs() <= 0.01,
-            "vertex {i} at {}: thickness {t}",
-            pos[i]
-        );
+        assert!((t - 1.0).abs() <= 0.01, "vertex {i} at {}: thickness {t}", pos[i]);
     }
 }
 
@@ -476,13 +347,7 @@ fn thickness_of_unit_cube_is_one() {
         for sign in [1.0f32, -1.0] {
             let mut n = Vec3::ZERO;
             n[axis] = sign;
-            let u = Vec3::from_array(std::array::from_fn(|k| {
-                if k == (axis + 1) % 3 {
-                    1.0
-                } else {
-                    0.0
-                }
-            }));
+            let u = Vec3::from_array(std::array::from_fn(|k| if k == (axis + 1) % 3 { 1.0 } else { 0.0 }));
             let v = n.cross(u);
             let base = pos.len() as u32;
             for (a, b) in [(-0.5f32, -0.5f32), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)] {
@@ -494,11 +359,7 @@ fn thickness_of_unit_cube_is_one() {
     }
     let d = vertex_thickness(&pos, &nrm, &idx);
     for (i, &t) in d.iter().enumerate() {
-        assert!(
-            (t - 1.0).abs() <= 1e-4,
-            "vertex {i} at {}: thickness {t}",
-            pos[i]
-        );
+        assert!((t - 1.0).abs() <= 1e-4, "vertex {i} at {}: thickness {t}", pos[i]);
     }
 }
 

@@ -35,11 +35,7 @@ pub struct Layer {
 
 impl Layer {
     pub fn new(name: Option<&str>, channels: &[&str], data: Vec<f32>) -> Layer {
-        Layer {
-            name: name.map(str::to_owned),
-            channels: channels.iter().map(|&c| c.to_owned()).collect(),
-            data,
-        }
+        Layer { name: name.map(str::to_owned), channels: channels.iter().map(|&c| c.to_owned()).collect(), data }
     }
 
     /// Channel `c` of pixel `(x, y)` for an image `width` wide.
@@ -65,31 +61,18 @@ impl ImageF32 {
 static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 fn unique_suffix() -> String {
-    format!(
-        "{}-{}",
-        std::process::id(),
-        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
-    )
+    format!("{}-{}", std::process::id(), TEMP_COUNTER.fetch_add(1, Ordering::Relaxed))
 }
 
 /// Writes `path` through a temporary file in the same directory, synced and renamed
 /// into place; on any error the temporary file is removed and `path` is untouched.
-fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut BufWriter<File>) -> Result<()>,
-) -> Result<()> {
-    let file_name = path
-        .file_name()
-        .with_context(|| format!("{} has no file name", path.display()))?;
+fn write_atomically(path: &Path, write: impl FnOnce(&mut BufWriter<File>) -> Result<()>) -> Result<()> {
+    let file_name = path.file_name().with_context(|| format!("{} has no file name", path.display()))?;
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}",
-        file_name.to_string_lossy(),
-        unique_suffix()
-    ));
+    let tmp = dir.join(format!(".{}.tmp-{}", file_name.to_string_lossy(), unique_suffix()));
     let result = (|| -> Result<()> {
         let file = File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
         let mut w = BufWriter::new(file);
@@ -97,8 +80,7 @@ fn write_atomically(
         let file = w.into_inner().map_err(|e| e.into_error())?;
         file.sync_all()?;
         drop(file);
-        std::fs::rename(&tmp, path)
-            .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
+        std::fs::rename(&tmp, path).with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
         Ok(())
     })();
     if result.is_err() {
@@ -120,10 +102,7 @@ fn validate(image: &ImageF32) -> Result<Vec<String>> {
     for layer in &image.layers {
         let lname = layer.name.as_deref().unwrap_or("<main>");
         if let Some(n) = &layer.name {
-            ensure!(
-                !n.is_empty() && !n.starts_with('.') && !n.ends_with('.'),
-                "invalid layer name {n:?}"
-            );
+            ensure!(!n.is_empty() && !n.starts_with('.') && !n.ends_with('.'), "invalid layer name {n:?}");
         }
         ensure!(!layer.channels.is_empty(), "layer {lname} has no channels");
         ensure!(
@@ -156,8 +135,7 @@ fn validate(image: &ImageF32) -> Result<Vec<String>> {
 /// `layer.channel`), atomically. Size mismatches and bad names are errors.
 pub fn write_exr(path: &Path, image: &ImageF32) -> Result<()> {
     use exr::prelude::{
-        AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, LayerAttributes, Text,
-        WritableImage,
+        AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, LayerAttributes, Text, WritableImage,
     };
 
     let full_names = validate(image).with_context(|| format!("writing {}", path.display()))?;
@@ -168,10 +146,7 @@ pub fn write_exr(path: &Path, image: &ImageF32) -> Result<()> {
         let nc = layer.channels.len();
         for c in 0..nc {
             let samples: Vec<f32> = (0..pixels).map(|p| layer.data[p * nc + c]).collect();
-            channels.push(AnyChannel::new(
-                Text::from(names.next().unwrap().as_str()),
-                FlatSamples::F32(samples),
-            ));
+            channels.push(AnyChannel::new(Text::from(names.next().unwrap().as_str()), FlatSamples::F32(samples)));
         }
     }
     let mut attributes = LayerAttributes::default();
@@ -196,10 +171,7 @@ pub fn write_exr(path: &Path, image: &ImageF32) -> Result<()> {
 /// R, G, B, A, X, Y, Z first within a layer, then by name.
 fn default_channel_rank(full: &str) -> (String, u8, String) {
     let (prefix, base) = split_channel(full);
-    let rank = ["R", "G", "B", "A", "X", "Y", "Z"]
-        .iter()
-        .position(|&c| c == base)
-        .unwrap_or(7) as u8;
+    let rank = ["R", "G", "B", "A", "X", "Y", "Z"].iter().position(|&c| c == base).unwrap_or(7) as u8;
     (prefix.unwrap_or("").to_owned(), rank, base.to_owned())
 }
 
@@ -236,12 +208,7 @@ fn read_exr_inner(path: &Path) -> Result<ImageF32> {
         let (w, h) = (part.size.0, part.size.1);
         match size {
             None => size = Some((w, h)),
-            Some(s) => ensure!(
-                s == (w, h),
-                "parts of different sizes ({}x{} and {w}x{h}) are not supported",
-                s.0,
-                s.1
-            ),
+            Some(s) => ensure!(s == (w, h), "parts of different sizes ({}x{} and {w}x{h}) are not supported", s.0, s.1),
         }
         let part_name = part.attributes.layer_name.as_ref().map(|t| t.to_string());
         let list = &part.channel_data.list;
@@ -249,14 +216,8 @@ fn read_exr_inner(path: &Path) -> Result<ImageF32> {
 
         // Channel order: ours if the attribute matches this part's channels exactly.
         let mut order: Vec<usize> = (0..list.len()).collect();
-        let stored = match part
-            .attributes
-            .other
-            .get(&exr::prelude::Text::from(CHANNEL_ORDER_ATTRIBUTE))
-        {
-            Some(AttributeValue::TextVector(v)) => {
-                Some(v.iter().map(|t| t.to_string()).collect::<Vec<_>>())
-            }
+        let stored = match part.attributes.other.get(&exr::prelude::Text::from(CHANNEL_ORDER_ATTRIBUTE)) {
+            Some(AttributeValue::TextVector(v)) => Some(v.iter().map(|t| t.to_string()).collect::<Vec<_>>()),
             _ => None,
         };
         let mut sorted_stored = stored.clone().unwrap_or_default();
@@ -264,10 +225,7 @@ fn read_exr_inner(path: &Path) -> Result<ImageF32> {
         let mut sorted_names = names.clone();
         sorted_names.sort();
         if let (Some(stored), true) = (&stored, sorted_stored == sorted_names) {
-            order = stored
-                .iter()
-                .map(|s| names.iter().position(|n| n == s).unwrap())
-                .collect();
+            order = stored.iter().map(|s| names.iter().position(|n| n == s).unwrap()).collect();
         } else {
             order.sort_by_key(|&i| default_channel_rank(&names[i]));
         }
@@ -286,23 +244,14 @@ fn read_exr_inner(path: &Path) -> Result<ImageF32> {
             let k = match layers[first_layer..].iter().position(|l| l.name == lname) {
                 Some(k) => k,
                 None => {
-                    layers.push(Layer {
-                        name: lname,
-                        channels: Vec::new(),
-                        data: Vec::new(),
-                    });
+                    layers.push(Layer { name: lname, channels: Vec::new(), data: Vec::new() });
                     columns.push(Vec::new());
                     layers.len() - 1 - first_layer
                 }
             };
             layers[first_layer + k].channels.push(base.to_owned());
             let samples: Vec<f32> = list[i].sample_data.values_as_f32().collect();
-            ensure!(
-                samples.len() == w * h,
-                "channel {} has {} samples for {w}x{h}",
-                names[i],
-                samples.len()
-            );
+            ensure!(samples.len() == w * h, "channel {} has {} samples for {w}x{h}", names[i], samples.len());
             columns[k].push(samples);
         }
         for (layer, cols) in layers[first_layer..].iter_mut().zip(columns) {
@@ -315,14 +264,8 @@ fn read_exr_inner(path: &Path) -> Result<ImageF32> {
             }
         }
     }
-    let Some((w, h)) = size else {
-        bail!("file has no layers")
-    };
-    Ok(ImageF32 {
-        width: u32::try_from(w)?,
-        height: u32::try_from(h)?,
-        layers,
-    })
+    let Some((w, h)) = size else { bail!("file has no layers") };
+    Ok(ImageF32 { width: u32::try_from(w)?, height: u32::try_from(h)?, layers })
 }
 
 /// ACES filmic tone curve, Narkowicz 2015 fit, clamped to [0, 1].
@@ -350,48 +293,24 @@ pub fn tonemap_to_srgb8(x: f32) -> u8 {
     if !(x.is_finite() && x > 0.0) {
         return 0;
     }
-    (srgb_encode(tonemap_aces(x)) * 255.0)
-        .round()
-        .clamp(0.0, 255.0) as u8
+    (srgb_encode(tonemap_aces(x)) * 255.0).round().clamp(0.0, 255.0) as u8
 }
 
 /// Writes linear RGB radiance (`width*height*3`, row 0 = top) as an 8-bit sRGB PNG:
 /// `value * exposure` -> [`tonemap_aces`] -> [`srgb_encode`]. Non-finite and negative
 /// inputs become black; a finite input that overflows after exposure saturates. Atomic.
-pub fn write_png_tonemapped(
-    path: &Path,
-    width: u32,
-    height: u32,
-    rgb: &[f32],
-    exposure: f32,
-) -> Result<()> {
+pub fn write_png_tonemapped(path: &Path, width: u32, height: u32, rgb: &[f32], exposure: f32) -> Result<()> {
     let check = || -> Result<()> {
-        ensure!(
-            width > 0 && height > 0,
-            "image is {width}x{height}: both sizes must be positive"
-        );
+        ensure!(width > 0 && height > 0, "image is {width}x{height}: both sizes must be positive");
         let expected = width as usize * height as usize * 3;
-        ensure!(
-            rgb.len() == expected,
-            "{} values for {width}x{height} RGB (expected {expected})",
-            rgb.len()
-        );
-        ensure!(
-            exposure.is_finite() && exposure >= 0.0,
-            "exposure {exposure} must be finite and non-negative"
-        );
+        ensure!(rgb.len() == expected, "{} values for {width}x{height} RGB (expected {expected})", rgb.len());
+        ensure!(exposure.is_finite() && exposure >= 0.0, "exposure {exposure} must be finite and non-negative");
         Ok(())
     };
     check().with_context(|| format!("writing {}", path.display()))?;
     let bytes: Vec<u8> = rgb
         .iter()
-        .map(|&v| {
-            if v.is_finite() && v > 0.0 {
-                tonemap_to_srgb8((v * exposure).min(f32::MAX))
-            } else {
-                0
-            }
-        })
+        .map(|&v| if v.is_finite() && v > 0.0 { tonemap_to_srgb8((v * exposure).min(f32::MAX)) } else { 0 })
         .collect();
     write_atomically(path, |w| {
         let mut encoder = png::Encoder::new(w, width, height);
@@ -427,22 +346,13 @@ impl OutputDir {
                 // "." / ".." / "dir/..": name the directory through its absolute path.
                 None => final_dir.canonicalize()?,
             };
-            let name = final_dir
-                .file_name()
-                .context("output directory has no name")?
-                .to_string_lossy()
-                .into_owned();
+            let name = final_dir.file_name().context("output directory has no name")?.to_string_lossy().into_owned();
             let staging = final_dir.with_file_name(format!(".{name}.partial-{}", unique_suffix()));
             if staging.exists() {
                 std::fs::remove_dir_all(&staging)?;
             }
-            std::fs::create_dir_all(&staging)
-                .with_context(|| format!("creating {}", staging.display()))?;
-            Ok(OutputDir {
-                final_dir,
-                staging,
-                committed: false,
-            })
+            std::fs::create_dir_all(&staging).with_context(|| format!("creating {}", staging.display()))?;
+            Ok(OutputDir { final_dir, staging, committed: false })
         };
         run().with_context(|| format!("creating output directory {}", final_dir.display()))
     }
@@ -466,13 +376,8 @@ impl OutputDir {
     pub fn commit(mut self) -> Result<()> {
         let result = (|| -> Result<()> {
             if !self.final_dir.exists() {
-                if let Some(parent) = self
-                    .final_dir
-                    .parent()
-                    .filter(|p| !p.as_os_str().is_empty())
-                {
-                    std::fs::create_dir_all(parent)
-                        .with_context(|| format!("creating {}", parent.display()))?;
+                if let Some(parent) = self.final_dir.parent().filter(|p| !p.as_os_str().is_empty()) {
+                    std::fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
                 }
                 if std::fs::rename(&self.staging, &self.final_dir).is_ok() {
                     return Ok(());
@@ -483,8 +388,7 @@ impl OutputDir {
                     .with_context(|| format!("creating {}", self.final_dir.display()))?;
             }
             move_contents(&self.staging, &self.final_dir)?;
-            std::fs::remove_dir_all(&self.staging)
-                .with_context(|| format!("removing {}", self.staging.display()))?;
+            std::fs::remove_dir_all(&self.staging).with_context(|| format!("removing {}", self.staging.display()))?;
             Ok(())
         })();
         // On error, Drop removes whatever is still staged.
@@ -505,13 +409,8 @@ fn move_contents(from: &Path, to: &Path) -> Result<()> {
         if is_dir && dst.is_dir() {
             move_contents(&src, &dst)?;
         } else {
-            ensure!(
-                !dst.is_dir(),
-                "{} is a directory; cannot replace it with a file",
-                dst.display()
-            );
-            std::fs::rename(&src, &dst)
-                .with_context(|| format!("moving {} to {}", src.display(), dst.display()))?;
+            ensure!(!dst.is_dir(), "{} is a directory; cannot replace it with a file", dst.display());
+            std::fs::rename(&src, &dst).with_context(|| format!("moving {} to {}", src.display(), dst.display()))?;
         }
     }
     Ok(())
@@ -521,10 +420,7 @@ impl Drop for OutputDir {
     fn drop(&mut self) {
         if !self.committed && self.staging.exists() {
             if let Err(e) = std::fs::remove_dir_all(&self.staging) {
-                log::warn!(
-                    "could not remove staging directory {}: {e}",
-                    self.staging.display()
-                );
+                log::warn!("could not remove staging directory {}: {e}", self.staging.display());
             }
         }
     }
@@ -554,7 +450,11 @@ pub fn read_png_rgba(path: &Path) -> Result<(u32, u32, Vec<f32>)> {
     let (w, h) = (info.width, info.height);
     let to_linear = |v: u8| {
         let c = v as f32 / 255.0;
-        if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
     };
     let mut out = Vec::with_capacity((w * h * 4) as usize);
     for px in buf[..info.buffer_size()].chunks(channels) {

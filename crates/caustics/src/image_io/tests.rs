@@ -5,10 +5,7 @@ struct TempDir(PathBuf);
 
 impl TempDir {
     fn new(tag: &str) -> TempDir {
-        let nanos = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .unwrap()
-            .as_nanos();
+        let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap().as_nanos();
         let p = std::env::temp_dir().join(format!(
             "causticlab-test-{tag}-{}-{nanos}-{}",
             std::process::id(),
@@ -26,10 +23,8 @@ impl Drop for TempDir {
 }
 
 fn entries(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
+    let mut v: Vec<String> =
+        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     v.sort();
     v
 }
@@ -58,25 +53,13 @@ fn exr_round_trip_two_layers_odd_size() {
         layers: vec![
             // Deliberately not in alphabetical order.
             Layer::new(None, &["R", "G", "B"], (0..n * 3).map(tricky).collect()),
-            Layer::new(
-                Some("caustic"),
-                &["Z", "X", "Y"],
-                (0..n * 3).map(|i| tricky(i + 5) - 2.0).collect(),
-            ),
-            Layer::new(
-                Some("depth.linear"),
-                &["distance"],
-                (0..n).map(|i| i as f32 * 1.5).collect(),
-            ),
+            Layer::new(Some("caustic"), &["Z", "X", "Y"], (0..n * 3).map(|i| tricky(i + 5) - 2.0).collect()),
+            Layer::new(Some("depth.linear"), &["distance"], (0..n).map(|i| i as f32 * 1.5).collect()),
         ],
     };
     let path = dir.0.join("out.exr");
     write_exr(&path, &image).unwrap();
-    assert_eq!(
-        entries(&dir.0),
-        vec!["out.exr".to_owned()],
-        "no temp files left behind"
-    );
+    assert_eq!(entries(&dir.0), vec!["out.exr".to_owned()], "no temp files left behind");
     let back = read_exr(&path).unwrap();
     assert_eq!((back.width, back.height), (w, h));
     assert_eq!(back.layers.len(), 3);
@@ -89,21 +72,11 @@ fn exr_round_trip_two_layers_odd_size() {
     }
     // Row 0 is the top row: pixel (x=6, y=0) and (x=0, y=2).
     let main = back.layer(None).unwrap();
-    assert_eq!(
-        main.sample(w, 6, 0, 1).to_bits(),
-        tricky(6 * 3 + 1).to_bits()
-    );
-    assert_eq!(
-        main.sample(w, 0, 2, 2).to_bits(),
-        tricky(14 * 3 + 2).to_bits()
-    );
+    assert_eq!(main.sample(w, 6, 0, 1).to_bits(), tricky(6 * 3 + 1).to_bits());
+    assert_eq!(main.sample(w, 0, 2, 2).to_bits(), tricky(14 * 3 + 2).to_bits());
 
     // NaN survives as NaN; overwriting an existing file works.
-    let nan = ImageF32 {
-        width: 1,
-        height: 1,
-        layers: vec![Layer::new(None, &["Y"], vec![f32::NAN])],
-    };
+    let nan = ImageF32 { width: 1, height: 1, layers: vec![Layer::new(None, &["Y"], vec![f32::NAN])] };
     write_exr(&path, &nan).unwrap();
     let back = read_exr(&path).unwrap();
     assert!(back.layers[0].data[0].is_nan());
@@ -118,18 +91,12 @@ fn exr_written_by_other_tools() {
     let dir = TempDir::new("exr-other");
     let path = dir.0.join("other.exr");
     let size = (4usize, 2usize);
-    let ch =
-        |name: &str, v: f32| AnyChannel::new(name, FlatSamples::F16(vec![f16::from_f32(v); 8]));
+    let ch = |name: &str, v: f32| AnyChannel::new(name, FlatSamples::F16(vec![f16::from_f32(v); 8]));
     let beauty = exr::prelude::Layer::new(
         size,
         LayerAttributes::named("beauty"),
         Encoding::FAST_LOSSLESS,
-        AnyChannels::sort(SmallVec::from_vec(vec![
-            ch("B", 3.0),
-            ch("G", 2.0),
-            ch("R", 1.0),
-            ch("A", 0.5),
-        ])),
+        AnyChannels::sort(SmallVec::from_vec(vec![ch("B", 3.0), ch("G", 2.0), ch("R", 1.0), ch("A", 0.5)])),
     );
     let aux = exr::prelude::Layer::new(
         size,
@@ -166,43 +133,20 @@ fn exr_rejects_bad_input_without_panicking() {
     let dir = TempDir::new("exr-bad");
     let path = dir.0.join("bad.exr");
     let bad = |layers: Vec<Layer>, w: u32, h: u32| {
-        let err = write_exr(
-            &path,
-            &ImageF32 {
-                width: w,
-                height: h,
-                layers,
-            },
-        )
-        .unwrap_err();
+        let err = write_exr(&path, &ImageF32 { width: w, height: h, layers }).unwrap_err();
         assert!(format!("{err:#}").contains("writing"), "{err:#}");
     };
-    bad(
-        vec![Layer::new(None, &["R", "G", "B"], vec![0.0; 7 * 3 * 3 - 1])],
-        7,
-        3,
-    );
+    bad(vec![Layer::new(None, &["R", "G", "B"], vec![0.0; 7 * 3 * 3 - 1])], 7, 3);
     bad(vec![Layer::new(None, &["R"], vec![])], 0, 3);
     bad(vec![], 2, 2);
     bad(vec![Layer::new(None, &[], vec![])], 1, 1);
-    bad(
-        vec![
-            Layer::new(None, &["R"], vec![0.0]),
-            Layer::new(None, &["R"], vec![0.0]),
-        ],
-        1,
-        1,
-    );
+    bad(vec![Layer::new(None, &["R"], vec![0.0]), Layer::new(None, &["R"], vec![0.0])], 1, 1);
     bad(vec![Layer::new(None, &["a.b"], vec![0.0])], 1, 1);
     bad(vec![Layer::new(Some("é"), &["R"], vec![0.0])], 1, 1);
     assert!(entries(&dir.0).is_empty(), "nothing written on error");
     // Unwritable destination and unreadable input are errors too.
     let missing = dir.0.join("no/such/dir/x.exr");
-    let ok = ImageF32 {
-        width: 1,
-        height: 1,
-        layers: vec![Layer::new(None, &["R"], vec![1.0])],
-    };
+    let ok = ImageF32 { width: 1, height: 1, layers: vec![Layer::new(None, &["R"], vec![1.0])] };
     let err = write_exr(&missing, &ok).unwrap_err();
     assert!(format!("{err:#}").contains(&missing.display().to_string()));
     assert!(read_exr(&missing).is_err());
@@ -214,11 +158,7 @@ fn exr_rejects_bad_input_without_panicking() {
 fn expected_code(linear: f64) -> u8 {
     let x = linear;
     let t = ((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0);
-    let s = if t <= 0.0031308 {
-        12.92 * t
-    } else {
-        1.055 * t.powf(1.0 / 2.4) - 0.055
-    };
+    let s = if t <= 0.0031308 { 12.92 * t } else { 1.055 * t.powf(1.0 / 2.4) - 0.055 };
     (s * 255.0).round() as u8
 }
 
@@ -243,15 +183,7 @@ fn png_gradient_tonemapped() {
         let v = x as f32 / (w - 1) as f32 * 8.0;
         rgb.extend([v, v, v]);
     }
-    let specials = [
-        f32::NAN,
-        f32::INFINITY,
-        f32::NEG_INFINITY,
-        -1.0,
-        -0.0,
-        0.0,
-        f32::MAX,
-    ];
+    let specials = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, -1.0, -0.0, 0.0, f32::MAX];
     for x in 0..w as usize {
         rgb.extend([specials[x % specials.len()], 0.0, 0.0]);
     }
@@ -276,11 +208,7 @@ fn png_gradient_tonemapped() {
     // Known codes, from the independent formula.
     for (c, v) in [0.18f64, 0.5, 0.045].iter().enumerate() {
         let v32 = [0.18f32, 0.5, 0.045][c];
-        assert_eq!(
-            at(5, 2, c as u32),
-            expected_code(v32 as f64 * exposure as f64),
-            "channel {c} ({v})"
-        );
+        assert_eq!(at(5, 2, c as u32), expected_code(v32 as f64 * exposure as f64), "channel {c} ({v})");
     }
     // 0.18 * 2 = 0.36 -> ACES 0.3361/0.6673 = 0.5037 -> sRGB 0.7378 -> 188.1 -> 188.
     assert_eq!(expected_code(0.36), 188);
@@ -312,21 +240,14 @@ fn output_dir_commit() {
     let staging = out.staging_dir().to_path_buf();
     assert!(staging.starts_with(&root.0) && staging.is_dir());
     write_file_atomically(&out.path("a.txt"), b"alpha").unwrap();
-    let img = ImageF32 {
-        width: 2,
-        height: 1,
-        layers: vec![Layer::new(None, &["R"], vec![1.0, 2.0])],
-    };
+    let img = ImageF32 { width: 2, height: 1, layers: vec![Layer::new(None, &["R"], vec![1.0, 2.0])] };
     write_exr(&out.path("b.exr"), &img).unwrap();
     std::fs::create_dir_all(out.path("sub")).unwrap();
     write_file_atomically(&out.path("sub/c.txt"), b"gamma").unwrap();
     assert!(!final_dir.exists(), "nothing visible before commit");
     out.commit().unwrap();
     assert_eq!(entries(&final_dir), vec!["a.txt", "b.exr", "sub"]);
-    assert_eq!(
-        std::fs::read(final_dir.join("sub/c.txt")).unwrap(),
-        b"gamma"
-    );
+    assert_eq!(std::fs::read(final_dir.join("sub/c.txt")).unwrap(), b"gamma");
     assert_eq!(read_exr(&final_dir.join("b.exr")).unwrap(), img);
     assert!(!staging.exists());
     assert_eq!(entries(&root.0), vec!["run1"]);
@@ -337,11 +258,7 @@ fn output_dir_commit() {
     write_file_atomically(&out.path("a.txt"), b"alpha2").unwrap();
     std::fs::create_dir_all(out.path("sub")).unwrap();
     write_file_atomically(&out.path("sub/d.txt"), b"delta").unwrap();
-    assert_eq!(
-        std::fs::read(final_dir.join("a.txt")).unwrap(),
-        b"alpha",
-        "old content until commit"
-    );
+    assert_eq!(std::fs::read(final_dir.join("a.txt")).unwrap(), b"alpha", "old content until commit");
     out.commit().unwrap();
     assert_eq!(std::fs::read(final_dir.join("a.txt")).unwrap(), b"alpha2");
     assert_eq!(std::fs::read(final_dir.join("keep.txt")).unwrap(), b"keep");
@@ -368,11 +285,7 @@ fn output_dir_dropped_uncommitted_leaves_nothing() {
         // Dropped here, as on an early `?` return.
     }
     assert!(!final_dir.exists());
-    assert!(
-        entries(&root.0).is_empty(),
-        "staging removed: {:?}",
-        entries(&root.0)
-    );
+    assert!(entries(&root.0).is_empty(), "staging removed: {:?}", entries(&root.0));
 
     // A panicking run also leaves nothing.
     let fd = final_dir.clone();

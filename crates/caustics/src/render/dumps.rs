@@ -1,6 +1,7 @@
 //! Reads intermediate buffers back as named EXR layers (`--dump`).
 
 use super::targets::{EyeTargets, Target};
+use crate::caustic_map::{CausticTargets, PhotonTargets};
 use crate::image_io::{ImageF32, Layer};
 use anyhow::Result;
 use vkcore::Context;
@@ -8,7 +9,7 @@ use vkcore::Context;
 const FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
 /// RGBA32F texels of `t` (mip 0, `layer`), keeping the channels at `pick` under `names`.
-fn layer(
+pub(crate) fn layer(
     ctx: &Context,
     t: &Target,
     layer_index: u32,
@@ -22,7 +23,7 @@ fn layer(
     Ok(Layer::new(name, names, data))
 }
 
-fn image(t: &Target, layers: Vec<Layer>) -> ImageF32 {
+pub(crate) fn image(t: &Target, layers: Vec<Layer>) -> ImageF32 {
     ImageF32 { width: t.view.extent.0, height: t.view.extent.1, layers }
 }
 
@@ -31,8 +32,17 @@ pub fn final_image(ctx: &Context, t: &EyeTargets) -> Result<ImageF32> {
     Ok(image(&t.final_image, vec![layer(ctx, &t.final_image, 0, None, &["R", "G", "B"], &[0, 1, 2])?]))
 }
 
-/// The named intermediate buffer; None if this scene has no such buffer (no receiver map).
-pub fn dump(ctx: &Context, t: &EyeTargets, name: &str) -> Result<Option<ImageF32>> {
+/// Every array layer of `t` as layers `light<l>` with the given channels.
+fn per_light(ctx: &Context, t: &Target, names: &[&str], pick: &[usize]) -> Result<ImageF32> {
+    let layers = (0..t.image.desc.array_layers)
+        .map(|l| layer(ctx, t, l, Some(&format!("light{l}")), names, pick))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(image(t, layers))
+}
+
+/// The named intermediate buffer; None if this render has no such buffer (no receiver map, or
+/// no caustic technique).
+pub fn dump(ctx: &Context, t: &EyeTargets, ct: &CausticTargets, photons: Option<&PhotonTargets>, name: &str) -> Result<Option<ImageF32>> {
     let rgb = ["R", "G", "B"];
     Ok(Some(match name {
         "shadow_map" => {
@@ -62,8 +72,9 @@ pub fn dump(ctx: &Context, t: &EyeTargets, name: &str) -> Result<Option<ImageF32
         }
         "receiver" => match &t.receiver {
             None => return Ok(None),
-            Some((ratio, irradiance)) => {
-                // Main layer: E/E0 per channel and mean E0 (W/m^2); layer `irradiance`: E (W/m^2).
+            Some((ratio, irradiance, caustic)) => {
+                // Main layer: E/E0 per channel and mean E0 (W/m^2); layer `irradiance`: E (W/m^2);
+                // layer `caustic`: the caustic part of E (W/m^2).
                 let r = ctx.read_image_f32(&ratio.image, 0, 0)?;
                 let e = ctx.read_image_f32(&irradiance.image, 0, 0)?;
                 let main = r.chunks(4).zip(e.chunks(4)).flat_map(|(a, b)| [a[0], a[1], a[2], b[3]]).collect();
@@ -72,10 +83,31 @@ pub fn dump(ctx: &Context, t: &EyeTargets, name: &str) -> Result<Option<ImageF32
                     vec![
                         Layer::new(None, &["R", "G", "B", "E0"], main),
                         layer(ctx, irradiance, 0, Some("irradiance"), &rgb, &[0, 1, 2])?,
+                        layer(ctx, caustic, 0, Some("caustic"), &rgb, &[0, 1, 2])?,
                     ],
                 )
             }
         },
+        // Light-space buffers of the caustic techniques (the photon buffer and light-space back
+        // faces hold the last light's).
+        "receiver_positions" | "caustic_map" | "photon_back_faces" | "photon_buffer" if photons.is_none() => return Ok(None),
+        "receiver_positions" => per_light(ctx, &ct.receiver_positions, &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?,
+        "caustic_map" => per_light(ctx, &ct.caustic_map, &["R", "G", "B", "photons"], &[0, 1, 2, 3])?,
+        "photon_back_faces" => {
+            let p = photons.expect("checked above");
+            image(&p.back_faces, vec![layer(ctx, &p.back_faces, 0, None, &["NX", "NY", "NZ", "distance"], &[0, 1, 2, 3])?])
+        }
+        "photon_buffer" => {
+            let p = photons.expect("checked above");
+            image(
+                &p.position,
+                vec![
+                    layer(ctx, &p.position, 0, Some("position"), &["X", "Y", "Z", "valid"], &[0, 1, 2, 3])?,
+                    layer(ctx, &p.direction, 0, Some("direction"), &["X", "Y", "Z"], &[0, 1, 2])?,
+                    layer(ctx, &p.power, 0, Some("power"), &["R", "G", "B"], &[0, 1, 2])?,
+                ],
+            )
+        }
         other => anyhow::bail!("no intermediate buffer called `{other}`"),
     }))
 }

@@ -11,6 +11,8 @@ use vkcore::{Access, Bind, Buffer, Cmd, Frame, Sampler, Targets, Use};
 /// What every pass reads.
 pub struct EyeInputs<'a> {
     pub uniforms: &'a Buffer,
+    pub caustic_uniforms: &'a Buffer,
+    pub caustics: &'a crate::caustic_map::CausticTargets,
     pub meshes: &'a [GpuMesh],
     pub nearest: &'a Sampler,
     pub linear: &'a Sampler,
@@ -63,7 +65,13 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
     }
 
     let shadow_read = || {
-        [Use::view(&t.shadow.distance.view, Access::SHADER_READ), Use::view(&t.spot_textures.view, Access::SHADER_READ)]
+        [
+            Use::view(&t.shadow.distance.view, Access::SHADER_READ),
+            Use::view(&t.spot_textures.view, Access::SHADER_READ),
+            Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
+            Use::view(&inp.caustics.caustic_map.view, Access::SHADER_READ),
+            Use::view(&inp.caustics.receiver_positions.view, Access::SHADER_READ),
+        ]
     };
     let mut uses = vec![Use::buffer(inp.uniforms, Access::UNIFORM_READ)];
     uses.extend(shadow_read());
@@ -82,6 +90,9 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
             Bind::Uniform(inp.uniforms),
             Bind::Sampled(&t.shadow.distance.view, inp.nearest),
             Bind::Sampled(&t.spot_textures.view, inp.linear),
+            Bind::Uniform(inp.caustic_uniforms),
+            Bind::Sampled(&inp.caustics.caustic_map.view, inp.nearest),
+            Bind::Sampled(&inp.caustics.receiver_positions.view, inp.nearest),
         ])?;
         draw_meshes(cmd, meshes.iter().filter(|m| m.kind() == MATERIAL_DIFFUSE), 1, 0)?;
         cmd.end_rendering();
@@ -142,11 +153,12 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
         Ok(())
     })?;
 
-    if let Some((ratio, irradiance)) = &t.receiver {
+    if let Some((ratio, irradiance, caustic)) = &t.receiver {
         let mut uses = vec![ubo];
         uses.extend(shadow_read());
         uses.push(Use::view(&ratio.view, Access::COMPUTE_READ_WRITE));
         uses.push(Use::view(&irradiance.view, Access::COMPUTE_READ_WRITE));
+        uses.push(Use::view(&caustic.view, Access::COMPUTE_READ_WRITE));
         f.pass("receiver_map", &uses, |cmd| {
             cmd.bind_pipeline(&p.receiver_map);
             cmd.bind(&[
@@ -155,6 +167,10 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
                 Bind::Sampled(&t.spot_textures.view, inp.linear),
                 Bind::Storage(&ratio.view),
                 Bind::Storage(&irradiance.view),
+                Bind::Storage(&caustic.view),
+                Bind::Uniform(inp.caustic_uniforms),
+                Bind::Sampled(&inp.caustics.caustic_map.view, inp.nearest),
+                Bind::Sampled(&inp.caustics.receiver_positions.view, inp.nearest),
             ])?;
             let (w, h) = ratio.view.extent;
             cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);

@@ -19,7 +19,7 @@ pub struct EyePipelines {
     pub receiver_map: Pipeline,
 }
 
-fn mesh_layout() -> VertexLayout {
+pub fn mesh_layout() -> VertexLayout {
     VertexLayout {
         stride: 28,
         attributes: vec![
@@ -78,7 +78,7 @@ impl EyePipelines {
                 eye(
                     "background",
                     "eye/background.frag",
-                    vec![K::UniformBuffer, K::SampledImage, K::SampledImage],
+                    vec![K::UniformBuffer, K::SampledImage, K::SampledImage, K::UniformBuffer, K::SampledImage, K::SampledImage],
                     vec![COLOR, COLOR, COLOR],
                     Cull::None,
                 ),
@@ -109,7 +109,17 @@ impl EyePipelines {
                 ctx,
                 "receiver_map",
                 &sh.compile("receiver/receiver_map.comp", &[])?,
-                &[K::UniformBuffer, K::SampledImage, K::SampledImage, K::StorageImage, K::StorageImage],
+                &[
+                    K::UniformBuffer,
+                    K::SampledImage,
+                    K::SampledImage,
+                    K::StorageImage,
+                    K::StorageImage,
+                    K::StorageImage,
+                    K::UniformBuffer,
+                    K::SampledImage,
+                    K::SampledImage,
+                ],
             )?,
         })
     }

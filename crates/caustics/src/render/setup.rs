@@ -165,3 +165,27 @@ pub fn spot_texture_layers(scene: &Scene) -> Result<Vec<f32>> {
     }
     Ok(out)
 }
+
+/// Per specular object: a third of the area of the triangles around each vertex (the surface a
+/// vertex photon stands for, Shah et al.'s vertex tracing); None for diffuse objects.
+pub fn vertex_areas(ctx: &Context, scene: &Scene) -> Result<Vec<Option<Buffer>>> {
+    scene
+        .objects
+        .iter()
+        .map(|o| {
+            if matches!(scene.material_of(o).kind, MaterialKind::Diffuse { .. }) {
+                return Ok(None);
+            }
+            let m = &o.mesh;
+            let mut areas = vec![0f32; m.positions.len()];
+            for t in m.triangles() {
+                let [a, b, c] = t.map(|i| m.positions[i]);
+                let third = (b - a).cross(c - a).length() / 6.0;
+                for i in t {
+                    areas[i] += third;
+                }
+            }
+            Ok(Some(ctx.buffer_with_data(&format!("{} vertex areas", o.name), bytemuck::cast_slice(&areas))?))
+        })
+        .collect()
+}

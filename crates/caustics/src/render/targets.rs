@@ -54,8 +54,8 @@ pub struct EyeTargets {
     pub back_depth: Target,
     pub surface: Target,
     pub final_image: Target,
-    /// (E/E0, E and mean E0) over the receiver grid.
-    pub receiver: Option<(Target, Target)>,
+    /// (E/E0, E and mean E0, caustic E) over the receiver grid.
+    pub receiver: Option<(Target, Target, Target)>,
 }
 
 impl EyeTargets {
@@ -78,6 +78,7 @@ impl EyeTargets {
             Some(r) => Some((
                 Target::color(ctx, "receiver E/E0", r.resolution, r.resolution)?,
                 Target::color(ctx, "receiver E", r.resolution, r.resolution)?,
+                Target::color(ctx, "receiver caustic E", r.resolution, r.resolution)?,
             )),
             None => None,
         };

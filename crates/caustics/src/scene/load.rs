@@ -3,8 +3,7 @@
 
 use super::schema::{self, LightType, MaterialType, Numbers};
 use super::{
-    Camera, Light, LightKind, Material, MaterialKind, ModelSearchPath, ReceiverMapSpec,
-    RenderSettings, Scene,
+    Camera, Light, LightKind, Material, MaterialKind, ModelSearchPath, ReceiverMapSpec, RenderSettings, Scene,
 };
 use crate::input_error;
 use glam::Vec3;
@@ -55,15 +54,9 @@ impl Ctx<'_> {
         if v.iter().all(|x| x.is_finite() && (0.0..=max).contains(x)) {
             Ok(Vec3::from_array(v))
         } else if max.is_finite() {
-            Err(self.err(
-                key,
-                format!("each channel must be between 0 and {max}, got {v:?}"),
-            ))
+            Err(self.err(key, format!("each channel must be between 0 and {max}, got {v:?}")))
         } else {
-            Err(self.err(
-                key,
-                format!("each channel must be finite and >= 0, got {v:?}"),
-            ))
+            Err(self.err(key, format!("each channel must be finite and >= 0, got {v:?}")))
         }
     }
 
@@ -71,38 +64,18 @@ impl Ctx<'_> {
         if (1..=MAX_RESOLUTION).contains(&v) {
             Ok(v)
         } else {
-            Err(self.err(
-                key,
-                format!("must be between 1 and {MAX_RESOLUTION}, got {v}"),
-            ))
+            Err(self.err(key, format!("must be between 1 and {MAX_RESOLUTION}, got {v}")))
         }
     }
 
     /// An integer-valued `Numbers` entry of exactly `n` values, each in `lo..=hi`.
-    pub(super) fn counts(
-        &self,
-        key: &str,
-        v: &Numbers,
-        n: usize,
-        lo: u32,
-        hi: u32,
-    ) -> anyhow::Result<Vec<u32>> {
-        let what = if n == 1 {
-            "an integer".to_string()
-        } else {
-            format!("{n} integers")
-        };
-        let ok = v.0.len() == n
-            && v.0
-                .iter()
-                .all(|x| x.fract() == 0.0 && *x >= lo as f64 && *x <= hi as f64);
+    pub(super) fn counts(&self, key: &str, v: &Numbers, n: usize, lo: u32, hi: u32) -> anyhow::Result<Vec<u32>> {
+        let what = if n == 1 { "an integer".to_string() } else { format!("{n} integers") };
+        let ok = v.0.len() == n && v.0.iter().all(|x| x.fract() == 0.0 && *x >= lo as f64 && *x <= hi as f64);
         if ok {
             Ok(v.0.iter().map(|&x| x as u32).collect())
         } else {
-            Err(self.err(
-                key,
-                format!("must be {what} between {lo} and {hi}, got {:?}", v.0),
-            ))
+            Err(self.err(key, format!("must be {what} between {lo} and {hi}, got {:?}", v.0)))
         }
     }
 }
@@ -110,12 +83,8 @@ impl Ctx<'_> {
 /// Reads, validates and builds the scene at `path`.
 pub fn load_scene(path: &Path, search: &ModelSearchPath) -> anyhow::Result<Scene> {
     let ctx = Ctx { file: path };
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        anyhow::Error::new(input_error!(
-            "{}: cannot read the scene file: {e}",
-            path.display()
-        ))
-    })?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| anyhow::Error::new(input_error!("{}: cannot read the scene file: {e}", path.display())))?;
     let def = super::parse::parse(path, &text)?;
     build(&ctx, def, search)
 }
@@ -123,10 +92,7 @@ pub fn load_scene(path: &Path, search: &ModelSearchPath) -> anyhow::Result<Scene
 fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow::Result<Scene> {
     let camera = build_camera(ctx, &def.camera)?;
     if def.lights.is_empty() {
-        return Err(ctx.err(
-            "lights",
-            "the scene has no lights; add at least one [[lights]] table",
-        ));
+        return Err(ctx.err("lights", "the scene has no lights; add at least one [[lights]] table"));
     }
     let lights = def
         .lights
@@ -134,16 +100,10 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         .enumerate()
         .map(|(i, l)| build_light(ctx, &format!("lights[{i}]"), l))
         .collect::<anyhow::Result<Vec<_>>>()?;
-    let materials = def
-        .materials
-        .iter()
-        .map(|(name, m)| build_material(ctx, name, m))
-        .collect::<anyhow::Result<Vec<_>>>()?;
+    let materials =
+        def.materials.iter().map(|(name, m)| build_material(ctx, name, m)).collect::<anyhow::Result<Vec<_>>>()?;
     if def.objects.is_empty() {
-        return Err(ctx.err(
-            "objects",
-            "the scene has no objects; add at least one [[objects]] table",
-        ));
+        return Err(ctx.err("objects", "the scene has no objects; add at least one [[objects]] table"));
     }
     let objects = def
         .objects
@@ -151,33 +111,28 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         .enumerate()
         .map(|(i, o)| super::object::build_object(ctx, i, o, &materials, search))
         .collect::<anyhow::Result<Vec<_>>>()?;
-    let receiver_map = def
-        .receiver_map
-        .as_ref()
-        .map(|r| build_receiver(ctx, r))
-        .transpose()?;
+    let receiver_map = def.receiver_map.as_ref().map(|r| build_receiver(ctx, r)).transpose()?;
     let r = &def.render;
     let render = RenderSettings {
-        shadow_map_resolution: ctx.resolution(
-            "render.shadow_map_resolution",
-            r.shadow_map_resolution.unwrap_or(1024),
-        )?,
+        shadow_map_resolution: ctx
+            .resolution("render.shadow_map_resolution", r.shadow_map_resolution.unwrap_or(1024))?,
         exposure: ctx.positive("render.exposure", r.exposure.unwrap_or(1.0))?,
-        background: ctx.colour(
-            "render.background",
-            r.background.unwrap_or([0.0; 3]),
-            f32::INFINITY,
-        )?,
+        background: ctx.colour("render.background", r.background.unwrap_or([0.0; 3]), f32::INFINITY)?,
     };
-    Ok(Scene {
-        path: ctx.file.to_path_buf(),
-        camera,
-        lights,
-        materials,
-        objects,
-        receiver_map,
-        render,
-    })
+    let c = &def.caustics;
+    let d = super::CausticSettings::default();
+    let caustics = super::CausticSettings {
+        technique: c.technique.clone().unwrap_or(d.technique),
+        photons: c.photons.unwrap_or(d.photons),
+        splat_radius: c.splat_radius.unwrap_or(d.splat_radius),
+        splat_kernel: c.splat_kernel.clone().unwrap_or(d.splat_kernel),
+        caustic_map_resolution: c.caustic_map_resolution.unwrap_or(d.caustic_map_resolution),
+        iterations: c.iterations.unwrap_or(d.iterations),
+        fresnel: c.fresnel.unwrap_or(d.fresnel),
+        intersect: c.intersect.clone().unwrap_or(d.intersect),
+    };
+    caustics.validate(&ctx.file.display().to_string(), "caustics.")?;
+    Ok(Scene { path: ctx.file.to_path_buf(), camera, lights, materials, objects, receiver_map, render, caustics })
 }
 
 fn build_camera(ctx: &Ctx, c: &schema::CameraDef) -> anyhow::Result<Camera> {
@@ -189,17 +144,11 @@ fn build_camera(ctx: &Ctx, c: &schema::CameraDef) -> anyhow::Result<Camera> {
         return Err(ctx.err("camera.target", "must differ from camera.eye"));
     }
     if up.length() == 0.0 || view.normalize().cross(up.normalize()).length() < 1e-4 {
-        return Err(ctx.err(
-            "camera.up",
-            format!("must be non-zero and not parallel to the view direction, got {up}"),
-        ));
+        return Err(ctx.err("camera.up", format!("must be non-zero and not parallel to the view direction, got {up}")));
     }
     let fov = ctx.finite("camera.fov_y", c.fov_y)?;
     if !(fov > 0.0 && fov < 180.0) {
-        return Err(ctx.err(
-            "camera.fov_y",
-            format!("must be between 0 and 180 degrees (exclusive), got {fov}"),
-        ));
+        return Err(ctx.err("camera.fov_y", format!("must be between 0 and 180 degrees (exclusive), got {fov}")));
     }
     Ok(Camera {
         eye,
@@ -229,22 +178,15 @@ fn build_light(ctx: &Ctx, key: &str, l: &schema::LightDef) -> anyhow::Result<Lig
         }
         LightType::Spot => {
             let dkey = format!("{key}.direction");
-            let d = l
-                .direction
-                .ok_or_else(|| ctx.err(&dkey, "required for a spot light"))?;
+            let d = l.direction.ok_or_else(|| ctx.err(&dkey, "required for a spot light"))?;
             let d = ctx.vec3(&dkey, d)?;
             if d.length() == 0.0 {
                 return Err(ctx.err(&dkey, "must be non-zero"));
             }
             let akey = format!("{key}.cone_angle");
-            let a = l
-                .cone_angle
-                .ok_or_else(|| ctx.err(&akey, "required for a spot light"))?;
+            let a = l.cone_angle.ok_or_else(|| ctx.err(&akey, "required for a spot light"))?;
             if !(a.is_finite() && a > 0.0 && a <= 90.0) {
-                return Err(ctx.err(
-                    &akey,
-                    format!("half-angle must be > 0 and <= 90 degrees, got {a}"),
-                ));
+                return Err(ctx.err(&akey, format!("half-angle must be > 0 and <= 90 degrees, got {a}")));
             }
             let texture = match &l.texture {
                 None => None,
@@ -252,26 +194,17 @@ fn build_light(ctx: &Ctx, key: &str, l: &schema::LightDef) -> anyhow::Result<Lig
                     let dir = ctx.file.parent().unwrap_or(Path::new(""));
                     let p = dir.join(t);
                     if !p.is_file() {
-                        return Err(ctx.err(
-                            &format!("{key}.texture"),
-                            format!("texture file {} not found", p.display()),
-                        ));
+                        return Err(
+                            ctx.err(&format!("{key}.texture"), format!("texture file {} not found", p.display()))
+                        );
                     }
                     Some(p)
                 }
             };
-            LightKind::Spot {
-                direction: d.normalize(),
-                cone_angle_deg: a,
-                texture,
-            }
+            LightKind::Spot { direction: d.normalize(), cone_angle_deg: a, texture }
         }
     };
-    Ok(Light {
-        position,
-        intensity,
-        kind,
-    })
+    Ok(Light { position, intensity, kind })
 }
 
 fn build_material(ctx: &Ctx, name: &str, m: &schema::MaterialDef) -> anyhow::Result<Material> {
@@ -289,56 +222,38 @@ fn build_material(ctx: &Ctx, name: &str, m: &schema::MaterialDef) -> anyhow::Res
         (m.specular.is_some(), "specular"),
     ] {
         if present && !allowed.contains(&field) {
-            return Err(ctx.err(
-                &k(field),
-                format!(
-                    "not a key of this material type (allowed: {})",
-                    allowed.join(", ")
-                ),
-            ));
+            return Err(
+                ctx.err(&k(field), format!("not a key of this material type (allowed: {})", allowed.join(", ")))
+            );
         }
     }
-    let required = |v: Option<[f32; 3]>, field: &str| {
-        v.ok_or_else(|| ctx.err(&k(field), "required for this material type"))
-    };
+    let required =
+        |v: Option<[f32; 3]>, field: &str| v.ok_or_else(|| ctx.err(&k(field), "required for this material type"));
     let kind = match m.kind {
-        MaterialType::Diffuse => MaterialKind::Diffuse {
-            albedo: ctx.colour(&k("albedo"), required(m.albedo, "albedo")?, 1.0)?,
-        },
-        MaterialType::Reflective => MaterialKind::Reflective {
-            specular: ctx.colour(&k("specular"), required(m.specular, "specular")?, 1.0)?,
-        },
+        MaterialType::Diffuse => {
+            MaterialKind::Diffuse { albedo: ctx.colour(&k("albedo"), required(m.albedo, "albedo")?, 1.0)? }
+        }
+        MaterialType::Reflective => {
+            MaterialKind::Reflective { specular: ctx.colour(&k("specular"), required(m.specular, "specular")?, 1.0)? }
+        }
         MaterialType::Refractive => {
-            let ior = m
-                .ior
-                .as_ref()
-                .ok_or_else(|| ctx.err(&k("ior"), "required for a refractive material"))?;
+            let ior = m.ior.as_ref().ok_or_else(|| ctx.err(&k("ior"), "required for a refractive material"))?;
             let ior = match ior.0.as_slice() {
                 &[x] => [x; 3],
                 &[r, g, b] => [r, g, b],
                 other => {
-                    return Err(ctx.err(
-                        &k("ior"),
-                        format!("must be a number or [r, g, b], got {} values", other.len()),
-                    ))
+                    return Err(ctx.err(&k("ior"), format!("must be a number or [r, g, b], got {} values", other.len())))
                 }
             };
             if !ior.iter().all(|x| (1.0..=4.0).contains(x)) {
-                return Err(ctx.err(
-                    &k("ior"),
-                    format!("each value must be between 1.0 and 4.0, got {ior:?}"),
-                ));
+                return Err(ctx.err(&k("ior"), format!("each value must be between 1.0 and 4.0, got {ior:?}")));
             }
             let ior = Vec3::new(ior[0] as f32, ior[1] as f32, ior[2] as f32);
-            let transmission =
-                ctx.colour(&k("transmission"), m.transmission.unwrap_or([1.0; 3]), 1.0)?;
+            let transmission = ctx.colour(&k("transmission"), m.transmission.unwrap_or([1.0; 3]), 1.0)?;
             MaterialKind::Refractive { ior, transmission }
         }
     };
-    Ok(Material {
-        name: name.to_string(),
-        kind,
-    })
+    Ok(Material { name: name.to_string(), kind })
 }
 
 fn build_receiver(ctx: &Ctx, r: &schema::ReceiverMapDef) -> anyhow::Result<ReceiverMapSpec> {
@@ -346,10 +261,7 @@ fn build_receiver(ctx: &Ctx, r: &schema::ReceiverMapDef) -> anyhow::Result<Recei
         if v.iter().all(|x| x.is_finite()) && v[0] < v[1] {
             Ok(v)
         } else {
-            Err(ctx.err(
-                key,
-                format!("must be [min, max] with finite min < max, got {v:?}"),
-            ))
+            Err(ctx.err(key, format!("must be [min, max] with finite min < max, got {v:?}")))
         }
     };
     Ok(ReceiverMapSpec {

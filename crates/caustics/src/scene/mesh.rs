@@ -18,10 +18,9 @@ impl Mesh {
         if self.positions.is_empty() {
             return (Vec3::ZERO, Vec3::ZERO);
         }
-        self.positions.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), &p| (lo.min(p), hi.max(p)),
-        )
+        self.positions
+            .iter()
+            .fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), &p| (lo.min(p), hi.max(p)))
     }
 
     pub fn triangle_count(&self) -> usize {
@@ -30,9 +29,7 @@ impl Mesh {
 
     /// Iterates over triangles as `[a, b, c]` vertex indices.
     pub fn triangles(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
-        self.indices
-            .chunks_exact(3)
-            .map(|t| [t[0] as usize, t[1] as usize, t[2] as usize])
+        self.indices.chunks_exact(3).map(|t| [t[0] as usize, t[1] as usize, t[2] as usize])
     }
 
     /// Signed enclosed volume (divergence theorem). Positive for a closed mesh wound
@@ -40,11 +37,8 @@ impl Mesh {
     pub fn signed_volume(&self) -> f64 {
         self.triangles()
             .map(|[a, b, c]| {
-                let (a, b, c) = (
-                    self.positions[a].as_dvec3(),
-                    self.positions[b].as_dvec3(),
-                    self.positions[c].as_dvec3(),
-                );
+                let (a, b, c) =
+                    (self.positions[a].as_dvec3(), self.positions[b].as_dvec3(), self.positions[c].as_dvec3());
                 a.dot(b.cross(c)) / 6.0
             })
             .sum()
@@ -138,11 +132,7 @@ pub(crate) mod tests {
         }
         for (&(u, v), &n) in &edges {
             assert_eq!(n, 1, "directed edge {u:?}->{v:?} used {n} times");
-            assert_eq!(
-                edges.get(&(v, u)),
-                Some(&1),
-                "edge {u:?}-{v:?} is a boundary"
-            );
+            assert_eq!(edges.get(&(v, u)), Some(&1), "edge {u:?}-{v:?} is a boundary");
         }
     }
 
@@ -161,12 +151,7 @@ pub(crate) mod tests {
         //   face in the yz plane (area 2*3/2 = 3)   -> normal -x
         //   face in the zx plane (area 3*1/2 = 1.5) -> normal -y
         let mesh0 = Mesh {
-            positions: vec![
-                Vec3::ZERO,
-                Vec3::new(1.0, 0.0, 0.0),
-                Vec3::new(0.0, 2.0, 0.0),
-                Vec3::new(0.0, 0.0, 3.0),
-            ],
+            positions: vec![Vec3::ZERO, Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0), Vec3::new(0.0, 0.0, 3.0)],
             normals: vec![],
             indices: vec![0, 2, 1, 0, 3, 2, 0, 1, 3],
         };
@@ -174,28 +159,17 @@ pub(crate) mod tests {
         mesh.compute_smooth_normals();
         // Hand computation: sum of area * unit normal = (-3, -1.5, -1), normalised.
         let expect = Vec3::new(-3.0, -1.5, -1.0) / (9.0f32 + 2.25 + 1.0).sqrt();
-        assert!(
-            (mesh.normals[0] - expect).length() < 1e-6,
-            "{}",
-            mesh.normals[0]
-        );
+        assert!((mesh.normals[0] - expect).length() < 1e-6, "{}", mesh.normals[0]);
         // Vertex 1 = (1,0,0) touches the xy face (-z, area 1) and the zx face (-y, area 1.5).
         let expect1 = Vec3::new(0.0, -1.5, -1.0) / (2.25f32 + 1.0).sqrt();
-        assert!(
-            (mesh.normals[1] - expect1).length() < 1e-6,
-            "{}",
-            mesh.normals[1]
-        );
+        assert!((mesh.normals[1] - expect1).length() < 1e-6, "{}", mesh.normals[1]);
         assert_unit_normals(&mesh);
     }
 
     #[test]
     fn unused_vertex_gets_a_unit_normal() {
-        let mut mesh = Mesh {
-            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Z, Vec3::ONE],
-            normals: vec![],
-            indices: vec![0, 2, 1],
-        };
+        let mut mesh =
+            Mesh { positions: vec![Vec3::ZERO, Vec3::X, Vec3::Z, Vec3::ONE], normals: vec![], indices: vec![0, 2, 1] };
         mesh.compute_smooth_normals();
         assert!((mesh.normals[0] - Vec3::Y).length() < 1e-6);
         assert_unit_normals(&mesh);

@@ -32,6 +32,79 @@ pub struct Scene {
     pub objects: Vec<Object>,
     pub receiver_map: Option<ReceiverMapSpec>,
     pub render: RenderSettings,
+    pub caustics: CausticSettings,
+}
+
+/// Caustic technique names `--technique` and `caustics.technique` accept.
+pub const TECHNIQUES: &[&str] = &["none", "shah", "shah-vertex", "wd-points"];
+/// Ray/receiver intersection variants (`caustics.intersect`, `--intersect`).
+pub const INTERSECTS: &[&str] = &["shah-iterative", "wd-depth-search"];
+/// Splat kernels (`caustics.splat_kernel`, `--splat-kernel`).
+pub const SPLAT_KERNELS: &[&str] = &["gaussian", "box"];
+
+/// `[caustics]`: which technique renders caustics and with what parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CausticSettings {
+    /// One of [`TECHNIQUES`]; default `none`.
+    pub technique: String,
+    /// Photon buffer resolution N (N x N photons per light), 64..=4096; default 512.
+    pub photons: u32,
+    /// Splat radius in caustic-map texels, (0, 32]; default 1.5.
+    pub splat_radius: f32,
+    /// One of [`SPLAT_KERNELS`]; default `gaussian`.
+    pub splat_kernel: String,
+    /// Caustic map (and receiver positions) resolution, 16..=8192; default 1024.
+    pub caustic_map_resolution: u32,
+    /// rayGeo iterations (Shah) or bisection refinements (Wyman & Davis), 1..=64; default 4.
+    pub iterations: u32,
+    /// Fresnel transmittance at both interfaces; default true.
+    pub fresnel: bool,
+    /// One of [`INTERSECTS`]; default `shah-iterative`.
+    pub intersect: String,
+}
+
+impl Default for CausticSettings {
+    fn default() -> Self {
+        CausticSettings {
+            technique: "none".into(),
+            photons: 512,
+            splat_radius: 1.5,
+            splat_kernel: "gaussian".into(),
+            caustic_map_resolution: 1024,
+            iterations: 4,
+            fresnel: true,
+            intersect: "shah-iterative".into(),
+        }
+    }
+}
+
+impl CausticSettings {
+    /// Checks ranges and names; `origin` says where the values came from (a file or the command
+    /// line) and `key` prefixes key names, e.g. `caustics.`.
+    pub fn validate(&self, origin: &str, key: &str) -> anyhow::Result<()> {
+        let bad = |k: &str, msg: String| -> anyhow::Result<()> {
+            Err(crate::input_error!("{origin}: key `{key}{k}`: {msg}").into())
+        };
+        let one_of = |k: &str, v: &str, list: &[&str]| -> anyhow::Result<()> {
+            if list.contains(&v) { Ok(()) } else { bad(k, format!("unknown value `{v}`; expected one of {}", list.join(", "))) }
+        };
+        one_of("technique", &self.technique, TECHNIQUES)?;
+        one_of("splat_kernel", &self.splat_kernel, SPLAT_KERNELS)?;
+        one_of("intersect", &self.intersect, INTERSECTS)?;
+        if !(64..=4096).contains(&self.photons) {
+            bad("photons", format!("must be between 64 and 4096 (photons per side), got {}", self.photons))?;
+        }
+        if !(self.splat_radius > 0.0 && self.splat_radius <= 32.0) {
+            bad("splat_radius", format!("must be in (0, 32] caustic-map texels, got {}", self.splat_radius))?;
+        }
+        if !(16..=8192).contains(&self.caustic_map_resolution) {
+            bad("caustic_map_resolution", format!("must be between 16 and 8192, got {}", self.caustic_map_resolution))?;
+        }
+        if !(1..=64).contains(&self.iterations) {
+            bad("iterations", format!("must be between 1 and 64, got {}", self.iterations))?;
+        }
+        Ok(())
+    }
 }
 
 /// A pinhole camera. `up` is normalised (not necessarily orthogonal to the view direction).
@@ -128,11 +201,7 @@ pub struct RenderSettings {
 
 impl Default for RenderSettings {
     fn default() -> Self {
-        Self {
-            shadow_map_resolution: 1024,
-            exposure: 1.0,
-            background: Vec3::ZERO,
-        }
+        Self { shadow_map_resolution: 1024, exposure: 1.0, background: Vec3::ZERO }
     }
 }
 
@@ -158,10 +227,12 @@ impl Scene {
 
     /// World-space bounds of all objects.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.objects.iter().map(|o| o.mesh.bounds()).fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), (a, b)| (lo.min(a), hi.max(b)),
-        )
+        self.objects
+            .iter()
+            .map(|o| o.mesh.bounds())
+            .fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), (a, b)| {
+                (lo.min(a), hi.max(b))
+            })
     }
 }
 

@@ -8,30 +8,17 @@ use std::path::Path;
 /// Loads `path` in object space. The error is a sentence without the file name (the caller
 /// adds the scene file, key and OBJ path).
 pub fn load_obj(path: &Path) -> Result<Mesh, String> {
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ignore_points: true,
-        ignore_lines: true,
-    };
-    let (models, _materials) =
-        tobj::load_obj(path, &options).map_err(|e| format!("malformed OBJ: {e}"))?;
+    let options = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
+    let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| format!("malformed OBJ: {e}"))?;
     let mut mesh = Mesh::default();
     let mut file_normals_ok = true;
     for model in &models {
         let m = &model.mesh;
         if m.positions.len() % 3 != 0 || m.indices.len() % 3 != 0 {
-            return Err(format!(
-                "malformed OBJ: group `{}` has truncated data",
-                model.name
-            ));
+            return Err(format!("malformed OBJ: group `{}` has truncated data", model.name));
         }
         let vertex_count = m.positions.len() / 3;
-        let positions: Vec<Vec3> = m
-            .positions
-            .chunks_exact(3)
-            .map(|p| Vec3::new(p[0], p[1], p[2]))
-            .collect();
+        let positions: Vec<Vec3> = m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])).collect();
         if let Some(p) = positions.iter().find(|p| !p.is_finite()) {
             return Err(format!("malformed OBJ: non-finite vertex position {p}"));
         }
@@ -42,25 +29,13 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
                 model.name
             ));
         }
-        let normals: Vec<Vec3> = m
-            .normals
-            .chunks_exact(3)
-            .map(|n| Vec3::new(n[0], n[1], n[2]))
-            .collect();
-        if normals.len() != vertex_count
-            || normals
-                .iter()
-                .any(|n| !n.is_finite() || n.length_squared() < 1e-20)
-        {
+        let normals: Vec<Vec3> = m.normals.chunks_exact(3).map(|n| Vec3::new(n[0], n[1], n[2])).collect();
+        if normals.len() != vertex_count || normals.iter().any(|n| !n.is_finite() || n.length_squared() < 1e-20) {
             file_normals_ok = false;
         }
         let part = Mesh {
             positions,
-            normals: if file_normals_ok {
-                normals.iter().map(|n| n.normalize()).collect()
-            } else {
-                Vec::new()
-            },
+            normals: if file_normals_ok { normals.iter().map(|n| n.normalize()).collect() } else { Vec::new() },
             indices: m.indices.clone(),
         };
         mesh.append(&part);
@@ -88,10 +63,7 @@ mod tests {
 
     #[test]
     fn tetrahedron_without_normals_gets_smooth_ones() {
-        let p = write_temp(
-            "tet.obj",
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
-        );
+        let p = write_temp("tet.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
         let m = load_obj(&p).unwrap();
         assert_eq!(m.triangle_count(), 4);
         assert!((m.signed_volume() - 1.0 / 6.0).abs() < 1e-6);
@@ -101,10 +73,7 @@ mod tests {
 
     #[test]
     fn file_normals_are_kept() {
-        let p = write_temp(
-            "n.obj",
-            "v 0 0 0\nv 1 0 0\nv 0 0 1\nvn 0 2 0\nf 1//1 3//1 2//1\n",
-        );
+        let p = write_temp("n.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nvn 0 2 0\nf 1//1 3//1 2//1\n");
         let m = load_obj(&p).unwrap();
         assert_eq!(m.normals, vec![Vec3::Y; 3]);
     }

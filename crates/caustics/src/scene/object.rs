@@ -14,24 +14,17 @@ pub(super) fn build_object(
 ) -> anyhow::Result<Object> {
     let key = format!("objects[{index}]");
     let k = |s: &str| format!("{key}.{s}");
-    let material = materials
-        .iter()
-        .position(|m| m.name == o.material)
-        .ok_or_else(|| {
-            let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
-            ctx.err(
-                &k("material"),
-                format!(
-                    "no material named {:?} (defined: {})",
-                    o.material,
-                    if names.is_empty() {
-                        "none".to_string()
-                    } else {
-                        names.join(", ")
-                    }
-                ),
-            )
-        })?;
+    let material = materials.iter().position(|m| m.name == o.material).ok_or_else(|| {
+        let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
+        ctx.err(
+            &k("material"),
+            format!(
+                "no material named {:?} (defined: {})",
+                o.material,
+                if names.is_empty() { "none".to_string() } else { names.join(", ") }
+            ),
+        )
+    })?;
     let allowed: &[&str] = match o.shape {
         ShapeType::Plane | ShapeType::Box => &["size"],
         ShapeType::Room => &["size", "open_top"],
@@ -41,41 +34,20 @@ pub(super) fn build_object(
         ShapeType::Octahedron => &["radius"],
         ShapeType::Obj => &["file", "fit_size", "fit_origin"],
     };
-    if let Some(bad) = o
-        .present_shape_keys()
-        .into_iter()
-        .find(|f| !allowed.contains(f))
-    {
-        return Err(ctx.err(
-            &k(bad),
-            format!(
-                "not a key of shape \"{}\" (its keys: {})",
-                o.shape.name(),
-                allowed.join(", ")
-            ),
-        ));
+    if let Some(bad) = o.present_shape_keys().into_iter().find(|f| !allowed.contains(f)) {
+        return Err(
+            ctx.err(&k(bad), format!("not a key of shape \"{}\" (its keys: {})", o.shape.name(), allowed.join(", ")))
+        );
     }
     let need = |v: Option<f32>, field: &str| -> anyhow::Result<f32> {
-        let v = v.ok_or_else(|| {
-            ctx.err(
-                &k(field),
-                format!("required for shape \"{}\"", o.shape.name()),
-            )
-        })?;
+        let v = v.ok_or_else(|| ctx.err(&k(field), format!("required for shape \"{}\"", o.shape.name())))?;
         ctx.positive(&k(field), v)
     };
     let size = |n: usize| -> anyhow::Result<Vec<f32>> {
-        let v = o.size.as_ref().ok_or_else(|| {
-            ctx.err(
-                &k("size"),
-                format!("required for shape \"{}\"", o.shape.name()),
-            )
-        })?;
+        let v =
+            o.size.as_ref().ok_or_else(|| ctx.err(&k("size"), format!("required for shape \"{}\"", o.shape.name())))?;
         if v.len() != n || !v.iter().all(|x| x.is_finite() && *x > 0.0) {
-            return Err(ctx.err(
-                &k("size"),
-                format!("must be {n} finite numbers > 0, got {v:?}"),
-            ));
+            return Err(ctx.err(&k("size"), format!("must be {n} finite numbers > 0, got {v:?}")));
         }
         Ok(v.clone())
     };
@@ -86,31 +58,22 @@ pub(super) fn build_object(
             procedural::plane(s[0], s[1])
         }
         ShapeType::Box => procedural::box_mesh(Vec3::from_slice(&size(3)?)),
-        ShapeType::Room => {
-            procedural::room(Vec3::from_slice(&size(3)?), o.open_top.unwrap_or(false))
-        }
+        ShapeType::Room => procedural::room(Vec3::from_slice(&size(3)?), o.open_top.unwrap_or(false)),
         ShapeType::Icosphere => {
             let r = need(o.radius, "radius")?;
             let s = o.subdivisions.unwrap_or(4);
             if s > MAX_SUBDIVISIONS {
-                return Err(ctx.err(
-                    &k("subdivisions"),
-                    format!("must be between 0 and {MAX_SUBDIVISIONS}, got {s}"),
-                ));
+                return Err(ctx.err(&k("subdivisions"), format!("must be between 0 and {MAX_SUBDIVISIONS}, got {s}")));
             }
             procedural::icosphere(r, s)
         }
         ShapeType::Octahedron => procedural::octahedron(need(o.radius, "radius")?),
         ShapeType::Torus => {
-            let (big, small) = (
-                need(o.major_radius, "major_radius")?,
-                need(o.minor_radius, "minor_radius")?,
-            );
+            let (big, small) = (need(o.major_radius, "major_radius")?, need(o.minor_radius, "minor_radius")?);
             if small >= big {
-                return Err(ctx.err(
-                    &k("minor_radius"),
-                    format!("must be smaller than major_radius ({big}), got {small}"),
-                ));
+                return Err(
+                    ctx.err(&k("minor_radius"), format!("must be smaller than major_radius ({big}), got {small}"))
+                );
             }
             let seg = o.segments.clone().unwrap_or(Numbers(vec![64.0, 32.0]));
             let seg = ctx.counts(&k("segments"), &seg, 2, 3, 2048)?;
@@ -125,22 +88,22 @@ pub(super) fn build_object(
             procedural::ring(r, h, t, seg[0])
         }
         ShapeType::Obj => {
-            let file = o
-                .file
-                .as_deref()
-                .ok_or_else(|| ctx.err(&k("file"), "required for shape \"obj\""))?;
+            let file = o.file.as_deref().ok_or_else(|| ctx.err(&k("file"), "required for shape \"obj\""))?;
             let path = search.find(file).ok_or_else(|| {
-                ctx.err(&k("file"), format!("model {file:?} not found; searched: {} (add directories with $CAUSTICLAB_MODELS)", search.describe()))
+                ctx.err(
+                    &k("file"),
+                    format!(
+                        "model {file:?} not found; searched: {} (add directories with $CAUSTICLAB_MODELS)",
+                        search.describe()
+                    ),
+                )
             })?;
-            let mesh = obj::load_obj(&path)
-                .map_err(|e| ctx.err(&k("file"), format!("{}: {e}", path.display())))?;
+            let mesh = obj::load_obj(&path).map_err(|e| ctx.err(&k("file"), format!("{}: {e}", path.display())))?;
             let (lo, hi) = mesh.bounds();
             let origin = match o.fit_origin {
                 None => Vec3::ZERO,
                 Some(FitOrigin::Center) => 0.5 * (lo + hi),
-                Some(FitOrigin::Bottom) => {
-                    Vec3::new(0.5 * (lo.x + hi.x), lo.y, 0.5 * (lo.z + hi.z))
-                }
+                Some(FitOrigin::Bottom) => Vec3::new(0.5 * (lo.x + hi.x), lo.y, 0.5 * (lo.z + hi.z)),
             };
             let scale = match o.fit_size {
                 None => 1.0,
@@ -148,10 +111,9 @@ pub(super) fn build_object(
                     let s = ctx.positive(&k("fit_size"), s)?;
                     let extent = (hi - lo).max_element();
                     if extent.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-                        return Err(ctx.err(
-                            &k("fit_size"),
-                            format!("{} has zero extent and cannot be fitted", path.display()),
-                        ));
+                        return Err(
+                            ctx.err(&k("fit_size"), format!("{} has zero extent and cannot be fitted", path.display()))
+                        );
                     }
                     s / extent
                 }
@@ -162,26 +124,11 @@ pub(super) fn build_object(
     };
     let transform = object_transform(ctx, &key, o)? * fit;
     mesh.transform(&transform);
-    if !mesh
-        .positions
-        .iter()
-        .chain(&mesh.normals)
-        .all(|p| p.is_finite())
-    {
-        return Err(ctx.err(
-            &key,
-            "the transformed mesh has non-finite coordinates (absurd scale or translate?)",
-        ));
+    if !mesh.positions.iter().chain(&mesh.normals).all(|p| p.is_finite()) {
+        return Err(ctx.err(&key, "the transformed mesh has non-finite coordinates (absurd scale or translate?)"));
     }
-    let name = o
-        .name
-        .clone()
-        .unwrap_or_else(|| format!("{}{index}", o.shape.name()));
-    Ok(Object {
-        name,
-        mesh,
-        material,
-    })
+    let name = o.name.clone().unwrap_or_else(|| format!("{}{index}", o.shape.name()));
+    Ok(Object { name, mesh, material })
 }
 
 /// translate · Rz · Ry · Rx · scale (rotation applied X first, then Y, then Z).
@@ -193,20 +140,15 @@ fn object_transform(ctx: &Ctx, key: &str, o: &schema::ObjectDef) -> anyhow::Resu
                 [x] => [*x; 3],
                 [x, y, z] => [*x, *y, *z],
                 _ => {
-                    return Err(ctx.err(
-                        &format!("{key}.scale"),
-                        format!("must be a number or [x, y, z], got {:?}", s.0),
-                    ))
+                    return Err(
+                        ctx.err(&format!("{key}.scale"), format!("must be a number or [x, y, z], got {:?}", s.0))
+                    )
                 }
             };
-            if !v
-                .iter()
-                .all(|x| x.is_finite() && *x != 0.0 && x.abs() < 1e12)
-            {
-                return Err(ctx.err(
-                    &format!("{key}.scale"),
-                    format!("each factor must be finite and non-zero, got {v:?}"),
-                ));
+            if !v.iter().all(|x| x.is_finite() && *x != 0.0 && x.abs() < 1e12) {
+                return Err(
+                    ctx.err(&format!("{key}.scale"), format!("each factor must be finite and non-zero, got {v:?}"))
+                );
             }
             Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32)
         }
@@ -216,8 +158,5 @@ fn object_transform(ctx: &Ctx, key: &str, o: &schema::ObjectDef) -> anyhow::Resu
     let r = Mat3::from_rotation_z(rot.z.to_radians())
         * Mat3::from_rotation_y(rot.y.to_radians())
         * Mat3::from_rotation_x(rot.x.to_radians());
-    Ok(Affine3A::from_mat3_translation(
-        r * Mat3::from_diagonal(scale),
-        translate,
-    ))
+    Ok(Affine3A::from_mat3_translation(r * Mat3::from_diagonal(scale), translate))
 }

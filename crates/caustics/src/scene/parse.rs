@@ -26,9 +26,7 @@ pub fn parse(path: &Path, text: &str) -> anyhow::Result<schema::SceneFile> {
     };
     toml::from_str::<schema::SceneFile>(text).map_err(|e| {
         let span = e.span();
-        let key = span
-            .as_ref()
-            .and_then(|s| key_at(doc.as_table(), s.start, ""));
+        let key = span.as_ref().and_then(|s| key_at(doc.as_table(), s.start, ""));
         let msg = e.message().trim_end().replace('\n', "; ");
         let err = match (key, span) {
             (Some(key), Some(s)) => {
@@ -90,10 +88,7 @@ fn key_in_item(item: &toml_edit::Item, offset: usize, path: &str) -> Option<Stri
 fn key_in_value(v: &toml_edit::Value, offset: usize, path: &str) -> Option<String> {
     use toml_edit::Value;
     let inner = match v {
-        Value::Array(a) => a
-            .iter()
-            .enumerate()
-            .find_map(|(i, v)| key_in_value(v, offset, &format!("{path}[{i}]"))),
+        Value::Array(a) => a.iter().enumerate().find_map(|(i, v)| key_in_value(v, offset, &format!("{path}[{i}]"))),
         Value::InlineTable(t) => key_at(t, offset, path),
         _ => None,
     };

@@ -10,23 +10,15 @@ use std::f32::consts::TAU;
 /// Appends a flat quad `c ± u ± v`; `u × v` must point along `normal`.
 fn push_quad(mesh: &mut Mesh, c: Vec3, u: Vec3, v: Vec3, normal: Vec3) {
     let base = mesh.positions.len() as u32;
-    mesh.positions
-        .extend_from_slice(&[c - u - v, c + u - v, c + u + v, c - u + v]);
+    mesh.positions.extend_from_slice(&[c - u - v, c + u - v, c + u + v, c - u + v]);
     mesh.normals.extend_from_slice(&[normal; 4]);
-    mesh.indices
-        .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+    mesh.indices.extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
 }
 
 /// A `size.x` × `size.y` rectangle in the plane y = 0, centred on the origin, normal +y.
 pub fn plane(size_x: f32, size_z: f32) -> Mesh {
     let mut mesh = Mesh::default();
-    push_quad(
-        &mut mesh,
-        Vec3::ZERO,
-        Vec3::new(0.0, 0.0, 0.5 * size_z),
-        Vec3::new(0.5 * size_x, 0.0, 0.0),
-        Vec3::Y,
-    );
+    push_quad(&mut mesh, Vec3::ZERO, Vec3::new(0.0, 0.0, 0.5 * size_z), Vec3::new(0.5 * size_x, 0.0, 0.0), Vec3::Y);
     mesh
 }
 
@@ -71,11 +63,7 @@ pub fn octahedron(radius: f32) -> Mesh {
     for sx in [1.0f32, -1.0] {
         for sy in [1.0f32, -1.0] {
             for sz in [1.0f32, -1.0] {
-                let (a, b, c) = (
-                    Vec3::X * sx * radius,
-                    Vec3::Y * sy * radius,
-                    Vec3::Z * sz * radius,
-                );
+                let (a, b, c) = (Vec3::X * sx * radius, Vec3::Y * sy * radius, Vec3::Z * sz * radius);
                 let base = mesh.positions.len() as u32;
                 // (X, Y, Z) is counter-clockwise from outside; an odd number of sign flips
                 // mirrors the face, so swap two vertices.
@@ -84,8 +72,7 @@ pub fn octahedron(radius: f32) -> Mesh {
                 } else {
                     mesh.positions.extend_from_slice(&[a, c, b]);
                 }
-                mesh.normals
-                    .extend_from_slice(&[Vec3::new(sx, sy, sz).normalize(); 3]);
+                mesh.normals.extend_from_slice(&[Vec3::new(sx, sy, sz).normalize(); 3]);
                 mesh.indices.extend_from_slice(&[base, base + 1, base + 2]);
             }
         }
@@ -181,8 +168,7 @@ pub fn torus(major: f32, minor: f32, segments_u: u32, segments_v: u32) -> Mesh {
     for i in 0..nu {
         for j in 0..nv {
             let (a00, a01, a11, a10) = (idx(i, j), idx(i, j + 1), idx(i + 1, j + 1), idx(i + 1, j));
-            mesh.indices
-                .extend_from_slice(&[a00, a01, a11, a00, a11, a10]);
+            mesh.indices.extend_from_slice(&[a00, a01, a11, a00, a11, a10]);
         }
     }
     mesh
@@ -202,10 +188,7 @@ pub fn ring(radius: f32, height: f32, thickness: f32, segments: u32) -> Mesh {
     };
     let mut mesh = Mesh::default();
     // Each wall: two rings of n vertices, `lo[i]` and `hi[i]`; `flip` picks the winding.
-    let mut wall = |lo: &dyn Fn(u32) -> Vec3,
-                    hi: &dyn Fn(u32) -> Vec3,
-                    normal: &dyn Fn(u32) -> Vec3,
-                    flip: bool| {
+    let mut wall = |lo: &dyn Fn(u32) -> Vec3, hi: &dyn Fn(u32) -> Vec3, normal: &dyn Fn(u32) -> Vec3, flip: bool| {
         let base = mesh.positions.len() as u32;
         for i in 0..n {
             mesh.positions.push(lo(i));
@@ -227,31 +210,11 @@ pub fn ring(radius: f32, height: f32, thickness: f32, segments: u32) -> Mesh {
     };
     let y = |h: f32| Vec3::Y * h;
     // Outer wall (normal +d), inner wall (normal -d).
-    wall(
-        &|i| dir(i) * ro + y(y0),
-        &|i| dir(i) * ro + y(y1),
-        &dir,
-        false,
-    );
-    wall(
-        &|i| dir(i) * ri + y(y0),
-        &|i| dir(i) * ri + y(y1),
-        &|i| -dir(i),
-        true,
-    );
+    wall(&|i| dir(i) * ro + y(y0), &|i| dir(i) * ro + y(y1), &dir, false);
+    wall(&|i| dir(i) * ri + y(y0), &|i| dir(i) * ri + y(y1), &|i| -dir(i), true);
     // Top (normal +y) and bottom (normal -y) annuli: "lo" = outer rim, "hi" = inner rim.
-    wall(
-        &|i| dir(i) * ro + y(y1),
-        &|i| dir(i) * ri + y(y1),
-        &|_| Vec3::Y,
-        false,
-    );
-    wall(
-        &|i| dir(i) * ro + y(y0),
-        &|i| dir(i) * ri + y(y0),
-        &|_| Vec3::NEG_Y,
-        true,
-    );
+    wall(&|i| dir(i) * ro + y(y1), &|i| dir(i) * ri + y(y1), &|_| Vec3::Y, false);
+    wall(&|i| dir(i) * ro + y(y0), &|i| dir(i) * ri + y(y0), &|_| Vec3::NEG_Y, true);
     mesh
 }
 
@@ -294,16 +257,11 @@ mod tests {
         assert_unit_normals(&m);
         assert!(rel(m.signed_volume(), 6.0) < 1e-6);
         let (lo, hi) = m.bounds();
-        assert_eq!(
-            (lo, hi),
-            (Vec3::new(-0.5, -1.0, -1.5), Vec3::new(0.5, 1.0, 1.5))
-        );
+        assert_eq!((lo, hi), (Vec3::new(-0.5, -1.0, -1.5), Vec3::new(0.5, 1.0, 1.5)));
         // Flat faces: each triangle's geometric normal equals its vertex normals and points
         // away from the centre.
         for [a, b, c] in m.triangles() {
-            let g = (m.positions[b] - m.positions[a])
-                .cross(m.positions[c] - m.positions[a])
-                .normalize();
+            let g = (m.positions[b] - m.positions[a]).cross(m.positions[c] - m.positions[a]).normalize();
             for v in [a, b, c] {
                 assert!((m.normals[v] - g).length() < 1e-6);
             }
@@ -315,21 +273,13 @@ mod tests {
     fn room_faces_inward() {
         let m = room(Vec3::new(6.0, 4.0, 6.0), false);
         assert_closed(&m);
-        assert!(
-            rel(m.signed_volume(), -144.0) < 1e-6,
-            "{}",
-            m.signed_volume()
-        );
+        assert!(rel(m.signed_volume(), -144.0) < 1e-6, "{}", m.signed_volume());
         for (p, n) in m.positions.iter().zip(&m.normals) {
             assert!(p.dot(*n) < 0.0, "normal {n} at {p} points outward");
         }
         let open = room(Vec3::new(6.0, 4.0, 6.0), true);
         assert_eq!(open.triangle_count(), 10);
-        assert!(open
-            .positions
-            .iter()
-            .zip(&open.normals)
-            .all(|(p, n)| !(p.y > 1.9 && n.y < -0.5)));
+        assert!(open.positions.iter().zip(&open.normals).all(|(p, n)| !(p.y > 1.9 && n.y < -0.5)));
     }
 
     #[test]
@@ -354,11 +304,7 @@ mod tests {
         assert_closed(&m);
         assert_unit_normals(&m);
         let exact = 2.0 * PI * PI * big_r * r * r;
-        assert!(
-            rel(m.signed_volume(), exact) < 0.01,
-            "{} vs {exact}",
-            m.signed_volume()
-        );
+        assert!(rel(m.signed_volume(), exact) < 0.01, "{} vs {exact}", m.signed_volume());
         // Normals point away from the tube centre circle.
         for (p, n) in m.positions.iter().zip(&m.normals) {
             let c = Vec3::new(p.x, 0.0, p.z).normalize() * big_r as f32;
@@ -374,17 +320,15 @@ mod tests {
         assert_unit_normals(&m);
         let ro = ri + t;
         let exact = PI * (ro * ro - ri * ri) * h;
-        assert!(
-            rel(m.signed_volume(), exact) < 0.005,
-            "{} vs {exact}",
-            m.signed_volume()
-        );
+        assert!(rel(m.signed_volume(), exact) < 0.005, "{} vs {exact}", m.signed_volume());
         let (lo, hi) = m.bounds();
         assert!((hi.y - 0.15).abs() < 1e-6 && (lo.y + 0.15).abs() < 1e-6);
         // The inner wall's normals point toward the axis.
-        let inner = m.positions.iter().zip(&m.normals).filter(|(p, n)| {
-            (Vec3::new(p.x, 0.0, p.z).length() - ri as f32).abs() < 1e-5 && n.y == 0.0
-        });
+        let inner = m
+            .positions
+            .iter()
+            .zip(&m.normals)
+            .filter(|(p, n)| (Vec3::new(p.x, 0.0, p.z).length() - ri as f32).abs() < 1e-5 && n.y == 0.0);
         let mut count = 0;
         for (p, n) in inner {
             assert!(p.dot(*n) < 0.0);
@@ -401,10 +345,7 @@ mod tests {
             let g = (m.positions[b] - m.positions[a]).cross(m.positions[c] - m.positions[a]);
             assert!(g.normalize().dot(Vec3::Y) > 0.9999);
         }
-        assert_eq!(
-            m.bounds(),
-            (Vec3::new(-1.0, 0.0, -2.0), Vec3::new(1.0, 0.0, 2.0))
-        );
+        assert_eq!(m.bounds(), (Vec3::new(-1.0, 0.0, -2.0), Vec3::new(1.0, 0.0, 2.0)));
         assert!((m.area() - 8.0).abs() < 1e-6);
     }
 }

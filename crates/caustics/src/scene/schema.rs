@@ -20,6 +20,22 @@ pub struct SceneFile {
     pub receiver_map: Option<ReceiverMapDef>,
     #[serde(default)]
     pub render: RenderDef,
+    #[serde(default)]
+    pub caustics: CausticsDef,
+}
+
+/// `[caustics]`: the caustic technique and its parameters (each overridable on the command line).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CausticsDef {
+    pub technique: Option<String>,
+    pub photons: Option<u32>,
+    pub splat_radius: Option<f32>,
+    pub splat_kernel: Option<String>,
+    pub caustic_map_resolution: Option<u32>,
+    pub iterations: Option<u32>,
+    pub fresnel: Option<bool>,
+    pub intersect: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -66,9 +66,7 @@ fn shared_models_beside(dir: &Path) -> PathBuf {
 /// The nearest ancestor of `start` (inclusive) with a `Cargo.toml` containing `[workspace]`.
 fn workspace_root(start: &Path) -> Option<PathBuf> {
     // Canonical, so that `..` components do not confuse `parent()`.
-    let abs = std::fs::canonicalize(start)
-        .or_else(|_| std::path::absolute(start))
-        .ok()?;
+    let abs = std::fs::canonicalize(start).or_else(|_| std::path::absolute(start)).ok()?;
     abs.ancestors()
         .find(|dir| {
             std::fs::read_to_string(dir.join("Cargo.toml"))
@@ -103,9 +101,7 @@ mod tests {
         std::fs::create_dir_all(&a).unwrap();
         std::fs::create_dir_all(&b).unwrap();
         std::fs::write(b.join("m.obj"), "").unwrap();
-        let sp = ModelSearchPath {
-            dirs: vec![a.clone(), b.clone()],
-        };
+        let sp = ModelSearchPath { dirs: vec![a.clone(), b.clone()] };
         assert_eq!(sp.find("m.obj"), Some(b.join("m.obj")));
         std::fs::write(a.join("m.obj"), "").unwrap();
         assert_eq!(sp.find("m.obj"), Some(a.join("m.obj")));

@@ -45,12 +45,7 @@ fn load_text(name: &str, text: &str) -> anyhow::Result<Scene> {
     let dir = temp_dir();
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
-    Scene::load_with_search_path(
-        &path,
-        &ModelSearchPath {
-            dirs: vec![dir.clone(), dir.join("more")],
-        },
-    )
+    Scene::load_with_search_path(&path, &ModelSearchPath { dirs: vec![dir.clone(), dir.join("more")] })
 }
 
 /// Loads `text`, expects an `InputError` whose message names the file and contains every
@@ -60,14 +55,9 @@ fn expect_error(name: &str, text: &str, needles: &[&str]) -> String {
         Ok(_) => panic!("{name}: loaded without error"),
         Err(e) => e,
     };
-    let input = err
-        .downcast_ref::<InputError>()
-        .unwrap_or_else(|| panic!("{name}: not an InputError: {err:#}"));
+    let input = err.downcast_ref::<InputError>().unwrap_or_else(|| panic!("{name}: not an InputError: {err:#}"));
     let msg = input.0.clone();
-    assert!(
-        msg.contains(name),
-        "message does not name the file {name}: {msg}"
-    );
+    assert!(msg.contains(name), "message does not name the file {name}: {msg}");
     for n in needles {
         assert!(msg.contains(n), "message lacks {n:?}: {msg}");
     }
@@ -81,24 +71,11 @@ fn base_scene_loads_with_defaults() {
     assert_eq!(s.objects[0].name, "plane0");
     assert_eq!(s.camera.up, Vec3::Y);
     assert_eq!((s.camera.width, s.camera.height), (64, 48));
-    assert_eq!(
-        s.render,
-        RenderSettings {
-            shadow_map_resolution: 1024,
-            exposure: 1.0,
-            background: Vec3::ZERO
-        }
-    );
+    assert_eq!(s.render, RenderSettings { shadow_map_resolution: 1024, exposure: 1.0, background: Vec3::ZERO });
     assert!(s.receiver_map.is_none());
     // Materials sorted by name; the refractive default transmission is white.
     assert_eq!(s.materials[1].name, "glass");
-    assert_eq!(
-        s.materials[1].kind,
-        MaterialKind::Refractive {
-            ior: Vec3::splat(1.5),
-            transmission: Vec3::ONE
-        }
-    );
+    assert_eq!(s.materials[1].kind, MaterialKind::Refractive { ior: Vec3::splat(1.5), transmission: Vec3::ONE });
     assert_eq!(s.material_of(&s.objects[0]).name, "floor");
     assert_eq!(s.triangle_count(), 2);
 }
@@ -107,9 +84,7 @@ fn base_scene_loads_with_defaults() {
 fn unknown_key_is_named() {
     let text = BASE.replace("fov_y = 40.0", "fov_y = 40.0\nfocal = 3.0");
     expect_error("unknown.toml", &text, &["camera.focal", "focal"]);
-    let text = format!(
-        "{BASE}\n[[objects]]\nshape = \"box\"\nsize = [1,1,1]\nmaterial = \"glass\"\ncolour = 1\n"
-    );
+    let text = format!("{BASE}\n[[objects]]\nshape = \"box\"\nsize = [1,1,1]\nmaterial = \"glass\"\ncolour = 1\n");
     expect_error("unknown2.toml", &text, &["objects[1].colour"]);
 }
 
@@ -132,28 +107,15 @@ fn missing_file_is_an_input_error() {
     let dir = temp_dir();
     let path = dir.join("nope.toml");
     let err = Scene::load(&path).unwrap_err();
-    let msg = err
-        .downcast_ref::<InputError>()
-        .expect("InputError")
-        .0
-        .clone();
+    let msg = err.downcast_ref::<InputError>().expect("InputError").0.clone();
     assert!(msg.contains("nope.toml"), "{msg}");
 }
 
 #[test]
 fn resolution_out_of_range() {
-    expect_error(
-        "res0.toml",
-        &BASE.replace("[64, 48]", "[0, 48]"),
-        &["camera.resolution", "16384", "got 0"],
-    );
-    expect_error(
-        "resbig.toml",
-        &BASE.replace("[64, 48]", "[64, 100000]"),
-        &["camera.resolution", "100000"],
-    );
-    let text =
-        format!("{BASE}\n[receiver_map]\nx_range = [-1, 1]\nz_range = [-1, 1]\nresolution = 0\n");
+    expect_error("res0.toml", &BASE.replace("[64, 48]", "[0, 48]"), &["camera.resolution", "16384", "got 0"]);
+    expect_error("resbig.toml", &BASE.replace("[64, 48]", "[64, 100000]"), &["camera.resolution", "100000"]);
+    let text = format!("{BASE}\n[receiver_map]\nx_range = [-1, 1]\nz_range = [-1, 1]\nresolution = 0\n");
     expect_error("rmap.toml", &text, &["receiver_map.resolution"]);
     let text = format!("{BASE}\n[render]\nshadow_map_resolution = 20000\n");
     expect_error("smap.toml", &text, &["render.shadow_map_resolution"]);
@@ -170,24 +132,16 @@ fn unknown_material_is_named() {
 
 #[test]
 fn absurd_subdivisions() {
-    let text = format!("{BASE}\n[[objects]]\nshape = \"icosphere\"\nradius = 1\nsubdivisions = 9\nmaterial = \"glass\"\n");
+    let text =
+        format!("{BASE}\n[[objects]]\nshape = \"icosphere\"\nradius = 1\nsubdivisions = 9\nmaterial = \"glass\"\n");
     expect_error("subdiv.toml", &text, &["objects[1].subdivisions", "9"]);
 }
 
 #[test]
 fn missing_obj_lists_search_dirs() {
-    let text = format!(
-        "{BASE}\n[[objects]]\nshape = \"obj\"\nfile = \"nothere.obj\"\nmaterial = \"glass\"\n"
-    );
-    let msg = expect_error(
-        "noobj.toml",
-        &text,
-        &["objects[1].file", "nothere.obj", "searched"],
-    );
-    assert!(
-        msg.contains("causticlab-scene-") && msg.contains("more"),
-        "{msg}"
-    );
+    let text = format!("{BASE}\n[[objects]]\nshape = \"obj\"\nfile = \"nothere.obj\"\nmaterial = \"glass\"\n");
+    let msg = expect_error("noobj.toml", &text, &["objects[1].file", "nothere.obj", "searched"]);
+    assert!(msg.contains("causticlab-scene-") && msg.contains("more"), "{msg}");
 }
 
 #[test]
@@ -196,17 +150,11 @@ fn malformed_obj_is_named() {
     std::fs::write(dir.join("bad.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap();
     std::fs::write(dir.join("empty.obj"), "# no faces\nv 0 0 0\n").unwrap();
     for obj in ["bad.obj", "empty.obj"] {
-        let text = format!(
-            "{BASE}\n[[objects]]\nshape = \"obj\"\nfile = \"{obj}\"\nmaterial = \"glass\"\n"
-        );
+        let text = format!("{BASE}\n[[objects]]\nshape = \"obj\"\nfile = \"{obj}\"\nmaterial = \"glass\"\n");
         let path = dir.join("malformed.toml");
         std::fs::write(&path, text).unwrap();
         let err = Scene::load(&path).unwrap_err();
-        let msg = err
-            .downcast_ref::<InputError>()
-            .expect("InputError")
-            .0
-            .clone();
+        let msg = err.downcast_ref::<InputError>().expect("InputError").0.clone();
         for n in ["malformed.toml", "objects[1].file", obj, "malformed OBJ"] {
             assert!(msg.contains(n), "lacks {n}: {msg}");
         }
@@ -216,68 +164,23 @@ fn malformed_obj_is_named() {
 #[test]
 fn other_invalid_values() {
     let cases: Vec<(String, &[&str])> = vec![
+        (BASE.replace("target = [0.0, 0.0, 0.0]", "target = [0.0, 2.0, 5.0]"), &["camera.target"]),
+        (BASE.replace("target = [0.0, 0.0, 0.0]", "target = [0.0, 0.0, 5.0]\nup = [0.0, 1.0, 0.0]"), &["camera.up"]),
+        (BASE.replace("eye = [0.0, 2.0, 5.0]", "eye = [0.0, nan, 5.0]"), &["camera.eye", "finite"]),
+        (BASE.replace("fov_y = 40.0", "fov_y = 180.0"), &["camera.fov_y"]),
+        (BASE.replace("size = [4.0, 4.0]", "size = [0.0, 4.0]"), &["objects[0].size"]),
+        (BASE.replace("size = [4.0, 4.0]", "size = [4.0, 4.0, 1.0]"), &["objects[0].size"]),
+        (BASE.replace("size = [4.0, 4.0]", "radius = 1.0"), &["objects[0].radius", "plane"]),
+        (BASE.replace("ior = 1.5", "ior = 0.5"), &["materials.glass.ior"]),
+        (BASE.replace("ior = 1.5", "ior = [1.5, 1.6]"), &["materials.glass.ior"]),
         (
-            BASE.replace("target = [0.0, 0.0, 0.0]", "target = [0.0, 2.0, 5.0]"),
-            &["camera.target"],
-        ),
-        (
-            BASE.replace(
-                "target = [0.0, 0.0, 0.0]",
-                "target = [0.0, 0.0, 5.0]\nup = [0.0, 1.0, 0.0]",
-            ),
-            &["camera.up"],
-        ),
-        (
-            BASE.replace("eye = [0.0, 2.0, 5.0]", "eye = [0.0, nan, 5.0]"),
-            &["camera.eye", "finite"],
-        ),
-        (
-            BASE.replace("fov_y = 40.0", "fov_y = 180.0"),
-            &["camera.fov_y"],
-        ),
-        (
-            BASE.replace("size = [4.0, 4.0]", "size = [0.0, 4.0]"),
-            &["objects[0].size"],
-        ),
-        (
-            BASE.replace("size = [4.0, 4.0]", "size = [4.0, 4.0, 1.0]"),
-            &["objects[0].size"],
-        ),
-        (
-            BASE.replace("size = [4.0, 4.0]", "radius = 1.0"),
-            &["objects[0].radius", "plane"],
-        ),
-        (
-            BASE.replace("ior = 1.5", "ior = 0.5"),
-            &["materials.glass.ior"],
-        ),
-        (
-            BASE.replace("ior = 1.5", "ior = [1.5, 1.6]"),
-            &["materials.glass.ior"],
-        ),
-        (
-            BASE.replace(
-                "albedo = [0.5, 0.5, 0.5]",
-                "albedo = [0.5, 0.5, 0.5]\nspecular = [1, 1, 1]",
-            ),
+            BASE.replace("albedo = [0.5, 0.5, 0.5]", "albedo = [0.5, 0.5, 0.5]\nspecular = [1, 1, 1]"),
             &["materials.floor.specular"],
         ),
+        (BASE.replace("intensity = [50.0, 50.0, 50.0]", "intensity = [50.0, inf, 50.0]"), &["lights[0].intensity"]),
+        (BASE.replace("type = \"point\"", "type = \"spot\""), &["lights[0].direction"]),
         (
-            BASE.replace(
-                "intensity = [50.0, 50.0, 50.0]",
-                "intensity = [50.0, inf, 50.0]",
-            ),
-            &["lights[0].intensity"],
-        ),
-        (
-            BASE.replace("type = \"point\"", "type = \"spot\""),
-            &["lights[0].direction"],
-        ),
-        (
-            BASE.replace(
-                "type = \"point\"",
-                "type = \"spot\"\ndirection = [0, -1, 0]\ncone_angle = 95",
-            ),
+            BASE.replace("type = \"point\"", "type = \"spot\"\ndirection = [0, -1, 0]\ncone_angle = 95"),
             &["lights[0].cone_angle"],
         ),
         (
@@ -287,10 +190,7 @@ fn other_invalid_values() {
             ),
             &["lights[0].texture", "gobo.png"],
         ),
-        (
-            BASE.replace("material = \"floor\"", "material = \"floor\"\nscale = 0"),
-            &["objects[0].scale"],
-        ),
+        (BASE.replace("material = \"floor\"", "material = \"floor\"\nscale = 0"), &["objects[0].scale"]),
         (
             BASE.replace(
                 "material = \"floor\"",
@@ -306,12 +206,10 @@ fn other_invalid_values() {
 
 #[test]
 fn no_lights_and_no_objects() {
-    let no_lights = BASE.replace("[[lights]]\ntype = \"point\"\nposition = [0.0, 5.0, 0.0]\nintensity = [50.0, 50.0, 50.0]\n", "");
+    let no_lights =
+        BASE.replace("[[lights]]\ntype = \"point\"\nposition = [0.0, 5.0, 0.0]\nintensity = [50.0, 50.0, 50.0]\n", "");
     expect_error("nolights.toml", &no_lights, &["lights"]);
-    let no_objects = BASE.replace(
-        "[[objects]]\nshape = \"plane\"\nsize = [4.0, 4.0]\nmaterial = \"floor\"\n",
-        "",
-    );
+    let no_objects = BASE.replace("[[objects]]\nshape = \"plane\"\nsize = [4.0, 4.0]\nmaterial = \"floor\"\n", "");
     expect_error("noobjects.toml", &no_objects, &["objects"]);
     expect_error("nocamera.toml", "", &["camera"]);
 }
@@ -332,10 +230,7 @@ fn transformed_plane_lands_where_expected() {
         assert!((*n - Vec3::Z).length() < 1e-5, "{n}");
     }
     // Rotation order: X then Y then Z. +y -> (X 90) +z -> (Y 90) +x -> (Z 90) +y.
-    let text = BASE.replace(
-        "material = \"floor\"",
-        "rotate = [90.0, 90.0, 90.0]\nmaterial = \"floor\"",
-    );
+    let text = BASE.replace("material = \"floor\"", "rotate = [90.0, 90.0, 90.0]\nmaterial = \"floor\"");
     let s = load_text("order.toml", &text).unwrap();
     for n in &s.objects[0].mesh.normals {
         assert!((*n - Vec3::Y).length() < 1e-5, "{n}");
@@ -354,19 +249,13 @@ fn transformed_plane_lands_where_expected() {
     let s2 = Vec3::new(4.0, 1.0, 0.25);
     for (p, n) in m.positions.iter().zip(&m.normals) {
         let q = r.transpose() * *p;
-        assert!(
-            ((q / Vec3::new(2.0, 1.0, 0.5)).length() - 1.0).abs() < 1e-5,
-            "{p} off the ellipsoid"
-        );
+        assert!(((q / Vec3::new(2.0, 1.0, 0.5)).length() - 1.0).abs() < 1e-5, "{p} off the ellipsoid");
         let expect = (r * (q / s2)).normalize();
         assert!((*n - expect).length() < 1e-4, "{n} vs {expect}");
     }
     for [a, b, c] in m.triangles() {
         let g = (m.positions[b] - m.positions[a]).cross(m.positions[c] - m.positions[a]);
-        assert!(
-            g.dot(m.normals[a] + m.normals[b] + m.normals[c]) > 0.0,
-            "facet faces inward"
-        );
+        assert!(g.dot(m.normals[a] + m.normals[b] + m.normals[c]) > 0.0, "facet faces inward");
     }
     let exact = 4.0 / 3.0 * std::f64::consts::PI * 2.0 * 1.0 * 0.5;
     assert!((m.signed_volume() - exact).abs() / exact < 0.05);
@@ -376,11 +265,8 @@ fn transformed_plane_lands_where_expected() {
 fn obj_fit_scales_and_places() {
     let dir = temp_dir();
     // A 2 x 4 x 1 box-like tetrahedron spanning x 1..3, y 5..9, z 0..1.
-    std::fs::write(
-        dir.join("t.obj"),
-        "v 1 5 0\nv 3 5 0\nv 1 9 0\nv 1 5 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
-    )
-    .unwrap();
+    std::fs::write(dir.join("t.obj"), "v 1 5 0\nv 3 5 0\nv 1 9 0\nv 1 5 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+        .unwrap();
     let text = format!(
         "{BASE}\n[[objects]]\nshape = \"obj\"\nfile = \"t.obj\"\nfit_size = 2.0\nfit_origin = \"bottom\"\ntranslate = [0, 1, 0]\nmaterial = \"glass\"\n"
     );

@@ -1,0 +1,44 @@
+//! Caustic maps: Shah et al.'s caustics mapping (refractive vertex grid, rayGeo, point splats)
+//! and the Wyman & Davis 2006 photon buffer, splatted into a physically scaled light-space
+//! caustic map (one array layer per light). Techniques:
+//! - `shah`: a photon per light-space texel of the specular objects, Shah's iterative
+//!   ray/receiver intersection, point splats;
+//! - `shah-vertex`: a photon per vertex of the specular meshes (Shah's original first pass);
+//! - `wd-points`: the Wyman & Davis photon buffer splatted as points, with their search of the
+//!   light's render of the first diffuse surface.
+//!
+//! Every technique writes power (W) into caustic-map texels; `common/caustic_lookup.glsl` turns
+//! that into irradiance with the texel's area on the receiver (Wyman & Davis 2006, Eq. 5-8).
+
+pub mod gpu;
+mod passes;
+mod pipelines;
+mod targets;
+
+pub use passes::{record_caustics, record_cleared, CausticInputs, VERTS_PER_INSTANCE};
+
+/// Vertices per instance of the instanced photon fetch.
+pub fn passes_verts_per_instance() -> u32 {
+    VERTS_PER_INSTANCE
+}
+pub use pipelines::CausticPipelines;
+pub use targets::{CausticTargets, PhotonTargets};
+
+use crate::scene::CausticSettings;
+
+/// The intersection variant a technique uses unless the scene or command line names one.
+pub fn default_intersect(technique: &str) -> &'static str {
+    match technique {
+        "wd-points" => "wd-depth-search",
+        _ => "shah-iterative",
+    }
+}
+
+/// Photons the technique emits per light (for tables; hardware independent).
+pub fn photons_per_light(settings: &CausticSettings, specular_vertices: u32) -> u64 {
+    match settings.technique.as_str() {
+        "none" => 0,
+        "shah-vertex" => specular_vertices as u64,
+        _ => settings.photons as u64 * settings.photons as u64,
+    }
+}

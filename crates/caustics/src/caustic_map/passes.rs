@@ -1,0 +1,175 @@
+//! Records the caustic passes of one frame, light after light: receiver positions (Shah step 1),
+//! the refractor's back faces from the light, the photon buffer (or vertex photons), and the
+//! splat into the light's caustic-map layer.
+
+use super::pipelines::CausticPipelines;
+use super::targets::{CausticTargets, PhotonTargets};
+use crate::render::gpu::{MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
+use crate::render::setup::GpuMesh;
+use anyhow::Result;
+use vkcore::{Access, Bind, Buffer, Cmd, Frame, Sampler, Targets, Use};
+
+pub struct CausticInputs<'a> {
+    pub frame_uniforms: &'a Buffer,
+    pub caustic_uniforms: &'a Buffer,
+    pub meshes: &'a [GpuMesh],
+    /// Per mesh: a third of each vertex's triangle areas (vertex photons only).
+    pub vertex_areas: &'a [Option<Buffer>],
+    /// 0..VERTS_PER_INSTANCE, for instanced photon fetch.
+    pub splat_vertices: &'a Buffer,
+    pub nearest: &'a Sampler,
+}
+
+/// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4 uses 1024-4096).
+pub const VERTS_PER_INSTANCE: u32 = 1024;
+
+fn draw(cmd: &mut Cmd, m: &GpuMesh, light: u32, first_photon: u32) -> vkcore::Result<()> {
+    let mut c = m.constants;
+    c.info[1] = light;
+    c.info[3] = first_photon;
+    cmd.push(&c)?;
+    cmd.bind_vertex_buffer(&m.vertices, 0);
+    cmd.bind_index_buffer(&m.indices);
+    cmd.draw_indexed(m.index_count, 1, 0);
+    Ok(())
+}
+
+fn mesh_uses(meshes: &[GpuMesh]) -> Vec<Use<'_>> {
+    meshes.iter().flat_map(|m| [Use::buffer(&m.vertices, Access::VERTEX_INPUT), Use::buffer(&m.indices, Access::VERTEX_INPUT)]).collect()
+}
+
+pub fn record_caustics(f: &mut Frame, p: &CausticPipelines, ct: &CausticTargets, pt: &PhotonTargets, inp: &CausticInputs, lights: u32) -> Result<()> {
+    let ubos = || [Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ), Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ)];
+    let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
+    for l in 0..lights {
+        let (cmap, rpos, rdepth) = &ct.per_light[l as usize];
+        let mut uses = Vec::from(ubos());
+        uses.extend([Use::view(rpos, Access::COLOR_ATTACHMENT), Use::view(rdepth, Access::DEPTH_ATTACHMENT)]);
+        uses.extend(mesh_uses(inp.meshes));
+        f.pass(&format!("receiver_positions.light{l}"), &uses, |cmd| {
+            cmd.begin_rendering(&Targets::color(rpos, Some([0.0; 4])).with_depth(rdepth, Some(1.0)))?;
+            cmd.bind_pipeline(&p.receiver_positions);
+            cmd.bind(&ubo_binds())?;
+            for m in inp.meshes.iter().filter(|m| m.kind() == MATERIAL_DIFFUSE) {
+                draw(cmd, m, l, 0)?;
+            }
+            cmd.end_rendering();
+            Ok(())
+        })?;
+
+        let mut uses = Vec::from(ubos());
+        uses.extend([Use::view(&pt.back_faces.view, Access::COLOR_ATTACHMENT), Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT)]);
+        uses.extend(mesh_uses(inp.meshes));
+        f.pass(&format!("photon_back_faces.light{l}"), &uses, |cmd| {
+            cmd.begin_rendering(&Targets::color(&pt.back_faces.view, Some([0.0; 4])).with_depth(&pt.depth.view, Some(1.0)))?;
+            cmd.bind_pipeline(&p.back_faces);
+            cmd.bind(&ubo_binds())?;
+            for m in inp.meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE) {
+                draw(cmd, m, l, 0)?;
+            }
+            cmd.end_rendering();
+            Ok(())
+        })?;
+
+        let photons = [&pt.position, &pt.direction, &pt.power];
+        let trace_binds = |cmd: &mut Cmd| {
+            cmd.bind(&[
+                Bind::Uniform(inp.frame_uniforms),
+                Bind::Uniform(inp.caustic_uniforms),
+                Bind::Sampled(&pt.back_faces.view, inp.nearest),
+                Bind::Sampled(&ct.receiver_positions.view, inp.nearest),
+            ])
+        };
+        let mut uses = Vec::from(ubos());
+        uses.extend([Use::view(&pt.back_faces.view, Access::SHADER_READ), Use::view(&ct.receiver_positions.view, Access::SHADER_READ)]);
+        uses.extend(mesh_uses(inp.meshes));
+        let specular = || inp.meshes.iter().filter(|m| m.kind() != MATERIAL_DIFFUSE);
+        if let Some(vp) = &p.vertex_photons {
+            let clear: Vec<Use> = photons.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)).collect();
+            f.pass(&format!("vertex_photons.clear.light{l}"), &clear, |cmd| {
+                for t in photons {
+                    cmd.clear_color(&t.view, [0.0; 4]);
+                }
+                Ok(())
+            })?;
+            uses.extend(photons.iter().map(|t| Use::view(&t.view, Access::GRAPHICS_READ_WRITE)));
+            uses.extend(inp.vertex_areas.iter().flatten().map(|b| Use::buffer(b, Access::STORAGE_READ)));
+            f.pass(&format!("vertex_photons.light{l}"), &uses, |cmd| {
+                cmd.begin_rendering(&Targets::none())?;
+                cmd.bind_pipeline(vp);
+                let mut first = 0u32;
+                for (m, areas) in inp.meshes.iter().zip(inp.vertex_areas) {
+                    let (true, Some(areas)) = (m.kind() != MATERIAL_DIFFUSE, areas) else { continue };
+                    cmd.bind(&[
+                        Bind::Uniform(inp.frame_uniforms),
+                        Bind::Uniform(inp.caustic_uniforms),
+                        Bind::Sampled(&pt.back_faces.view, inp.nearest),
+                        Bind::Sampled(&ct.receiver_positions.view, inp.nearest),
+                        Bind::Storage(&pt.position.view),
+                        Bind::Storage(&pt.direction.view),
+                        Bind::Storage(&pt.power.view),
+                        Bind::Buffer(areas),
+                    ])?;
+                    let mut c = m.constants;
+                    c.info[1] = l;
+                    c.info[3] = first;
+                    cmd.push(&c)?;
+                    cmd.bind_vertex_buffer(&m.vertices, 0);
+                    let vertices = (m.vertices.size() / 28) as u32;
+                    cmd.draw(vertices, 1, 0, 0);
+                    first += vertices;
+                }
+                cmd.end_rendering();
+                Ok(())
+            })?;
+        } else {
+            uses.extend(photons.iter().map(|t| Use::view(&t.view, Access::COLOR_ATTACHMENT)));
+            uses.push(Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT));
+            f.pass(&format!("photon_buffer.light{l}"), &uses, |cmd| {
+                let targets = Targets::colors(photons.iter().map(|t| (&t.view, Some([0.0; 4]))).collect());
+                cmd.begin_rendering(&targets.with_depth(&pt.depth.view, Some(1.0)))?;
+                cmd.bind_pipeline(&p.photon_buffer);
+                trace_binds(cmd)?;
+                for m in specular() {
+                    draw(cmd, m, l, 0)?;
+                }
+                cmd.end_rendering();
+                Ok(())
+            })?;
+        }
+
+        let mut uses = Vec::from(ubos());
+        uses.extend([Use::view(&pt.position.view, Access::SHADER_READ), Use::view(&pt.power.view, Access::SHADER_READ)]);
+        uses.push(Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT));
+        uses.push(Use::view(cmap, Access::COLOR_ATTACHMENT));
+        f.pass(&format!("splat.light{l}"), &uses, |cmd| {
+            cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
+            cmd.bind_pipeline(&p.splat);
+            cmd.bind(&[
+                Bind::Uniform(inp.frame_uniforms),
+                Bind::Uniform(inp.caustic_uniforms),
+                Bind::Sampled(&pt.position.view, inp.nearest),
+                Bind::Sampled(&pt.power.view, inp.nearest),
+            ])?;
+            let c = crate::render::gpu::ObjectConstants { info: [0, l, VERTS_PER_INSTANCE, 0], ..Default::default() };
+            cmd.push(&c)?;
+            cmd.bind_vertex_buffer(inp.splat_vertices, 0);
+            let total = pt.width * pt.width;
+            cmd.draw(VERTS_PER_INSTANCE, total.div_ceil(VERTS_PER_INSTANCE), 0, 0);
+            cmd.end_rendering();
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
+/// With technique `none`: clears the (1x1) caustic map and receiver positions the eye passes bind.
+pub fn record_cleared(f: &mut Frame, ct: &CausticTargets) -> Result<()> {
+    let uses = [Use::view(&ct.caustic_map.view, Access::TRANSFER_WRITE), Use::view(&ct.receiver_positions.view, Access::TRANSFER_WRITE)];
+    f.pass("caustics.clear", &uses, |cmd| {
+        cmd.clear_color(&ct.caustic_map.view, [0.0; 4]);
+        cmd.clear_color(&ct.receiver_positions.view, [0.0; 4]);
+        Ok(())
+    })?;
+    Ok(())
+}

@@ -1,0 +1,231 @@
+//! Compares a technique's receiver image against the exact photon reference
+//! ([`crate::reference`]).
+//!
+//! Both images are `receiver.exr`-style: a main layer with `R,G,B` relative irradiance
+//! `E/E0` (optionally `E0`), optionally a `caustic` layer (`R,G,B`, W/m²). `b` is the
+//! reference. Per texel the value is the mean of `R,G,B`. The region is the set of texels
+//! where `|a − 1| > 0.05` or `|b − 1| > 0.05` (and `E0 > 0` in each image that has `E0`).
+//! * `rel_rmse = sqrt(Σ(a − b)² / Σ b²)` over the region;
+//! * `best_scale s = Σab / Σa²` and `rel_rmse_scaled` = the same with `s·a`;
+//! * `peak_ratio = max a / max b` over the region, `peak_offset_texels` = distance between
+//!   the argmax texels;
+//! * `caustic_flux_ratio = Σ caustic_a / Σ caustic_b` (mean RGB of the `caustic` layers)
+//!   when both have one, else `Σ max(v − 1, 0)·E0` over all texels.
+
+use crate::error::InputError;
+use crate::image_io::{read_exr, ImageF32, Layer};
+use std::fmt;
+use std::path::Path;
+
+/// Texels whose relative irradiance differs from 1 by more than this are compared.
+pub const REGION_THRESHOLD: f64 = 0.05;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Comparison {
+    pub region_texels: usize,
+    pub rel_rmse: f64,
+    pub rel_rmse_scaled: f64,
+    pub best_scale: f64,
+    pub peak_ratio: f64,
+    pub peak_offset_texels: f64,
+    pub caustic_flux_ratio: f64,
+}
+
+impl fmt::Display for Comparison {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let rows: [(&str, String); 7] = [
+            ("region texels", self.region_texels.to_string()),
+            ("relative RMSE", format!("{:.6}", self.rel_rmse)),
+            ("relative RMSE (scaled)", format!("{:.6}", self.rel_rmse_scaled)),
+            ("best scale", format!("{:.6}", self.best_scale)),
+            ("peak ratio", format!("{:.6}", self.peak_ratio)),
+            ("peak offset (texels)", format!("{:.3}", self.peak_offset_texels)),
+            ("caustic flux ratio", format!("{:.6}", self.caustic_flux_ratio)),
+        ];
+        let w = rows.iter().map(|r| r.0.len()).max().unwrap_or(0);
+        for (k, v) in rows {
+            writeln!(f, "{k:<w$}  {v:>14}")?;
+        }
+        Ok(())
+    }
+}
+
+/// Per-texel mean of `R,G,B` and the optional `E0` of the main layer.
+struct Values {
+    v: Vec<f64>,
+    e0: Option<Vec<f64>>,
+    caustic: Option<Vec<f64>>,
+}
+
+fn channel(layer: &Layer, name: &str) -> Option<usize> {
+    layer.channels.iter().position(|c| c == name)
+}
+
+fn mean_rgb(layer: &Layer, texels: usize, what: &str, label: &str) -> anyhow::Result<Vec<f64>> {
+    let mut idx = [0usize; 3];
+    for (k, c) in ["R", "G", "B"].iter().enumerate() {
+        idx[k] = channel(layer, c).ok_or_else(|| {
+            InputError::new(format!("{label}: {what} has no channel `{c}`"))
+        })?;
+    }
+    let nc = layer.channels.len();
+    anyhow::ensure!(
+        layer.data.len() == texels * nc,
+        InputError::new(format!("{label}: {what} has the wrong number of values"))
+    );
+    Ok((0..texels)
+        .map(|t| idx.iter().map(|&c| layer.data[t * nc + c] as f64).sum::<f64>() / 3.0)
+        .collect())
+}
+
+fn values(img: &ImageF32, label: &str) -> anyhow::Result<Values> {
+    let texels = img.width as usize * img.height as usize;
+    let main = img
+        .layer(None)
+        .ok_or_else(|| InputError::new(format!("{label}: no main layer (channels R, G, B)")))?;
+    let v = mean_rgb(main, texels, "the main layer", label)?;
+    let e0 = channel(main, "E0").map(|c| {
+        let nc = main.channels.len();
+        (0..texels).map(|t| main.data[t * nc + c] as f64).collect()
+    });
+    let caustic = match img.layer(Some("caustic")) {
+        Some(l) => Some(mean_rgb(l, texels, "layer `caustic`", label)?),
+        None => None,
+    };
+    Ok(Values { v, e0, caustic })
+}
+
+fn ratio(a: f64, b: f64) -> f64 {
+    if b != 0.0 {
+        a / b
+    } else if a == 0.0 {
+        1.0
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// Compares `a` against the reference `b`; see the module docs. Returns the metrics and an
+/// error image (main layer `A`, `B`, `diff = a − b`, `in_region` ∈ {0, 1}).
+pub fn compare(a: &ImageF32, b: &ImageF32) -> anyhow::Result<(Comparison, ImageF32)> {
+    compare_labelled(a, "image A", b, "image B")
+}
+
+/// [`compare`] on two EXR files, naming the files in errors.
+pub fn compare_files(a: &Path, b: &Path) -> anyhow::Result<(Comparison, ImageF32)> {
+    let ia = read_exr(a)?;
+    let ib = read_exr(b)?;
+    compare_labelled(&ia, &a.display().to_string(), &ib, &b.display().to_string())
+}
+
+fn compare_labelled(
+    a: &ImageF32,
+    la: &str,
+    b: &ImageF32,
+    lb: &str,
+) -> anyhow::Result<(Comparison, ImageF32)> {
+    if (a.width, a.height) != (b.width, b.height) {
+        return Err(InputError::new(format!(
+            "size mismatch: {la} is {}x{} but {lb} is {}x{}",
+            a.width, a.height, b.width, b.height
+        ))
+        .into());
+    }
+    let (w, h) = (a.width as usize, a.height as usize);
+    let va = values(a, la)?;
+    let vb = values(b, lb)?;
+    let texels = w * h;
+
+    let in_region: Vec<bool> = (0..texels)
+        .map(|t| {
+            let (x, y) = (va.v[t], vb.v[t]);
+            let lit = va.e0.as_ref().map_or(true, |e| e[t] > 0.0)
+                && vb.e0.as_ref().map_or(true, |e| e[t] > 0.0);
+            lit && ((x - 1.0).abs() > REGION_THRESHOLD || (y - 1.0).abs() > REGION_THRESHOLD)
+        })
+        .collect();
+
+    let (mut sab, mut saa, mut sbb, mut sdd) = (0.0, 0.0, 0.0, 0.0);
+    let mut region = 0usize;
+    let mut peak_a: Option<(f64, usize)> = None;
+    let mut peak_b: Option<(f64, usize)> = None;
+    for t in (0..texels).filter(|&t| in_region[t]) {
+        let (x, y) = (va.v[t], vb.v[t]);
+        region += 1;
+        sab += x * y;
+        saa += x * x;
+        sbb += y * y;
+        sdd += (x - y) * (x - y);
+        if peak_a.map_or(true, |p| x > p.0) {
+            peak_a = Some((x, t));
+        }
+        if peak_b.map_or(true, |p| y > p.0) {
+            peak_b = Some((y, t));
+        }
+    }
+    let rel = |num: f64| -> f64 {
+        if sbb > 0.0 {
+            (num / sbb).sqrt()
+        } else if num == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        }
+    };
+    let best_scale = if saa > 0.0 { sab / saa } else { 1.0 };
+    // Σ(s·a − b)² = s²Σa² − 2sΣab + Σb², evaluated directly for accuracy.
+    let sdd_scaled: f64 = (0..texels)
+        .filter(|&t| in_region[t])
+        .map(|t| (best_scale * va.v[t] - vb.v[t]).powi(2))
+        .sum();
+    let (peak_ratio, peak_offset_texels) = match (peak_a, peak_b) {
+        (Some((ma, ta)), Some((mb, tb))) => {
+            let (dx, dy) = ((ta % w) as f64 - (tb % w) as f64, (ta / w) as f64 - (tb / w) as f64);
+            (ratio(ma, mb), (dx * dx + dy * dy).sqrt())
+        }
+        _ => (1.0, 0.0),
+    };
+
+    let caustic_flux_ratio = match (&va.caustic, &vb.caustic) {
+        (Some(ca), Some(cb)) => ratio(ca.iter().sum(), cb.iter().sum()),
+        _ => {
+            let excess = |v: &Values, label: &str| -> anyhow::Result<f64> {
+                let e0 = v.e0.as_ref().ok_or_else(|| {
+                    InputError::new(format!(
+                        "{label}: main layer has no channel `E0` (needed for the caustic flux \
+                         without a `caustic` layer in both images)"
+                    ))
+                })?;
+                Ok(v.v.iter().zip(e0).map(|(x, e)| (x - 1.0).max(0.0) * e).sum())
+            };
+            ratio(excess(&va, la)?, excess(&vb, lb)?)
+        }
+    };
+
+    let mut data = Vec::with_capacity(texels * 4);
+    for t in 0..texels {
+        data.extend_from_slice(&[
+            va.v[t] as f32,
+            vb.v[t] as f32,
+            (va.v[t] - vb.v[t]) as f32,
+            if in_region[t] { 1.0 } else { 0.0 },
+        ]);
+    }
+    let err = ImageF32 {
+        width: a.width,
+        height: a.height,
+        layers: vec![Layer::new(None, &["A", "B", "diff", "in_region"], data)],
+    };
+    Ok((
+        Comparison {
+            region_texels: region,
+            rel_rmse: rel(sdd),
+            rel_rmse_scaled: rel(sdd_scaled),
+            best_scale,
+            peak_ratio,
+            peak_offset_texels,
+            caustic_flux_ratio,
+        },
+        err,
+    ))
+}

@@ -1,0 +1,33 @@
+// Caustic irradiance at a receiver point from the caustic maps (needs CAUSTICS_BINDING,
+// CAUSTIC_MAP_BINDING and RECEIVER_POSITIONS_BINDING). A caustic-map texel holds the power
+// (W) of the photons splatted into it; the texel covers solid angle w from the light, i.e.
+// area A = w d^2 / cos(theta) on the receiver (Wyman & Davis 2006, Eq. 5-8), so
+// E = power cos(theta) / (w d^2). A point receives a texel's light only if it is the first
+// diffuse surface the light sees there (the receiver-positions map), like a shadow map.
+#ifndef CAUSTIC_LOOKUP_GLSL
+#define CAUSTIC_LOOKUP_GLSL
+#include "common/caustics.glsl"
+layout(binding = CAUSTIC_MAP_BINDING) uniform sampler2DArray caustic_map;
+layout(binding = RECEIVER_POSITIONS_BINDING) uniform sampler2DArray receiver_positions;
+
+vec3 caustic_irradiance(vec3 p, vec3 n) {
+    vec3 e = vec3(0.0);
+    for (uint l = 0u; l < caustics.settings.x; ++l) {
+        CausticLight cl = caustics.lights[l];
+        vec4 clip = cl.caustic_view_proj * vec4(p, 1.0);
+        if (clip.w <= 0.0) continue;
+        vec2 ndc = clip.xy / clip.w;
+        if (any(greaterThan(abs(ndc), vec2(1.0)))) continue;
+        ivec2 texel = ivec2(clamp((ndc * 0.5 + 0.5) * cl.caustic_plane.y, vec2(0.0), vec2(cl.caustic_plane.y - 1.0)));
+        vec4 first = texelFetch(receiver_positions, ivec3(texel, int(l)), 0);
+        vec3 to_light = cl.position.xyz - p;
+        float d = length(to_light);
+        if (first.w < 0.5 || distance(first.xyz, p) > 0.02 * d) continue;
+        float cos_theta = max(dot(n, to_light / d), 0.0);
+        vec2 centre = (vec2(texel) + 0.5) / cl.caustic_plane.y * 2.0 - 1.0;
+        float w = texel_solid_angle(centre, cl.caustic_plane);
+        e += texelFetch(caustic_map, ivec3(texel, int(l)), 0).rgb * cos_theta / (w * d * d);
+    }
+    return e;
+}
+#endif

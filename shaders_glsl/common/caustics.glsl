@@ -1,0 +1,32 @@
+// Light-space frusta of the caustic techniques, mirrored by `CausticUniforms` in
+// crates/caustics/src/caustic_map/gpu.rs (std140, vec4/uvec4/mat4 members only).
+#ifndef CAUSTICS_GLSL
+#define CAUSTICS_GLSL
+#include "common/frame.glsl"
+
+#define CAUSTIC_FRESNEL 1u          // settings.w bit: Fresnel transmittance at both interfaces
+#define CAUSTIC_WD_DEPTH_SEARCH 2u  // settings.w bit: Wyman & Davis depth search, else Shah rayGeo
+
+struct CausticLight {
+    mat4 photon_view_proj;    // the photon buffer's frustum (tight around the specular objects)
+    mat4 caustic_view_proj;   // the caustic map's (and receiver positions') frustum
+    vec4 photon_plane;        // x: tan(half fov), y: resolution N, z: solid angle of a central texel
+    vec4 caustic_plane;       // x: tan(half fov), y: resolution M, z: solid angle of a central texel
+    vec4 axis;                // xyz: both frusta's axis
+    vec4 position;            // xyz: the light
+};
+
+layout(std140, binding = CAUSTICS_BINDING) uniform Caustics {
+    uvec4 settings;   // x: lights with caustics (0 = none), y: photons per side, z: iterations, w: flags
+    vec4 splat;       // x: splat radius (caustic-map texels), y: kernel (0 Gaussian, 1 box)
+    CausticLight lights[MAX_LIGHTS];
+} caustics;
+
+// Solid angle of the texel at normalised device coordinates `ndc` of a square perspective
+// frustum: texel area on the image plane at unit distance, times cos^3 of the off-axis angle.
+float texel_solid_angle(vec2 ndc, vec4 plane) {
+    vec2 xy = ndc * plane.x;
+    float s = 2.0 * plane.x / plane.y;
+    return s * s / pow(1.0 + dot(xy, xy), 1.5);
+}
+#endif
