@@ -1,1 +1,65 @@
-fn main() {}
+//! `causticlab`: list Vulkan devices, render scenes. Errors are printed as `error: <chain>` and
+//! mapped to exit codes (see `exit.rs`); with `--validate`, any validation message turns a
+//! successful run into exit code 3.
+
+mod cli;
+mod cmd_devices;
+mod cmd_render;
+mod exit;
+mod timings;
+
+use anyhow::Result;
+use clap::Parser;
+use cli::{Cli, Command, GlobalOpts};
+use std::process::ExitCode;
+use std::sync::Arc;
+use vkcore::{ContextOptions, Feature, ValidationLog};
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let mut validation: Option<Arc<ValidationLog>> = None;
+    let result = match &cli.command {
+        Command::Devices => cmd_devices::run(&cli.global, &mut validation),
+        Command::Render(args) => cmd_render::run(&cli.global, args, &mut validation),
+    };
+    let mut code = match result {
+        Ok(()) => exit::OK,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            exit::code_for(&e)
+        }
+    };
+    // Every Vulkan object is gone by now, so messages from their destruction are counted too.
+    if let (true, Some(log)) = (cli.global.validate, validation) {
+        let n = log.count();
+        if n == 0 {
+            eprintln!("validation: no warnings or errors reported");
+        } else {
+            eprintln!(
+                "validation: {n} message(s) reported ({} error(s), {} warning(s))",
+                log.errors(),
+                n - log.errors()
+            );
+            if code == exit::OK {
+                code = exit::VALIDATION;
+            }
+        }
+    }
+    ExitCode::from(code)
+}
+
+/// The device options shared by every subcommand; unknown `--without-feature` names are input
+/// errors listing the valid ones.
+pub(crate) fn context_options(g: &GlobalOpts) -> Result<ContextOptions> {
+    let mut without = vec![];
+    for name in &g.without_feature {
+        let f = Feature::parse(name.trim()).ok_or_else(|| {
+            let valid: Vec<&str> = Feature::ALL.iter().map(|f| f.name()).collect();
+            caustics::input_error!("--without-feature: unknown feature `{name}`; valid names: {}", valid.join(", "))
+        })?;
+        if !without.contains(&f) {
+            without.push(f);
+        }
+    }
+    Ok(ContextOptions { device: g.device.clone(), validation: g.validate, echo_validation: g.validate, without })
+}

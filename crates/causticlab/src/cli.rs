@@ -1,0 +1,60 @@
+//! The command line: global device options and one subcommand per job.
+
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "causticlab",
+    version,
+    about = "Raw-Vulkan caustics research renderer",
+    after_help = "Exit codes: 0 ok, 1 failure, 2 input error, 3 validation messages under --validate."
+)]
+pub struct Cli {
+    #[command(flatten)]
+    pub global: GlobalOpts,
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Options every subcommand accepts, before or after the subcommand name.
+#[derive(Debug, Args, Clone, Default)]
+pub struct GlobalOpts {
+    /// Device to use: an index from `causticlab devices` or a case-insensitive name substring.
+    #[arg(long, global = true, value_name = "INDEX|NAME")]
+    pub device: Option<String>,
+    /// Enable Khronos validation with synchronization validation, print every message and exit
+    /// with code 3 if any warning or error was reported.
+    #[arg(long, global = true)]
+    pub validate: bool,
+    /// Pretend the device lacks this feature (repeatable); names as in `causticlab devices`.
+    #[arg(long = "without-feature", global = true, value_name = "NAME")]
+    pub without_feature: Vec<String>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// List every Vulkan device with its features and limits.
+    Devices,
+    /// Render a scene and write final.exr, final.png, timings.json and the requested dumps.
+    Render(RenderArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// Scene file (TOML, see scenes/README.md).
+    #[arg(long)]
+    pub scene: PathBuf,
+    /// Output directory; files appear only when the whole run succeeded.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Caustic technique.
+    #[arg(long, default_value = "none")]
+    pub technique: String,
+    /// Intermediate buffers to write as EXR: `all` or a comma-separated list.
+    #[arg(long, value_name = "all|NAME,...")]
+    pub dump: Option<String>,
+    /// Frames to render (timings are kept for each; the image is the last frame's).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub frames: u32,
+}

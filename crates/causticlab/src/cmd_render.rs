@@ -1,0 +1,159 @@
+//! `causticlab render`: check every input before touching the GPU, render, then write
+//! final.exr, final.png, the dumps and timings.json into a staging directory that only
+//! becomes `--out` when everything succeeded.
+
+use crate::cli::{GlobalOpts, RenderArgs};
+use crate::timings::Timings;
+use anyhow::{Context as _, Result};
+use caustics::image_io::{self, ImageF32, OutputDir};
+use caustics::input_error;
+use caustics::render::{self, RenderRequest, DUMP_NAMES, TECHNIQUES};
+use caustics::scene::Scene;
+use std::sync::Arc;
+use vkcore::{Context, DeviceInfo, ShaderCompiler, ValidationLog};
+
+pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<ValidationLog>>) -> Result<()> {
+    let opts = crate::context_options(g)?;
+    let required = render::required_features(&args.technique)
+        .filter(|_| TECHNIQUES.contains(&args.technique.as_str()))
+        .ok_or_else(|| {
+            input_error!(
+                "--technique: unknown technique `{}`; valid techniques: {}",
+                args.technique,
+                TECHNIQUES.join(", ")
+            )
+        })?;
+    let dumps = parse_dumps(args.dump.as_deref())?;
+    // The loader's messages already name the file and the key.
+    let scene = Scene::load(&args.scene)?;
+
+    let ctx = Context::new(&opts).context("opening the Vulkan device")?;
+    *validation = Some(ctx.validation_log());
+    let who = format!("technique `{}`", args.technique);
+    ctx.require(&who, required)?;
+    check_sizes(&scene, ctx.info())?;
+
+    let out = OutputDir::create(&args.out)?;
+    let shaders = ShaderCompiler::new(&render::shader_root()).context("creating the shader compiler")?;
+    let req = RenderRequest { dumps, frames: args.frames };
+    let rendered = render::render(&ctx, &shaders, &scene, &req)
+        .with_context(|| format!("rendering {} with technique `{}`", args.scene.display(), args.technique))?;
+
+    let mut written = vec![];
+    image_io::write_exr(&out.path("final.exr"), &rendered.final_image)?;
+    written.push("final.exr".to_string());
+    let (w, h, rgb) = main_rgb(&rendered.final_image)?;
+    image_io::write_png_tonemapped(&out.path("final.png"), w, h, &rgb, scene.render.exposure)?;
+    written.push("final.png".to_string());
+    for (name, image) in &rendered.dumps {
+        let file = format!("{name}.exr");
+        image_io::write_exr(&out.path(&file), image)?;
+        written.push(file);
+    }
+    let timings = Timings::new(ctx.info(), &args.technique, &args.scene, ctx.validation_enabled(), &rendered.frames);
+    let json = serde_json::to_string_pretty(&timings).context("serialising timings.json")?;
+    image_io::write_file_atomically(&out.path("timings.json"), json.as_bytes())?;
+    written.push("timings.json".to_string());
+    let final_dir = out.final_dir().to_path_buf();
+    out.commit()?;
+
+    println!(
+        "{} on {} ({}), {} frame(s), technique `{}`",
+        args.scene.display(),
+        ctx.info().name,
+        ctx.info().driver_info,
+        timings.frames,
+        args.technique
+    );
+    if timings.passes.is_empty() {
+        println!("(no GPU timings: the device has no timestamps)");
+    } else {
+        println!("{:<32} {:>10} {:>10} {:>10}", "pass", "median ms", "min ms", "max ms");
+        for p in &timings.passes {
+            println!("{:<32} {:>10.3} {:>10.3} {:>10.3}", p.name, p.median_ms, p.min_ms, p.max_ms);
+        }
+    }
+    for f in &written {
+        println!("wrote {}", final_dir.join(f).display());
+    }
+    Ok(())
+}
+
+/// `all` or a comma-separated list of `DUMP_NAMES`, without duplicates, in the order given.
+fn parse_dumps(arg: Option<&str>) -> Result<Vec<String>> {
+    let mut dumps: Vec<String> = vec![];
+    for name in arg.unwrap_or("").split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let names: Vec<&str> = if name == "all" {
+            DUMP_NAMES.to_vec()
+        } else if DUMP_NAMES.contains(&name) {
+            vec![name]
+        } else {
+            return Err(
+                input_error!("--dump: unknown buffer `{name}`; valid names: all, {}", DUMP_NAMES.join(", ")).into()
+            );
+        };
+        for n in names {
+            if !dumps.iter().any(|d| d == n) {
+                dumps.push(n.to_string());
+            }
+        }
+    }
+    Ok(dumps)
+}
+
+/// Image sizes the scene asks for must fit the device's `maxImageDimension2D`.
+fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
+    let max = info.max_image_dimension_2d;
+    let file = scene.path.display();
+    let mut sizes = vec![("camera.resolution", scene.camera.width.max(scene.camera.height))];
+    if let Some(r) = &scene.receiver_map {
+        sizes.push(("receiver_map.resolution", r.resolution));
+    }
+    sizes.push(("render.shadow_map_resolution", scene.render.shadow_map_resolution));
+    for (key, size) in sizes {
+        if size == 0 || size > max {
+            return Err(input_error!(
+                "{file}: key `{key}`: {size} must be between 1 and the device's maxImageDimension2D ({max}) on `{}`",
+                info.name
+            )
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// The final image's R, G, B channels, interleaved, for the PNG.
+fn main_rgb(image: &ImageF32) -> Result<(u32, u32, Vec<f32>)> {
+    let layer = image.layer(None).or_else(|| image.layers.first()).context("the final image has no layers")?;
+    let idx = |c: &str| layer.channels.iter().position(|x| x == c);
+    let (r, g, b) = match (idx("R"), idx("G"), idx("B")) {
+        (Some(r), Some(g), Some(b)) => (r, g, b),
+        _ => anyhow::bail!("the final image's main layer has channels {:?}, not R, G, B", layer.channels),
+    };
+    let nc = layer.channels.len();
+    let pixels = image.width as usize * image.height as usize;
+    anyhow::ensure!(
+        layer.data.len() == pixels * nc,
+        "the final image has {} values for {}x{}x{nc}",
+        layer.data.len(),
+        image.width,
+        image.height
+    );
+    let rgb = layer.data.chunks_exact(nc).flat_map(|p| [p[r], p[g], p[b]]).collect();
+    Ok((image.width, image.height, rgb))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dump_lists() {
+        assert_eq!(parse_dumps(None).unwrap_or_default(), Vec::<String>::new());
+        assert_eq!(parse_dumps(Some("all")).unwrap_or_default().len(), DUMP_NAMES.len());
+        let two = parse_dumps(Some("receiver, shadow_map,receiver")).unwrap_or_default();
+        assert_eq!(two, vec!["receiver".to_string(), "shadow_map".to_string()]);
+        let err = parse_dumps(Some("receiver,bogus")).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(err.contains("bogus") && err.contains("shadow_map"), "{err}");
+    }
+}

@@ -1,0 +1,109 @@
+//! `timings.json`: which device and code path produced the numbers, then per-pass median/min/max
+//! with every raw sample (and pipeline statistics where the device has them).
+
+use serde::Serialize;
+use std::path::Path;
+use vkcore::{DeviceInfo, FrameReport, PipelineStats, Profiler};
+
+#[derive(Debug, Serialize)]
+pub struct Timings {
+    pub causticlab_version: &'static str,
+    pub device: Device,
+    pub technique: String,
+    pub scene: String,
+    pub frames: usize,
+    pub validation: bool,
+    /// Passes in first-seen order; times are GPU milliseconds between the pass's timestamps.
+    pub passes: Vec<Pass>,
+}
+
+#[derive(Debug, Serialize)]
+pub struct Device {
+    pub name: String,
+    pub device_type: String,
+    pub driver_name: String,
+    pub driver_info: String,
+    pub vulkan_version: String,
+    pub timestamp_valid_bits: u32,
+    pub timestamp_period_ns: f32,
+}
+
+#[derive(Debug, Serialize)]
+pub struct Pass {
+    pub name: String,
+    pub median_ms: f64,
+    pub min_ms: f64,
+    pub max_ms: f64,
+    pub samples_ms: Vec<f64>,
+    /// Pipeline-statistics counters of this pass in the last frame that had them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pipeline_stats: Option<Stats>,
+}
+
+#[derive(Debug, Serialize)]
+pub struct Stats {
+    pub input_vertices: u64,
+    pub input_primitives: u64,
+    pub vertex_invocations: u64,
+    pub geometry_invocations: u64,
+    pub geometry_primitives: u64,
+    pub clipping_invocations: u64,
+    pub clipping_primitives: u64,
+    pub fragment_invocations: u64,
+    pub compute_invocations: u64,
+}
+
+impl From<PipelineStats> for Stats {
+    fn from(s: PipelineStats) -> Stats {
+        Stats {
+            input_vertices: s.input_vertices,
+            input_primitives: s.input_primitives,
+            vertex_invocations: s.vertex_invocations,
+            geometry_invocations: s.geometry_invocations,
+            geometry_primitives: s.geometry_primitives,
+            clipping_invocations: s.clipping_invocations,
+            clipping_primitives: s.clipping_primitives,
+            fragment_invocations: s.fragment_invocations,
+            compute_invocations: s.compute_invocations,
+        }
+    }
+}
+
+impl Timings {
+    pub fn new(info: &DeviceInfo, technique: &str, scene: &Path, validation: bool, frames: &[FrameReport]) -> Timings {
+        let mut profiler = Profiler::default();
+        for f in frames {
+            profiler.record(f);
+        }
+        let last_stats = |name: &str| frames.iter().rev().find_map(|f| f.pass(name).and_then(|p| p.stats));
+        let passes = profiler
+            .summary()
+            .into_iter()
+            .map(|s| Pass {
+                pipeline_stats: last_stats(&s.name).map(Stats::from),
+                name: s.name,
+                median_ms: s.median_ms,
+                min_ms: s.min_ms,
+                max_ms: s.max_ms,
+                samples_ms: s.samples_ms,
+            })
+            .collect();
+        Timings {
+            causticlab_version: env!("CARGO_PKG_VERSION"),
+            device: Device {
+                name: info.name.clone(),
+                device_type: info.device_type.clone(),
+                driver_name: info.driver_name.clone(),
+                driver_info: info.driver_info.clone(),
+                vulkan_version: info.api_version.clone(),
+                timestamp_valid_bits: info.timestamp_valid_bits,
+                timestamp_period_ns: info.timestamp_period_ns,
+            },
+            technique: technique.to_string(),
+            scene: scene.display().to_string(),
+            frames: profiler.frames(),
+            validation,
+            passes,
+        }
+    }
+}

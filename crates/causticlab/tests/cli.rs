@@ -1,0 +1,430 @@
+//! The `causticlab` binary end to end: exit codes and messages for bad input (with no partial
+//! output left behind), `devices`, and renders checked against analytic irradiance and shadows.
+
+use caustics::image_io::{read_exr, ImageF32};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::OnceLock;
+
+struct Run {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+impl Run {
+    fn describe(&self) -> String {
+        format!("exit code {:?}\n--- stdout ---\n{}\n--- stderr ---\n{}", self.code, self.stdout, self.stderr)
+    }
+}
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn scene(stem: &str) -> String {
+    workspace().join("scenes").join(format!("{stem}.toml")).display().to_string()
+}
+
+fn causticlab<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_causticlab"))
+        .args(args)
+        .current_dir(workspace())
+        .env_remove("VK_LOADER_DEBUG")
+        .output()
+        .expect("running the causticlab binary");
+    Run {
+        code: out.status.code(),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// A fresh, empty directory under the system temp dir, unique to this process and call.
+fn scratch(name: &str) -> PathBuf {
+    static N: AtomicU32 = AtomicU32::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "causticlab-cli-{name}-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::Relaxed)
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("creating a scratch directory");
+    dir
+}
+
+/// Runs `args` + `--out <out>`, expects exit code 2 with every needle in stderr, and that
+/// neither `out` nor a staging directory beside it exists afterwards.
+fn expect_input_error(args: &[&str], needles: &[&str]) {
+    let parent = scratch("bad");
+    let out = parent.join("out");
+    let mut full: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+    full.push("--out".into());
+    full.push(out.display().to_string());
+    let run = causticlab(&full);
+    assert_eq!(run.code, Some(2), "{:?}: expected exit code 2\n{}", args, run.describe());
+    for needle in needles {
+        assert!(run.stderr.contains(needle), "{:?}: stderr should mention `{needle}`\n{}", args, run.describe());
+    }
+    assert!(run.stderr.contains("error: "), "{:?}: errors start with `error: `\n{}", args, run.describe());
+    assert!(!run.stderr.contains("panicked"), "{:?}: panicked\n{}", args, run.describe());
+    assert!(!out.exists(), "{:?}: {} exists after a failed run", args, out.display());
+    let leftovers: Vec<_> = std::fs::read_dir(&parent)
+        .map(|d| d.filter_map(|e| e.ok()).map(|e| e.file_name()).collect())
+        .unwrap_or_default();
+    assert!(leftovers.is_empty(), "{:?}: left behind {leftovers:?}", args);
+    let _ = std::fs::remove_dir_all(&parent);
+}
+
+/// `sphere_on_plane.toml` with `from` replaced by `to`, written as `scene.toml` in a fresh dir.
+fn edited_scene(name: &str, from: &str, to: &str) -> PathBuf {
+    let text = std::fs::read_to_string(scene("sphere_on_plane")).expect("reading sphere_on_plane.toml");
+    assert!(text.contains(from), "sphere_on_plane.toml no longer contains {from:?}");
+    let dir = scratch(name);
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text.replacen(from, to, 1)).expect("writing a temp scene");
+    path
+}
+
+const SPHERE_OBJECT: &str = "shape = \"icosphere\"\nradius = 0.5\nsubdivisions = 5        # 20480 triangles";
+
+// ---------------------------------------------------------------------------------------------
+// Bad input: exit code 2, a message naming the file / key / feature, no output directory.
+
+#[test]
+fn missing_scene_file() {
+    expect_input_error(&["render", "--scene", "scenes/no_such_scene.toml"], &["no_such_scene.toml"]);
+}
+
+/// Writes `sphere_on_plane.toml` with `from` replaced by `to` (plus `extra` files beside it) into
+/// a fresh directory, expects an input error naming the scene file and `needles`, cleans up.
+fn expect_scene_error(name: &str, from: &str, to: &str, extra: &[(&str, &str)], needles: &[&str]) {
+    let path = edited_scene(name, from, to);
+    for (file, text) in extra {
+        std::fs::write(path.with_file_name(file), text).expect("writing a file beside the temp scene");
+    }
+    let p = path.display().to_string();
+    let mut all = vec![p.as_str()];
+    all.extend_from_slice(needles);
+    expect_input_error(&["render", "--scene", &p], &all);
+    if let Some(dir) = path.parent() {
+        let _ = std::fs::remove_dir_all(dir);
+    }
+}
+
+#[test]
+fn toml_syntax_error() {
+    expect_scene_error("syntax", "resolution = [512, 512]", "resolution = [512, 512", &[], &[]);
+}
+
+#[test]
+fn unknown_scene_key() {
+    expect_scene_error("unknown-key", "fov_y = 40.0", "fov_y = 40.0\nfocal_length = 3.0", &[], &["focal_length"]);
+}
+
+#[test]
+fn missing_obj_model() {
+    let to = "shape = \"obj\"\nfile = \"no_such_model.obj\"";
+    expect_scene_error("missing-obj", SPHERE_OBJECT, to, &[], &["no_such_model.obj"]);
+}
+
+#[test]
+fn malformed_obj_model() {
+    let to = "shape = \"obj\"\nfile = \"garbage.obj\"";
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\nf 1 2 3\n";
+    expect_scene_error("bad-obj", SPHERE_OBJECT, to, &[("garbage.obj", obj)], &["garbage.obj"]);
+}
+
+#[test]
+fn zero_camera_resolution() {
+    let to = "resolution = [0, 512]";
+    expect_scene_error("res-zero", "resolution = [512, 512]", to, &[], &["camera.resolution"]);
+}
+
+#[test]
+fn huge_camera_resolution() {
+    let to = "resolution = [100000, 512]";
+    expect_scene_error("res-huge", "resolution = [512, 512]", to, &[], &["camera.resolution"]);
+}
+
+#[test]
+fn unknown_device() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(&["--device", "no-such-gpu", "render", "--scene", &s], &["no-such-gpu"]);
+}
+
+#[test]
+fn technique_needing_an_absent_feature() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(
+        &["--without-feature", "shader_output_layer", "render", "--scene", &s],
+        &["shader_output_layer"],
+    );
+}
+
+#[test]
+fn unknown_technique() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(&["render", "--scene", &s, "--technique", "photon_magic"], &["photon_magic", "none"]);
+}
+
+#[test]
+fn unknown_dump_name() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(&["render", "--scene", &s, "--dump", "receiver,bogus_buffer"], &["bogus_buffer", "shadow_map"]);
+}
+
+#[test]
+fn unknown_feature_name() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(
+        &["render", "--scene", &s, "--without-feature", "warp_drive"],
+        &["warp_drive", "transform_feedback", "shader_output_layer"],
+    );
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(&["render"], &["--scene"]);
+    expect_input_error(&["render", "--scene", &s, "--frames", "0"], &["--frames"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// devices
+
+#[test]
+fn devices_lists_features() {
+    let run = causticlab(&["devices"]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    assert!(run.stdout.contains("[0] "), "no device listed\n{}", run.describe());
+    assert!(run.stdout.contains("transform_feedback"), "{}", run.describe());
+    assert!(run.stdout.contains("maxImageDimension2D"), "{}", run.describe());
+    assert!(run.stdout.contains("[default"), "the default device is marked\n{}", run.describe());
+}
+
+#[test]
+fn devices_accepts_global_options_after_the_subcommand() {
+    let run = causticlab(&["devices", "--device", "0", "--without-feature", "geometry_shader"]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    assert!(run.stdout.contains("selected by --device"), "{}", run.describe());
+    assert!(run.stdout.contains("no (--without-feature)"), "{}", run.describe());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Renders (`--technique none`), shared between tests: one run per scene.
+
+struct Rendered {
+    run: Run,
+    out: PathBuf,
+}
+
+fn render_once(stem: &str) -> Rendered {
+    let out = scratch(&format!("render-{stem}")).join("out");
+    let s = scene(stem);
+    let o = out.display().to_string();
+    let run = causticlab(&["render", "--scene", &s, "--out", &o, "--dump", "all", "--validate"]);
+    Rendered { run, out }
+}
+
+fn rendered(stem: &'static str) -> &'static Rendered {
+    static ON_PLANE: OnceLock<Rendered> = OnceLock::new();
+    static OBLIQUE: OnceLock<Rendered> = OnceLock::new();
+    let cell = match stem {
+        "sphere_on_plane" => &ON_PLANE,
+        "sphere_oblique" => &OBLIQUE,
+        _ => panic!("no cached render for {stem}"),
+    };
+    let r = cell.get_or_init(|| render_once(stem));
+    assert_eq!(r.run.code, Some(0), "render {stem} failed\n{}", r.run.describe());
+    let validation: Vec<&str> = r.run.stderr.lines().filter(|l| l.contains("[validation")).collect();
+    assert!(validation.is_empty(), "render {stem}: validation messages:\n{}", validation.join("\n"));
+    r
+}
+
+#[test]
+fn render_writes_every_output() {
+    let r = rendered("sphere_on_plane");
+    let mut expected: Vec<String> = vec!["final.exr".into(), "final.png".into(), "timings.json".into()];
+    expected.extend(caustics::render::DUMP_NAMES.iter().map(|n| format!("{n}.exr")));
+    for f in &expected {
+        assert!(r.out.join(f).is_file(), "{} missing\n{}", f, r.run.describe());
+    }
+    let finals = read_exr(&r.out.join("final.exr")).expect("reading final.exr");
+    assert_eq!((finals.width, finals.height), (512, 512));
+    for c in ["R", "G", "B"] {
+        assert!(find_channel(&finals, c).is_some(), "final.exr has no {c}");
+    }
+    let json = std::fs::read_to_string(r.out.join("timings.json")).expect("reading timings.json");
+    let t: serde_json::Value = serde_json::from_str(&json).expect("timings.json is JSON");
+    assert_eq!(t["technique"], "none");
+    assert_eq!(t["frames"], 1);
+    assert!(t["device"]["name"].as_str().is_some_and(|n| !n.is_empty()), "{json}");
+    assert!(t["passes"].as_array().is_some_and(|p| !p.is_empty()), "no passes timed: {json}");
+    // No staging directory is left beside the output.
+    let parent = r.out.parent().expect("out has a parent");
+    let names: Vec<_> =
+        std::fs::read_dir(parent).expect("listing").filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("out")]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The receiver map against analytic irradiance and visibility.
+
+type V3 = [f64; 3];
+
+fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+const SPHERE_CENTRE: V3 = [0.0, 1.0, 0.0];
+const SPHERE_RADIUS: f64 = 0.5;
+const INTENSITY: f64 = 100.0;
+const RES: u32 = 256;
+const TEXEL: f64 = 4.0 / RES as f64;
+
+/// Floor point (x, 0, z) of texel column i, row j.
+fn texel_centre(i: f64, j: f64) -> V3 {
+    [-2.0 + (i + 0.5) * TEXEL, 0.0, -2.0 + (j + 0.5) * TEXEL]
+}
+
+/// Does the segment from `p` to the light pass through the sphere?
+fn occluded(p: V3, light: V3) -> bool {
+    let d = sub(light, p);
+    let t = (dot(sub(SPHERE_CENTRE, p), d) / dot(d, d)).clamp(0.0, 1.0);
+    let q = [p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]];
+    let e = sub(SPHERE_CENTRE, q);
+    dot(e, e) < SPHERE_RADIUS * SPHERE_RADIUS
+}
+
+/// True when some point within 3 texels of texel (i, j) has the other visibility.
+fn near_shadow_boundary(i: u32, j: u32, light: V3) -> bool {
+    let centre = occluded(texel_centre(i as f64, j as f64), light);
+    for step in 1..=6 {
+        let radius = 0.5 * step as f64;
+        for k in 0..48 {
+            let a = k as f64 * std::f64::consts::TAU / 48.0;
+            let p = texel_centre(i as f64 + radius * a.cos(), j as f64 + radius * a.sin());
+            if occluded(p, light) != centre {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// (layer, channel) of `want`, matched as the full `layer.channel` name first, then by channel.
+fn find_channel(img: &ImageF32, want: &str) -> Option<(usize, usize)> {
+    let full = |l: usize, c: &str| match &img.layers[l].name {
+        Some(n) => format!("{n}.{c}"),
+        None => c.to_string(),
+    };
+    for (li, layer) in img.layers.iter().enumerate() {
+        if let Some(ci) = layer.channels.iter().position(|c| full(li, c) == want) {
+            return Some((li, ci));
+        }
+    }
+    for (li, layer) in img.layers.iter().enumerate() {
+        if let Some(ci) = layer.channels.iter().position(|c| c == want) {
+            return Some((li, ci));
+        }
+    }
+    None
+}
+
+fn value(img: &ImageF32, ch: (usize, usize), i: u32, j: u32) -> f64 {
+    img.layers[ch.0].sample(img.width, i, j, ch.1) as f64
+}
+
+/// Checks receiver.exr of `stem` lit by a point light of 100 W/sr at `light`; returns the
+/// (measured, analytic) shadowed area in m^2.
+fn check_receiver(stem: &'static str, light: V3) -> (f64, f64) {
+    let r = rendered(stem);
+    let img = read_exr(&r.out.join("receiver.exr")).expect("reading receiver.exr");
+    assert_eq!((img.width, img.height), (RES, RES), "{stem}: receiver size");
+    let names: Vec<String> = img.layers.iter().flat_map(|l| l.channels.clone()).collect();
+    let chan = |c: &str| {
+        find_channel(&img, c).unwrap_or_else(|| panic!("{stem}: receiver.exr has no {c} channel ({names:?})"))
+    };
+    let (cr, cg, cb, ce0) = (chan("R"), chan("G"), chan("B"), chan("E0"));
+
+    let (mut measured, mut analytic) = (0usize, 0usize);
+    let (mut lit_checked, mut shadow_checked) = (0usize, 0usize);
+    let mut failures = vec![];
+    for j in 0..RES {
+        for i in 0..RES {
+            let p = texel_centre(i as f64, j as f64);
+            let to_light = sub(light, p);
+            let dist = dot(to_light, to_light).sqrt();
+            let e0 = INTENSITY * (light[1] / dist) / (dist * dist);
+            let got_e0 = value(&img, ce0, i, j);
+            if (got_e0 - e0).abs() > 0.01 * e0 && failures.len() < 10 {
+                failures.push(format!("texel ({i}, {j}) at {p:?}: E0 {got_e0}, expected {e0}"));
+            }
+            let rgb = [value(&img, cr, i, j), value(&img, cg, i, j), value(&img, cb, i, j)];
+            let shadow = occluded(p, light);
+            analytic += shadow as usize;
+            measured += (rgb[0] < 0.5) as usize;
+            if near_shadow_boundary(i, j, light) {
+                continue;
+            }
+            let ok = if shadow { rgb.iter().all(|v| *v < 0.01) } else { rgb.iter().all(|v| (v - 1.0).abs() <= 0.01) };
+            if shadow {
+                shadow_checked += 1;
+            } else {
+                lit_checked += 1;
+            }
+            if !ok && failures.len() < 10 {
+                let what = if shadow { "shadowed, expected < 0.01" } else { "lit, expected 1.0 +- 1%" };
+                failures.push(format!("texel ({i}, {j}) at {p:?}: E/E0 {rgb:?}, {what}"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{stem}: receiver.exr disagrees with the analytic answer:\n{}", failures.join("\n"));
+    assert!(
+        shadow_checked > 100 && lit_checked > 10_000,
+        "{stem}: {shadow_checked} shadowed, {lit_checked} lit texels checked"
+    );
+    let texel_area = TEXEL * TEXEL;
+    let (measured, analytic) = (measured as f64 * texel_area, analytic as f64 * texel_area);
+    assert!(measured > 0.0, "{stem}: no shadow at all");
+    assert!(
+        (measured - analytic).abs() <= 0.05 * analytic,
+        "{stem}: shadow area {measured} m^2, analytic {analytic} m^2"
+    );
+    (measured, analytic)
+}
+
+#[test]
+fn receiver_sphere_on_plane_matches_analytic_irradiance_and_shadow() {
+    let (measured, _) = check_receiver("sphere_on_plane", [0.0, 6.0, 0.0]);
+    // Light straight above: the shadow is a disc of radius h tan(a), sin(a) = r / d.
+    let (h, d) = (6.0f64, 5.0f64);
+    let radius = h * SPHERE_RADIUS / (d * d - SPHERE_RADIUS * SPHERE_RADIUS).sqrt();
+    let disc = std::f64::consts::PI * radius * radius;
+    assert!((measured - disc).abs() <= 0.05 * disc, "shadow area {measured} m^2, disc {disc} m^2");
+}
+
+#[test]
+fn receiver_sphere_oblique_matches_analytic_irradiance_and_shadow() {
+    check_receiver("sphere_oblique", [2.0, 5.0, 1.0]);
+}
+
+#[test]
+fn analytic_helpers_agree_with_geometry() {
+    // Straight below the sphere is in shadow, far away is not; the disc edge is ~0.603 m out.
+    let light = [0.0, 6.0, 0.0];
+    assert!(occluded([0.0, 0.0, 0.0], light));
+    assert!(occluded([0.59, 0.0, 0.0], light));
+    assert!(!occluded([0.62, 0.0, 0.0], light));
+    assert!(!occluded([1.5, 0.0, 1.5], light));
+    // Centre texel (128,128) is 1/128 m from the origin: deep inside, far from the edge.
+    assert!(!near_shadow_boundary(128, 128, light));
+    // Texel whose centre is ~0.60 m out along +x is at the edge.
+    let i = ((0.603 + 2.0) / TEXEL - 0.5).round() as u32;
+    assert!(near_shadow_boundary(i, 128, light));
+}

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs what causticlab needs on Debian 12 (idempotent): lavapipe (software Vulkan), the
+# Khronos validation layer, the Vulkan loader/headers, vulkaninfo, and the static shaderc/glslang
+# that vkcore links (see .cargo/config.toml). Checks that cargo is there.
+set -euo pipefail
+
+packages=(mesa-vulkan-drivers vulkan-validationlayers libvulkan-dev vulkan-tools libshaderc-dev glslang-dev spirv-tools)
+
+missing=()
+for p in "${packages[@]}"; do
+    if ! dpkg -s "$p" >/dev/null 2>&1; then
+        missing+=("$p")
+    fi
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+    echo "setup: Debian packages already installed: ${packages[*]}"
+else
+    echo "setup: installing missing Debian packages: ${missing[*]}"
+    if [ "$(id -u)" -eq 0 ]; then
+        sudo=()
+    elif command -v sudo >/dev/null 2>&1; then
+        sudo=(sudo)
+    else
+        echo "setup: not root and no sudo; install as root: apt-get install ${missing[*]}" >&2
+        exit 1
+    fi
+    export DEBIAN_FRONTEND=noninteractive
+    "${sudo[@]}" apt-get update
+    "${sudo[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
+    echo "setup: installed ${missing[*]}"
+fi
+
+if ! command -v cargo >/dev/null 2>&1; then
+    echo "setup: cargo not found; install Rust with rustup (https://rustup.rs), then rerun" >&2
+    exit 1
+fi
+echo "setup: $(cargo --version)"

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Runs every test of the workspace: unit tests, vkcore's GPU tests on lavapipe (or a real GPU),
+# and the causticlab CLI tests that render scenes and check them against analytic answers.
+# The default test profile is used: the workspace builds dependencies with opt-level 3 and its
+# own crates with opt-level 1, so there is no need for --release here. --no-fail-fast runs
+# every test binary and still exits non-zero if any test failed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/setup.sh
+unset VK_LOADER_DEBUG
+cargo test --workspace --no-fail-fast "$@"
