@@ -48,13 +48,72 @@ pub struct RenderArgs {
     /// Output directory; files appear only when the whole run succeeded.
     #[arg(long)]
     pub out: PathBuf,
-    /// Caustic technique.
-    #[arg(long, default_value = "none")]
-    pub technique: String,
+    #[command(flatten)]
+    pub caustics: CausticArgs,
     /// Intermediate buffers to write as EXR: `all` or a comma-separated list.
     #[arg(long, value_name = "all|NAME,...")]
     pub dump: Option<String>,
     /// Frames to render (timings are kept for each; the image is the last frame's).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub frames: u32,
+}
+
+/// Overrides of the scene's `[caustics]` table (see scenes/README.md).
+#[derive(Debug, Args, Clone, Default)]
+pub struct CausticArgs {
+    /// Caustic technique: none, shah, shah-vertex, wd-points (default: the scene's, else none).
+    #[arg(long)]
+    pub technique: Option<String>,
+    /// Photon buffer resolution N (N x N photons per light), 64..=4096.
+    #[arg(long)]
+    pub photons: Option<u32>,
+    /// Splat radius in caustic-map texels.
+    #[arg(long)]
+    pub splat_radius: Option<f32>,
+    /// Splat kernel: gaussian or box.
+    #[arg(long)]
+    pub splat_kernel: Option<String>,
+    /// Caustic-map (and receiver-positions) resolution.
+    #[arg(long)]
+    pub caustic_map_resolution: Option<u32>,
+    /// rayGeo iterations (shah-iterative) or bisection steps (wd-depth-search).
+    #[arg(long)]
+    pub iterations: Option<u32>,
+    /// Fresnel transmittance at both interfaces (true/false).
+    #[arg(long)]
+    pub fresnel: Option<bool>,
+    /// Ray/receiver intersection: shah-iterative or wd-depth-search (default: the technique's).
+    #[arg(long)]
+    pub intersect: Option<String>,
+}
+
+impl CausticArgs {
+    /// Applies the overrides to `s` and checks the result.
+    pub fn apply(&self, s: &mut caustics::scene::CausticSettings) -> anyhow::Result<()> {
+        if let Some(v) = &self.technique {
+            s.technique = v.clone();
+        }
+        if let Some(v) = self.photons {
+            s.photons = v;
+        }
+        if let Some(v) = self.splat_radius {
+            s.splat_radius = v;
+        }
+        if let Some(v) = &self.splat_kernel {
+            s.splat_kernel = v.clone();
+        }
+        if let Some(v) = self.caustic_map_resolution {
+            s.caustic_map_resolution = v;
+        }
+        if let Some(v) = self.iterations {
+            s.iterations = v;
+        }
+        if let Some(v) = self.fresnel {
+            s.fresnel = v;
+        }
+        if let Some(v) = &self.intersect {
+            s.intersect = Some(v.clone());
+        }
+        s.validate("command line", "--")
+    }
 }

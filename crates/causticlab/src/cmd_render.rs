@@ -3,7 +3,7 @@
 //! becomes `--out` when everything succeeded.
 
 use crate::cli::{GlobalOpts, RenderArgs};
-use crate::timings::Timings;
+use bench::Timings;
 use anyhow::{Context as _, Result};
 use caustics::image_io::{self, ImageF32, OutputDir};
 use caustics::input_error;
@@ -14,22 +14,21 @@ use vkcore::{Context, DeviceInfo, ShaderCompiler, ValidationLog};
 
 pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<ValidationLog>>) -> Result<()> {
     let opts = crate::context_options(g)?;
-    let required = render::required_features(&args.technique)
-        .filter(|_| TECHNIQUES.contains(&args.technique.as_str()))
-        .ok_or_else(|| {
-            input_error!(
-                "--technique: unknown technique `{}`; valid techniques: {}",
-                args.technique,
-                TECHNIQUES.join(", ")
-            )
-        })?;
+    if let Some(t) = &args.caustics.technique {
+        if !TECHNIQUES.contains(&t.as_str()) {
+            return Err(input_error!("--technique: unknown technique `{t}`; valid techniques: {}", TECHNIQUES.join(", ")).into());
+        }
+    }
     let dumps = parse_dumps(args.dump.as_deref())?;
     // The loader's messages already name the file and the key.
-    let scene = Scene::load(&args.scene)?;
+    let mut scene = Scene::load(&args.scene)?;
+    args.caustics.apply(&mut scene.caustics)?;
+    let technique = scene.caustics.technique.clone();
+    let required = render::required_features(&technique).unwrap_or(&[]);
 
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
     *validation = Some(ctx.validation_log());
-    let who = format!("technique `{}`", args.technique);
+    let who = format!("technique `{technique}`");
     ctx.require(&who, required)?;
     check_sizes(&scene, ctx.info())?;
 
@@ -37,7 +36,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let shaders = ShaderCompiler::new(&render::shader_root()).context("creating the shader compiler")?;
     let req = RenderRequest { dumps, frames: args.frames };
     let rendered = render::render(&ctx, &shaders, &scene, &req)
-        .with_context(|| format!("rendering {} with technique `{}`", args.scene.display(), args.technique))?;
+        .with_context(|| format!("rendering {} with technique `{technique}`", args.scene.display()))?;
 
     let mut written = vec![];
     image_io::write_exr(&out.path("final.exr"), &rendered.final_image)?;
@@ -50,7 +49,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         image_io::write_exr(&out.path(&file), image)?;
         written.push(file);
     }
-    let timings = Timings::new(ctx.info(), &args.technique, &args.scene, ctx.validation_enabled(), &rendered.frames);
+    let timings = Timings::new(ctx.info(), &scene.caustics, rendered.photons_emitted, &args.scene, ctx.validation_enabled(), &rendered.frames);
     let json = serde_json::to_string_pretty(&timings).context("serialising timings.json")?;
     image_io::write_file_atomically(&out.path("timings.json"), json.as_bytes())?;
     written.push("timings.json".to_string());
@@ -63,7 +62,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         ctx.info().name,
         ctx.info().driver_info,
         timings.frames,
-        args.technique
+        technique
     );
     if timings.passes.is_empty() {
         println!("(no GPU timings: the device has no timestamps)");

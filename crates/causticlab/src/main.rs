@@ -6,7 +6,6 @@ mod cli;
 mod cmd_devices;
 mod cmd_render;
 mod exit;
-mod timings;
 
 use anyhow::Result;
 use clap::Parser;

@@ -65,7 +65,7 @@ fn angle_to(light: Vec3, axis: Vec3, p: Vec3) -> f32 {
 /// Uniforms for `settings` on `scene`. With technique `none`, zero lights have caustics.
 pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<CausticUniforms> {
     let mut u = CausticUniforms { settings: [0; 4], splat: [0.0; 4], lights: [CausticLightUniforms::zeroed(); MAX_LIGHTS] };
-    let flags = if settings.fresnel { FLAG_FRESNEL } else { 0 } | if settings.intersect == "wd-depth-search" { FLAG_WD_DEPTH_SEARCH } else { 0 };
+    let flags = if settings.fresnel { FLAG_FRESNEL } else { 0 } | if settings.intersect() == "wd-depth-search" { FLAG_WD_DEPTH_SEARCH } else { 0 };
     u.settings = [0, settings.photons, settings.iterations, flags];
     u.splat = [settings.splat_radius, if settings.splat_kernel == "box" { 1.0 } else { 0.0 }, 0.0, 0.0];
     let Some((centre, radius)) = specular_bounds(scene) else { return Ok(u) };

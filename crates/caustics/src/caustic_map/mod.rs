@@ -26,14 +26,6 @@ pub use targets::{CausticTargets, PhotonTargets};
 
 use crate::scene::CausticSettings;
 
-/// The intersection variant a technique uses unless the scene or command line names one.
-pub fn default_intersect(technique: &str) -> &'static str {
-    match technique {
-        "wd-points" => "wd-depth-search",
-        _ => "shah-iterative",
-    }
-}
-
 /// Photons the technique emits per light (for tables; hardware independent).
 pub fn photons_per_light(settings: &CausticSettings, specular_vertices: u32) -> u64 {
     match settings.technique.as_str() {

@@ -16,11 +16,21 @@ use anyhow::Result;
 use vkcore::{Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler};
 
 /// Every intermediate buffer `--dump` accepts (`all` = every one).
-pub const DUMP_NAMES: &[&str] =
-    &["shadow_map", "background", "refractor_back_faces", "refractor_front_faces", "eye_gbuffer", "receiver"];
+pub const DUMP_NAMES: &[&str] = &[
+    "shadow_map",
+    "background",
+    "refractor_back_faces",
+    "refractor_front_faces",
+    "eye_gbuffer",
+    "receiver",
+    "receiver_positions",
+    "photon_back_faces",
+    "photon_buffer",
+    "caustic_map",
+];
 
-/// Techniques `--technique` accepts, with the device features each needs.
-pub const TECHNIQUES: &[&str] = &["none"];
+/// Techniques `--technique` accepts.
+pub use crate::scene::TECHNIQUES;
 
 #[derive(Debug, Clone, Default)]
 pub struct RenderRequest {

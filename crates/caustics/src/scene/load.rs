@@ -129,7 +129,7 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         caustic_map_resolution: c.caustic_map_resolution.unwrap_or(d.caustic_map_resolution),
         iterations: c.iterations.unwrap_or(d.iterations),
         fresnel: c.fresnel.unwrap_or(d.fresnel),
-        intersect: c.intersect.clone().unwrap_or(d.intersect),
+        intersect: c.intersect.clone().or(d.intersect),
     };
     caustics.validate(&ctx.file.display().to_string(), "caustics.")?;
     Ok(Scene { path: ctx.file.to_path_buf(), camera, lights, materials, objects, receiver_map, render, caustics })

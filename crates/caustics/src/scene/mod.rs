@@ -59,8 +59,8 @@ pub struct CausticSettings {
     pub iterations: u32,
     /// Fresnel transmittance at both interfaces; default true.
     pub fresnel: bool,
-    /// One of [`INTERSECTS`]; default `shah-iterative`.
-    pub intersect: String,
+    /// One of [`INTERSECTS`]; None = the technique's own (see [`CausticSettings::intersect`]).
+    pub intersect: Option<String>,
 }
 
 impl Default for CausticSettings {
@@ -73,12 +73,22 @@ impl Default for CausticSettings {
             caustic_map_resolution: 1024,
             iterations: 4,
             fresnel: true,
-            intersect: "shah-iterative".into(),
+            intersect: None,
         }
     }
 }
 
 impl CausticSettings {
+    /// The ray/receiver intersection in effect: the one asked for, else the technique's own
+    /// (Wyman & Davis' depth search for `wd-points`, Shah's rayGeo otherwise).
+    pub fn intersect(&self) -> &str {
+        match (&self.intersect, self.technique.as_str()) {
+            (Some(i), _) => i,
+            (None, "wd-points") => "wd-depth-search",
+            (None, _) => "shah-iterative",
+        }
+    }
+
     /// Checks ranges and names; `origin` says where the values came from (a file or the command
     /// line) and `key` prefixes key names, e.g. `caustics.`.
     pub fn validate(&self, origin: &str, key: &str) -> anyhow::Result<()> {
@@ -90,7 +100,9 @@ impl CausticSettings {
         };
         one_of("technique", &self.technique, TECHNIQUES)?;
         one_of("splat_kernel", &self.splat_kernel, SPLAT_KERNELS)?;
-        one_of("intersect", &self.intersect, INTERSECTS)?;
+        if let Some(i) = &self.intersect {
+            one_of("intersect", i, INTERSECTS)?;
+        }
         if !(64..=4096).contains(&self.photons) {
             bad("photons", format!("must be between 64 and 4096 (photons per side), got {}", self.photons))?;
         }

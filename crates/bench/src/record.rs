@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 use std::path::Path;
+use caustics::scene::CausticSettings;
 use vkcore::{DeviceInfo, FrameReport, PipelineStats, Profiler};
 
 #[derive(Debug, Serialize)]
@@ -10,11 +11,26 @@ pub struct Timings {
     pub causticlab_version: &'static str,
     pub device: Device,
     pub technique: String,
+    /// The caustic technique's full configuration (the code path the numbers belong to).
+    pub caustics: CausticConfig,
+    /// Photons emitted per frame over all lights (0 for `none`).
+    pub photons_emitted: u64,
     pub scene: String,
     pub frames: usize,
     pub validation: bool,
     /// Passes in first-seen order; times are GPU milliseconds between the pass's timestamps.
     pub passes: Vec<Pass>,
+}
+
+#[derive(Debug, Serialize)]
+pub struct CausticConfig {
+    pub photons_per_side: u32,
+    pub splat_radius: f32,
+    pub splat_kernel: String,
+    pub caustic_map_resolution: u32,
+    pub iterations: u32,
+    pub fresnel: bool,
+    pub intersect: String,
 }
 
 #[derive(Debug, Serialize)]
@@ -70,7 +86,14 @@ impl From<PipelineStats> for Stats {
 }
 
 impl Timings {
-    pub fn new(info: &DeviceInfo, technique: &str, scene: &Path, validation: bool, frames: &[FrameReport]) -> Timings {
+    pub fn new(
+        info: &DeviceInfo,
+        caustics: &CausticSettings,
+        photons_emitted: u64,
+        scene: &Path,
+        validation: bool,
+        frames: &[FrameReport],
+    ) -> Timings {
         let mut profiler = Profiler::default();
         for f in frames {
             profiler.record(f);
@@ -99,7 +122,17 @@ impl Timings {
                 timestamp_valid_bits: info.timestamp_valid_bits,
                 timestamp_period_ns: info.timestamp_period_ns,
             },
-            technique: technique.to_string(),
+            technique: caustics.technique.clone(),
+            caustics: CausticConfig {
+                photons_per_side: caustics.photons,
+                splat_radius: caustics.splat_radius,
+                splat_kernel: caustics.splat_kernel.clone(),
+                caustic_map_resolution: caustics.caustic_map_resolution,
+                iterations: caustics.iterations,
+                fresnel: caustics.fresnel,
+                intersect: caustics.intersect().to_string(),
+            },
+            photons_emitted,
             scene: scene.display().to_string(),
             frames: profiler.frames(),
             validation,
