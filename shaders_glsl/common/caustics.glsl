@@ -18,7 +18,7 @@ struct CausticLight {
 
 layout(std140, binding = CAUSTICS_BINDING) uniform Caustics {
     uvec4 settings;   // x: lights with caustics (0 = none), y: photons per side, z: iterations, w: flags
-    vec4 splat;       // x: splat radius (caustic-map texels), y: kernel (0 Gaussian, 1 box)
+    vec4 splat;       // x: splat radius (caustic-map texels), y: kernel (0 Gaussian, 1 box), z: back-face iterations
     CausticLight lights[MAX_LIGHTS];
 } caustics;
 

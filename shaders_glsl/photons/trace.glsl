@@ -9,10 +9,14 @@
 layout(binding = 2) uniform sampler2D light_back_faces;
 layout(binding = 3) uniform sampler2DArray receiver_positions;
 
+// Why a photon carries nothing (direction.w), so the photon-buffer dump explains losses.
+#define PHOTON_LOST_TIR 1.0
+#define PHOTON_LOST_NO_RECEIVER 2.0
+
 struct Photon {
-    vec4 position;   // xyz where it lands on the first diffuse surface; w = 1 if it carries power
-    vec4 direction;  // xyz incident direction at the receiver
-    vec4 power;      // rgb W
+    vec4 position;   // xyz where it lands on the first diffuse surface; w = 1 if it lands
+    vec4 direction;  // xyz incident direction at the receiver; w: 0, or why it was lost
+    vec4 power;      // rgb W (also kept for lost photons, to account for them)
 };
 
 float dielectric_fresnel(float cos_i, float eta) {
@@ -110,12 +114,27 @@ Photon trace_photon(uint l, vec3 p1, vec3 n1, float d_n, float omega) {
         float ratio = theta_i > 1e-4 ? theta_t / theta_i : 1.0;
         float dist = ratio * d_v + (1.0 - ratio) * d_n;     // Wyman 2005, Eq. 2
         vec3 p2 = p1 + dist * t1;
+        // Beyond the paper (caustics.back_face_iterations > 0): refine the exit point against
+        // the back faces the light sees, rayGeo's iteration applied to the back-face distances.
+        // Wyman's d estimate alone falls short near the silhouette, where the chord is long but
+        // d_V is ~0, and the wrong back-face normal then reports total internal reflection.
+        for (uint k = 0u; k < uint(caustics.splat.z); ++k) {
+            vec3 dir_l = normalize(p2 - cl.position.xyz);
+            vec2 nk = project_ndc(cl.photon_view_proj, p2, inside);
+            vec4 bk = texture(light_back_faces, nk * 0.5 + 0.5);
+            if (bk.w <= 0.0) break;
+            p2 = p1 + distance(p1, cl.position.xyz + dir_l * bk.w) * t1;
+        }
         vec2 ndc2 = project_ndc(cl.photon_view_proj, p2, inside);
         vec3 n2 = texture(light_back_faces, ndc2 * 0.5 + 0.5).xyz;
         if (dot(n2, n2) < 0.5) n2 = -n1;
         n2 = normalize(n2);
         vec3 t2 = refract(t1, -n2, ior);
-        if (dot(t2, t2) < 0.5) return ph;                  // total internal reflection: lost
+        if (dot(t2, t2) < 0.5) {                        // total internal reflection: lost
+            ph.power = vec4(power, 0.0);
+            ph.direction.w = PHOTON_LOST_TIR;
+            return ph;
+        }
         if ((caustics.settings.w & CAUSTIC_FRESNEL) != 0u) {
             power *= (1.0 - dielectric_fresnel(cos_i, 1.0 / ior)) * (1.0 - dielectric_fresnel(dot(-t1, -n2), ior));
         }
@@ -124,7 +143,11 @@ Photon trace_photon(uint l, vec3 p1, vec3 n1, float d_n, float omega) {
         d = normalize(t2);
     }
     vec3 hit;
-    if (!find_receiver(l, o, d, hit)) return ph;
+    if (!find_receiver(l, o, d, hit)) {
+        ph.power = vec4(power, 0.0);
+        ph.direction.w = PHOTON_LOST_NO_RECEIVER;
+        return ph;
+    }
     ph.position = vec4(hit, 1.0);
     ph.direction = vec4(d, 0.0);
     ph.power = vec4(power, 1.0);

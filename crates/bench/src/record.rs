@@ -30,6 +30,7 @@ pub struct CausticConfig {
     pub caustic_map_resolution: u32,
     pub iterations: u32,
     pub fresnel: bool,
+    pub back_face_iterations: u32,
     pub intersect: String,
 }
 
@@ -130,6 +131,7 @@ impl Timings {
                 caustic_map_resolution: caustics.caustic_map_resolution,
                 iterations: caustics.iterations,
                 fresnel: caustics.fresnel,
+                back_face_iterations: caustics.back_face_iterations,
                 intersect: caustics.intersect().to_string(),
             },
             photons_emitted,

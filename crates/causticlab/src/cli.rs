@@ -38,6 +38,50 @@ pub enum Command {
     Devices,
     /// Render a scene and write final.exr, final.png, timings.json and the requested dumps.
     Render(RenderArgs),
+    /// Trace the exact CPU photon reference of a scene's receiver map into DIR/receiver.exr.
+    Reference(ReferenceArgs),
+    /// Compare two receiver maps (B is the reference): errors, peak, flux; writes an error image.
+    Compare(CompareArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ReferenceArgs {
+    /// Scene file with a [receiver_map].
+    #[arg(long)]
+    pub scene: PathBuf,
+    /// Photons per light.
+    #[arg(long, default_value_t = 1 << 22, value_parser = clap::value_parser!(u64).range(1..=(1u64 << 36)))]
+    pub photons: u64,
+    /// Random seed (the result is deterministic for a seed, whatever the thread count).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Exact Fresnel and internal bounces (true), or what image-space techniques approximate:
+    /// two refractions, all power transmitted (false). Default: the scene's `caustics.fresnel`.
+    #[arg(long)]
+    pub fresnel: Option<bool>,
+    /// Most specular interactions per photon (with --fresnel true).
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub max_bounces: u32,
+    /// Worker threads (0 = all cores).
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Output directory (receiver.exr, reference.json).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// The map to judge (e.g. a GPU technique's receiver.exr).
+    pub a: PathBuf,
+    /// The reference (e.g. `causticlab reference` output).
+    pub b: PathBuf,
+    /// Where to write the error image (default: no image).
+    #[arg(long)]
+    pub error_image: Option<PathBuf>,
+    /// Print the figures as one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
 }
 
 #[derive(Debug, Args)]
@@ -85,6 +129,9 @@ pub struct CausticArgs {
     /// Ray/receiver intersection: shah-iterative or wd-depth-search (default: the technique's).
     #[arg(long)]
     pub intersect: Option<String>,
+    /// Exit-point refinements against the light-space back faces (0 = Wyman 2005 alone).
+    #[arg(long)]
+    pub back_face_iterations: Option<u32>,
 }
 
 impl CausticArgs {
@@ -110,6 +157,9 @@ impl CausticArgs {
         }
         if let Some(v) = self.fresnel {
             s.fresnel = v;
+        }
+        if let Some(v) = self.back_face_iterations {
+            s.back_face_iterations = v;
         }
         if let Some(v) = &self.intersect {
             s.intersect = Some(v.clone());

@@ -3,7 +3,9 @@
 //! successful run into exit code 3.
 
 mod cli;
+mod cmd_compare;
 mod cmd_devices;
+mod cmd_reference;
 mod cmd_render;
 mod exit;
 
@@ -20,6 +22,8 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Devices => cmd_devices::run(&cli.global, &mut validation),
         Command::Render(args) => cmd_render::run(&cli.global, args, &mut validation),
+        Command::Reference(args) => cmd_reference::run(args),
+        Command::Compare(args) => cmd_compare::run(args),
     };
     let mut code = match result {
         Ok(()) => exit::OK,

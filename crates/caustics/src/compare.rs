@@ -64,25 +64,19 @@ fn channel(layer: &Layer, name: &str) -> Option<usize> {
 fn mean_rgb(layer: &Layer, texels: usize, what: &str, label: &str) -> anyhow::Result<Vec<f64>> {
     let mut idx = [0usize; 3];
     for (k, c) in ["R", "G", "B"].iter().enumerate() {
-        idx[k] = channel(layer, c).ok_or_else(|| {
-            InputError::new(format!("{label}: {what} has no channel `{c}`"))
-        })?;
+        idx[k] = channel(layer, c).ok_or_else(|| InputError::new(format!("{label}: {what} has no channel `{c}`")))?;
     }
     let nc = layer.channels.len();
     anyhow::ensure!(
         layer.data.len() == texels * nc,
         InputError::new(format!("{label}: {what} has the wrong number of values"))
     );
-    Ok((0..texels)
-        .map(|t| idx.iter().map(|&c| layer.data[t * nc + c] as f64).sum::<f64>() / 3.0)
-        .collect())
+    Ok((0..texels).map(|t| idx.iter().map(|&c| layer.data[t * nc + c] as f64).sum::<f64>() / 3.0).collect())
 }
 
 fn values(img: &ImageF32, label: &str) -> anyhow::Result<Values> {
     let texels = img.width as usize * img.height as usize;
-    let main = img
-        .layer(None)
-        .ok_or_else(|| InputError::new(format!("{label}: no main layer (channels R, G, B)")))?;
+    let main = img.layer(None).ok_or_else(|| InputError::new(format!("{label}: no main layer (channels R, G, B)")))?;
     let v = mean_rgb(main, texels, "the main layer", label)?;
     let e0 = channel(main, "E0").map(|c| {
         let nc = main.channels.len();
@@ -118,12 +112,7 @@ pub fn compare_files(a: &Path, b: &Path) -> anyhow::Result<(Comparison, ImageF32
     compare_labelled(&ia, &a.display().to_string(), &ib, &b.display().to_string())
 }
 
-fn compare_labelled(
-    a: &ImageF32,
-    la: &str,
-    b: &ImageF32,
-    lb: &str,
-) -> anyhow::Result<(Comparison, ImageF32)> {
+fn compare_labelled(a: &ImageF32, la: &str, b: &ImageF32, lb: &str) -> anyhow::Result<(Comparison, ImageF32)> {
     if (a.width, a.height) != (b.width, b.height) {
         return Err(InputError::new(format!(
             "size mismatch: {la} is {}x{} but {lb} is {}x{}",
@@ -139,8 +128,10 @@ fn compare_labelled(
     let in_region: Vec<bool> = (0..texels)
         .map(|t| {
             let (x, y) = (va.v[t], vb.v[t]);
-            let lit = va.e0.as_ref().map_or(true, |e| e[t] > 0.0)
-                && vb.e0.as_ref().map_or(true, |e| e[t] > 0.0);
+            let lit = [&va.e0, &vb.e0].iter().all(|e| match e {
+                Some(e) => e[t] > 0.0,
+                None => true,
+            });
             lit && ((x - 1.0).abs() > REGION_THRESHOLD || (y - 1.0).abs() > REGION_THRESHOLD)
         })
         .collect();
@@ -156,10 +147,10 @@ fn compare_labelled(
         saa += x * x;
         sbb += y * y;
         sdd += (x - y) * (x - y);
-        if peak_a.map_or(true, |p| x > p.0) {
+        if !matches!(peak_a, Some(p) if x <= p.0) {
             peak_a = Some((x, t));
         }
-        if peak_b.map_or(true, |p| y > p.0) {
+        if !matches!(peak_b, Some(p) if y <= p.0) {
             peak_b = Some((y, t));
         }
     }
@@ -174,10 +165,7 @@ fn compare_labelled(
     };
     let best_scale = if saa > 0.0 { sab / saa } else { 1.0 };
     // Σ(s·a − b)² = s²Σa² − 2sΣab + Σb², evaluated directly for accuracy.
-    let sdd_scaled: f64 = (0..texels)
-        .filter(|&t| in_region[t])
-        .map(|t| (best_scale * va.v[t] - vb.v[t]).powi(2))
-        .sum();
+    let sdd_scaled: f64 = (0..texels).filter(|&t| in_region[t]).map(|t| (best_scale * va.v[t] - vb.v[t]).powi(2)).sum();
     let (peak_ratio, peak_offset_texels) = match (peak_a, peak_b) {
         (Some((ma, ta)), Some((mb, tb))) => {
             let (dx, dy) = ((ta % w) as f64 - (tb % w) as f64, (ta / w) as f64 - (tb / w) as f64);
@@ -203,6 +191,7 @@ fn compare_labelled(
     };
 
     let mut data = Vec::with_capacity(texels * 4);
+    #[allow(clippy::needless_range_loop)]
     for t in 0..texels {
         data.extend_from_slice(&[
             va.v[t] as f32,

@@ -67,7 +67,12 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
     let mut u = CausticUniforms { settings: [0; 4], splat: [0.0; 4], lights: [CausticLightUniforms::zeroed(); MAX_LIGHTS] };
     let flags = if settings.fresnel { FLAG_FRESNEL } else { 0 } | if settings.intersect() == "wd-depth-search" { FLAG_WD_DEPTH_SEARCH } else { 0 };
     u.settings = [0, settings.photons, settings.iterations, flags];
-    u.splat = [settings.splat_radius, if settings.splat_kernel == "box" { 1.0 } else { 0.0 }, 0.0, 0.0];
+    u.splat = [
+        settings.splat_radius,
+        if settings.splat_kernel == "box" { 1.0 } else { 0.0 },
+        settings.back_face_iterations as f32,
+        0.0,
+    ];
     let Some((centre, radius)) = specular_bounds(scene) else { return Ok(u) };
     if settings.technique == "none" {
         return Ok(u);

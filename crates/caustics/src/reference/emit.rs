@@ -24,10 +24,7 @@ impl Pcg32 {
     const MUL: u64 = 6364136223846793005;
 
     pub fn new(seed: u64, stream: u64) -> Pcg32 {
-        let mut rng = Pcg32 {
-            state: 0,
-            inc: (stream << 1) | 1,
-        };
+        let mut rng = Pcg32 { state: 0, inc: (stream << 1) | 1 };
         rng.next_u32();
         rng.state = rng.state.wrapping_add(seed);
         rng.next_u32();
@@ -86,12 +83,7 @@ impl Cone {
             (to / d, (1.0 - s * s).max(0.0).sqrt())
         };
         let (tangent, bitangent) = axis.any_orthonormal_pair();
-        Cone {
-            axis,
-            cos_half,
-            tangent,
-            bitangent,
-        }
+        Cone { axis, cos_half, tangent, bitangent }
     }
 
     /// Solid angle `2π(1 − cos α)`.
@@ -113,10 +105,7 @@ impl Cone {
         let cos_t = 1.0 - u1 * (1.0 - self.cos_half);
         let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
         let phi = 2.0 * std::f64::consts::PI * u2;
-        (self.tangent * (sin_t * phi.cos())
-            + self.bitangent * (sin_t * phi.sin())
-            + self.axis * cos_t)
-            .normalize()
+        (self.tangent * (sin_t * phi.cos()) + self.bitangent * (sin_t * phi.sin()) + self.axis * cos_t).normalize()
     }
 }
 
@@ -126,15 +115,11 @@ pub fn bounding_sphere(points: &[glam::Vec3]) -> (DVec3, f64) {
     if points.is_empty() {
         return (DVec3::ZERO, 0.0);
     }
-    let (lo, hi) = points.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(p.as_dvec3()), hi.max(p.as_dvec3())),
-    );
+    let (lo, hi) = points.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
+        (lo.min(p.as_dvec3()), hi.max(p.as_dvec3()))
+    });
     let c = 0.5 * (lo + hi);
-    let r = points
-        .iter()
-        .map(|p| (p.as_dvec3() - c).length())
-        .fold(0.0, f64::max);
+    let r = points.iter().map(|p| (p.as_dvec3() - c).length()).fold(0.0, f64::max);
     (c, r)
 }
 

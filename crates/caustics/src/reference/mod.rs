@@ -76,13 +76,7 @@ pub struct ReferenceOptions {
 
 impl Default for ReferenceOptions {
     fn default() -> Self {
-        Self {
-            photons: 1 << 22,
-            seed: 1,
-            fresnel: false,
-            max_bounces: 8,
-            threads: 0,
-        }
+        Self { photons: 1 << 22, seed: 1, fresnel: false, max_bounces: 8, threads: 0 }
     }
 }
 
@@ -160,12 +154,10 @@ fn add3(a: &mut [f64; 3], b: &[f64; 3]) {
 /// [`InputError`] when the scene has no `[receiver_map]`.
 pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result<ReferenceResult> {
     let spec = scene.receiver_map.as_ref().ok_or_else(|| {
-        InputError::new(format!(
-            "{}: the exact photon reference needs a [receiver_map] section",
-            scene.path.display()
-        ))
+        InputError::new(format!("{}: the exact photon reference needs a [receiver_map] section", scene.path.display()))
     })?;
-    if spec.resolution == 0 || !(spec.x_range[1] > spec.x_range[0]) || !(spec.z_range[1] > spec.z_range[0]) {
+    let increasing = |r: [f32; 2]| r[1] > r[0];
+    if spec.resolution == 0 || !increasing(spec.x_range) || !increasing(spec.z_range) {
         return Err(InputError::new(format!(
             "{}: [receiver_map] needs resolution > 0 and increasing x_range/z_range",
             scene.path.display()
@@ -177,11 +169,7 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
     for (oi, obj) in scene.objects.iter().enumerate() {
         for (pi, [a, b, c]) in obj.mesh.triangles().enumerate() {
             let p = &obj.mesh.positions;
-            tris.push(Triangle {
-                v: [p[a], p[b], p[c]],
-                object: oi as u32,
-                prim: pi as u32,
-            });
+            tris.push(Triangle { v: [p[a], p[b], p[c]], object: oi as u32, prim: pi as u32 });
         }
     }
     let bvh = Bvh::build(tris);
@@ -228,23 +216,15 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
             with_m.push((*oi, *cone, m, m as f64 / cone.solid_angle()));
             let chunks = m.div_ceil(CHUNK);
             for chunk in 0..chunks {
-                tasks.push(Task {
-                    light: li,
-                    object: *oi,
-                    chunk,
-                    count: (m - chunk * CHUNK).min(CHUNK),
-                });
+                tasks.push(Task { light: li, object: *oi, chunk, count: (m - chunk * CHUNK).min(CHUNK) });
             }
         }
         lights.push(LightCones { cones: with_m });
     }
 
-    let threads = if opts.threads == 0 {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    } else {
-        opts.threads
-    }
-    .clamp(1, tasks.len().max(1));
+    let threads =
+        if opts.threads == 0 { std::thread::available_parallelism().map_or(1, |n| n.get()) } else { opts.threads }
+            .clamp(1, tasks.len().max(1));
 
     let merger = Mutex::new(Merger {
         next: 0,
@@ -319,11 +299,7 @@ fn run_task(
     for _ in 0..task.count {
         tot.photons += 1;
         let dir = cone.sample(&mut rng);
-        let density: f64 = cones
-            .iter()
-            .filter(|c| c.1.contains(dir) || c.0 == task.object)
-            .map(|c| c.3)
-            .sum();
+        let density: f64 = cones.iter().filter(|c| c.1.contains(dir) || c.0 == task.object).map(|c| c.3).sum();
         let w = emission_factor(light, dir) / density;
         if w == 0.0 {
             continue;

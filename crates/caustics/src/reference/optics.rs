@@ -88,7 +88,7 @@ mod tests {
     #[test]
     fn tir_threshold_at_critical_angle() {
         let (n1, n2) = (1.5, 1.0);
-        let crit = (n2 / n1 as f64).asin();
+        let crit = f64::asin(n2 / n1);
         assert!((critical_angle(n1, n2).unwrap() - crit).abs() < 1e-15);
         assert!(critical_angle(1.0, 1.5).is_none());
         assert!(refract(dir_at(crit - 1e-6), DVec3::Y, n1 / n2).is_some());
@@ -96,7 +96,7 @@ mod tests {
         assert_eq!(fresnel_dielectric((crit + 1e-6).cos(), n1, n2), 1.0);
         assert!(fresnel_dielectric((crit - 1e-3).cos(), n1, n2) < 1.0);
         // Entering a denser medium never reflects totally.
-        assert!(refract(dir_at(1.5707), DVec3::Y, n2 / n1).is_some());
+        assert!(refract(dir_at(1.57), DVec3::Y, n2 / n1).is_some());
     }
 
     #[test]

@@ -1,6 +1,9 @@
 //! The receiver rectangle: texel binning, direct irradiance (with shadows) and the output
 //! image.
 
+// NaN-rejecting comparisons are written as negated comparisons on purpose.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 use crate::bvh::Bvh;
 use crate::image_io::{ImageF32, Layer};
 use crate::scene::{Light, LightKind, ReceiverMapSpec};
@@ -53,7 +56,7 @@ impl Receiver {
         }
         let fx = (p.x - self.x[0]) / (self.x[1] - self.x[0]);
         let fz = (p.z - self.z[0]) / (self.z[1] - self.z[0]);
-        if !(fx >= 0.0 && fx < 1.0 && fz >= 0.0 && fz < 1.0) {
+        if !((0.0..1.0).contains(&fx) && (0.0..1.0).contains(&fz)) {
             return None;
         }
         let n = self.n;
@@ -69,11 +72,7 @@ impl Receiver {
 pub fn emission_factor(light: &Light, dir: DVec3) -> f64 {
     match &light.kind {
         LightKind::Point => 1.0,
-        LightKind::Spot {
-            direction,
-            cone_angle_deg,
-            ..
-        } => {
+        LightKind::Spot { direction, cone_angle_deg, .. } => {
             let cos_cone = (*cone_angle_deg as f64).to_radians().cos();
             if dir.dot(direction.as_dvec3().normalize()) >= cos_cone {
                 1.0

@@ -1,9 +1,9 @@
 //! The photon path: specular interactions (exact Snell / Fresnel / mirror) until the first
 //! diffuse surface, where the photon is binned if it lies on the receiver rectangle.
 
+use super::emit::Pcg32;
 use super::optics::{fresnel_dielectric, reflect, refract};
 use super::receiver::Receiver;
-use super::emit::Pcg32;
 use crate::bvh::{Bvh, Hit};
 use crate::scene::{MaterialKind, Scene};
 use glam::DVec3;
@@ -21,10 +21,9 @@ impl Surface {
         let a = |v: glam::Vec3| [v.x as f64, v.y as f64, v.z as f64];
         match kind {
             MaterialKind::Diffuse { .. } => Surface::Diffuse,
-            MaterialKind::Refractive { ior, transmission } => Surface::Refractive {
-                ior: a(*ior),
-                transmission: a(*transmission),
-            },
+            MaterialKind::Refractive { ior, transmission } => {
+                Surface::Refractive { ior: a(*ior), transmission: a(*transmission) }
+            }
             MaterialKind::Reflective { specular } => Surface::Reflective { specular: a(*specular) },
         }
     }
@@ -82,26 +81,13 @@ impl<'a> Tracer<'a> {
                 (b - a).cross(c - a).normalize_or_zero()
             })
             .collect();
-        let surfaces = scene
-            .objects
-            .iter()
-            .map(|o| Surface::of(&scene.material_of(o).kind))
-            .collect();
-        Tracer {
-            bvh,
-            normals,
-            surfaces,
-            receiver,
-            fresnel,
-            max_bounces,
-            eps,
-        }
+        let surfaces = scene.objects.iter().map(|o| Surface::of(&scene.material_of(o).kind)).collect();
+        Tracer { bvh, normals, surfaces, receiver, fresnel, max_bounces, eps }
     }
 
     #[inline]
     fn intersect(&self, o: DVec3, d: DVec3) -> Option<Hit> {
-        self.bvh
-            .intersect(o.as_vec3(), d.as_vec3(), self.eps, f32::INFINITY)
+        self.bvh.intersect(o.as_vec3(), d.as_vec3(), self.eps, f32::INFINITY)
     }
 
     /// First hit on a diffuse surface, passing through specular ones.
@@ -138,8 +124,7 @@ impl<'a> Tracer<'a> {
             let found = if straight {
                 self.intersect_diffuse(origin, dir)
             } else {
-                self.intersect(origin, dir)
-                    .map(|h| (h, origin + dir * h.t as f64))
+                self.intersect(origin, dir).map(|h| (h, origin + dir * h.t as f64))
             };
             let Some((hit, p)) = found else {
                 return if interactions == 0 { Fate::NotCaustic } else { Fate::Lost };

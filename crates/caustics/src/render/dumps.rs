@@ -103,7 +103,7 @@ pub fn dump(ctx: &Context, t: &EyeTargets, ct: &CausticTargets, photons: Option<
                 &p.position,
                 vec![
                     layer(ctx, &p.position, 0, Some("position"), &["X", "Y", "Z", "valid"], &[0, 1, 2, 3])?,
-                    layer(ctx, &p.direction, 0, Some("direction"), &["X", "Y", "Z"], &[0, 1, 2])?,
+                    layer(ctx, &p.direction, 0, Some("direction"), &["X", "Y", "Z", "W"], &[0, 1, 2, 3])?,
                     layer(ctx, &p.power, 0, Some("power"), &["R", "G", "B"], &[0, 1, 2])?,
                 ],
             )

@@ -129,6 +129,7 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         caustic_map_resolution: c.caustic_map_resolution.unwrap_or(d.caustic_map_resolution),
         iterations: c.iterations.unwrap_or(d.iterations),
         fresnel: c.fresnel.unwrap_or(d.fresnel),
+        back_face_iterations: c.back_face_iterations.unwrap_or(d.back_face_iterations),
         intersect: c.intersect.clone().or(d.intersect),
     };
     caustics.validate(&ctx.file.display().to_string(), "caustics.")?;

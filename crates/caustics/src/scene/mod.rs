@@ -59,6 +59,9 @@ pub struct CausticSettings {
     pub iterations: u32,
     /// Fresnel transmittance at both interfaces; default true.
     pub fresnel: bool,
+    /// Refinements of the photon's exit point against the light-space back faces, 0..=16;
+    /// 0 is Wyman 2005's estimate alone (the papers), default 4 (see photons/trace.glsl).
+    pub back_face_iterations: u32,
     /// One of [`INTERSECTS`]; None = the technique's own (see [`CausticSettings::intersect`]).
     pub intersect: Option<String>,
 }
@@ -73,6 +76,7 @@ impl Default for CausticSettings {
             caustic_map_resolution: 1024,
             iterations: 4,
             fresnel: true,
+            back_face_iterations: 4,
             intersect: None,
         }
     }
@@ -111,6 +115,9 @@ impl CausticSettings {
         }
         if !(16..=8192).contains(&self.caustic_map_resolution) {
             bad("caustic_map_resolution", format!("must be between 16 and 8192, got {}", self.caustic_map_resolution))?;
+        }
+        if self.back_face_iterations > 16 {
+            bad("back_face_iterations", format!("must be between 0 and 16, got {}", self.back_face_iterations))?;
         }
         if !(1..=64).contains(&self.iterations) {
             bad("iterations", format!("must be between 1 and 64, got {}", self.iterations))?;

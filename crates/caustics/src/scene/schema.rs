@@ -35,6 +35,7 @@ pub struct CausticsDef {
     pub caustic_map_resolution: Option<u32>,
     pub iterations: Option<u32>,
     pub fresnel: Option<bool>,
+    pub back_face_iterations: Option<u32>,
     pub intersect: Option<String>,
 }
 

@@ -1,0 +1,68 @@
+//! `causticlab reference`: the exact CPU photon tracer's receiver map, written atomically with a
+//! JSON record of the fluxes it measured.
+
+use crate::cli::ReferenceArgs;
+use anyhow::{Context as _, Result};
+use caustics::image_io::{self, OutputDir};
+use caustics::reference::{trace_reference, ReferenceOptions};
+use caustics::scene::Scene;
+use serde::Serialize;
+
+#[derive(Serialize)]
+struct Record {
+    scene: String,
+    photons_per_light: u64,
+    seed: u64,
+    fresnel: bool,
+    max_bounces: u32,
+    seconds: f64,
+    photons_traced: u64,
+    emitted_flux_w: [f64; 3],
+    caustic_flux_w: [f64; 3],
+    lost_tir_w: [f64; 3],
+    lost_other_w: [f64; 3],
+}
+
+pub fn run(args: &ReferenceArgs) -> Result<()> {
+    let scene = Scene::load(&args.scene)?;
+    let opts = ReferenceOptions {
+        photons: args.photons,
+        seed: args.seed,
+        fresnel: args.fresnel.unwrap_or(scene.caustics.fresnel),
+        max_bounces: args.max_bounces,
+        threads: args.threads,
+    };
+    let out = OutputDir::create(&args.out)?;
+    let start = std::time::Instant::now();
+    let r = trace_reference(&scene, &opts).with_context(|| format!("tracing the reference of {}", args.scene.display()))?;
+    let seconds = start.elapsed().as_secs_f64();
+    image_io::write_exr(&out.path("receiver.exr"), &r.image)?;
+    let record = Record {
+        scene: args.scene.display().to_string(),
+        photons_per_light: opts.photons,
+        seed: opts.seed,
+        fresnel: opts.fresnel,
+        max_bounces: opts.max_bounces,
+        seconds,
+        photons_traced: r.photons_traced,
+        emitted_flux_w: r.emitted_flux,
+        caustic_flux_w: r.caustic_flux,
+        lost_tir_w: r.lost_tir,
+        lost_other_w: r.lost_other,
+    };
+    let json = serde_json::to_string_pretty(&record).context("serialising reference.json")?;
+    image_io::write_file_atomically(&out.path("reference.json"), json.as_bytes())?;
+    let dir = out.final_dir().to_path_buf();
+    out.commit()?;
+    println!(
+        "{}: {} photons in {seconds:.1} s ({:.2} M photons/s), caustic flux {:.4} W of {:.4} W emitted (TIR lost {:.4} W)",
+        args.scene.display(),
+        r.photons_traced,
+        r.photons_traced as f64 / seconds / 1e6,
+        r.caustic_flux[1],
+        r.emitted_flux[1],
+        r.lost_tir[1]
+    );
+    println!("wrote {}", dir.join("receiver.exr").display());
+    Ok(())
+}
