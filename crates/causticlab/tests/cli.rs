@@ -1,58 +1,12 @@
 //! The `causticlab` binary end to end: exit codes and messages for bad input (with no partial
 //! output left behind), `devices`, and renders checked against analytic irradiance and shadows.
 
-use caustics::image_io::{read_exr, ImageF32};
-use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::sync::atomic::{AtomicU32, Ordering};
+mod common;
+
+use caustics::image_io::read_exr;
+use common::*;
+use std::path::PathBuf;
 use std::sync::OnceLock;
-
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-impl Run {
-    fn describe(&self) -> String {
-        format!("exit code {:?}\n--- stdout ---\n{}\n--- stderr ---\n{}", self.code, self.stdout, self.stderr)
-    }
-}
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn scene(stem: &str) -> String {
-    workspace().join("scenes").join(format!("{stem}.toml")).display().to_string()
-}
-
-fn causticlab<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_causticlab"))
-        .args(args)
-        .current_dir(workspace())
-        .env_remove("VK_LOADER_DEBUG")
-        .output()
-        .expect("running the causticlab binary");
-    Run {
-        code: out.status.code(),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
-}
-
-/// A fresh, empty directory under the system temp dir, unique to this process and call.
-fn scratch(name: &str) -> PathBuf {
-    static N: AtomicU32 = AtomicU32::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "causticlab-cli-{name}-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("creating a scratch directory");
-    dir
-}
 
 /// Runs `args` + `--out <out>`, expects exit code 2 with every needle in stderr, and that
 /// neither `out` nor a staging directory beside it exists afterwards.
@@ -315,29 +269,6 @@ fn near_shadow_boundary(i: u32, j: u32, light: V3) -> bool {
         }
     }
     false
-}
-
-/// (layer, channel) of `want`, matched as the full `layer.channel` name first, then by channel.
-fn find_channel(img: &ImageF32, want: &str) -> Option<(usize, usize)> {
-    let full = |l: usize, c: &str| match &img.layers[l].name {
-        Some(n) => format!("{n}.{c}"),
-        None => c.to_string(),
-    };
-    for (li, layer) in img.layers.iter().enumerate() {
-        if let Some(ci) = layer.channels.iter().position(|c| full(li, c) == want) {
-            return Some((li, ci));
-        }
-    }
-    for (li, layer) in img.layers.iter().enumerate() {
-        if let Some(ci) = layer.channels.iter().position(|c| c == want) {
-            return Some((li, ci));
-        }
-    }
-    None
-}
-
-fn value(img: &ImageF32, ch: (usize, usize), i: u32, j: u32) -> f64 {
-    img.layers[ch.0].sample(img.width, i, j, ch.1) as f64
 }
 
 /// Checks receiver.exr of `stem` lit by a point light of 100 W/sr at `light`; returns the

@@ -1,0 +1,143 @@
+//! The caustic techniques end to end (GPU on lavapipe, validation on): power conservation,
+//! symmetry under an overhead light, coloured and reflective caustics, and error against the
+//! exact CPU photon reference with regression thresholds.
+
+mod common;
+
+use caustics::image_io::{read_exr, ImageF32};
+use common::*;
+use std::path::{Path, PathBuf};
+
+const I: f64 = 100.0; // W/sr, the sphere scenes' light
+
+/// Renders `scene` with `args` (validation on), dumping `dumps`; fails on any validation message.
+fn render(name: &str, scene: &str, args: &[&str], dumps: &str) -> PathBuf {
+    let out = scratch(name).join("out");
+    let mut full: Vec<String> = vec!["--validate".into(), "render".into(), "--scene".into(), scene.into()];
+    full.extend(args.iter().map(|s| s.to_string()));
+    full.extend(["--dump".into(), dumps.into(), "--out".into(), out.display().to_string()]);
+    let run = causticlab(&full);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    assert!(!run.stderr.contains("[validation"), "validation messages:\n{}", run.describe());
+    out
+}
+
+fn exr(dir: &Path, file: &str) -> ImageF32 {
+    read_exr(&dir.join(file)).unwrap_or_else(|e| panic!("reading {file}: {e:#}"))
+}
+
+/// Every value of channel `name` (`layer.channel` or `channel`).
+fn channel(img: &ImageF32, name: &str) -> Vec<f64> {
+    let ch = find_channel(img, name).unwrap_or_else(|| panic!("no channel {name}"));
+    (0..img.height).flat_map(|j| (0..img.width).map(move |i| (i, j))).map(|(i, j)| value(img, ch, i, j)).collect()
+}
+
+/// Solid angle of a sphere of radius r at distance d.
+fn sphere_solid_angle(r: f64, d: f64) -> f64 {
+    2.0 * std::f64::consts::PI * (1.0 - (1.0 - (r / d).powi(2)).sqrt())
+}
+
+#[test]
+fn photon_power_is_the_lights_intensity_times_the_spheres_solid_angle_and_splats_conserve_it() {
+    for technique in ["shah", "wd-points"] {
+        let out = render(
+            &format!("power-{technique}"),
+            &scene("sphere_on_plane"),
+            &["--technique", technique, "--photons", "256", "--fresnel", "false"],
+            "photon_buffer,caustic_map,receiver",
+        );
+        let photons = exr(&out, "photon_buffer.exr");
+        let power = channel(&photons, "power.G");
+        let landed = channel(&photons, "position.valid");
+        let lost_code = channel(&photons, "direction.W");
+        // Every texel covering the sphere is a photon: landed or lost, its power is I * its
+        // solid angle, so they add up to I * Omega_sphere (light at 6 m, centre at 1 m, r 0.5).
+        let emitted: f64 = power.iter().sum();
+        let want = I * sphere_solid_angle(0.5, 5.0);
+        assert!((emitted / want - 1.0).abs() < 0.02, "{technique}: emitted {emitted} W, I*Omega = {want} W");
+        let landed_power: f64 = power.iter().zip(&landed).filter(|(_, v)| **v > 0.5).map(|(p, _)| p).sum();
+        let lost_tir: f64 = power.iter().zip(&lost_code).filter(|(_, c)| **c == 1.0).map(|(p, _)| p).sum();
+        let lost_other: f64 = power.iter().zip(&lost_code).filter(|(_, c)| **c == 2.0).map(|(p, _)| p).sum();
+        // Rays leaving the sphere near grazing can land outside the caustic map's frustum (which
+        // covers the receiver map); the reference puts 0.15% of the flux beyond |x|,|z| = 3 m.
+        assert!(lost_other < 5e-3 * want, "{technique}: {lost_other} W found no receiver");
+        assert!(lost_tir < 0.05 * want, "{technique}: {lost_tir} W lost to TIR");
+        // The splat conserves power: the caustic map holds exactly what landed.
+        let map: f64 = channel(&exr(&out, "caustic_map.exr"), "light0.G").iter().sum();
+        assert!((map / landed_power - 1.0).abs() < 1e-3, "{technique}: caustic map {map} W, landed {landed_power} W");
+        // Every photon is accounted for: landed + lost to TIR + found no receiver = emitted.
+        assert!(((landed_power + lost_tir + lost_other) / emitted - 1.0).abs() < 1e-3, "{technique}: photons unaccounted for");
+        // The caustic flux on the floor equals I * Omega minus what TIR removed (within 2%).
+        assert!((map / (want - lost_tir) - 1.0).abs() < 0.02, "{technique}: floor flux {map} W, I*Omega - TIR {}", want - lost_tir);
+        // Looking the caustic map up from the receiver grid (point samples of a peaked caustic)
+        // integrates back to the same flux within 3%.
+        let receiver = exr(&out, "receiver.exr");
+        let texel_area = (4.0 / receiver.width as f64).powi(2);
+        let flux: f64 = channel(&receiver, "caustic.G").iter().sum::<f64>() * texel_area;
+        assert!((flux / map - 1.0).abs() < 0.03, "{technique}: receiver flux {flux} W, caustic map {map} W");
+    }
+}
+
+#[test]
+fn overhead_light_gives_a_symmetric_caustic() {
+    let out = render("symmetric", &scene("sphere_on_plane"), &["--technique", "shah", "--photons", "512"], "receiver");
+    let r = exr(&out, "receiver.exr");
+    let n = r.width as usize;
+    let c = channel(&r, "caustic.G");
+    let at = |i: usize, j: usize| c[j * n + i];
+    let total: f64 = c.iter().sum();
+    assert!(total > 0.0, "no caustic at all");
+    // Mirror images about x = 0 and z = 0 (the light is straight above the sphere's centre).
+    let (mut dx, mut dz) = (0.0, 0.0);
+    for j in 0..n {
+        for i in 0..n {
+            dx += (at(i, j) - at(n - 1 - i, j)).abs();
+            dz += (at(i, j) - at(i, n - 1 - j)).abs();
+        }
+    }
+    assert!(dx / total < 0.10, "caustic not symmetric in x: {}", dx / total);
+    assert!(dz / total < 0.10, "caustic not symmetric in z: {}", dz / total);
+    // The peak sits under the sphere's centre.
+    let peak = (0..n * n).max_by(|a, b| c[*a].total_cmp(&c[*b])).unwrap();
+    let (pi, pj) = ((peak % n) as f64 + 0.5, (peak / n) as f64 + 0.5);
+    assert!((pi - n as f64 / 2.0).abs() < 3.0 && (pj - n as f64 / 2.0).abs() < 3.0, "peak at ({pi}, {pj})");
+}
+
+#[test]
+fn coloured_glass_gives_a_coloured_caustic() {
+    let dir = scratch("coloured");
+    let text = std::fs::read_to_string(scene("sphere_on_plane")).unwrap();
+    let text = text.replace("transmission = [1.0, 1.0, 1.0]", "transmission = [1.0, 0.5, 0.25]");
+    assert!(text.contains("[1.0, 0.5, 0.25]"), "the scene's transmission line changed");
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    let out = render("coloured-out", &path.display().to_string(), &["--technique", "shah", "--photons", "256"], "receiver");
+    let r = exr(&out, "receiver.exr");
+    let sum = |c: &str| channel(&r, c).iter().sum::<f64>();
+    let (red, green, blue) = (sum("caustic.R"), sum("caustic.G"), sum("caustic.B"));
+    assert!(red > 0.0);
+    assert!((green / red - 0.5).abs() < 0.01 && (blue / red - 0.25).abs() < 0.01, "R {red} G {green} B {blue}");
+}
+
+#[test]
+fn metal_ring_gives_a_reflective_caustic() {
+    let out = render("ring", &scene("ring"), &["--technique", "shah", "--photons", "256"], "receiver,photon_buffer");
+    let photons = exr(&out, "photon_buffer.exr");
+    assert!(channel(&photons, "position.valid").iter().sum::<f64>() > 1000.0, "few reflected photons landed");
+    let r = exr(&out, "receiver.exr");
+    let flux: f64 = channel(&r, "caustic.G").iter().sum();
+    assert!(flux > 0.0, "no reflected light on the floor");
+}
+
+#[test]
+fn vertex_photons_follow_the_tessellation() {
+    let out = render("vertex", &scene("sphere_on_plane"), &["--technique", "shah-vertex"], "photon_buffer,receiver");
+    let photons = exr(&out, "photon_buffer.exr");
+    let landed = channel(&photons, "position.valid").iter().filter(|v| **v > 0.5).count();
+    // Subdivision 5 icosphere: 10 * 4^5 + 2 = 10242 vertices; about the half facing the light
+    // (a cap of 1 - sin(asin(0.1)) ... ) carries photons.
+    assert!(landed > 3000 && landed < 10242 / 2 + 200, "{landed} vertex photons landed");
+    let flux: f64 = channel(&exr(&out, "receiver.exr"), "caustic.G").iter().sum::<f64>() * (4.0f64 / 256.0).powi(2);
+    let want = I * sphere_solid_angle(0.5, 5.0);
+    assert!(flux > 0.5 * want && flux < 1.2 * want, "vertex photons carried {flux} W of {want} W");
+}
