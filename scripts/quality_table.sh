@@ -3,6 +3,8 @@
 # reference, at 256^2..2048^2 photons, with the reference's own noise (two seeds).
 #   bash scripts/quality_table.sh [scene ...]      (default: sphere_on_plane sphere_oblique)
 # Needs a release build (cargo build --release) and python3 for the table layout.
+# REF_PHOTONS (default 16M), WORK (default out/quality) and RESULTS (default results/quality)
+# override the reference size and where the renders and the tables go.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=target/release/causticlab
@@ -10,7 +12,8 @@ ref_photons=${REF_PHOTONS:-16000000}
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(sphere_on_plane sphere_oblique)
 work=${WORK:-out/quality}
-mkdir -p "$work" results/quality
+results=${RESULTS:-results/quality}
+mkdir -p "$work" "$results"
 for s in "${scenes[@]}"; do
   scene=scenes/$s.toml
   rows=$work/$s.rows
@@ -29,7 +32,7 @@ for s in "${scenes[@]}"; do
     done
   done
   device=$($bin devices | sed -n 's/^\[\([0-9]*\)\] \(.*\) \[default\].*/\2/p' | head -1)
-  python3 - "$s" "$rows" "$ref_photons" "$device" "$(git rev-parse --short HEAD)" > "results/quality/$s.md" <<'PY'
+  python3 - "$s" "$rows" "$ref_photons" "$device" "$(git rev-parse --short HEAD)" > "$results/$s.md" <<'PY'
 import json, sys, datetime
 scene, rows, ref_photons, device, commit = sys.argv[1:6]
 print(f"# Caustic quality: `{scene}` against the exact CPU photon reference\n")
@@ -50,5 +53,5 @@ for line in open(rows):
     print(f"| {label} | {count} | {c['region_texels']} | {c['rel_rmse']:.4f} | {c['rel_rmse_scaled']:.4f} | "
           f"{c['best_scale']:.4f} | {c['peak_ratio']:.4f} | {c['peak_offset_texels']:.2f} | {c['caustic_flux_ratio']:.4f} |")
 PY
-  echo "wrote results/quality/$s.md"
+  echo "wrote $results/$s.md"
 done

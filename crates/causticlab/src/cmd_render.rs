@@ -7,7 +7,7 @@ use bench::Timings;
 use anyhow::{Context as _, Result};
 use caustics::image_io::{self, ImageF32, OutputDir};
 use caustics::input_error;
-use caustics::render::{self, RenderRequest, DUMP_NAMES, TECHNIQUES};
+use caustics::render::{self, RenderRequest, CAUSTIC_DUMPS, DUMP_NAMES, TECHNIQUES};
 use caustics::scene::Scene;
 use std::sync::Arc;
 use vkcore::{Context, DeviceInfo, ShaderCompiler, ValidationLog};
@@ -19,11 +19,19 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             return Err(input_error!("--technique: unknown technique `{t}`; valid techniques: {}", TECHNIQUES.join(", ")).into());
         }
     }
-    let dumps = parse_dumps(args.dump.as_deref())?;
+    let mut dumps = parse_dumps(args.dump.as_deref())?;
     // The loader's messages already name the file and the key.
     let mut scene = Scene::load(&args.scene)?;
     args.caustics.apply(&mut scene.caustics)?;
     let technique = scene.caustics.technique.clone();
+    if technique == "none" {
+        // `all` means every buffer this render has; naming a caustic buffer without a caustic
+        // technique is a mistake worth saying.
+        if let Some(n) = dumps.iter().find(|d| CAUSTIC_DUMPS.contains(&d.as_str()) && !dump_all(args.dump.as_deref())) {
+            return Err(input_error!("--dump: `{n}` is a buffer of the caustic techniques; add --technique shah|shah-vertex|wd-points").into());
+        }
+        dumps.retain(|d| !CAUSTIC_DUMPS.contains(&d.as_str()));
+    }
     let required = render::required_features(&technique).unwrap_or(&[]);
 
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
@@ -79,6 +87,10 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
 }
 
 /// `all` or a comma-separated list of `DUMP_NAMES`, without duplicates, in the order given.
+fn dump_all(arg: Option<&str>) -> bool {
+    arg.unwrap_or("").split(',').any(|s| s.trim() == "all")
+}
+
 fn parse_dumps(arg: Option<&str>) -> Result<Vec<String>> {
     let mut dumps: Vec<String> = vec![];
     for name in arg.unwrap_or("").split(',').map(str::trim).filter(|s| !s.is_empty()) {

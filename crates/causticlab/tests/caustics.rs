@@ -186,3 +186,26 @@ fn caustics_match_the_exact_reference_within_regression_thresholds() {
         assert!(f("peak_offset_texels") <= 3.0, "{technique}: {c}");
     }
 }
+
+#[test]
+fn every_intermediate_buffer_is_dumped_with_named_channels() {
+    let out = render("dumps", &scene("sphere_on_plane"), &["--technique", "wd-points", "--photons", "128"], "all");
+    for name in caustics::render::DUMP_NAMES {
+        assert!(out.join(format!("{name}.exr")).is_file(), "{name}.exr missing");
+    }
+    let expect = [
+        ("photon_buffer.exr", &["position.X", "position.valid", "direction.Z", "direction.W", "power.R"][..]),
+        ("caustic_map.exr", &["light0.R", "light0.photons"][..]),
+        ("receiver_positions.exr", &["light0.X", "light0.hit"][..]),
+        ("photon_back_faces.exr", &["NX", "distance"][..]),
+        ("receiver.exr", &["R", "E0", "caustic.G", "irradiance.B"][..]),
+        ("shadow_map.exr", &["light0_px.distance", "light0_nz.distance"][..]),
+    ];
+    for (file, channels) in expect {
+        let img = exr(&out, file);
+        for c in channels {
+            assert!(find_channel(&img, c).is_some(), "{file} has no channel {c}");
+        }
+    }
+    assert_eq!(exr(&out, "photon_buffer.exr").width, 128, "photon buffer is N x N");
+}

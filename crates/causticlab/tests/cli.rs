@@ -130,6 +130,18 @@ fn unknown_dump_name() {
 }
 
 #[test]
+fn caustic_dump_without_a_caustic_technique() {
+    expect_input_error(&["render", "--scene", &scene("sphere_on_plane"), "--dump", "photon_buffer"], &["photon_buffer", "--technique"]);
+}
+
+#[test]
+fn caustic_setting_out_of_range() {
+    expect_input_error(&["render", "--scene", &scene("sphere_on_plane"), "--technique", "shah", "--photons", "5000"], &["--photons", "4096"]);
+    let scene_file = edited_scene("iterations", "[receiver_map]", "[caustics]\niterations = 0\n\n[receiver_map]");
+    expect_input_error(&["render", "--scene", &scene_file.display().to_string()], &["caustics.iterations"]);
+}
+
+#[test]
 fn unknown_feature_name() {
     let s = scene("sphere_on_plane");
     expect_input_error(
@@ -201,7 +213,8 @@ fn rendered(stem: &'static str) -> &'static Rendered {
 fn render_writes_every_output() {
     let r = rendered("sphere_on_plane");
     let mut expected: Vec<String> = vec!["final.exr".into(), "final.png".into(), "timings.json".into()];
-    expected.extend(caustics::render::DUMP_NAMES.iter().map(|n| format!("{n}.exr")));
+    let eye_dumps = caustics::render::DUMP_NAMES.iter().filter(|n| !caustics::render::CAUSTIC_DUMPS.contains(n));
+    expected.extend(eye_dumps.map(|n| format!("{n}.exr")));
     for f in &expected {
         assert!(r.out.join(f).is_file(), "{} missing\n{}", f, r.run.describe());
     }

@@ -29,6 +29,9 @@ pub const DUMP_NAMES: &[&str] = &[
     "caustic_map",
 ];
 
+/// The buffers only a caustic technique has.
+pub const CAUSTIC_DUMPS: &[&str] = &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map"];
+
 /// Techniques `--technique` accepts.
 pub use crate::scene::TECHNIQUES;
 
