@@ -65,6 +65,10 @@ pub struct ReferenceArgs {
     /// Worker threads (0 = all cores).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
+    /// Scatter about the facets' geometric normals instead of the interpolated vertex normals
+    /// (the smooth surface the mesh stands for, as the renderer shades it).
+    #[arg(long)]
+    pub facet_normals: bool,
     /// Output directory (receiver.exr, reference.json).
     #[arg(long)]
     pub out: PathBuf,

@@ -15,6 +15,7 @@ struct Record {
     seed: u64,
     fresnel: bool,
     max_bounces: u32,
+    smooth_normals: bool,
     seconds: f64,
     photons_traced: u64,
     emitted_flux_w: [f64; 3],
@@ -31,6 +32,7 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
         fresnel: args.fresnel.unwrap_or(scene.caustics.fresnel),
         max_bounces: args.max_bounces,
         threads: args.threads,
+        smooth_normals: !args.facet_normals,
     };
     let out = OutputDir::create(&args.out)?;
     let start = std::time::Instant::now();
@@ -43,6 +45,7 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
         seed: opts.seed,
         fresnel: opts.fresnel,
         max_bounces: opts.max_bounces,
+        smooth_normals: opts.smooth_normals,
         seconds,
         photons_traced: r.photons_traced,
         emitted_flux_w: r.emitted_flux,

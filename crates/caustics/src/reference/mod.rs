@@ -72,11 +72,14 @@ pub struct ReferenceOptions {
     pub max_bounces: u32,
     /// Worker threads; 0 = `available_parallelism`.
     pub threads: usize,
+    /// Scatter about the interpolated vertex normals (the smooth surface a mesh stands for, as
+    /// the renderer shades it) rather than the facets' geometric normals.
+    pub smooth_normals: bool,
 }
 
 impl Default for ReferenceOptions {
     fn default() -> Self {
-        Self { photons: 1 << 22, seed: 1, fresnel: false, max_bounces: 8, threads: 0 }
+        Self { photons: 1 << 22, seed: 1, fresnel: false, max_bounces: 8, threads: 0, smooth_normals: true }
     }
 }
 
@@ -182,7 +185,7 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
     let rx = Receiver::new(spec, 1e-4 * diag.max(1e-6));
     let n = rx.n;
 
-    let tracer = Tracer::new(scene, &bvh, rx, opts.fresnel, opts.max_bounces, eps);
+    let tracer = Tracer::new(scene, &bvh, rx, opts.fresnel, opts.max_bounces, eps, opts.smooth_normals);
     let dispersive = tracer.surfaces.iter().any(|s| match s {
         Surface::Refractive { ior, .. } => ior[0] != ior[1] || ior[1] != ior[2],
         _ => false,

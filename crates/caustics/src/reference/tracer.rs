@@ -52,6 +52,10 @@ pub(crate) struct Tracer<'a> {
     pub bvh: &'a Bvh,
     /// Unit geometric normal of each BVH triangle (BVH order), from the winding.
     pub normals: Vec<DVec3>,
+    /// The mesh's vertex normals at each BVH triangle's corners, when photons refract and
+    /// reflect with the interpolated (shading) normal: the smooth surface the mesh stands for,
+    /// as the GPU techniques see it. None: the facets' geometric normals.
+    pub shading: Option<Vec<[DVec3; 3]>>,
     /// Per object index.
     pub surfaces: Vec<Surface>,
     pub receiver: Receiver,
@@ -72,6 +76,7 @@ impl<'a> Tracer<'a> {
         fresnel: bool,
         max_bounces: u32,
         eps: f32,
+        smooth: bool,
     ) -> Tracer<'a> {
         let normals = bvh
             .triangles()
@@ -82,7 +87,34 @@ impl<'a> Tracer<'a> {
             })
             .collect();
         let surfaces = scene.objects.iter().map(|o| Surface::of(&scene.material_of(o).kind)).collect();
-        Tracer { bvh, normals, surfaces, receiver, fresnel, max_bounces, eps }
+        let shading = smooth.then(|| {
+            bvh.triangles()
+                .iter()
+                .map(|t| {
+                    let m = &scene.objects[t.object as usize].mesh;
+                    let i = 3 * t.prim as usize;
+                    [0, 1, 2].map(|k| m.normals[m.indices[i + k] as usize].as_dvec3())
+                })
+                .collect()
+        });
+        Tracer { bvh, normals, shading, surfaces, receiver, fresnel, max_bounces, eps }
+    }
+
+    /// The normal photons scatter about at `hit`, on the same side as the geometric normal.
+    #[inline]
+    fn scatter_normal(&self, hit: &Hit) -> DVec3 {
+        let ng = self.normals[hit.triangle as usize];
+        let Some(shading) = &self.shading else { return ng };
+        let [n0, n1, n2] = shading[hit.triangle as usize];
+        let (u, v) = (hit.u as f64, hit.v as f64);
+        let n = (n0 * (1.0 - u - v) + n1 * u + n2 * v).normalize_or_zero();
+        if n == DVec3::ZERO {
+            ng
+        } else if n.dot(ng) < 0.0 {
+            -n
+        } else {
+            n
+        }
     }
 
     #[inline]
@@ -142,7 +174,7 @@ impl<'a> Tracer<'a> {
                 }
                 _ if interactions >= self.max_bounces => return Fate::Lost,
                 Surface::Reflective { specular } => {
-                    let n = self.normals[hit.triangle as usize];
+                    let n = self.scatter_normal(&hit);
                     dir = reflect(dir, n).normalize();
                     for c in 0..3 {
                         power[c] *= specular[c];
@@ -152,8 +184,8 @@ impl<'a> Tracer<'a> {
                     }
                 }
                 Surface::Refractive { ior, transmission } => {
-                    let ng = self.normals[hit.triangle as usize];
-                    let entering = dir.dot(ng) < 0.0;
+                    let ng = self.scatter_normal(&hit);
+                    let entering = dir.dot(self.normals[hit.triangle as usize]) < 0.0;
                     let n = if entering { ng } else { -ng };
                     let (n_i, n_t) = if entering { (1.0, ior[ch]) } else { (ior[ch], 1.0) };
                     let cos_i = -dir.dot(n);
