@@ -1,9 +1,9 @@
 //! `timings.json`: which device and code path produced the numbers, then per-pass median/min/max
 //! with every raw sample (and pipeline statistics where the device has them).
 
+use caustics::scene::CausticSettings;
 use serde::Serialize;
 use std::path::Path;
-use caustics::scene::CausticSettings;
 use vkcore::{DeviceInfo, FrameReport, PipelineStats, Profiler};
 
 #[derive(Debug, Serialize)]

@@ -36,7 +36,8 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
     };
     let out = OutputDir::create(&args.out)?;
     let start = std::time::Instant::now();
-    let r = trace_reference(&scene, &opts).with_context(|| format!("tracing the reference of {}", args.scene.display()))?;
+    let r =
+        trace_reference(&scene, &opts).with_context(|| format!("tracing the reference of {}", args.scene.display()))?;
     let seconds = start.elapsed().as_secs_f64();
     image_io::write_exr(&out.path("receiver.exr"), &r.image)?;
     let record = Record {

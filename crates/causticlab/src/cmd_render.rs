@@ -3,8 +3,8 @@
 //! becomes `--out` when everything succeeded.
 
 use crate::cli::{GlobalOpts, RenderArgs};
-use bench::Timings;
 use anyhow::{Context as _, Result};
+use bench::Timings;
 use caustics::image_io::{self, ImageF32, OutputDir};
 use caustics::input_error;
 use caustics::render::{self, RenderRequest, CAUSTIC_DUMPS, DUMP_NAMES, TECHNIQUES};
@@ -16,7 +16,11 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let opts = crate::context_options(g)?;
     if let Some(t) = &args.caustics.technique {
         if !TECHNIQUES.contains(&t.as_str()) {
-            return Err(input_error!("--technique: unknown technique `{t}`; valid techniques: {}", TECHNIQUES.join(", ")).into());
+            return Err(input_error!(
+                "--technique: unknown technique `{t}`; valid techniques: {}",
+                TECHNIQUES.join(", ")
+            )
+            .into());
         }
     }
     let mut dumps = parse_dumps(args.dump.as_deref())?;
@@ -28,7 +32,10 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         // `all` means every buffer this render has; naming a caustic buffer without a caustic
         // technique is a mistake worth saying.
         if let Some(n) = dumps.iter().find(|d| CAUSTIC_DUMPS.contains(&d.as_str()) && !dump_all(args.dump.as_deref())) {
-            return Err(input_error!("--dump: `{n}` is a buffer of the caustic techniques; add --technique shah|shah-vertex|wd-points").into());
+            return Err(input_error!(
+                "--dump: `{n}` is a buffer of the caustic techniques; add --technique shah|shah-vertex|wd-points"
+            )
+            .into());
         }
         dumps.retain(|d| !CAUSTIC_DUMPS.contains(&d.as_str()));
     }
@@ -57,7 +64,14 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         image_io::write_exr(&out.path(&file), image)?;
         written.push(file);
     }
-    let timings = Timings::new(ctx.info(), &scene.caustics, rendered.photons_emitted, &args.scene, ctx.validation_enabled(), &rendered.frames);
+    let timings = Timings::new(
+        ctx.info(),
+        &scene.caustics,
+        rendered.photons_emitted,
+        &args.scene,
+        ctx.validation_enabled(),
+        &rendered.frames,
+    );
     let json = serde_json::to_string_pretty(&timings).context("serialising timings.json")?;
     image_io::write_file_atomically(&out.path("timings.json"), json.as_bytes())?;
     written.push("timings.json".to_string());

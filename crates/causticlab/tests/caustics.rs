@@ -66,9 +66,16 @@ fn photon_power_is_the_lights_intensity_times_the_spheres_solid_angle_and_splats
         let map: f64 = channel(&exr(&out, "caustic_map.exr"), "light0.G").iter().sum();
         assert!((map / landed_power - 1.0).abs() < 1e-3, "{technique}: caustic map {map} W, landed {landed_power} W");
         // Every photon is accounted for: landed + lost to TIR + found no receiver = emitted.
-        assert!(((landed_power + lost_tir + lost_other) / emitted - 1.0).abs() < 1e-3, "{technique}: photons unaccounted for");
+        assert!(
+            ((landed_power + lost_tir + lost_other) / emitted - 1.0).abs() < 1e-3,
+            "{technique}: photons unaccounted for"
+        );
         // The caustic flux on the floor equals I * Omega minus what TIR removed (within 2%).
-        assert!((map / (want - lost_tir) - 1.0).abs() < 0.02, "{technique}: floor flux {map} W, I*Omega - TIR {}", want - lost_tir);
+        assert!(
+            (map / (want - lost_tir) - 1.0).abs() < 0.02,
+            "{technique}: floor flux {map} W, I*Omega - TIR {}",
+            want - lost_tir
+        );
         // Looking the caustic map up from the receiver grid (point samples of a peaked caustic)
         // integrates back to the same flux within 3%.
         let receiver = exr(&out, "receiver.exr");
@@ -111,7 +118,8 @@ fn coloured_glass_gives_a_coloured_caustic() {
     assert!(text.contains("[1.0, 0.5, 0.25]"), "the scene's transmission line changed");
     let path = dir.join("scene.toml");
     std::fs::write(&path, text).unwrap();
-    let out = render("coloured-out", &path.display().to_string(), &["--technique", "shah", "--photons", "256"], "receiver");
+    let out =
+        render("coloured-out", &path.display().to_string(), &["--technique", "shah", "--photons", "256"], "receiver");
     let r = exr(&out, "receiver.exr");
     let sum = |c: &str| channel(&r, c).iter().sum::<f64>();
     let (red, green, blue) = (sum("caustic.R"), sum("caustic.G"), sum("caustic.B"));

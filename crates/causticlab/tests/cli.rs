@@ -131,12 +131,18 @@ fn unknown_dump_name() {
 
 #[test]
 fn caustic_dump_without_a_caustic_technique() {
-    expect_input_error(&["render", "--scene", &scene("sphere_on_plane"), "--dump", "photon_buffer"], &["photon_buffer", "--technique"]);
+    expect_input_error(
+        &["render", "--scene", &scene("sphere_on_plane"), "--dump", "photon_buffer"],
+        &["photon_buffer", "--technique"],
+    );
 }
 
 #[test]
 fn caustic_setting_out_of_range() {
-    expect_input_error(&["render", "--scene", &scene("sphere_on_plane"), "--technique", "shah", "--photons", "5000"], &["--photons", "4096"]);
+    expect_input_error(
+        &["render", "--scene", &scene("sphere_on_plane"), "--technique", "shah", "--photons", "5000"],
+        &["--photons", "4096"],
+    );
     let scene_file = edited_scene("iterations", "[receiver_map]", "[caustics]\niterations = 0\n\n[receiver_map]");
     expect_input_error(&["render", "--scene", &scene_file.display().to_string()], &["caustics.iterations"]);
 }

@@ -2,11 +2,11 @@
 
 pub mod bvh;
 pub mod caustic_map;
+pub mod compare;
 pub mod error;
 pub mod image_io;
+pub mod reference;
 pub mod render;
 pub mod scene;
-pub mod reference;
-pub mod compare;
 
 pub use error::InputError;

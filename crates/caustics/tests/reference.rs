@@ -339,7 +339,8 @@ fn throughput_sphere_on_plane() {
 fn smooth_normals_behave_like_the_sphere_the_mesh_stands_for() {
     let scene = with_receiver(sphere_scene(), 3.0, 32);
     let smooth = trace_reference(&scene, &opts(400_000, 3, false, 0)).unwrap();
-    let facets = trace_reference(&scene, &ReferenceOptions { smooth_normals: false, ..opts(400_000, 3, false, 0) }).unwrap();
+    let facets =
+        trace_reference(&scene, &ReferenceOptions { smooth_normals: false, ..opts(400_000, 3, false, 0) }).unwrap();
     let emitted = sum3(smooth.emitted_flux);
     assert!(sum3(smooth.lost_tir) < 1e-3 * emitted, "smooth: {} W of {emitted} W lost to TIR", sum3(smooth.lost_tir));
     assert!(sum3(facets.lost_tir) > 2.0 * sum3(smooth.lost_tir), "facets lose more to TIR than the smooth surface");

@@ -20,41 +20,19 @@ fn every_shipped_scene_loads() {
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     names.sort();
-    for required in [
-        "sphere_on_plane",
-        "sphere_oblique",
-        "bunny_in_room",
-        "two_lights",
-        "ring",
-        "octahedron",
-    ] {
-        assert!(
-            names.iter().any(|p| p.file_stem().unwrap() == required),
-            "scenes/{required}.toml missing"
-        );
+    for required in ["sphere_on_plane", "sphere_oblique", "bunny_in_room", "two_lights", "ring", "octahedron"] {
+        assert!(names.iter().any(|p| p.file_stem().unwrap() == required), "scenes/{required}.toml missing");
     }
     for path in names {
         let s = Scene::load(&path).unwrap_or_else(|e| panic!("{}: {e:#}", path.display()));
         assert!(!s.lights.is_empty() && !s.objects.is_empty());
-        assert!(
-            s.receiver_map.is_some(),
-            "{}: no receiver map",
-            path.display()
-        );
+        assert!(s.receiver_map.is_some(), "{}: no receiver map", path.display());
         for o in &s.objects {
             assert!(o.material < s.materials.len());
             assert_eq!(o.mesh.normals.len(), o.mesh.positions.len());
             assert!(o.mesh.positions.iter().all(|p| p.is_finite()));
-            assert!(o
-                .mesh
-                .normals
-                .iter()
-                .all(|n| (n.length() - 1.0).abs() < 1e-4));
-            assert!(o
-                .mesh
-                .indices
-                .iter()
-                .all(|&i| (i as usize) < o.mesh.positions.len()));
+            assert!(o.mesh.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
+            assert!(o.mesh.indices.iter().all(|&i| (i as usize) < o.mesh.positions.len()));
         }
     }
 }
@@ -62,16 +40,8 @@ fn every_shipped_scene_loads() {
 #[test]
 fn sphere_on_plane_matches_its_description() {
     let s = load("sphere_on_plane.toml");
-    let sphere = s
-        .objects
-        .iter()
-        .find(|o| o.name == "sphere")
-        .expect("sphere");
-    assert!(
-        sphere.mesh.triangle_count() >= 20_000,
-        "{}",
-        sphere.mesh.triangle_count()
-    );
+    let sphere = s.objects.iter().find(|o| o.name == "sphere").expect("sphere");
+    assert!(sphere.mesh.triangle_count() >= 20_000, "{}", sphere.mesh.triangle_count());
     for p in &sphere.mesh.positions {
         assert!(((*p - Vec3::new(0.0, 1.0, 0.0)).length() - 0.5).abs() < 1e-5);
     }
@@ -83,15 +53,9 @@ fn sphere_on_plane_matches_its_description() {
     assert_eq!(s.lights[0].kind, LightKind::Point);
     assert_eq!((s.camera.width, s.camera.height), (512, 512));
     let floor = s.objects.iter().find(|o| o.name == "floor").expect("floor");
-    assert_eq!(
-        floor.mesh.bounds(),
-        (Vec3::new(-20.0, 0.0, -20.0), Vec3::new(20.0, 0.0, 20.0))
-    );
+    assert_eq!(floor.mesh.bounds(), (Vec3::new(-20.0, 0.0, -20.0), Vec3::new(20.0, 0.0, 20.0)));
     let r = s.receiver_map.clone().unwrap();
-    assert_eq!(
-        (r.plane_y, r.x_range, r.z_range, r.resolution),
-        (0.0, [-2.0, 2.0], [-2.0, 2.0], 256)
-    );
+    assert_eq!((r.plane_y, r.x_range, r.z_range, r.resolution), (0.0, [-2.0, 2.0], [-2.0, 2.0], 256));
 
     let o = load("sphere_oblique.toml");
     assert_eq!(o.lights[0].position, Vec3::new(2.0, 5.0, 1.0));
@@ -109,24 +73,14 @@ fn bunny_stands_on_the_floor_inside_the_room() {
         assert!(((hi - lo).max_element() - 1.5).abs() < 1e-3);
         // Everything else (the room) encloses the bunny and the camera and lights.
         let (rlo, rhi) = s.bounds();
-        for p in [lo, hi, s.camera.eye]
-            .into_iter()
-            .chain(s.lights.iter().map(|l| l.position))
-        {
-            assert!(
-                p.cmpge(rlo).all() && p.cmple(rhi).all(),
-                "{p} outside {rlo}..{rhi}"
-            );
+        for p in [lo, hi, s.camera.eye].into_iter().chain(s.lights.iter().map(|l| l.position)) {
+            assert!(p.cmpge(rlo).all() && p.cmple(rhi).all(), "{p} outside {rlo}..{rhi}");
         }
         // Walls face into the room.
         let centre = 0.5 * (rlo + rhi);
         for o in s.objects.iter().filter(|o| o.name != "bunny") {
             let p = o.mesh.positions[0];
-            assert!(
-                (centre - p).dot(o.mesh.normals[0]) > 0.0,
-                "{} faces out",
-                o.name
-            );
+            assert!((centre - p).dot(o.mesh.normals[0]) > 0.0, "{} faces out", o.name);
         }
     }
     assert_eq!(load("two_lights.toml").lights.len(), 2);

@@ -76,4 +76,3 @@ pub fn find_channel(img: &ImageF32, want: &str) -> Option<(usize, usize)> {
 pub fn value(img: &ImageF32, ch: (usize, usize), i: u32, j: u32) -> f64 {
     img.layers[ch.0].sample(img.width, i, j, ch.1) as f64
 }
-

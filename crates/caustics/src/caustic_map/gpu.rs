@@ -36,24 +36,18 @@ const _: () = assert!(std::mem::size_of::<CausticUniforms>() == 32 + MAX_LIGHTS 
 
 /// Bounding sphere of every refractive or reflective object (None if there are none).
 pub fn specular_bounds(scene: &Scene) -> Option<(Vec3, f32)> {
-    let specular: Vec<_> = scene
-        .objects
-        .iter()
-        .filter(|o| !matches!(scene.material_of(o).kind, MaterialKind::Diffuse { .. }))
-        .collect();
+    let specular: Vec<_> =
+        scene.objects.iter().filter(|o| !matches!(scene.material_of(o).kind, MaterialKind::Diffuse { .. })).collect();
     if specular.is_empty() {
         return None;
     }
-    let (lo, hi) = specular.iter().map(|o| o.mesh.bounds()).fold(
-        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-        |(a, b), (l, h)| (a.min(l), b.max(h)),
-    );
-    let centre = 0.5 * (lo + hi);
-    let radius = specular
+    let (lo, hi) = specular
         .iter()
-        .flat_map(|o| o.mesh.positions.iter())
-        .map(|p| p.distance(centre))
-        .fold(0.0f32, f32::max);
+        .map(|o| o.mesh.bounds())
+        .fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(a, b), (l, h)| (a.min(l), b.max(h)));
+    let centre = 0.5 * (lo + hi);
+    let radius =
+        specular.iter().flat_map(|o| o.mesh.positions.iter()).map(|p| p.distance(centre)).fold(0.0f32, f32::max);
     Some((centre, radius.max(1e-4)))
 }
 
@@ -64,8 +58,10 @@ fn angle_to(light: Vec3, axis: Vec3, p: Vec3) -> f32 {
 
 /// Uniforms for `settings` on `scene`. With technique `none`, zero lights have caustics.
 pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<CausticUniforms> {
-    let mut u = CausticUniforms { settings: [0; 4], splat: [0.0; 4], lights: [CausticLightUniforms::zeroed(); MAX_LIGHTS] };
-    let flags = if settings.fresnel { FLAG_FRESNEL } else { 0 } | if settings.intersect() == "wd-depth-search" { FLAG_WD_DEPTH_SEARCH } else { 0 };
+    let mut u =
+        CausticUniforms { settings: [0; 4], splat: [0.0; 4], lights: [CausticLightUniforms::zeroed(); MAX_LIGHTS] };
+    let flags = if settings.fresnel { FLAG_FRESNEL } else { 0 }
+        | if settings.intersect() == "wd-depth-search" { FLAG_WD_DEPTH_SEARCH } else { 0 };
     u.settings = [0, settings.photons, settings.iterations, flags];
     u.splat = [
         settings.splat_radius,
@@ -98,7 +94,8 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
             Some(r) => {
                 for x in r.x_range {
                     for z in r.z_range {
-                        caustic_half = caustic_half.max(angle_to(light.position, axis, Vec3::new(x, r.plane_y, z)) * 1.05);
+                        caustic_half =
+                            caustic_half.max(angle_to(light.position, axis, Vec3::new(x, r.plane_y, z)) * 1.05);
                     }
                 }
             }
@@ -138,7 +135,7 @@ mod tests {
     #[test]
     fn texel_solid_angles_sum_to_the_frustum() {
         for (half_deg, n) in [(10.0f64, 64usize), (45.0, 128), (70.0, 256)] {
-            let t = (half_deg as f64).to_radians().tan();
+            let t = half_deg.to_radians().tan();
             let s = 2.0 * t / n as f64;
             let mut sum = 0.0;
             for j in 0..n {
@@ -156,8 +153,11 @@ mod tests {
 
     #[test]
     fn glsl_mirror_agrees() {
-        let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/caustics.glsl")).unwrap();
-        let names: Vec<&str> = ["photon_view_proj", "caustic_view_proj", "photon_plane", "caustic_plane", "axis", "position"].to_vec();
+        let src =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/caustics.glsl"))
+                .unwrap();
+        let names: Vec<&str> =
+            ["photon_view_proj", "caustic_view_proj", "photon_plane", "caustic_plane", "axis", "position"].to_vec();
         let body = &src[src.find("struct CausticLight {").unwrap()..];
         let body = &body[..body.find('}').unwrap()];
         let found: Vec<&str> = body

@@ -35,11 +35,23 @@ fn draw(cmd: &mut Cmd, m: &GpuMesh, light: u32, first_photon: u32) -> vkcore::Re
 }
 
 fn mesh_uses(meshes: &[GpuMesh]) -> Vec<Use<'_>> {
-    meshes.iter().flat_map(|m| [Use::buffer(&m.vertices, Access::VERTEX_INPUT), Use::buffer(&m.indices, Access::VERTEX_INPUT)]).collect()
+    meshes
+        .iter()
+        .flat_map(|m| [Use::buffer(&m.vertices, Access::VERTEX_INPUT), Use::buffer(&m.indices, Access::VERTEX_INPUT)])
+        .collect()
 }
 
-pub fn record_caustics(f: &mut Frame, p: &CausticPipelines, ct: &CausticTargets, pt: &PhotonTargets, inp: &CausticInputs, lights: u32) -> Result<()> {
-    let ubos = || [Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ), Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ)];
+pub fn record_caustics(
+    f: &mut Frame,
+    p: &CausticPipelines,
+    ct: &CausticTargets,
+    pt: &PhotonTargets,
+    inp: &CausticInputs,
+    lights: u32,
+) -> Result<()> {
+    let ubos = || {
+        [Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ), Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ)]
+    };
     let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
     for l in 0..lights {
         let (cmap, rpos, rdepth) = &ct.per_light[l as usize];
@@ -58,10 +70,15 @@ pub fn record_caustics(f: &mut Frame, p: &CausticPipelines, ct: &CausticTargets,
         })?;
 
         let mut uses = Vec::from(ubos());
-        uses.extend([Use::view(&pt.back_faces.view, Access::COLOR_ATTACHMENT), Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT)]);
+        uses.extend([
+            Use::view(&pt.back_faces.view, Access::COLOR_ATTACHMENT),
+            Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT),
+        ]);
         uses.extend(mesh_uses(inp.meshes));
         f.pass(&format!("photon_back_faces.light{l}"), &uses, |cmd| {
-            cmd.begin_rendering(&Targets::color(&pt.back_faces.view, Some([0.0; 4])).with_depth(&pt.depth.view, Some(1.0)))?;
+            cmd.begin_rendering(
+                &Targets::color(&pt.back_faces.view, Some([0.0; 4])).with_depth(&pt.depth.view, Some(1.0)),
+            )?;
             cmd.bind_pipeline(&p.back_faces);
             cmd.bind(&ubo_binds())?;
             for m in inp.meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE) {
@@ -81,7 +98,10 @@ pub fn record_caustics(f: &mut Frame, p: &CausticPipelines, ct: &CausticTargets,
             ])
         };
         let mut uses = Vec::from(ubos());
-        uses.extend([Use::view(&pt.back_faces.view, Access::SHADER_READ), Use::view(&ct.receiver_positions.view, Access::SHADER_READ)]);
+        uses.extend([
+            Use::view(&pt.back_faces.view, Access::SHADER_READ),
+            Use::view(&ct.receiver_positions.view, Access::SHADER_READ),
+        ]);
         uses.extend(mesh_uses(inp.meshes));
         let specular = || inp.meshes.iter().filter(|m| m.kind() != MATERIAL_DIFFUSE);
         if let Some(vp) = &p.vertex_photons {
@@ -139,7 +159,10 @@ pub fn record_caustics(f: &mut Frame, p: &CausticPipelines, ct: &CausticTargets,
         }
 
         let mut uses = Vec::from(ubos());
-        uses.extend([Use::view(&pt.position.view, Access::SHADER_READ), Use::view(&pt.power.view, Access::SHADER_READ)]);
+        uses.extend([
+            Use::view(&pt.position.view, Access::SHADER_READ),
+            Use::view(&pt.power.view, Access::SHADER_READ),
+        ]);
         uses.push(Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT));
         uses.push(Use::view(cmap, Access::COLOR_ATTACHMENT));
         f.pass(&format!("splat.light{l}"), &uses, |cmd| {
@@ -165,7 +188,10 @@ pub fn record_caustics(f: &mut Frame, p: &CausticPipelines, ct: &CausticTargets,
 
 /// With technique `none`: clears the (1x1) caustic map and receiver positions the eye passes bind.
 pub fn record_cleared(f: &mut Frame, ct: &CausticTargets) -> Result<()> {
-    let uses = [Use::view(&ct.caustic_map.view, Access::TRANSFER_WRITE), Use::view(&ct.receiver_positions.view, Access::TRANSFER_WRITE)];
+    let uses = [
+        Use::view(&ct.caustic_map.view, Access::TRANSFER_WRITE),
+        Use::view(&ct.receiver_positions.view, Access::TRANSFER_WRITE),
+    ];
     f.pass("caustics.clear", &uses, |cmd| {
         cmd.clear_color(&ct.caustic_map.view, [0.0; 4]);
         cmd.clear_color(&ct.receiver_positions.view, [0.0; 4]);

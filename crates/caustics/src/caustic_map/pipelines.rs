@@ -1,9 +1,12 @@
 //! Pipelines of the caustic techniques.
 
-use super::targets::{COLOR, DEPTH};
-use crate::render::pipelines::mesh_layout;
+use super::targets::COLOR;
+use crate::render::pipelines::{mesh_layout, mesh_pipeline, MeshPass};
 use anyhow::Result;
-use vkcore::{BindingKind as K, Blend, Context, Cull, Format, GraphicsDesc, Pipeline, ShaderCompiler, Topology, VertexAttribute, VertexLayout};
+use vkcore::{
+    BindingKind as K, Blend, Context, Cull, Format, GraphicsDesc, Pipeline, ShaderCompiler, Topology, VertexAttribute,
+    VertexLayout,
+};
 
 pub struct CausticPipelines {
     pub receiver_positions: Pipeline,
@@ -13,18 +16,10 @@ pub struct CausticPipelines {
     pub splat: Pipeline,
 }
 
-fn light_mesh(ctx: &Context, sh: &ShaderCompiler, name: &str, frag: &str, photon_view: bool, bindings: Vec<K>, colors: Vec<Format>, cull: Cull) -> Result<Pipeline> {
-    let defines: &[(&str, &str)] = if photon_view { &[("PHOTON_VIEW", "1")] } else { &[] };
-    let mut d = GraphicsDesc::new(name, sh.compile("photons/light_mesh.vert", defines)?, Some(sh.compile(frag, &[])?));
-    d.bindings = bindings;
-    d.vertex_layout = Some(mesh_layout());
-    d.cull = cull;
-    d.color_formats = colors;
-    d.depth_format = Some(DEPTH);
-    d.depth_test = true;
-    d.depth_write = true;
-    Ok(Pipeline::graphics(ctx, &d)?)
-}
+/// Mesh passes from a light see through the photon frustum with this define, else through the
+/// caustic map's.
+const PHOTON_VIEW: &[(&str, &str)] = &[("PHOTON_VIEW", "1")];
+const LIGHT_MESH_VERT: &str = "photons/light_mesh.vert";
 
 impl CausticPipelines {
     pub fn new(ctx: &Context, sh: &ShaderCompiler, technique: &str) -> Result<CausticPipelines> {
@@ -42,16 +37,59 @@ impl CausticPipelines {
         } else {
             None
         };
-        let mut splat = GraphicsDesc::new("splat", sh.compile("photons/splat.vert", &[])?, Some(sh.compile("photons/splat.frag", &[])?));
+        let mut splat = GraphicsDesc::new(
+            "splat",
+            sh.compile("photons/splat.vert", &[])?,
+            Some(sh.compile("photons/splat.frag", &[])?),
+        );
         splat.bindings = vec![K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
-        splat.vertex_layout = Some(VertexLayout { stride: 4, attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }] });
+        splat.vertex_layout = Some(VertexLayout {
+            stride: 4,
+            attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }],
+        });
         splat.topology = Topology::Points;
         splat.blend = Blend::Additive;
         splat.color_formats = vec![COLOR];
         Ok(CausticPipelines {
-            receiver_positions: light_mesh(ctx, sh, "receiver_positions", "photons/receiver_positions.frag", false, ubo2.clone(), vec![COLOR], Cull::None)?,
-            back_faces: light_mesh(ctx, sh, "photon_back_faces", "photons/back_faces.frag", true, ubo2, vec![COLOR], Cull::Front)?,
-            photon_buffer: light_mesh(ctx, sh, "photon_buffer", "photons/photon_buffer.frag", true, trace, vec![COLOR, COLOR, COLOR], Cull::Back)?,
+            receiver_positions: mesh_pipeline(
+                ctx,
+                sh,
+                MeshPass {
+                    name: "receiver_positions",
+                    vert: LIGHT_MESH_VERT,
+                    vert_defines: &[],
+                    frag: "photons/receiver_positions.frag",
+                    bindings: ubo2.clone(),
+                    colors: vec![COLOR],
+                    cull: Cull::None,
+                },
+            )?,
+            back_faces: mesh_pipeline(
+                ctx,
+                sh,
+                MeshPass {
+                    name: "photon_back_faces",
+                    vert: LIGHT_MESH_VERT,
+                    vert_defines: PHOTON_VIEW,
+                    frag: "photons/back_faces.frag",
+                    bindings: ubo2,
+                    colors: vec![COLOR],
+                    cull: Cull::Front,
+                },
+            )?,
+            photon_buffer: mesh_pipeline(
+                ctx,
+                sh,
+                MeshPass {
+                    name: "photon_buffer",
+                    vert: LIGHT_MESH_VERT,
+                    vert_defines: PHOTON_VIEW,
+                    frag: "photons/photon_buffer.frag",
+                    bindings: trace,
+                    colors: vec![COLOR, COLOR, COLOR],
+                    cull: Cull::Back,
+                },
+            )?,
             vertex_photons,
             splat: Pipeline::graphics(ctx, &splat)?,
         })

@@ -26,7 +26,8 @@ impl CausticTargets {
         let m = if active { scene.caustics.caustic_map_resolution } else { 1 };
         let lights = scene.lights.len().clamp(1, MAX_LIGHTS) as u32;
         let caustic_map = Target::array(ctx, ImageDesc::new_2d("caustic_map", COLOR, m, m).layers(lights))?;
-        let receiver_positions = Target::array(ctx, ImageDesc::new_2d("receiver_positions", COLOR, m, m).layers(lights))?;
+        let receiver_positions =
+            Target::array(ctx, ImageDesc::new_2d("receiver_positions", COLOR, m, m).layers(lights))?;
         let receiver_depth = Image::new(ctx, ImageDesc::new_2d("receiver depth", DEPTH, m, m).layers(lights))?;
         let per_light = (0..lights)
             .map(|l| {

@@ -42,7 +42,13 @@ fn per_light(ctx: &Context, t: &Target, names: &[&str], pick: &[usize]) -> Resul
 
 /// The named intermediate buffer; None if this render has no such buffer (no receiver map, or
 /// no caustic technique).
-pub fn dump(ctx: &Context, t: &EyeTargets, ct: &CausticTargets, photons: Option<&PhotonTargets>, name: &str) -> Result<Option<ImageF32>> {
+pub fn dump(
+    ctx: &Context,
+    t: &EyeTargets,
+    ct: &CausticTargets,
+    photons: Option<&PhotonTargets>,
+    name: &str,
+) -> Result<Option<ImageF32>> {
     let rgb = ["R", "G", "B"];
     Ok(Some(match name {
         "shadow_map" => {
@@ -90,12 +96,17 @@ pub fn dump(ctx: &Context, t: &EyeTargets, ct: &CausticTargets, photons: Option<
         },
         // Light-space buffers of the caustic techniques (the photon buffer and light-space back
         // faces hold the last light's).
-        "receiver_positions" | "caustic_map" | "photon_back_faces" | "photon_buffer" if photons.is_none() => return Ok(None),
+        "receiver_positions" | "caustic_map" | "photon_back_faces" | "photon_buffer" if photons.is_none() => {
+            return Ok(None)
+        }
         "receiver_positions" => per_light(ctx, &ct.receiver_positions, &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?,
         "caustic_map" => per_light(ctx, &ct.caustic_map, &["R", "G", "B", "photons"], &[0, 1, 2, 3])?,
         "photon_back_faces" => {
             let p = photons.expect("checked above");
-            image(&p.back_faces, vec![layer(ctx, &p.back_faces, 0, None, &["NX", "NY", "NZ", "distance"], &[0, 1, 2, 3])?])
+            image(
+                &p.back_faces,
+                vec![layer(ctx, &p.back_faces, 0, None, &["NX", "NY", "NZ", "distance"], &[0, 1, 2, 3])?],
+            )
         }
         "photon_buffer" => {
             let p = photons.expect("checked above");

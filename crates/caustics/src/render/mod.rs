@@ -70,7 +70,13 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
     let technique = settings.technique.as_str();
     ctx.require(&format!("technique `{technique}`"), required_features(technique).unwrap_or(&[]))?;
     if scene.lights.len() > gpu::MAX_LIGHTS {
-        return Err(crate::input_error!("{}: {} lights; at most {} are supported", scene.path.display(), scene.lights.len(), gpu::MAX_LIGHTS).into());
+        return Err(crate::input_error!(
+            "{}: {} lights; at most {} are supported",
+            scene.path.display(),
+            scene.lights.len(),
+            gpu::MAX_LIGHTS
+        )
+        .into());
     }
     let active = technique != "none" && caustic_map::gpu::specular_bounds(scene).is_some();
     let pipelines = pipelines::EyePipelines::new(ctx, shaders)?;
@@ -86,16 +92,27 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
     let spot = setup::spot_texture_layers(scene)?;
     for l in 0..targets.shadow.lights {
         let n = (setup::SPOT_TEXTURE_SIZE * setup::SPOT_TEXTURE_SIZE * 4) as usize;
-        ctx.upload_image(&targets.spot_textures.image, 0, l, bytemuck::cast_slice(&spot[l as usize * n..(l as usize + 1) * n]))?;
+        ctx.upload_image(
+            &targets.spot_textures.image,
+            0,
+            l,
+            bytemuck::cast_slice(&spot[l as usize * n..(l as usize + 1) * n]),
+        )?;
     }
     let nearest = Sampler::new(ctx, Filter::Nearest)?;
     let linear = Sampler::new(ctx, Filter::Linear)?;
     // The caustic technique's own resources.
     let vertex_photons = technique == "shah-vertex";
-    let specular_vertices: u32 = meshes.iter().filter(|m| m.kind() != gpu::MATERIAL_DIFFUSE).map(|m| (m.vertices.size() / 28) as u32).sum();
+    let specular_vertices: u32 =
+        meshes.iter().filter(|m| m.kind() != gpu::MATERIAL_DIFFUSE).map(|m| (m.vertices.size() / 28) as u32).sum();
     let caustic = if active {
-        let photon_side = if vertex_photons { (specular_vertices as f64).sqrt().ceil() as u32 } else { settings.photons };
-        let areas = if vertex_photons { setup::vertex_areas(ctx, scene)? } else { scene.objects.iter().map(|_| None).collect() };
+        let photon_side =
+            if vertex_photons { (specular_vertices as f64).sqrt().ceil() as u32 } else { settings.photons };
+        let areas = if vertex_photons {
+            setup::vertex_areas(ctx, scene)?
+        } else {
+            scene.objects.iter().map(|_| None).collect()
+        };
         let ids: Vec<u32> = (0..caustic_map::passes_verts_per_instance()).collect();
         Some((
             caustic_map::CausticPipelines::new(ctx, shaders, technique)?,
@@ -142,7 +159,8 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
             out.push((name.clone(), img));
         }
     }
-    let photons_emitted = caustic_map::photons_per_light(settings, specular_vertices) * if active { targets.shadow.lights as u64 } else { 0 };
+    let photons_emitted = caustic_map::photons_per_light(settings, specular_vertices)
+        * if active { targets.shadow.lights as u64 } else { 0 };
     Ok(Rendered { final_image, dumps: out, frames, photons_emitted })
 }
 

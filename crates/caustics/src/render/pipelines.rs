@@ -31,18 +31,20 @@ pub fn mesh_layout() -> VertexLayout {
 }
 
 /// A depth-tested pass over scene meshes.
-struct MeshPass<'a> {
-    name: &'a str,
-    vert: &'a str,
-    frag: &'a str,
-    bindings: Vec<K>,
-    colors: Vec<Format>,
-    cull: Cull,
+pub(crate) struct MeshPass<'a> {
+    pub name: &'a str,
+    pub vert: &'a str,
+    /// Defines for the vertex shader.
+    pub vert_defines: &'a [(&'a str, &'a str)],
+    pub frag: &'a str,
+    pub bindings: Vec<K>,
+    pub colors: Vec<Format>,
+    pub cull: Cull,
 }
 
-fn mesh_pipeline(ctx: &Context, sh: &ShaderCompiler, pass: MeshPass) -> Result<Pipeline> {
-    let MeshPass { name, vert, frag, bindings, colors, cull } = pass;
-    let mut d = GraphicsDesc::new(name, sh.compile(vert, &[])?, Some(sh.compile(frag, &[])?));
+pub(crate) fn mesh_pipeline(ctx: &Context, sh: &ShaderCompiler, pass: MeshPass) -> Result<Pipeline> {
+    let MeshPass { name, vert, vert_defines, frag, bindings, colors, cull } = pass;
+    let mut d = GraphicsDesc::new(name, sh.compile(vert, vert_defines)?, Some(sh.compile(frag, &[])?));
     d.bindings = bindings;
     d.vertex_layout = Some(mesh_layout());
     d.topology = Topology::Triangles;
@@ -57,8 +59,15 @@ fn mesh_pipeline(ctx: &Context, sh: &ShaderCompiler, pass: MeshPass) -> Result<P
 
 impl EyePipelines {
     pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<EyePipelines> {
-        let eye =
-            |name, frag, bindings, colors, cull| MeshPass { name, vert: "eye/mesh.vert", frag, bindings, colors, cull };
+        let eye = |name, frag, bindings, colors, cull| MeshPass {
+            name,
+            vert: "eye/mesh.vert",
+            vert_defines: &[],
+            frag,
+            bindings,
+            colors,
+            cull,
+        };
         Ok(EyePipelines {
             shadow_map: mesh_pipeline(
                 ctx,
@@ -66,6 +75,7 @@ impl EyePipelines {
                 MeshPass {
                     name: "shadow_map",
                     vert: "shadow/shadow_map.vert",
+                    vert_defines: &[],
                     frag: "shadow/shadow_map.frag",
                     bindings: vec![K::UniformBuffer],
                     colors: vec![DISTANCE],
@@ -78,7 +88,14 @@ impl EyePipelines {
                 eye(
                     "background",
                     "eye/background.frag",
-                    vec![K::UniformBuffer, K::SampledImage, K::SampledImage, K::UniformBuffer, K::SampledImage, K::SampledImage],
+                    vec![
+                        K::UniformBuffer,
+                        K::SampledImage,
+                        K::SampledImage,
+                        K::UniformBuffer,
+                        K::SampledImage,
+                        K::SampledImage,
+                    ],
                     vec![COLOR, COLOR, COLOR],
                     Cull::None,
                 ),

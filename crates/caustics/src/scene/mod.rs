@@ -100,7 +100,11 @@ impl CausticSettings {
             Err(crate::input_error!("{origin}: key `{key}{k}`: {msg}").into())
         };
         let one_of = |k: &str, v: &str, list: &[&str]| -> anyhow::Result<()> {
-            if list.contains(&v) { Ok(()) } else { bad(k, format!("unknown value `{v}`; expected one of {}", list.join(", "))) }
+            if list.contains(&v) {
+                Ok(())
+            } else {
+                bad(k, format!("unknown value `{v}`; expected one of {}", list.join(", ")))
+            }
         };
         one_of("technique", &self.technique, TECHNIQUES)?;
         one_of("splat_kernel", &self.splat_kernel, SPLAT_KERNELS)?;
