@@ -125,15 +125,6 @@ impl Buffer {
 impl Drop for Buffer {
     fn drop(&mut self) {
         unsafe { self.shared.raw().destroy_buffer(self.raw, None) };
-        if let Some(a) = self.allocation.take() {
-            if let Ok(mut guard) = self.shared.allocator.lock() {
-                if let Some(alloc) = guard.as_mut() {
-                    let _ = alloc.free(a);
-                }
-            }
-        }
-        if let Ok(mut t) = self.shared.tracker.lock() {
-            t.forget(self.id);
-        }
+        self.shared.release(self.allocation.take(), self.id);
     }
 }

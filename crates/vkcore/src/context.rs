@@ -33,6 +33,20 @@ pub(crate) struct Shared {
 }
 
 impl Shared {
+    /// Frees a resource's memory and forgets its barrier state (from the resources' `Drop`).
+    pub fn release(&self, allocation: Option<gpu_allocator::vulkan::Allocation>, id: u64) {
+        if let Some(a) = allocation {
+            if let Ok(mut guard) = self.allocator.lock() {
+                if let Some(alloc) = guard.as_mut() {
+                    let _ = alloc.free(a);
+                }
+            }
+        }
+        if let Ok(mut t) = self.tracker.lock() {
+            t.forget(id);
+        }
+    }
+
     pub fn new_id(&self) -> u64 {
         self.next_id.fetch_add(1, Ordering::Relaxed)
     }

@@ -219,16 +219,7 @@ impl Image {
 impl Drop for Image {
     fn drop(&mut self) {
         unsafe { self.shared.raw().destroy_image(self.raw, None) };
-        if let Some(a) = self.allocation.take() {
-            if let Ok(mut guard) = self.shared.allocator.lock() {
-                if let Some(alloc) = guard.as_mut() {
-                    let _ = alloc.free(a);
-                }
-            }
-        }
-        if let Ok(mut t) = self.shared.tracker.lock() {
-            t.forget(self.id);
-        }
+        self.shared.release(self.allocation.take(), self.id);
     }
 }
 

@@ -5,9 +5,9 @@
 use super::pipelines::CausticPipelines;
 use super::targets::{CausticTargets, PhotonTargets};
 use crate::render::gpu::{MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
-use crate::render::setup::GpuMesh;
+use crate::render::setup::{mesh_uses, GpuMesh};
 use anyhow::Result;
-use vkcore::{Access, Bind, Buffer, Cmd, Frame, Sampler, Targets, Use};
+use vkcore::{Access, Bind, Buffer, Frame, Sampler, Targets, Use};
 
 pub struct CausticInputs<'a> {
     pub frame_uniforms: &'a Buffer,
@@ -22,24 +22,6 @@ pub struct CausticInputs<'a> {
 
 /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4 uses 1024-4096).
 pub const VERTS_PER_INSTANCE: u32 = 1024;
-
-fn draw(cmd: &mut Cmd, m: &GpuMesh, light: u32, first_photon: u32) -> vkcore::Result<()> {
-    let mut c = m.constants;
-    c.info[1] = light;
-    c.info[3] = first_photon;
-    cmd.push(&c)?;
-    cmd.bind_vertex_buffer(&m.vertices, 0);
-    cmd.bind_index_buffer(&m.indices);
-    cmd.draw_indexed(m.index_count, 1, 0);
-    Ok(())
-}
-
-fn mesh_uses(meshes: &[GpuMesh]) -> Vec<Use<'_>> {
-    meshes
-        .iter()
-        .flat_map(|m| [Use::buffer(&m.vertices, Access::VERTEX_INPUT), Use::buffer(&m.indices, Access::VERTEX_INPUT)])
-        .collect()
-}
 
 pub fn record_caustics(
     f: &mut Frame,
@@ -63,7 +45,7 @@ pub fn record_caustics(
             cmd.bind_pipeline(&p.receiver_positions);
             cmd.bind(&ubo_binds())?;
             for m in inp.meshes.iter().filter(|m| m.kind() == MATERIAL_DIFFUSE) {
-                draw(cmd, m, l, 0)?;
+                m.draw(cmd, 1, l)?;
             }
             cmd.end_rendering();
             Ok(())
@@ -82,20 +64,21 @@ pub fn record_caustics(
             cmd.bind_pipeline(&p.back_faces);
             cmd.bind(&ubo_binds())?;
             for m in inp.meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE) {
-                draw(cmd, m, l, 0)?;
+                m.draw(cmd, 1, l)?;
             }
             cmd.end_rendering();
             Ok(())
         })?;
 
         let photons = [&pt.position, &pt.direction, &pt.power];
-        let trace_binds = |cmd: &mut Cmd| {
-            cmd.bind(&[
+        // What tracing a photon reads (photons/trace.glsl, bindings 0-3).
+        let trace_binds = || {
+            vec![
                 Bind::Uniform(inp.frame_uniforms),
                 Bind::Uniform(inp.caustic_uniforms),
                 Bind::Sampled(&pt.back_faces.view, inp.nearest),
                 Bind::Sampled(&ct.receiver_positions.view, inp.nearest),
-            ])
+            ]
         };
         let mut uses = Vec::from(ubos());
         uses.extend([
@@ -120,16 +103,10 @@ pub fn record_caustics(
                 let mut first = 0u32;
                 for (m, areas) in inp.meshes.iter().zip(inp.vertex_areas) {
                     let (true, Some(areas)) = (m.kind() != MATERIAL_DIFFUSE, areas) else { continue };
-                    cmd.bind(&[
-                        Bind::Uniform(inp.frame_uniforms),
-                        Bind::Uniform(inp.caustic_uniforms),
-                        Bind::Sampled(&pt.back_faces.view, inp.nearest),
-                        Bind::Sampled(&ct.receiver_positions.view, inp.nearest),
-                        Bind::Storage(&pt.position.view),
-                        Bind::Storage(&pt.direction.view),
-                        Bind::Storage(&pt.power.view),
-                        Bind::Buffer(areas),
-                    ])?;
+                    let mut binds = trace_binds();
+                    binds.extend(photons.map(|t| Bind::Storage(&t.view)));
+                    binds.push(Bind::Buffer(areas));
+                    cmd.bind(&binds)?;
                     let mut c = m.constants;
                     c.info[1] = l;
                     c.info[3] = first;
@@ -149,9 +126,9 @@ pub fn record_caustics(
                 let targets = Targets::colors(photons.iter().map(|t| (&t.view, Some([0.0; 4]))).collect());
                 cmd.begin_rendering(&targets.with_depth(&pt.depth.view, Some(1.0)))?;
                 cmd.bind_pipeline(&p.photon_buffer);
-                trace_binds(cmd)?;
+                cmd.bind(&trace_binds())?;
                 for m in specular() {
-                    draw(cmd, m, l, 0)?;
+                    m.draw(cmd, 1, l)?;
                 }
                 cmd.end_rendering();
                 Ok(())

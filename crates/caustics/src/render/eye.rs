@@ -3,7 +3,7 @@
 
 use super::gpu::*;
 use super::pipelines::EyePipelines;
-use super::setup::GpuMesh;
+use super::setup::{mesh_uses, GpuMesh};
 use super::targets::EyeTargets;
 use anyhow::Result;
 use vkcore::{Access, Bind, Buffer, Cmd, Frame, Sampler, Targets, Use};
@@ -24,22 +24,7 @@ fn draw_meshes<'m>(
     instances: u32,
     light: u32,
 ) -> vkcore::Result<()> {
-    for m in meshes {
-        let mut c = m.constants;
-        c.info[1] = light;
-        cmd.push(&c)?;
-        cmd.bind_vertex_buffer(&m.vertices, 0);
-        cmd.bind_index_buffer(&m.indices);
-        cmd.draw_indexed(m.index_count, instances, 0);
-    }
-    Ok(())
-}
-
-fn mesh_uses(meshes: &[GpuMesh]) -> Vec<Use<'_>> {
-    meshes
-        .iter()
-        .flat_map(|m| [Use::buffer(&m.vertices, Access::VERTEX_INPUT), Use::buffer(&m.indices, Access::VERTEX_INPUT)])
-        .collect()
+    meshes.into_iter().try_for_each(|m| m.draw(cmd, instances, light))
 }
 
 pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) -> Result<()> {

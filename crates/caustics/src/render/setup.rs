@@ -6,7 +6,7 @@ use crate::bvh::vertex_thickness;
 use crate::scene::{LightKind, MaterialKind, Scene};
 use anyhow::{Context as _, Result};
 use glam::{Mat4, Vec3};
-use vkcore::{Buffer, Context};
+use vkcore::{Access, Buffer, Cmd, Context, Use};
 
 /// One object's buffers and draw constants.
 pub struct GpuMesh {
@@ -21,6 +21,25 @@ impl GpuMesh {
     pub fn kind(&self) -> u32 {
         self.constants.info[0]
     }
+
+    /// Records an indexed draw of this mesh with its constants, `light` in `info.y`.
+    pub fn draw(&self, cmd: &mut Cmd, instances: u32, light: u32) -> vkcore::Result<()> {
+        let mut c = self.constants;
+        c.info[1] = light;
+        cmd.push(&c)?;
+        cmd.bind_vertex_buffer(&self.vertices, 0);
+        cmd.bind_index_buffer(&self.indices);
+        cmd.draw_indexed(self.index_count, instances, 0);
+        Ok(())
+    }
+}
+
+/// The vertex and index buffers of `meshes`, read as vertex input.
+pub fn mesh_uses(meshes: &[GpuMesh]) -> Vec<Use<'_>> {
+    meshes
+        .iter()
+        .flat_map(|m| [Use::buffer(&m.vertices, Access::VERTEX_INPUT), Use::buffer(&m.indices, Access::VERTEX_INPUT)])
+        .collect()
 }
 
 pub fn upload_meshes(ctx: &Context, scene: &Scene) -> Result<Vec<GpuMesh>> {
