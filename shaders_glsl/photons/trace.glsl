@@ -96,6 +96,9 @@ Photon trace_photon(uint l, vec3 p1, vec3 n1, float d_n, float omega) {
     vec3 v = normalize(p1 - cl.position.xyz);
     if (dot(n1, v) > 0.0) n1 = -n1;
     vec3 power = frame.lights[l].intensity.rgb * omega;
+    // A spot light emits nothing outside its cone (its projected texture is not applied to
+    // photons, as in the CPU reference).
+    if (frame.lights[l].position.w > 0.5 && dot(v, frame.lights[l].spot.xyz) < frame.lights[l].spot.w) power = vec3(0.0);
     vec3 o, d;
     if (object.info.x == MATERIAL_REFLECTIVE) {
         o = p1;

@@ -135,6 +135,22 @@ fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
         sizes.push(("receiver_map.resolution", r.resolution));
     }
     sizes.push(("render.shadow_map_resolution", scene.render.shadow_map_resolution));
+    let c = &scene.caustics;
+    if c.technique != "none" {
+        sizes.push(("caustics.caustic_map_resolution", c.caustic_map_resolution));
+        sizes.push(("caustics.photons", c.photons));
+        // A splat is a point of 2 ceil(r) + 2 pixels (photons/splat.vert).
+        let point = 2.0 * c.splat_radius.ceil() + 2.0;
+        if point > info.point_size_range[1] {
+            return Err(input_error!(
+                "{file}: key `caustics.splat_radius`: {} needs points of {point} pixels, but `{}` draws points of at most {}",
+                c.splat_radius,
+                info.name,
+                info.point_size_range[1]
+            )
+            .into());
+        }
+    }
     for (key, size) in sizes {
         if size == 0 || size > max {
             return Err(input_error!(

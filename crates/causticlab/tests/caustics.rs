@@ -218,3 +218,28 @@ fn every_intermediate_buffer_is_dumped_with_named_channels() {
     }
     assert_eq!(exr(&out, "photon_buffer.exr").width, 128, "photon buffer is N x N");
 }
+
+/// On a device without geometry shaders or transform feedback, barriers must not name their
+/// stages (VUID-*-03929): the caustic techniques need neither, and validation stays silent.
+#[test]
+fn caustics_run_clean_without_geometry_shaders_or_transform_feedback() {
+    let out = scratch("no-gs").join("out");
+    let run = causticlab(&[
+        "--validate",
+        "--without-feature",
+        "geometry_shader",
+        "--without-feature",
+        "transform_feedback",
+        "render",
+        "--scene",
+        &scene("sphere_on_plane"),
+        "--technique",
+        "shah",
+        "--photons",
+        "128",
+        "--out",
+        &out.display().to_string(),
+    ]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    assert!(!run.stderr.contains("[validation"), "{}", run.describe());
+}

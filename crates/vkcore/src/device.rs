@@ -16,11 +16,18 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
         let has_xfb = has_ext(ext::transform_feedback::NAME);
         let has_atomic_float = has_ext(ext::shader_atomic_float::NAME);
 
+        // The Vulkan 1.1-1.3 feature and driver structs may only be chained on 1.3 devices here
+        // (older ones are listed, never used).
+        let modern = instance.get_physical_device_properties(pd).api_version >= vk::API_VERSION_1_3;
         let mut f11 = vk::PhysicalDeviceVulkan11Features::default();
         let mut f12 = vk::PhysicalDeviceVulkan12Features::default();
+        let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
         let mut xfb = vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default();
         let mut af = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default();
-        let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f11).push_next(&mut f12);
+        let mut f2 = vk::PhysicalDeviceFeatures2::default();
+        if modern {
+            f2 = f2.push_next(&mut f11).push_next(&mut f12).push_next(&mut f13);
+        }
         if has_xfb {
             f2 = f2.push_next(&mut xfb);
         }
@@ -32,7 +39,10 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
 
         let mut driver = vk::PhysicalDeviceDriverProperties::default();
         let mut xfb_props = vk::PhysicalDeviceTransformFeedbackPropertiesEXT::default();
-        let mut p2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);
+        let mut p2 = vk::PhysicalDeviceProperties2::default();
+        if modern {
+            p2 = p2.push_next(&mut driver);
+        }
         if has_xfb {
             p2 = p2.push_next(&mut xfb_props);
         }
@@ -79,6 +89,20 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
         add(yes(f.fragment_stores_and_atomics), Feature::FragmentStoresAndAtomics);
         add(yes(f.vertex_pipeline_stores_and_atomics), Feature::VertexPipelineStoresAndAtomics);
 
+        // What every technique relies on; vkCreateDevice would fail without them.
+        let baseline = [
+            (yes(f.multi_draw_indirect), "multiDrawIndirect"),
+            (yes(f.draw_indirect_first_instance), "drawIndirectFirstInstance"),
+            (yes(f.shader_storage_image_write_without_format), "shaderStorageImageWriteWithoutFormat"),
+            (yes(f11.shader_draw_parameters), "shaderDrawParameters"),
+            (yes(f12.host_query_reset), "hostQueryReset"),
+            (yes(f12.scalar_block_layout), "scalarBlockLayout"),
+            (yes(f12.draw_indirect_count), "drawIndirectCount"),
+            (yes(f13.dynamic_rendering), "dynamicRendering"),
+            (yes(f13.synchronization2), "synchronization2"),
+            (yes(f13.maintenance4), "maintenance4"),
+        ];
+        let baseline_missing = baseline.iter().filter(|(ok, _)| !ok).map(|(_, n)| *n).collect();
         let v = props.api_version;
         DeviceInfo {
             index,
@@ -98,6 +122,7 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
             vendor_id: props.vendor_id,
             device_id: props.device_id,
             supported,
+            baseline_missing,
             quirks: quirks.iter().map(|(f, why)| format!("{}: {why}", f.name())).collect(),
             timestamp_valid_bits,
             timestamp_period_ns: limits.timestamp_period,
@@ -218,6 +243,17 @@ pub(crate) fn create_device(instance: &Instance, index: usize, without: &[Featur
     let pd = *pds.get(index).ok_or_else(|| VkError::Invalid(format!("no device with index {index}")))?;
     let mut info = query_device(raw_inst, pd, index);
     info.supported.retain(|f| !without.contains(f));
+    if without.contains(&Feature::Multiview) {
+        info.supported.retain(|f| *f != Feature::MultiviewGeometryShader);
+    }
+    if let Some(missing) = info.baseline_missing.first() {
+        return Err(VkError::Invalid(format!(
+            "device `{}` lacks {missing} (and {} other baseline features causticlab needs: {:?})",
+            info.name,
+            info.baseline_missing.len() - 1,
+            info.baseline_missing
+        )));
+    }
     if !info.has(Feature::PushDescriptor) {
         return Err(VkError::MissingFeature {
             who: "vkcore (descriptor binding)".into(),

@@ -106,6 +106,8 @@ pub struct DeviceInfo {
     pub vendor_id: u32,
     pub device_id: u32,
     pub supported: Vec<Feature>,
+    /// Baseline features every technique relies on that this device lacks (it cannot be used).
+    pub baseline_missing: Vec<&'static str>,
     /// Features the driver reports but this project treats as absent, with the reason.
     pub quirks: Vec<String>,
     pub timestamp_valid_bits: u32,

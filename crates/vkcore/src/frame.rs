@@ -57,6 +57,22 @@ impl<'a> Use<'a> {
     }
 }
 
+/// Removes stages and accesses of features the device does not have (the geometry stage, the
+/// transform-feedback stage and accesses): barriers may not name them (VUID-*-03929 etc).
+fn supported(ctx: &Context, mut a: Access) -> Access {
+    let info = ctx.info();
+    if !info.has(crate::Feature::GeometryShader) {
+        a.stage &= !vk::PipelineStageFlags2::GEOMETRY_SHADER;
+    }
+    if !info.has(crate::Feature::TransformFeedback) {
+        a.stage &= !vk::PipelineStageFlags2::TRANSFORM_FEEDBACK_EXT;
+        a.access &= !(vk::AccessFlags2::TRANSFORM_FEEDBACK_WRITE_EXT
+            | vk::AccessFlags2::TRANSFORM_FEEDBACK_COUNTER_READ_EXT
+            | vk::AccessFlags2::TRANSFORM_FEEDBACK_COUNTER_WRITE_EXT);
+    }
+    a
+}
+
 /// Emits the barriers `uses` need into `cb`.
 pub(crate) fn sync(ctx: &Context, cb: vk::CommandBuffer, uses: &[Use]) -> Result<()> {
     let mut buffer_barriers = vec![];
@@ -65,7 +81,7 @@ pub(crate) fn sync(ctx: &Context, cb: vk::CommandBuffer, uses: &[Use]) -> Result
     for u in uses {
         match u {
             Use::Buffer(b, access) => {
-                for (_, t) in tracker.access(b.id, std::iter::once(0), *access, false) {
+                for (_, t) in tracker.access(b.id, std::iter::once(0), supported(ctx, *access), false) {
                     buffer_barriers.push(
                         vk::BufferMemoryBarrier2::default()
                             .src_stage_mask(t.src_stage)
@@ -80,7 +96,7 @@ pub(crate) fn sync(ctx: &Context, cb: vk::CommandBuffer, uses: &[Use]) -> Result
             }
             Use::Image { image_id, raw, format, total_layers, mips, layers, access } => {
                 let subs = mips.clone().flat_map(|m| layers.clone().map(move |l| (m * total_layers + l) as usize));
-                for (i, t) in tracker.access(*image_id, subs, *access, true) {
+                for (i, t) in tracker.access(*image_id, subs, supported(ctx, *access), true) {
                     let (mip, layer) = (i as u32 / total_layers, i as u32 % total_layers);
                     image_barriers.push(image_barrier(*raw, *format, mip, layer, &t));
                 }
@@ -200,6 +216,11 @@ impl Frame {
                     result: e,
                 })
             });
+        if result.is_err() {
+            // The GPU may still be running this frame: let it finish (or fail) before the fence,
+            // the command buffer and the frame's resources are destroyed.
+            let _ = unsafe { d.device_wait_idle() };
+        }
         unsafe { d.destroy_fence(fence, None) };
         if let Err(e) = result {
             return Err(VkError::Invalid(format!("{e}; the frame held passes: {}", self.passes.join(", "))));

@@ -62,6 +62,8 @@ impl Access {
     );
     pub const TRANSFER_READ: Access = acc(S::ALL_TRANSFER, A::TRANSFER_READ, L::TRANSFER_SRC_OPTIMAL);
     pub const TRANSFER_WRITE: Access = acc(S::ALL_TRANSFER, A::TRANSFER_WRITE, L::TRANSFER_DST_OPTIMAL);
+    /// Read by the host after the frame (mapped readback memory).
+    pub const HOST_READ: Access = acc(S::HOST, A::HOST_READ, L::UNDEFINED);
     /// Written as a transform-feedback buffer.
     pub const XFB_WRITE: Access = acc(S::TRANSFORM_FEEDBACK_EXT, A::TRANSFORM_FEEDBACK_WRITE_EXT, L::UNDEFINED);
     /// A transform-feedback counter buffer (read at begin, written at end).

@@ -126,6 +126,7 @@ impl Context {
                 Ok(())
             },
         )?;
+        f.pass("readback.host", &[Use::buffer(&staging, Access::HOST_READ)], |_| Ok(()))?;
         f.submit()?;
         let m = staging.mapped().ok_or_else(|| VkError::Invalid("readback buffer is not mapped".into()))?;
         Ok(m[..bytes as usize].to_vec())

@@ -57,8 +57,14 @@ pub struct Rendered {
 /// The device features technique `name` needs (checked by the caller with `ctx.require`).
 pub fn required_features(name: &str) -> Option<&'static [vkcore::Feature]> {
     match name {
-        "none" | "shah" | "wd-points" => Some(&[vkcore::Feature::ShaderOutputLayer]),
-        "shah-vertex" => Some(&[vkcore::Feature::ShaderOutputLayer, vkcore::Feature::VertexPipelineStoresAndAtomics]),
+        "none" => Some(&[vkcore::Feature::ShaderOutputLayer]),
+        // Splats are points wider than one pixel.
+        "shah" | "wd-points" => Some(&[vkcore::Feature::ShaderOutputLayer, vkcore::Feature::LargePoints]),
+        "shah-vertex" => Some(&[
+            vkcore::Feature::ShaderOutputLayer,
+            vkcore::Feature::LargePoints,
+            vkcore::Feature::VertexPipelineStoresAndAtomics,
+        ]),
         _ => None,
     }
 }
