@@ -77,6 +77,15 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     written.push("timings.json".to_string());
     let final_dir = out.final_dir().to_path_buf();
     out.commit()?;
+    // Dumps an earlier render left in the same folder would read as this run's: remove the
+    // buffers this run did not write (only names causticlab writes; nothing else is touched).
+    for name in DUMP_NAMES {
+        let file = format!("{name}.exr");
+        if !written.contains(&file) && final_dir.join(&file).is_file() {
+            std::fs::remove_file(final_dir.join(&file))
+                .with_context(|| format!("removing the stale {}", final_dir.join(&file).display()))?;
+        }
+    }
 
     println!(
         "{} on {} ({}), {} frame(s), technique `{}`",

@@ -243,3 +243,24 @@ fn caustics_run_clean_without_geometry_shaders_or_transform_feedback() {
     assert_eq!(run.code, Some(0), "{}", run.describe());
     assert!(!run.stderr.contains("[validation"), "{}", run.describe());
 }
+
+/// A second render into the same folder leaves no buffer of the first one behind.
+#[test]
+fn a_render_into_an_earlier_output_folder_removes_its_stale_dumps() {
+    let out = render("stale", &scene("sphere_on_plane"), &["--technique", "shah", "--photons", "64"], "all");
+    assert!(out.join("caustic_map.exr").is_file());
+    let run = causticlab(&[
+        "render",
+        "--scene",
+        &scene("sphere_on_plane"),
+        "--dump",
+        "receiver",
+        "--out",
+        &out.display().to_string(),
+    ]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    assert!(out.join("receiver.exr").is_file());
+    for stale in ["caustic_map.exr", "photon_buffer.exr", "shadow_map.exr"] {
+        assert!(!out.join(stale).exists(), "{stale} from the first render is still there");
+    }
+}
