@@ -47,6 +47,9 @@ fn print_device(d: &DeviceInfo, marks: &[&str], without: &[Feature]) {
         };
         println!("      {:<30}{state}", f.name());
     }
+    if !d.baseline_missing.is_empty() {
+        println!("    UNUSABLE: lacks baseline features {}", d.baseline_missing.join(", "));
+    }
     if d.quirks.is_empty() {
         println!("    quirks                        none");
     } else {
