@@ -12,6 +12,25 @@ fn centre(i: u32, j: u32, n: u32) -> (f64, f64) {
     (-2.0 + (i as f64 + 0.5) * s, -2.0 + (j as f64 + 0.5) * s)
 }
 
+/// Renders `dir/scene.toml` with validation on and returns its receiver map.
+fn render_receiver(dir: &std::path::Path) -> caustics::image_io::ImageF32 {
+    let out = dir.join("out");
+    let scene = dir.join("scene.toml").display().to_string();
+    let run = causticlab(&[
+        "--validate",
+        "render",
+        "--scene",
+        &scene,
+        "--dump",
+        "receiver",
+        "--out",
+        &out.display().to_string(),
+    ]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    assert!(!run.stderr.contains("[validation"), "{}", run.describe());
+    read_exr(&out.join("receiver.exr")).unwrap()
+}
+
 #[test]
 fn spot_light_with_projected_texture_lights_its_cone_only() {
     let dir = scratch("spot");
@@ -22,19 +41,7 @@ fn spot_light_with_projected_texture_lights_its_cone_only() {
     assert!(text.contains(light), "sphere_on_plane's light changed");
     let spot = "type = \"spot\"\nposition = [0.0, 6.0, 0.0]\ndirection = [0.0, -1.0, 0.0]\ncone_angle = 15.0\ntexture = \"magenta.png\"";
     std::fs::write(dir.join("scene.toml"), text.replace(light, spot)).unwrap();
-    let out = dir.join("out");
-    let run = causticlab(&[
-        "--validate",
-        "render",
-        "--scene",
-        &dir.join("scene.toml").display().to_string(),
-        "--dump",
-        "receiver",
-        "--out",
-        &out.display().to_string(),
-    ]);
-    assert_eq!(run.code, Some(0), "{}", run.describe());
-    let r = read_exr(&out.join("receiver.exr")).unwrap();
+    let r = render_receiver(&dir);
     let red = find_channel(&r, "irradiance.R").unwrap();
     let green = find_channel(&r, "irradiance.G").unwrap();
     let n = r.width;
@@ -73,19 +80,7 @@ fn two_lights_add_up() {
     let second =
         "[[lights]]\ntype = \"point\"\nposition = [2.0, 5.0, 1.0]\nintensity = [0.0, 50.0, 0.0]\n\n[materials.floor]";
     std::fs::write(dir.join("scene.toml"), text.replacen("[materials.floor]", second, 1)).unwrap();
-    let out = dir.join("out");
-    let run = causticlab(&[
-        "--validate",
-        "render",
-        "--scene",
-        &dir.join("scene.toml").display().to_string(),
-        "--dump",
-        "receiver",
-        "--out",
-        &out.display().to_string(),
-    ]);
-    assert_eq!(run.code, Some(0), "{}", run.describe());
-    let r = read_exr(&out.join("receiver.exr")).unwrap();
+    let r = render_receiver(&dir);
     let e0 = find_channel(&r, "E0").unwrap();
     let n = r.width;
     let term = |x: f64, z: f64, l: [f64; 3], i: f64| {
