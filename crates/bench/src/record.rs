@@ -12,7 +12,9 @@ pub struct Timings {
     pub device: Device,
     pub technique: String,
     /// The caustic technique's full configuration (the code path the numbers belong to).
-    pub caustics: CausticConfig,
+    pub caustics: CausticSettings,
+    /// The ray/receiver intersection in effect (`caustics.intersect` or the technique's own).
+    pub intersect: String,
     /// Photons emitted per frame over all lights (0 for `none`).
     pub photons_emitted: u64,
     pub scene: String,
@@ -20,18 +22,6 @@ pub struct Timings {
     pub validation: bool,
     /// Passes in first-seen order; times are GPU milliseconds between the pass's timestamps.
     pub passes: Vec<Pass>,
-}
-
-#[derive(Debug, Serialize)]
-pub struct CausticConfig {
-    pub photons_per_side: u32,
-    pub splat_radius: f32,
-    pub splat_kernel: String,
-    pub caustic_map_resolution: u32,
-    pub iterations: u32,
-    pub fresnel: bool,
-    pub back_face_iterations: u32,
-    pub intersect: String,
 }
 
 #[derive(Debug, Serialize)]
@@ -124,16 +114,8 @@ impl Timings {
                 timestamp_period_ns: info.timestamp_period_ns,
             },
             technique: caustics.technique.clone(),
-            caustics: CausticConfig {
-                photons_per_side: caustics.photons,
-                splat_radius: caustics.splat_radius,
-                splat_kernel: caustics.splat_kernel.clone(),
-                caustic_map_resolution: caustics.caustic_map_resolution,
-                iterations: caustics.iterations,
-                fresnel: caustics.fresnel,
-                back_face_iterations: caustics.back_face_iterations,
-                intersect: caustics.intersect().to_string(),
-            },
+            caustics: caustics.clone(),
+            intersect: caustics.intersect().to_string(),
             photons_emitted,
             scene: scene.display().to_string(),
             frames: profiler.frames(),

@@ -43,7 +43,7 @@ pub const INTERSECTS: &[&str] = &["shah-iterative", "wd-depth-search"];
 pub const SPLAT_KERNELS: &[&str] = &["gaussian", "box"];
 
 /// `[caustics]`: which technique renders caustics and with what parameters.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct CausticSettings {
     /// One of [`TECHNIQUES`]; default `none`.
     pub technique: String,
