@@ -45,7 +45,7 @@ fn print_device(d: &DeviceInfo, marks: &[&str], without: &[Feature]) {
             (true, false) => "yes",
             (false, _) => "no",
         };
-        println!("      {:<30}{state}", f.name());
+        println!("      {:<36} {state}", f.name());
     }
     if !d.baseline_missing.is_empty() {
         println!("    UNUSABLE: lacks baseline features {}", d.baseline_missing.join(", "));
