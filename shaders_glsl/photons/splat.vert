@@ -6,9 +6,22 @@
 #version 450
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
+#ifdef PHOTON_VERTEX_ARRAY
+// The faithful Wyman & Davis 2006 path (Wyman 2008 Table 1 "copy to vertex array"): the photon
+// buffer was copied into a vertex array (positions) and a buffer (power), one vertex per photon.
+layout(location = 0) in vec4 a_position;
+#ifdef PHOTON_HALF
+layout(std430, binding = 2) readonly buffer PhotonPower { uvec2 powers[]; };   // RGBA16F texels
+vec3 photon_power_of(uint id) { uvec2 h = powers[id]; return vec3(unpackHalf2x16(h.x), unpackHalf2x16(h.y).x); }
+#else
+layout(std430, binding = 2) readonly buffer PhotonPower { vec4 powers[]; };
+vec3 photon_power_of(uint id) { return powers[id].rgb; }
+#endif
+#else
 layout(binding = 2) uniform sampler2D photon_position;
 layout(binding = 3) uniform sampler2D photon_power;
 layout(location = 0) in uint a_vertex;
+#endif
 layout(location = 0) flat out vec4 v_power;     // (power, 1) / (sum of kernel weights)
 layout(location = 1) flat out vec2 v_centre;    // photon position in caustic-map pixels
 layout(location = 2) flat out float v_radius;
@@ -23,16 +36,23 @@ float kernel(float d, float r) {
 void main() {
     uint l = object.info.y;
     CausticLight cl = caustics.lights[l];
+#ifdef PHOTON_VERTEX_ARRAY
+    uint id = gl_VertexIndex;
+    vec4 pos = a_position;
+    bool outside = false;
+#else
     uint width = uint(textureSize(photon_position, 0).x);
     uint id = gl_InstanceIndex * object.info.z + a_vertex;   // info.z: vertices per instance
     ivec2 texel = ivec2(id % width, id / width);
     vec4 pos = texelFetch(photon_position, texel, 0);
+    bool outside = texel.y >= textureSize(photon_position, 0).y;
+#endif
     gl_PointSize = 1.0;
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);     // culled unless it is a live photon
     v_power = vec4(0.0);
     v_centre = vec2(0.0);
     v_radius = 0.0;
-    if (texel.y >= textureSize(photon_position, 0).y || pos.w < 0.5) return;
+    if (outside || pos.w < 0.5) return;
     vec4 clip = cl.caustic_view_proj * vec4(pos.xyz, 1.0);
     if (clip.w <= 0.0) return;
     float m = cl.caustic_plane.y;
@@ -47,7 +67,12 @@ void main() {
             sum += kernel(distance(vec2(x, y) + 0.5, centre), r);
         }
     }
-    v_power = vec4(texelFetch(photon_power, texel, 0).rgb, 1.0) / (sum > 0.0 ? sum : 1.0);
+#ifdef PHOTON_VERTEX_ARRAY
+    vec3 power = photon_power_of(id);
+#else
+    vec3 power = texelFetch(photon_power, texel, 0).rgb;
+#endif
+    v_power = vec4(power, 1.0) / (sum > 0.0 ? sum : 1.0);
     v_centre = centre;
     v_radius = sum > 0.0 ? r : -1.0;            // -1: the kernel misses every centre: nearest texel
     gl_Position = vec4(clip.xy / clip.w, 0.5, 1.0);

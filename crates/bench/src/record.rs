@@ -2,7 +2,7 @@
 //! with every raw sample (and pipeline statistics where the device has them).
 
 use caustics::scene::CausticSettings;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 use vkcore::{DeviceInfo, FrameReport, PipelineStats, Profiler};
 
@@ -35,7 +35,7 @@ pub struct Device {
     pub timestamp_period_ns: f32,
 }
 
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Pass {
     pub name: String,
     pub median_ms: f64,
@@ -43,11 +43,11 @@ pub struct Pass {
     pub max_ms: f64,
     pub samples_ms: Vec<f64>,
     /// Pipeline-statistics counters of this pass in the last frame that had them.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pipeline_stats: Option<Stats>,
 }
 
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Stats {
     pub input_vertices: u64,
     pub input_primitives: u64,

@@ -42,6 +42,48 @@ pub enum Command {
     Reference(ReferenceArgs),
     /// Compare two receiver maps (B is the reference): errors, peak, flux; writes an error image.
     Compare(CompareArgs),
+    /// Regenerate a paper's table from a bench config (bench_configs/*.toml), or merge shards.
+    Bench(BenchArgs),
+}
+
+#[derive(Debug, Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub struct BenchArgs {
+    #[command(subcommand)]
+    pub merge: Option<BenchCommand>,
+    /// The bench config (format: bench_configs/README.md).
+    #[arg(required = true)]
+    pub config: Option<PathBuf>,
+    /// Smoke test: the config's [quick] sizes and frame counts; tables go to <results>/<device>/quick/.
+    #[arg(long)]
+    pub quick: bool,
+    /// Run only the cells matching axis=value[,axis=value...] (e.g. photons=256,technique=points);
+    /// writes a part for `bench merge` and prints the partial table.
+    #[arg(long, value_name = "AXIS=VALUE,...")]
+    pub filter: Option<String>,
+    /// Run every n-th cell starting at the i-th (1-based) of the matrix; merge the parts with
+    /// `causticlab bench merge`.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// Results folder; tables go to <results>/<device-slug>/.
+    #[arg(long, default_value = "results")]
+    pub results: PathBuf,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum BenchCommand {
+    /// Merge the parts of a sharded or filtered sweep into the full table.
+    Merge(MergeArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// Part files (<results>/<device>/parts/<config>.shard-I-of-N.json).
+    #[arg(required = true)]
+    pub parts: Vec<PathBuf>,
+    /// Results folder; the table goes to <results>/<device-slug>/.
+    #[arg(long, default_value = "results")]
+    pub results: PathBuf,
 }
 
 #[derive(Debug, Args)]

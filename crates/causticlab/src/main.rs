@@ -1,8 +1,9 @@
-//! `causticlab`: list Vulkan devices, render scenes. Errors are printed as `error: <chain>` and
+//! `causticlab`: list Vulkan devices, render scenes, compare with references, run benchmarks. Errors are printed as `error: <chain>` and
 //! mapped to exit codes (see `exit.rs`); with `--validate`, any validation message turns a
 //! successful run into exit code 3.
 
 mod cli;
+mod cmd_bench;
 mod cmd_compare;
 mod cmd_devices;
 mod cmd_reference;
@@ -24,6 +25,7 @@ fn main() -> ExitCode {
         Command::Render(args) => cmd_render::run(&cli.global, args, &mut validation),
         Command::Reference(args) => cmd_reference::run(args),
         Command::Compare(args) => cmd_compare::run(args),
+        Command::Bench(args) => cmd_bench::run(&cli.global, args, &mut validation),
     };
     let mut code = match result {
         Ok(()) => exit::OK,

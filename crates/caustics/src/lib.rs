@@ -1,5 +1,6 @@
 //! causticlab's techniques, one module per paper, plus the scene description and CPU references.
 
+pub mod animation;
 pub mod bvh;
 pub mod caustic_map;
 pub mod compare;

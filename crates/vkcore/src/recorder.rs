@@ -346,6 +346,33 @@ impl<'f> Cmd<'f> {
         };
     }
 
+    /// Blits mip 0 / layer 0 of `src` (TRANSFER_SRC layout) onto mip 0 / layer 0 of `dst`
+    /// (TRANSFER_DST layout), same extent, converting the texel format (e.g. 16-bit to 32-bit float).
+    pub fn blit_converting(&mut self, src: &Image, dst: &Image) {
+        let (w, h) = src.mip_extent(0);
+        let sub = |i: &Image| vk::ImageSubresourceLayers {
+            aspect_mask: aspect(i.desc.format),
+            mip_level: 0,
+            base_array_layer: 0,
+            layer_count: 1,
+        };
+        let corners = [vk::Offset3D::default(), vk::Offset3D { x: w as i32, y: h as i32, z: 1 }];
+        let region = vk::ImageBlit2::default()
+            .src_subresource(sub(src))
+            .src_offsets(corners)
+            .dst_subresource(sub(dst))
+            .dst_offsets(corners);
+        let regions = [region];
+        let info = vk::BlitImageInfo2::default()
+            .src_image(src.raw)
+            .src_image_layout(vk::ImageLayout::TRANSFER_SRC_OPTIMAL)
+            .dst_image(dst.raw)
+            .dst_image_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
+            .regions(&regions)
+            .filter(vk::Filter::NEAREST);
+        unsafe { self.d().cmd_blit_image2(self.cb, &info) };
+    }
+
     /// Copies `src` into one mip/layer of `image` (in TRANSFER_DST layout).
     pub fn copy_buffer_to_image(&mut self, src: &Buffer, image: &Image, mip: u32, layer: u32) {
         let r = Self::image_region(image, mip, layer);

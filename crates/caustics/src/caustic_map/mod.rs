@@ -12,10 +12,12 @@
 
 pub mod gpu;
 mod passes;
+pub mod photon_copy;
 mod pipelines;
 mod targets;
 
-pub use passes::{record_caustics, record_cleared, CausticInputs, VERTS_PER_INSTANCE};
+pub use passes::{record_caustics, record_cleared, CausticFrame, CausticInputs, VERTS_PER_INSTANCE};
+pub use photon_copy::{CopyType, PhotonCopy, COPY_TYPES};
 
 /// Vertices per instance of the instanced photon fetch.
 pub fn passes_verts_per_instance() -> u32 {

@@ -2,6 +2,7 @@
 //! the refractor's back faces from the light, the photon buffer (or vertex photons), and the
 //! splat into the light's caustic-map layer.
 
+use super::photon_copy::PhotonCopy;
 use super::pipelines::CausticPipelines;
 use super::targets::{CausticTargets, PhotonTargets};
 use crate::render::gpu::{MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
@@ -23,6 +24,17 @@ pub struct CausticInputs<'a> {
 /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4 uses 1024-4096).
 pub const VERTS_PER_INSTANCE: u32 = 1024;
 
+/// What one frame records beyond the splat.
+#[derive(Clone, Copy, Default)]
+pub struct CausticFrame<'a> {
+    /// Render the receiver positions, back faces and photon buffer again. False reuses the
+    /// previous frame's photons: static lighting in Wyman & Davis 2006 Table 1, where "the
+    /// photon buffer does not need rerendering" and only the splat and eye passes run.
+    pub reuse_photons: bool,
+    /// Copy the photon buffer into a vertex array and splat from it (Wyman 2008 Table 1).
+    pub copy: Option<&'a PhotonCopy>,
+}
+
 pub fn record_caustics(
     f: &mut Frame,
     p: &CausticPipelines,
@@ -30,13 +42,38 @@ pub fn record_caustics(
     pt: &PhotonTargets,
     inp: &CausticInputs,
     lights: u32,
+    frame: CausticFrame,
 ) -> Result<()> {
-    let ubos = || {
-        [Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ), Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ)]
-    };
-    let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
     for l in 0..lights {
-        let (cmap, rpos, rdepth) = &ct.per_light[l as usize];
+        if !frame.reuse_photons {
+            record_photons(f, p, ct, pt, inp, l)?;
+        }
+        if let Some(copy) = frame.copy {
+            copy.record(f, pt, l)?;
+        }
+        record_splat(f, p, ct, pt, inp, l, frame.copy)?;
+    }
+    Ok(())
+}
+
+fn ubo_uses<'a>(inp: &CausticInputs<'a>) -> [Use<'a>; 2] {
+    [Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ), Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ)]
+}
+
+/// Receiver positions, the refractors' back faces and the photon buffer (or vertex photons)
+/// of light `l`.
+fn record_photons(
+    f: &mut Frame,
+    p: &CausticPipelines,
+    ct: &CausticTargets,
+    pt: &PhotonTargets,
+    inp: &CausticInputs,
+    l: u32,
+) -> Result<()> {
+    let ubos = || ubo_uses(inp);
+    let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
+    {
+        let (_, rpos, rdepth) = &ct.per_light[l as usize];
         let mut uses = Vec::from(ubos());
         uses.extend([Use::view(rpos, Access::COLOR_ATTACHMENT), Use::view(rdepth, Access::DEPTH_ATTACHMENT)]);
         uses.extend(mesh_uses(inp.meshes));
@@ -134,14 +171,47 @@ pub fn record_caustics(
                 Ok(())
             })?;
         }
+    }
+    Ok(())
+}
 
-        let mut uses = Vec::from(ubos());
-        uses.extend([
-            Use::view(&pt.position.view, Access::SHADER_READ),
-            Use::view(&pt.power.view, Access::SHADER_READ),
-        ]);
-        uses.push(Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT));
-        uses.push(Use::view(cmap, Access::COLOR_ATTACHMENT));
+/// Splats light `l`'s photons into its caustic-map layer: instanced fetch from the photon
+/// texture (Wyman 2008 Sec. 4), or one vertex per photon from the copied vertex array.
+fn record_splat(
+    f: &mut Frame,
+    p: &CausticPipelines,
+    ct: &CausticTargets,
+    pt: &PhotonTargets,
+    inp: &CausticInputs,
+    l: u32,
+    copy: Option<&PhotonCopy>,
+) -> Result<()> {
+    let (cmap, _, _) = &ct.per_light[l as usize];
+    let mut uses = Vec::from(ubo_uses(inp));
+    uses.push(Use::view(cmap, Access::COLOR_ATTACHMENT));
+    if let (Some(copy), Some(pipeline)) = (copy, &p.splat_vertex_array) {
+        uses.push(Use::buffer(&copy.positions, Access::VERTEX_INPUT));
+        uses.push(Use::buffer(&copy.powers, Access::STORAGE_READ));
+        f.pass(&format!("splat.light{l}"), &uses, |cmd| {
+            cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
+            cmd.bind_pipeline(pipeline);
+            cmd.bind(&[
+                Bind::Uniform(inp.frame_uniforms),
+                Bind::Uniform(inp.caustic_uniforms),
+                Bind::Buffer(&copy.powers),
+            ])?;
+            let c = crate::render::gpu::ObjectConstants { info: [0, l, 0, 0], ..Default::default() };
+            cmd.push(&c)?;
+            cmd.bind_vertex_buffer(&copy.positions, 0);
+            cmd.draw(copy.vertices(), 1, 0, 0);
+            cmd.end_rendering();
+            Ok(())
+        })?;
+        return Ok(());
+    }
+    uses.extend([Use::view(&pt.position.view, Access::SHADER_READ), Use::view(&pt.power.view, Access::SHADER_READ)]);
+    uses.push(Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT));
+    {
         f.pass(&format!("splat.light{l}"), &uses, |cmd| {
             cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
             cmd.bind_pipeline(&p.splat);

@@ -1,5 +1,6 @@
 //! Pipelines of the caustic techniques.
 
+use super::photon_copy::CopyType;
 use super::targets::COLOR;
 use crate::render::pipelines::{mesh_layout, mesh_pipeline, MeshPass};
 use anyhow::Result;
@@ -14,6 +15,8 @@ pub struct CausticPipelines {
     pub photon_buffer: Pipeline,
     pub vertex_photons: Option<Pipeline>,
     pub splat: Pipeline,
+    /// Splats from the copied vertex array (the faithful Wyman & Davis 2006 path).
+    pub splat_vertex_array: Option<Pipeline>,
 }
 
 /// Mesh passes from a light see through the photon frustum with this define, else through the
@@ -22,7 +25,12 @@ const PHOTON_VIEW: &[(&str, &str)] = &[("PHOTON_VIEW", "1")];
 const LIGHT_MESH_VERT: &str = "photons/light_mesh.vert";
 
 impl CausticPipelines {
-    pub fn new(ctx: &Context, sh: &ShaderCompiler, technique: &str) -> Result<CausticPipelines> {
+    pub fn new(
+        ctx: &Context,
+        sh: &ShaderCompiler,
+        technique: &str,
+        copy: Option<CopyType>,
+    ) -> Result<CausticPipelines> {
         let ubo2 = vec![K::UniformBuffer, K::UniformBuffer];
         let trace = vec![K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
         let vertex_photons = if technique == "shah-vertex" {
@@ -50,6 +58,25 @@ impl CausticPipelines {
         splat.topology = Topology::Points;
         splat.blend = Blend::Additive;
         splat.color_formats = vec![COLOR];
+        let splat_vertex_array = match copy {
+            Some(ty) => {
+                let half = ty.vertices_are_half();
+                let mut defines = vec![("PHOTON_VERTEX_ARRAY", "1")];
+                if half {
+                    defines.push(("PHOTON_HALF", "1"));
+                }
+                let mut d = splat.clone();
+                d.name = "splat_vertex_array".into();
+                d.vertex = sh.compile("photons/splat.vert", &defines)?;
+                d.bindings = vec![K::UniformBuffer, K::UniformBuffer, K::StorageBuffer];
+                let (format, stride) =
+                    if half { (Format::R16G16B16A16_SFLOAT, 8) } else { (Format::R32G32B32A32_SFLOAT, 16) };
+                d.vertex_layout =
+                    Some(VertexLayout { stride, attributes: vec![VertexAttribute { location: 0, format, offset: 0 }] });
+                Some(Pipeline::graphics(ctx, &d)?)
+            }
+            None => None,
+        };
         Ok(CausticPipelines {
             receiver_positions: mesh_pipeline(
                 ctx,
@@ -92,6 +119,7 @@ impl CausticPipelines {
             )?,
             vertex_photons,
             splat: Pipeline::graphics(ctx, &splat)?,
+            splat_vertex_array,
         })
     }
 }

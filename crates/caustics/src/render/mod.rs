@@ -3,17 +3,19 @@
 //! lookups, and the receiver map E/E0 that every caustic technique is validated with.
 
 mod dumps;
-use crate::caustic_map;
 mod eye;
 pub mod gpu;
 pub mod pipelines;
+mod renderer;
 pub mod setup;
 pub mod targets;
+
+pub use renderer::{FrameStep, Renderer, RendererOptions};
 
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use anyhow::Result;
-use vkcore::{Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler};
+use vkcore::{Context, FrameReport, ShaderCompiler};
 
 /// Every intermediate buffer `--dump` accepts (`all` = every one).
 pub const DUMP_NAMES: &[&str] = &[
@@ -72,102 +74,19 @@ pub fn required_features(name: &str) -> Option<&'static [vkcore::Feature]> {
 /// Renders `scene` with the caustic technique in `scene.caustics` `req.frames` times (at
 /// least once) and reads back the last frame.
 pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &RenderRequest) -> Result<Rendered> {
-    let settings = &scene.caustics;
-    let technique = settings.technique.as_str();
-    ctx.require(&format!("technique `{technique}`"), required_features(technique).unwrap_or(&[]))?;
-    if scene.lights.len() > gpu::MAX_LIGHTS {
-        return Err(crate::input_error!(
-            "{}: {} lights; at most {} are supported",
-            scene.path.display(),
-            scene.lights.len(),
-            gpu::MAX_LIGHTS
-        )
-        .into());
-    }
-    let active = technique != "none" && caustic_map::gpu::specular_bounds(scene).is_some();
-    let pipelines = pipelines::EyePipelines::new(ctx, shaders)?;
-    let meshes = setup::upload_meshes(ctx, scene)?;
-    let uniforms = ctx.buffer_with_data("frame uniforms", bytemuck::bytes_of(&setup::frame_uniforms(scene)))?;
-    let mut cu = caustic_map::gpu::caustic_uniforms(scene, settings)?;
-    if !active {
-        cu.settings[0] = 0;
-    }
-    let caustic_uniforms = ctx.buffer_with_data("caustic uniforms", bytemuck::bytes_of(&cu))?;
-    let targets = targets::EyeTargets::new(ctx, scene)?;
-    let caustic_targets = caustic_map::CausticTargets::new(ctx, scene, active)?;
-    let spot = setup::spot_texture_layers(scene)?;
-    for l in 0..targets.shadow.lights {
-        let n = (setup::SPOT_TEXTURE_SIZE * setup::SPOT_TEXTURE_SIZE * 4) as usize;
-        ctx.upload_image(
-            &targets.spot_textures.image,
-            0,
-            l,
-            bytemuck::cast_slice(&spot[l as usize * n..(l as usize + 1) * n]),
-        )?;
-    }
-    let nearest = Sampler::new(ctx, Filter::Nearest)?;
-    let linear = Sampler::new(ctx, Filter::Linear)?;
-    // The caustic technique's own resources.
-    let vertex_photons = technique == "shah-vertex";
-    let specular_vertices: u32 =
-        meshes.iter().filter(|m| m.kind() != gpu::MATERIAL_DIFFUSE).map(|m| (m.vertices.size() / 28) as u32).sum();
-    let caustic = if active {
-        let photon_side =
-            if vertex_photons { (specular_vertices as f64).sqrt().ceil() as u32 } else { settings.photons };
-        let areas = if vertex_photons {
-            setup::vertex_areas(ctx, scene)?
-        } else {
-            scene.objects.iter().map(|_| None).collect()
-        };
-        let ids: Vec<u32> = (0..caustic_map::passes_verts_per_instance()).collect();
-        Some((
-            caustic_map::CausticPipelines::new(ctx, shaders, technique)?,
-            caustic_map::PhotonTargets::new(ctx, settings.photons, photon_side)?,
-            areas,
-            ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
-        ))
-    } else {
-        None
-    };
-    let eye_inputs = eye::EyeInputs {
-        uniforms: &uniforms,
-        caustic_uniforms: &caustic_uniforms,
-        caustics: &caustic_targets,
-        meshes: &meshes,
-        nearest: &nearest,
-        linear: &linear,
-    };
+    let mut renderer = Renderer::new(ctx, shaders, scene, &RendererOptions::default())?;
     let mut frames = vec![];
     for _ in 0..req.frames.max(1) {
-        let mut f = ctx.frame(FrameOptions { timestamps: true, pipeline_statistics: true })?;
-        match &caustic {
-            Some((cp, pt, areas, splat_vertices)) => {
-                let inputs = caustic_map::CausticInputs {
-                    frame_uniforms: &uniforms,
-                    caustic_uniforms: &caustic_uniforms,
-                    meshes: &meshes,
-                    vertex_areas: areas,
-                    splat_vertices,
-                    nearest: &nearest,
-                };
-                caustic_map::record_caustics(&mut f, cp, &caustic_targets, pt, &inputs, targets.shadow.lights)?;
-            }
-            None => caustic_map::record_cleared(&mut f, &caustic_targets)?,
-        }
-        eye::record(&mut f, &pipelines, &targets, &eye_inputs)?;
-        frames.push(f.submit()?);
+        frames.push(renderer.frame(FrameStep { reuse_photons: false, pipeline_statistics: true })?);
     }
-    let final_image = dumps::final_image(ctx, &targets)?;
-    let mut out = vec![];
+    let final_image = renderer.final_image()?;
+    let mut dumps = vec![];
     for name in &req.dumps {
-        let photons = caustic.as_ref().map(|c| &c.1);
-        if let Some(img) = dumps::dump(ctx, &targets, &caustic_targets, photons, name)? {
-            out.push((name.clone(), img));
+        if let Some(img) = renderer.dump(name)? {
+            dumps.push((name.clone(), img));
         }
     }
-    let photons_emitted = caustic_map::photons_per_light(settings, specular_vertices)
-        * if active { targets.shadow.lights as u64 } else { 0 };
-    Ok(Rendered { final_image, dumps: out, frames, photons_emitted })
+    Ok(Rendered { final_image, dumps, frames, photons_emitted: renderer.photons_emitted() })
 }
 
 /// The shader folder: `$CAUSTICLAB_SHADERS`, else `shaders_glsl/` found by walking up from the

@@ -15,6 +15,19 @@ pub struct GpuMesh {
     pub indices: Buffer,
     pub index_count: u32,
     pub constants: ObjectConstants,
+    /// Wyman 2005 thickness per vertex (unchanged by rigid motion, kept for re-uploads).
+    pub thickness: Vec<f32>,
+}
+
+/// The GPU vertices of `m` with the given per-vertex thickness.
+pub fn mesh_vertices(m: &crate::scene::Mesh, thickness: &[f32]) -> Vec<MeshVertex> {
+    (0..m.positions.len())
+        .map(|i| MeshVertex {
+            position: m.positions[i].to_array(),
+            normal: m.normals[i].to_array(),
+            thickness: thickness.get(i).copied().unwrap_or(0.0),
+        })
+        .collect()
 }
 
 impl GpuMesh {
@@ -56,13 +69,7 @@ pub fn upload_meshes(ctx: &Context, scene: &Scene) -> Result<Vec<GpuMesh>> {
         } else {
             vec![0.0; m.positions.len()]
         };
-        let vertices: Vec<MeshVertex> = (0..m.positions.len())
-            .map(|i| MeshVertex {
-                position: m.positions[i].to_array(),
-                normal: m.normals[i].to_array(),
-                thickness: thickness[i],
-            })
-            .collect();
+        let vertices = mesh_vertices(m, &thickness);
         let vb = ctx
             .buffer_with_data(&format!("{} vertices", obj.name), bytemuck::cast_slice(&vertices))
             .with_context(|| format!("uploading object `{}`", obj.name))?;
@@ -70,6 +77,7 @@ pub fn upload_meshes(ctx: &Context, scene: &Scene) -> Result<Vec<GpuMesh>> {
             .buffer_with_data(&format!("{} indices", obj.name), bytemuck::cast_slice(&m.indices))
             .with_context(|| format!("uploading object `{}`", obj.name))?;
         out.push(GpuMesh {
+            thickness,
             name: obj.name.clone(),
             vertices: vb,
             indices: ib,

@@ -1,0 +1,314 @@
+//! Bench configs (`bench_configs/*.toml`, format in `bench_configs/README.md`): which paper
+//! table a config reproduces, the matrix of cells it measures, how each cell is run, which
+//! metrics fill the table, how the table is laid out, and the paper's published values.
+//! Unknown keys are errors; every message names the file and the key.
+
+use anyhow::{Context as _, Result};
+use caustics::input_error;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Largest photon buffer side a config may ask for (the renderer's own limit).
+pub const MAX_PHOTONS: u32 = 4096;
+/// Largest output side.
+pub const MAX_RESOLUTION: u32 = 8192;
+/// Most frames a cell may measure (and warm up).
+pub const MAX_FRAMES: u32 = 10_000;
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Config {
+    pub table: TableSpec,
+    #[serde(default)]
+    pub run: RunSpec,
+    pub matrix: MatrixSpec,
+    #[serde(rename = "technique")]
+    pub techniques: Vec<TechniqueSpec>,
+    #[serde(rename = "metric")]
+    pub metrics: Vec<MetricSpec>,
+    pub layout: LayoutSpec,
+    #[serde(default)]
+    pub quick: QuickSpec,
+    #[serde(default)]
+    pub quality: QualitySpec,
+    #[serde(default)]
+    pub paper: Vec<PaperEntry>,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TableSpec {
+    /// e.g. "Wyman 2008, Hierarchical caustic maps".
+    pub paper: String,
+    /// e.g. "1".
+    pub number: String,
+    pub caption: String,
+    /// Free text printed under the table (what differs from the paper's setup).
+    #[serde(default)]
+    pub notes: Vec<String>,
+    /// Log-scale y axis for the plot; default true.
+    #[serde(default = "yes")]
+    pub plot_log_y: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunSpec {
+    #[serde(default = "default_warmup")]
+    pub warmup_frames: u32,
+    #[serde(default = "default_measured")]
+    pub measured_frames: u32,
+    /// `static` or `orbit` for each of the light, camera and specular objects.
+    #[serde(default = "default_path")]
+    pub light_path: String,
+    #[serde(default = "default_path")]
+    pub camera_path: String,
+    #[serde(default = "default_path")]
+    pub object_path: String,
+    /// Frames per loop of every path.
+    #[serde(default = "default_period")]
+    pub period_frames: u32,
+}
+
+fn default_warmup() -> u32 {
+    2
+}
+fn default_measured() -> u32 {
+    10
+}
+fn default_path() -> String {
+    "static".into()
+}
+fn default_period() -> u32 {
+    60
+}
+
+impl Default for RunSpec {
+    fn default() -> Self {
+        RunSpec {
+            warmup_frames: default_warmup(),
+            measured_frames: default_measured(),
+            light_path: default_path(),
+            camera_path: default_path(),
+            object_path: default_path(),
+            period_frames: default_period(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MatrixSpec {
+    /// Scene files, relative to the config file.
+    pub scenes: Vec<String>,
+    /// Photon buffer sides N (N x N photons per light).
+    pub photons: Vec<u32>,
+    /// Numbers of lights; empty = each scene's own. Extra lights copy the scene's last light,
+    /// turned about the vertical axis through the specular objects.
+    #[serde(default)]
+    pub lights: Vec<u32>,
+    /// Output sizes [width, height]; empty = each scene's camera.
+    #[serde(default)]
+    pub resolution: Vec<[u32; 2]>,
+    /// `dynamic` (every pass every frame) and/or `static` (the photon buffer is rendered once,
+    /// in the warm-up, and reused: Wyman & Davis 2006 Table 1).
+    #[serde(default = "default_lighting")]
+    pub lighting: Vec<String>,
+}
+
+fn default_lighting() -> Vec<String> {
+    vec!["dynamic".into()]
+}
+
+/// One column group of techniques: a name in the table and the settings behind it.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TechniqueSpec {
+    pub label: String,
+    pub technique: String,
+    /// `none` (instanced fetch), `16-to-32`, `32-to-32` or `16-to-16`.
+    #[serde(default = "default_copy")]
+    pub photon_copy: String,
+    pub splat_radius: Option<f32>,
+    pub splat_kernel: Option<String>,
+    pub caustic_map_resolution: Option<u32>,
+    pub iterations: Option<u32>,
+    pub fresnel: Option<bool>,
+    pub back_face_iterations: Option<u32>,
+    pub intersect: Option<String>,
+}
+
+fn default_copy() -> String {
+    "none".into()
+}
+
+/// Metric kinds: see `bench_configs/README.md`.
+pub const METRIC_KINDS: &[&str] =
+    &["pass_ms", "gpu_frame_ms", "frame_ms", "fps", "photons_emitted", "splats_drawn", "rel_rmse", "flux_ratio"];
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MetricSpec {
+    pub label: String,
+    pub kind: String,
+    /// For `pass_ms`: pass names summed per frame; `*` matches any run of characters.
+    #[serde(default)]
+    pub passes: Vec<String>,
+}
+
+/// The matrix axes a table can lay out.
+pub const AXES: &[&str] = &["scene", "technique", "photons", "lights", "resolution", "lighting", "metric"];
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LayoutSpec {
+    /// Axes nested into rows, outermost first.
+    pub rows: Vec<String>,
+    /// Axes nested into columns, outermost first. Every axis with more than one value must be
+    /// in `rows` or `columns`.
+    pub columns: Vec<String>,
+    /// Ratios against one value of an axis: `{ axis = "technique", baseline = "points" }`.
+    pub compare: Option<CompareSpec>,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompareSpec {
+    pub axis: String,
+    pub baseline: String,
+}
+
+/// Overrides for `--quick` (smoke tests: few frames, small sizes).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct QuickSpec {
+    #[serde(default = "quick_photons")]
+    pub photons: Vec<u32>,
+    #[serde(default)]
+    pub warmup_frames: u32,
+    #[serde(default = "quick_measured")]
+    pub measured_frames: u32,
+    #[serde(default = "quick_resolution")]
+    pub resolution: Vec<[u32; 2]>,
+    #[serde(default = "quick_caustic_map")]
+    pub caustic_map_resolution: u32,
+    #[serde(default = "quick_reference")]
+    pub reference_photons: u64,
+}
+
+fn quick_photons() -> Vec<u32> {
+    vec![64, 128]
+}
+fn quick_measured() -> u32 {
+    2
+}
+fn quick_resolution() -> Vec<[u32; 2]> {
+    vec![[128, 128]]
+}
+fn quick_caustic_map() -> u32 {
+    256
+}
+fn quick_reference() -> u64 {
+    1 << 16
+}
+
+impl Default for QuickSpec {
+    fn default() -> Self {
+        QuickSpec {
+            photons: quick_photons(),
+            warmup_frames: 0,
+            measured_frames: quick_measured(),
+            resolution: quick_resolution(),
+            caustic_map_resolution: quick_caustic_map(),
+            reference_photons: quick_reference(),
+        }
+    }
+}
+
+/// The CPU reference that `rel_rmse` and `flux_ratio` compare against.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct QualitySpec {
+    /// Photon samples per light.
+    #[serde(default = "reference_photons")]
+    pub reference_photons: u64,
+    #[serde(default = "one")]
+    pub seed: u64,
+}
+
+fn reference_photons() -> u64 {
+    1 << 22
+}
+fn one() -> u64 {
+    1
+}
+
+impl Default for QualitySpec {
+    fn default() -> Self {
+        QualitySpec { reference_photons: reference_photons(), seed: one() }
+    }
+}
+
+/// Published values: axes fixed by name (those with one value may be left out), `values`
+/// keyed by the labels of the innermost column axis.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PaperEntry {
+    pub scene: Option<String>,
+    pub technique: Option<String>,
+    pub photons: Option<u32>,
+    pub lights: Option<u32>,
+    pub resolution: Option<String>,
+    pub lighting: Option<String>,
+    pub metric: Option<String>,
+    pub values: BTreeMap<String, f64>,
+}
+
+/// A config as read from its file, with the file's path, name and a hash of its bytes.
+#[derive(Debug, Clone)]
+pub struct LoadedConfig {
+    pub path: PathBuf,
+    /// File stem: the output files' names.
+    pub name: String,
+    /// FNV-1a 64 of the file's bytes, hex.
+    pub hash: String,
+    pub config: Config,
+}
+
+pub fn fnv1a(bytes: &[u8]) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in bytes {
+        h ^= *b as u64;
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    format!("{h:016x}")
+}
+
+impl LoadedConfig {
+    pub fn load(path: &Path) -> Result<LoadedConfig> {
+        let bytes =
+            std::fs::read(path).map_err(|e| input_error!("{}: cannot read the bench config: {e}", path.display()))?;
+        let text = String::from_utf8(bytes.clone())
+            .map_err(|_| input_error!("{}: the bench config is not UTF-8", path.display()))?;
+        let config: Config =
+            toml::from_str(&text).map_err(|e| input_error!("{}: {}", path.display(), e.to_string().trim_end()))?;
+        let name = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .with_context(|| format!("{}: the config file has no name", path.display()))?
+            .to_string();
+        let loaded = LoadedConfig { path: path.to_path_buf(), name, hash: fnv1a(&bytes), config };
+        super::validate::validate(&loaded)?;
+        Ok(loaded)
+    }
+
+    /// A scene path of the matrix, resolved against the config's folder.
+    pub fn scene_path(&self, scene: &str) -> PathBuf {
+        self.path.parent().unwrap_or(Path::new(".")).join(scene)
+    }
+}

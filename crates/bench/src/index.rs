@@ -1,0 +1,68 @@
+//! `results/README.md`: an index of every table under the results folder, with its device
+//! and date, rebuilt from the `<config>.json` files after each run or merge.
+
+use crate::results::Results;
+use anyhow::Result;
+use caustics::image_io::write_file_atomically;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+const HEADER: &str = "# Results
+
+Every table here was written by `causticlab bench` (or `causticlab bench merge`); this index is
+rebuilt after each run. One folder per device (`<driver>-<device>` slug); in each, per config:
+`<config>.md` (the table beside the paper's), `.csv` (one row per cell and metric), `.json`
+(everything, raw samples included) and `.svg` (the plot). lavapipe numbers are serialized CPU
+time: compare techniques within one device, never lavapipe against a GPU.
+
+Other folders: `quality/` (caustic error against the CPU reference, `scripts/quality_table.sh`),
+`criterion/` (CPU benchmarks, `scripts/criterion.sh`).
+";
+
+/// Rebuilds `<root>/README.md` from `<root>/*/*.json`.
+pub fn write_index(root: &Path) -> Result<PathBuf> {
+    let mut rows: Vec<(String, String, String)> = vec![];
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
+        .map(|rd| rd.filter_map(|e| e.ok()).map(|e| e.path()).filter(|p| p.is_dir()).collect())
+        .unwrap_or_default();
+    dirs.sort();
+    for d in dirs {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&d)
+            .map(|rd| {
+                rd.filter_map(|e| e.ok())
+                    .map(|e| e.path())
+                    .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                    .collect()
+            })
+            .unwrap_or_default();
+        files.sort();
+        for f in files {
+            let Ok(text) = std::fs::read_to_string(&f) else { continue };
+            let Ok(r) = serde_json::from_str::<Results>(&text) else { continue };
+            let folder = d.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+            let md = format!("{folder}/{}.md", r.config.name);
+            let line = format!(
+                "| {}, Table {} | [{}]({md}) | {} ({}) | {} | {} | {} |",
+                r.config.paper,
+                r.config.table,
+                r.config.name,
+                r.meta.device,
+                r.meta.driver_info,
+                r.cells.len(),
+                r.meta.date,
+                r.meta.commit
+            );
+            rows.push((r.config.paper.clone(), r.config.name.clone(), line));
+        }
+    }
+    rows.sort();
+    let mut s = String::from(HEADER);
+    let _ =
+        writeln!(s, "\n| paper, table | config | device (driver) | cells | date | commit |\n|---|---|---|---|---|---|");
+    for (_, _, line) in rows {
+        let _ = writeln!(s, "{line}");
+    }
+    let path = root.join("README.md");
+    write_file_atomically(&path, s.as_bytes())?;
+    Ok(path)
+}

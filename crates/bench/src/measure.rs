@@ -1,0 +1,209 @@
+//! Runs one cell: the scene set up as the cell says, warm-up frames, measured frames along the
+//! config's animation, an untimed frame for pipeline statistics, and (when a quality metric
+//! asks for it) a comparison of the receiver map with the exact CPU reference.
+
+use crate::config::{LoadedConfig, QuickSpec, TechniqueSpec};
+use crate::plan::Cell;
+use anyhow::{Context as _, Result};
+use caustics::animation::{scene_at, Animation};
+use caustics::caustic_map::CopyType;
+use caustics::compare::{compare, Comparison};
+use caustics::image_io::ImageF32;
+use caustics::reference::{trace_reference, ReferenceOptions};
+use caustics::render::{FrameStep, Renderer, RendererOptions};
+use caustics::scene::{CausticSettings, Scene};
+use glam::{Mat3, Vec3};
+use std::collections::HashMap;
+use std::time::Instant;
+use vkcore::{Context, FrameReport, ShaderCompiler};
+
+/// Writes a technique entry's settings over `s` (unset keys keep `s`'s values).
+pub fn apply_technique(s: &mut CausticSettings, t: &TechniqueSpec) {
+    s.technique = t.technique.clone();
+    if let Some(v) = t.splat_radius {
+        s.splat_radius = v;
+    }
+    if let Some(v) = &t.splat_kernel {
+        s.splat_kernel = v.clone();
+    }
+    if let Some(v) = t.caustic_map_resolution {
+        s.caustic_map_resolution = v;
+    }
+    if let Some(v) = t.iterations {
+        s.iterations = v;
+    }
+    if let Some(v) = t.fresnel {
+        s.fresnel = v;
+    }
+    if let Some(v) = t.back_face_iterations {
+        s.back_face_iterations = v;
+    }
+    if let Some(v) = &t.intersect {
+        s.intersect = Some(v.clone());
+    }
+}
+
+/// What one cell measured.
+pub struct CellRun {
+    pub frames: Vec<FrameReport>,
+    /// Host wall time of each measured frame (record, submit, wait), ms.
+    pub wall_ms: Vec<f64>,
+    /// The untimed statistics frame, where the device has pipeline statistics.
+    pub stats_frame: Option<FrameReport>,
+    pub photons_emitted: u64,
+    pub splats_drawn: u64,
+    pub quality: Option<Comparison>,
+    /// The caustic settings in effect (after the technique entry and `--quick`).
+    pub caustics: CausticSettings,
+    pub triangles: usize,
+}
+
+/// Runs cells on one device, keeping CPU references between cells of the same scene.
+pub struct Runner<'a> {
+    pub ctx: &'a Context,
+    pub shaders: &'a ShaderCompiler,
+    pub config: &'a LoadedConfig,
+    pub quick: Option<&'a QuickSpec>,
+    references: HashMap<String, ImageF32>,
+}
+
+impl<'a> Runner<'a> {
+    pub fn new(
+        ctx: &'a Context,
+        shaders: &'a ShaderCompiler,
+        config: &'a LoadedConfig,
+        quick: Option<&'a QuickSpec>,
+    ) -> Self {
+        Runner { ctx, shaders, config, quick, references: HashMap::new() }
+    }
+
+    fn needs_quality(&self) -> bool {
+        self.config.config.metrics.iter().any(|m| m.kind == "rel_rmse" || m.kind == "flux_ratio")
+    }
+
+    /// The scene of `cell`: technique settings, photons, lights and output size applied.
+    pub fn cell_scene(&self, cell: &Cell) -> Result<Scene> {
+        let path = self.config.scene_path(&cell.scene);
+        let mut scene = Scene::load(&path)?;
+        let t = &self.config.config.techniques[cell.technique];
+        apply_technique(&mut scene.caustics, t);
+        scene.caustics.photons = cell.photons;
+        if let Some(q) = self.quick {
+            scene.caustics.caustic_map_resolution = scene.caustics.caustic_map_resolution.min(q.caustic_map_resolution);
+            scene.render.shadow_map_resolution = scene.render.shadow_map_resolution.min(256);
+            if let Some(r) = &mut scene.receiver_map {
+                r.resolution = r.resolution.min(128);
+            }
+        }
+        if cell.lights > 0 {
+            set_light_count(&mut scene, cell.lights as usize)?;
+        }
+        if cell.resolution != [0, 0] {
+            scene.camera.width = cell.resolution[0];
+            scene.camera.height = cell.resolution[1];
+        }
+        if !self.needs_quality() {
+            // The receiver map is a validation instrument, not part of any technique.
+            scene.receiver_map = None;
+        } else if scene.receiver_map.is_none() {
+            anyhow::bail!(caustics::input_error!(
+                "{}: a quality metric needs a [receiver_map] in scene {}",
+                self.config.path.display(),
+                path.display()
+            ));
+        }
+        scene.caustics.validate(&self.config.path.display().to_string(), "technique.")?;
+        Ok(scene)
+    }
+
+    pub fn run(&mut self, cell: &Cell) -> Result<CellRun> {
+        let c = &self.config.config;
+        let scene = self.cell_scene(cell)?;
+        let t = &c.techniques[cell.technique];
+        let copy = CopyType::parse(&t.photon_copy).flatten();
+        let mut renderer = Renderer::new(self.ctx, self.shaders, &scene, &RendererOptions { photon_copy: copy })?;
+        let static_lighting = cell.lighting == "static";
+        let anim = Animation {
+            light: c.run.light_path == "orbit" && !static_lighting,
+            camera: c.run.camera_path == "orbit",
+            object: c.run.object_path == "orbit" && !static_lighting,
+            period_frames: c.run.period_frames,
+        };
+        let (warmup, measured) = match self.quick {
+            Some(q) => (q.warmup_frames, q.measured_frames),
+            None => (c.run.warmup_frames, c.run.measured_frames),
+        };
+        let step = FrameStep { reuse_photons: static_lighting, pipeline_statistics: false };
+        let mut frames = vec![];
+        let mut wall_ms = vec![];
+        for f in 0..warmup + measured {
+            if f > 0 && !anim.is_static() {
+                renderer.set_pose(&scene_at(&scene, &anim, f))?;
+            }
+            let start = Instant::now();
+            let report = renderer.frame(step)?;
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            if f >= warmup {
+                frames.push(report);
+                wall_ms.push(ms);
+            }
+        }
+        let stats_frame = if self.ctx.info().has(vkcore::Feature::PipelineStatisticsQuery) {
+            Some(renderer.frame(FrameStep { pipeline_statistics: true, ..step })?)
+        } else {
+            None
+        };
+        let quality = if self.needs_quality() { Some(self.quality(&renderer, &scene)?) } else { None };
+        Ok(CellRun {
+            frames,
+            wall_ms,
+            stats_frame,
+            photons_emitted: renderer.photons_emitted(),
+            splats_drawn: renderer.splats_drawn(),
+            quality,
+            caustics: scene.caustics.clone(),
+            triangles: scene.triangle_count(),
+        })
+    }
+
+    /// The last frame's receiver map against the CPU reference of the same scene and lights.
+    fn quality(&mut self, renderer: &Renderer, scene: &Scene) -> Result<Comparison> {
+        let q = &self.config.config.quality;
+        let photons = self.quick.map(|k| k.reference_photons).unwrap_or(q.reference_photons);
+        let key = format!("{:?}|{:?}|{:?}|{}", scene.path, scene.lights, scene.receiver_map, scene.caustics.fresnel);
+        if !self.references.contains_key(&key) {
+            let opts =
+                ReferenceOptions { photons, seed: q.seed, fresnel: scene.caustics.fresnel, ..Default::default() };
+            let r = trace_reference(scene, &opts)
+                .with_context(|| format!("tracing the CPU reference of {}", scene.path.display()))?;
+            self.references.insert(key.clone(), r.image);
+        }
+        let reference = &self.references[&key];
+        let ours = renderer.dump("receiver")?.context("the render has no receiver map to compare")?;
+        Ok(compare(&ours, reference)?.0)
+    }
+}
+
+/// Keeps the first `n` lights, or adds copies of the last one turned by 360°·k/n about the
+/// vertical axis through the centre of the scene's bounds.
+fn set_light_count(scene: &mut Scene, n: usize) -> Result<()> {
+    anyhow::ensure!(!scene.lights.is_empty(), "{}: the scene has no light to copy", scene.path.display());
+    if scene.lights.len() >= n {
+        scene.lights.truncate(n);
+        return Ok(());
+    }
+    let (lo, hi) = scene.bounds();
+    let pivot = 0.5 * (lo + hi);
+    let last = scene.lights[scene.lights.len() - 1].clone();
+    let have = scene.lights.len();
+    for k in have..n {
+        let turn = Mat3::from_rotation_y(std::f32::consts::TAU * (k + 1 - have) as f32 / (n + 1 - have) as f32);
+        let mut l = last.clone();
+        l.position = pivot + turn * (l.position - pivot);
+        if let caustics::scene::LightKind::Spot { direction, .. } = &mut l.kind {
+            *direction = (turn * *direction).normalize_or(Vec3::NEG_Y);
+        }
+        scene.lights.push(l);
+    }
+    Ok(())
+}

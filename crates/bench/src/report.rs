@@ -1,0 +1,267 @@
+//! `<config>.md` (laid out like the paper's table, ours beside the paper's, ratios of ratios
+//! where the config compares along an axis), `<config>.csv` (one row per cell and metric) and
+//! `<config>.svg` (the papers' line charts: values against photon count).
+
+use crate::config::Config;
+use crate::results::Results;
+use crate::svg::{Chart, Series};
+use crate::table::{display, format_value, grid, unit, Grid};
+use std::fmt::Write as _;
+
+fn header_of(axes: &[String], keys: &[String]) -> String {
+    axes.iter().zip(keys).map(|(a, k)| display(a, k)).collect::<Vec<_>>().join(" · ")
+}
+
+pub fn markdown(config: &Config, results: &Results) -> String {
+    let g = grid(config, results);
+    let has_paper = g.entries.iter().flatten().any(|e| e.paper.is_some());
+    let m = &results.meta;
+    let r = &results.run;
+    let mut s = String::new();
+    let _ = writeln!(s, "# {}, Table {}\n", config.table.paper, config.table.number);
+    let _ = writeln!(s, "> {}\n", config.table.caption);
+    if r.quick {
+        let _ =
+            writeln!(s, "**Quick run (`--quick`): small sizes and few frames, a smoke test, not a measurement.**\n");
+    }
+    if r.validation {
+        let _ = writeln!(s, "**Validation layers were on: these times are not measurements.**\n");
+    }
+    let _ = writeln!(
+        s,
+        "- **Device:** {} ({}), driver {} {}, Vulkan {}\n- **CPU:** {}\n- **Commit:** {} · **date:** {} · \
+         **config:** `{}` (hash {})",
+        m.device,
+        m.device_type,
+        m.driver_name,
+        m.driver_info,
+        m.vulkan_version,
+        m.cpu,
+        m.commit,
+        m.date,
+        results.config.file,
+        results.config.hash
+    );
+    let _ = writeln!(
+        s,
+        "- **Run:** {} warm-up + {} measured frames per cell; light path {}, camera path {}, object path {} \
+         ({} frames per loop). Times are medians over the measured frames.",
+        r.warmup_frames, r.measured_frames, r.light_path, r.camera_path, r.object_path, r.period_frames
+    );
+    if !m.quirks.is_empty() {
+        let _ = writeln!(s, "- **Device quirks worked around:** {}", m.quirks.join("; "));
+    }
+    let _ = writeln!(s);
+    // The table: for each column, ours then the paper's.
+    let mut head = g.row_axes.iter().map(|a| a.to_string()).collect::<Vec<_>>();
+    for c in &g.cols {
+        let h = header_of(&g.col_axes, c);
+        if has_paper {
+            head.push(format!("{h} (ours)"));
+            head.push("paper".into());
+        } else {
+            head.push(h);
+        }
+    }
+    let _ = writeln!(s, "| {} |", head.join(" | "));
+    let _ = writeln!(s, "|{}", head.iter().map(|_| "---|").collect::<String>());
+    for (ri, row) in g.rows.iter().enumerate() {
+        let mut cells: Vec<String> = g.row_axes.iter().zip(row).map(|(a, k)| display(a, k)).collect();
+        for e in &g.entries[ri] {
+            cells.push(format_value(&e.kind, e.ours));
+            if has_paper {
+                cells.push(format_value(&e.kind, e.paper));
+            }
+        }
+        let _ = writeln!(s, "| {} |", cells.join(" | "));
+    }
+    let units: Vec<&str> = config.metrics.iter().map(|m| unit(&m.kind)).filter(|u| !u.is_empty()).collect();
+    if let Some(u) = units.first() {
+        let _ = writeln!(s, "\nValues in {u}{}.", if units.iter().all(|x| x == u) { "" } else { " (per metric kind)" });
+    }
+    ratios(&mut s, config, &g, has_paper);
+    let mut notes = config.table.notes.clone();
+    if m.driver_name.to_lowercase().contains("llvmpipe") || m.device.to_lowercase().contains("llvmpipe") {
+        notes.push(
+            "lavapipe runs every pass serially on the CPU: its times are CPU time, fine for ratios between \
+             techniques on this machine, never comparable with GPU numbers. Its timestamps miss compute \
+             dispatches, so passes built on compute shaders read too low; `frame_ms` (host wall time) does not."
+                .into(),
+        );
+    }
+    if !notes.is_empty() {
+        let _ = writeln!(s, "\n## Notes\n");
+        for n in notes {
+            let _ = writeln!(s, "- {n}");
+        }
+    }
+    let _ = writeln!(s, "\n![plot]({}.svg)\n", results.config.name);
+    let _ = writeln!(
+        s,
+        "Regenerate: `causticlab bench {}{}`; raw samples in `{}.json`, one row per cell and metric in `{}.csv`.",
+        results.config.file,
+        if r.quick { " --quick" } else { "" },
+        results.config.name,
+        results.config.name
+    );
+    s
+}
+
+/// Ratios against the baseline of `layout.compare`: ours, the paper's, and ours ÷ the paper's
+/// (1.0 = the same relative cost as in the paper).
+fn ratios(s: &mut String, config: &Config, g: &Grid, has_paper: bool) {
+    let Some(cmp) = &config.layout.compare else { return };
+    let _ = writeln!(s, "\n## Ratios against {} `{}`\n", cmp.axis, display(&cmp.axis, &cmp.baseline));
+    let _ = writeln!(s, "| {} | {} | ours | paper | ours ÷ paper |", g.row_axes.join(" · "), g.col_axes.join(" · "));
+    let _ = writeln!(s, "|---|---|---|---|---|");
+    for (ri, row) in g.rows.iter().enumerate() {
+        for (ci, col) in g.cols.iter().enumerate() {
+            let e = &g.entries[ri][ci];
+            if e.keys.get(&cmp.axis) == Some(&cmp.baseline) {
+                continue;
+            }
+            let Some(b) = g.baseline_of(e, &cmp.axis, &cmp.baseline) else { continue };
+            let ratio = |x: Option<f64>, y: Option<f64>| match (x, y) {
+                (Some(x), Some(y)) if y != 0.0 => Some(x / y),
+                _ => None,
+            };
+            let ours = ratio(e.ours, b.ours);
+            let paper = ratio(e.paper, b.paper);
+            if ours.is_none() && paper.is_none() {
+                continue;
+            }
+            let f = |v: Option<f64>| v.map(|v| format!("{v:.2}")).unwrap_or_else(|| "–".into());
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} |",
+                header_of(&g.row_axes, row),
+                header_of(&g.col_axes, col),
+                f(ours),
+                if has_paper { f(paper) } else { "–".into() },
+                f(ratio(ours, paper))
+            );
+        }
+    }
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+pub fn csv(config: &Config, results: &Results) -> String {
+    let mut s = String::from(
+        "config,device,scene,technique,photons,lights,resolution,lighting,metric,kind,value,min,max,paper\n",
+    );
+    let num = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
+    for c in &results.cells {
+        for m in &config.metrics {
+            let Some(v) = c.metrics.get(&m.label) else { continue };
+            let mut keys: std::collections::BTreeMap<String, String> =
+                ["scene", "technique", "photons", "lights", "resolution", "lighting"]
+                    .iter()
+                    .map(|a| (a.to_string(), c.cell.key(a)))
+                    .collect();
+            keys.insert("metric".into(), m.label.clone());
+            let paper = crate::paper::value(config, &keys);
+            let fields = [
+                results.config.name.clone(),
+                results.meta.device.clone(),
+                c.cell.key("scene"),
+                c.cell.key("technique"),
+                c.cell.key("photons"),
+                c.cell.key("lights"),
+                c.cell.key("resolution"),
+                c.cell.key("lighting"),
+                m.label.clone(),
+                m.kind.clone(),
+                num(v.value),
+                num(v.min),
+                num(v.max),
+                num(paper),
+            ];
+            let _ = writeln!(s, "{}", fields.iter().map(|f| csv_field(f)).collect::<Vec<_>>().join(","));
+        }
+    }
+    s
+}
+
+/// Values against photon count (photons² on a log2 axis), one solid line per table column and
+/// other row axis, the paper's values dashed.
+pub fn plot(config: &Config, results: &Results) -> String {
+    let g = grid(config, results);
+    let photons_row = g.row_axes.iter().position(|a| a == "photons");
+    let mut series: Vec<Series> = vec![];
+    let mut ticks: Vec<(f64, String)> = vec![];
+    let x_of = |ri: usize, row: &[String]| -> f64 {
+        match photons_row {
+            Some(p) => row[p].parse::<f64>().map(|n| n * n).unwrap_or(f64::NAN),
+            None => ri as f64 + 1.0,
+        }
+    };
+    for (ri, row) in g.rows.iter().enumerate() {
+        let label = match photons_row {
+            Some(p) => display("photons", &row[p]),
+            None => header_of(&g.row_axes, row),
+        };
+        let x = x_of(ri, row);
+        if !ticks.iter().any(|(t, _)| *t == x) {
+            ticks.push((x, label));
+        }
+    }
+    // Series = columns x the row axes other than photons.
+    let mut names: Vec<String> = vec![];
+    for (ri, row) in g.rows.iter().enumerate() {
+        let others: Vec<String> = g
+            .row_axes
+            .iter()
+            .zip(row)
+            .enumerate()
+            .filter(|(i, _)| photons_row.is_some() && Some(*i) != photons_row)
+            .map(|(_, (a, k))| display(a, k))
+            .collect();
+        for (ci, col) in g.cols.iter().enumerate() {
+            let mut name = header_of(&g.col_axes, col);
+            if !others.is_empty() {
+                name = format!("{} · {name}", others.join(" · "));
+            }
+            let e = &g.entries[ri][ci];
+            let x = x_of(ri, row);
+            for (paper, v) in [(false, e.ours), (true, e.paper)] {
+                let label = if paper { format!("{name} (paper)") } else { name.clone() };
+                let idx = match names.iter().position(|n| *n == label) {
+                    Some(i) => i,
+                    None => {
+                        names.push(label.clone());
+                        series.push(Series { label, points: vec![], dashed: paper });
+                        names.len() - 1
+                    }
+                };
+                if let Some(v) = v {
+                    series[idx].points.push((x, v));
+                }
+            }
+        }
+    }
+    // Drop paper series the paper has no value for.
+    series.retain(|s| !s.dashed || !s.points.is_empty());
+    let kinds: Vec<&str> = config.metrics.iter().map(|m| unit(&m.kind)).collect();
+    let y_label = match kinds.first() {
+        Some(u) if !u.is_empty() && kinds.iter().all(|k| k == u) => u.to_string(),
+        _ => "value".into(),
+    };
+    let chart = Chart {
+        title: format!("{}, Table {}", config.table.paper, config.table.number),
+        subtitle: format!("{} · {} · {}", results.meta.device, results.meta.driver_info, results.meta.date),
+        x_label: if photons_row.is_some() { "photons".into() } else { g.row_axes.join(" · ") },
+        y_label,
+        x_log2: photons_row.is_some(),
+        x_tick_labels: ticks,
+        y_log: config.table.plot_log_y,
+        series,
+    };
+    crate::svg::render(&chart)
+}

@@ -1,0 +1,127 @@
+//! `<config>.json`: everything a run measured (raw samples included) and what it ran on.
+//! Shard files have the same shape with a subset of the cells; `bench merge` reads them back.
+
+use crate::measure::CellRun;
+use crate::plan::{Cell, Filter, Shard};
+use crate::record::{Pass, Stats};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use vkcore::{PipelineStats, Profiler};
+
+pub const SCHEMA: u32 = 1;
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Results {
+    pub schema: u32,
+    pub config: ConfigInfo,
+    pub run: RunInfo,
+    pub meta: Meta,
+    /// In cell-index order.
+    pub cells: Vec<CellResult>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct ConfigInfo {
+    pub file: String,
+    pub name: String,
+    pub hash: String,
+    pub paper: String,
+    pub table: String,
+    pub caption: String,
+    /// The config file's text, so that `bench merge` needs nothing but the parts.
+    pub toml: String,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct RunInfo {
+    pub quick: bool,
+    pub warmup_frames: u32,
+    pub measured_frames: u32,
+    pub light_path: String,
+    pub camera_path: String,
+    pub object_path: String,
+    pub period_frames: u32,
+    pub validation: bool,
+    pub filter: Filter,
+    pub shard: Option<Shard>,
+    /// Cells in the full matrix (the table's size).
+    pub total_cells: usize,
+}
+
+/// Where and when the numbers were taken.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Meta {
+    pub device: String,
+    pub device_type: String,
+    pub device_slug: String,
+    pub driver_name: String,
+    pub driver_info: String,
+    pub vulkan_version: String,
+    pub timestamp_period_ns: f32,
+    pub cpu: String,
+    pub commit: String,
+    pub date: String,
+    pub causticlab_version: String,
+    /// Device quirks the run worked around (e.g. features treated as absent).
+    pub quirks: Vec<String>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct CellResult {
+    pub cell: Cell,
+    /// The caustic settings in effect (`[caustics]` of the scene, the technique entry, `--quick`).
+    pub caustics: serde_json::Value,
+    pub photon_copy: String,
+    pub triangles: usize,
+    /// Metric label → value.
+    pub metrics: BTreeMap<String, Value>,
+    /// Host wall time of each measured frame, ms.
+    pub wall_ms: Vec<f64>,
+    /// Per-pass GPU times over the measured frames.
+    pub passes: Vec<Pass>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Value {
+    pub kind: String,
+    /// The table's number (median for times; exact for counts).
+    pub value: Option<f64>,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+    /// Per measured frame, where the metric has one value per frame.
+    pub samples: Vec<f64>,
+}
+
+/// Is `kind` a time or rate (varies between runs) rather than a count or an error measure?
+pub fn is_timing(kind: &str) -> bool {
+    matches!(kind, "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps")
+}
+
+pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>, photon_copy: &str) -> CellResult {
+    let mut profiler = Profiler::default();
+    for f in &run.frames {
+        profiler.record(f);
+    }
+    let stats = |name: &str| -> Option<PipelineStats> { run.stats_frame.as_ref()?.pass(name)?.stats };
+    let passes = profiler
+        .summary()
+        .into_iter()
+        .map(|s| Pass {
+            pipeline_stats: stats(&s.name).map(Stats::from),
+            name: s.name,
+            median_ms: s.median_ms,
+            min_ms: s.min_ms,
+            max_ms: s.max_ms,
+            samples_ms: s.samples_ms,
+        })
+        .collect();
+    CellResult {
+        cell: cell.clone(),
+        caustics: serde_json::to_value(&run.caustics).unwrap_or(serde_json::Value::Null),
+        photon_copy: photon_copy.to_string(),
+        triangles: run.triangles,
+        metrics,
+        wall_ms: run.wall_ms.clone(),
+        passes,
+    }
+}

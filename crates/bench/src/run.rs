@@ -1,0 +1,212 @@
+//! `causticlab bench`: run a config's cells and write its table; `bench merge`: put shards back
+//! together. Nothing is written until every cell has run, and each file is written to a
+//! temporary name and renamed, so an interrupted run never leaves a half-written table.
+
+use crate::config::{Config, LoadedConfig};
+use crate::measure::Runner;
+use crate::plan::{Filter, Matrix, Shard};
+use crate::progress::Progress;
+use crate::results::{cell_result, ConfigInfo, Results, RunInfo, SCHEMA};
+use anyhow::{Context as _, Result};
+use caustics::image_io::write_file_atomically;
+use caustics::input_error;
+use std::path::{Path, PathBuf};
+use vkcore::{Context, ShaderCompiler};
+
+#[derive(Debug, Clone, Default)]
+pub struct BenchOptions {
+    pub quick: bool,
+    pub filter: Option<String>,
+    pub shard: Option<String>,
+    /// The results folder (`results/` by default); tables go to `<root>/<device-slug>/`.
+    pub results_root: PathBuf,
+}
+
+pub struct Outcome {
+    pub written: Vec<PathBuf>,
+    pub markdown: String,
+}
+
+/// Runs the cells `opts` selects and writes the table (or, for a filtered or sharded run, a
+/// part for `bench merge`).
+pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &BenchOptions) -> Result<Outcome> {
+    let c = &lc.config;
+    let quick = opts.quick.then_some(&c.quick);
+    let matrix = Matrix::new(c, quick);
+    let all = matrix.cells(c);
+    let filter = match &opts.filter {
+        Some(f) => Filter::parse(f, c, &matrix)?,
+        None => Filter::default(),
+    };
+    let shard = opts.shard.as_deref().map(Shard::parse).transpose()?;
+    let cells: Vec<_> =
+        all.iter().filter(|cell| filter.matches(cell) && shard.iter().all(|s| s.takes(cell))).cloned().collect();
+    if cells.is_empty() {
+        return Err(input_error!("{}: --filter/--shard selects no cell", lc.path.display()).into());
+    }
+    let (warmup, measured) = match quick {
+        Some(q) => (q.warmup_frames, q.measured_frames),
+        None => (c.run.warmup_frames, c.run.measured_frames),
+    };
+    let costs = cells
+        .iter()
+        .map(|cell| {
+            let px =
+                if cell.resolution == [0, 0] { 1 << 20 } else { cell.resolution[0] as u64 * cell.resolution[1] as u64 };
+            (cell.photons as u64 * cell.photons as u64 * cell.lights.max(1) as u64 + px) as f64
+                * (warmup + measured + 1) as f64
+        })
+        .collect();
+    let mut progress = Progress::new(costs);
+    let mut runner = Runner::new(ctx, shaders, lc, quick);
+    let mut done = vec![];
+    for cell in &cells {
+        progress.start_cell(&cell.describe());
+        let run = runner.run(cell).with_context(|| format!("bench cell {}", cell.describe()))?;
+        let metrics = crate::metrics::evaluate(&c.metrics, &run);
+        done.push(cell_result(cell, &run, metrics, &c.techniques[cell.technique].photon_copy));
+        progress.finish_cell();
+    }
+    progress.finish();
+    let text = std::fs::read_to_string(&lc.path).with_context(|| format!("re-reading {}", lc.path.display()))?;
+    let results = Results {
+        schema: SCHEMA,
+        config: ConfigInfo {
+            file: lc.path.display().to_string(),
+            name: lc.name.clone(),
+            hash: lc.hash.clone(),
+            paper: c.table.paper.clone(),
+            table: c.table.number.clone(),
+            caption: c.table.caption.clone(),
+            toml: text,
+        },
+        run: RunInfo {
+            quick: opts.quick,
+            warmup_frames: warmup,
+            measured_frames: measured,
+            light_path: c.run.light_path.clone(),
+            camera_path: c.run.camera_path.clone(),
+            object_path: c.run.object_path.clone(),
+            period_frames: c.run.period_frames,
+            validation: ctx.validation_enabled(),
+            filter: filter.clone(),
+            shard,
+            total_cells: all.len(),
+        },
+        meta: crate::meta::meta(ctx.info()),
+        cells: done,
+    };
+    let dir = device_dir(&opts.results_root, &results);
+    if filter.is_empty() && shard.is_none() {
+        write_table(c, &results, &dir, &opts.results_root)
+    } else {
+        let tag = match shard {
+            Some(s) => format!("shard-{}-of-{}", s.index, s.count),
+            None => format!("filter-{}", crate::config::fnv1a(format!("{:?}", filter.terms).as_bytes())),
+        };
+        let part = dir.join("parts").join(format!("{}.{tag}.json", lc.name));
+        write_json(&part, &results)?;
+        Ok(Outcome { written: vec![part], markdown: crate::report::markdown(c, &results) })
+    }
+}
+
+fn device_dir(root: &Path, r: &Results) -> PathBuf {
+    let d = root.join(&r.meta.device_slug);
+    if r.run.quick {
+        d.join("quick")
+    } else {
+        d
+    }
+}
+
+fn write_json(path: &Path, results: &Results) -> Result<()> {
+    make_dir(path.parent().unwrap_or(Path::new(".")))?;
+    let json = serde_json::to_string_pretty(results).context("serialising the results")?;
+    write_file_atomically(path, json.as_bytes())
+}
+
+/// Writes `<name>.{json,csv,svg,md}` into `dir` (the markdown last: it links the others) and
+/// refreshes the index of `root`.
+pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Result<Outcome> {
+    let name = &results.config.name;
+    make_dir(dir)?;
+    let md = crate::report::markdown(c, results);
+    let files = [
+        (dir.join(format!("{name}.json")), serde_json::to_string_pretty(results).context("serialising the results")?),
+        (dir.join(format!("{name}.csv")), crate::report::csv(c, results)),
+        (dir.join(format!("{name}.svg")), crate::report::plot(c, results)),
+        (dir.join(format!("{name}.md")), md.clone()),
+    ];
+    let mut written = vec![];
+    for (path, text) in files {
+        write_file_atomically(&path, text.as_bytes())?;
+        written.push(path);
+    }
+    written.push(crate::index::write_index(root)?);
+    Ok(Outcome { written, markdown: md })
+}
+
+/// `bench merge`: the cells of every part (shards or filtered runs of one config on one device)
+/// into the table an unsharded run would have written.
+pub fn merge(parts: &[PathBuf], root: &Path) -> Result<Outcome> {
+    let mut loaded: Vec<(PathBuf, Results)> = vec![];
+    for p in parts {
+        let text =
+            std::fs::read_to_string(p).map_err(|e| input_error!("{}: cannot read the part: {e}", p.display()))?;
+        let r: Results = serde_json::from_str(&text)
+            .map_err(|e| input_error!("{}: not a causticlab bench result: {e}", p.display()))?;
+        if r.schema != SCHEMA {
+            return Err(
+                input_error!("{}: results schema {} (this causticlab reads {SCHEMA})", p.display(), r.schema).into()
+            );
+        }
+        loaded.push((p.clone(), r));
+    }
+    let Some((first_path, first)) = loaded.first().cloned() else {
+        return Err(input_error!("bench merge: give the part files to merge").into());
+    };
+    let mut cells = vec![];
+    for (p, r) in &loaded {
+        let same = |what: &str, a: &str, b: &str| -> Result<()> {
+            if a != b {
+                return Err(input_error!(
+                    "{}: {what} `{a}` differs from {}'s `{b}`; parts must come from one config on one kind of device",
+                    p.display(),
+                    first_path.display()
+                )
+                .into());
+            }
+            Ok(())
+        };
+        same("config hash", &r.config.hash, &first.config.hash)?;
+        same("device", &r.meta.device, &first.meta.device)?;
+        same("driver", &r.meta.driver_info, &first.meta.driver_info)?;
+        same("quick flag", &r.run.quick.to_string(), &first.run.quick.to_string())?;
+        for c in &r.cells {
+            if cells.iter().any(|x: &crate::results::CellResult| x.cell.index == c.cell.index) {
+                return Err(input_error!("{}: cell {} is also in another part", p.display(), c.cell.describe()).into());
+            }
+            cells.push(c.clone());
+        }
+    }
+    cells.sort_by_key(|c| c.cell.index);
+    let config: Config = toml::from_str(&first.config.toml)
+        .map_err(|e| input_error!("{}: the embedded config does not parse: {e}", first_path.display()))?;
+    let all = Matrix::new(&config, first.run.quick.then_some(&config.quick)).cells(&config);
+    let missing: Vec<String> =
+        all.iter().filter(|a| !cells.iter().any(|c| c.cell.index == a.index)).map(|a| a.describe()).collect();
+    if !missing.is_empty() {
+        return Err(input_error!("bench merge: {} cell(s) missing, e.g. {}", missing.len(), missing[0]).into());
+    }
+    let mut results = first.clone();
+    results.cells = cells;
+    results.run.filter = Filter::default();
+    results.run.shard = None;
+    let dir = device_dir(root, &results);
+    write_table(&config, &results, &dir, root)
+}
+
+fn make_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| input_error!("cannot create the results folder {}: {e}", dir.display()).into())
+}

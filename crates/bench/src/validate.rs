@@ -1,0 +1,236 @@
+//! Checks a parsed config before anything runs: ranges, names, files, and that the layout and
+//! the paper's values fit the matrix. Every message names the file and the key.
+
+use crate::config::{LoadedConfig, AXES, MAX_FRAMES, MAX_PHOTONS, MAX_RESOLUTION, METRIC_KINDS};
+use crate::plan::Matrix;
+use anyhow::Result;
+use caustics::animation::PATHS;
+use caustics::caustic_map::COPY_TYPES;
+use caustics::input_error;
+use caustics::scene::{CausticSettings, TECHNIQUES};
+
+pub fn validate(lc: &LoadedConfig) -> Result<()> {
+    let file = lc.path.display().to_string();
+    let c = &lc.config;
+    let bad = |key: &str, msg: String| -> anyhow::Error { input_error!("{file}: key `{key}`: {msg}").into() };
+    let unique = |key: &str, v: Vec<String>| -> Result<()> {
+        for (i, x) in v.iter().enumerate() {
+            if v[..i].contains(x) {
+                return Err(bad(key, format!("`{x}` appears twice")));
+            }
+        }
+        Ok(())
+    };
+    for (key, v) in
+        [("table.paper", &c.table.paper), ("table.number", &c.table.number), ("table.caption", &c.table.caption)]
+    {
+        if v.trim().is_empty() {
+            return Err(bad(key, "must not be empty".into()));
+        }
+    }
+    let r = &c.run;
+    if r.warmup_frames > MAX_FRAMES {
+        return Err(bad("run.warmup_frames", format!("{} is more than {MAX_FRAMES}", r.warmup_frames)));
+    }
+    if !(1..=MAX_FRAMES).contains(&r.measured_frames) {
+        return Err(bad(
+            "run.measured_frames",
+            format!("must be between 1 and {MAX_FRAMES}, got {}", r.measured_frames),
+        ));
+    }
+    for (key, p) in
+        [("run.light_path", &r.light_path), ("run.camera_path", &r.camera_path), ("run.object_path", &r.object_path)]
+    {
+        if !PATHS.contains(&p.as_str()) {
+            return Err(bad(key, format!("unknown path `{p}`; expected one of {}", PATHS.join(", "))));
+        }
+    }
+    if !(1..=MAX_FRAMES).contains(&r.period_frames) {
+        return Err(bad("run.period_frames", format!("must be between 1 and {MAX_FRAMES}, got {}", r.period_frames)));
+    }
+
+    let m = &c.matrix;
+    if m.scenes.is_empty() {
+        return Err(bad("matrix.scenes", "lists no scene".into()));
+    }
+    for s in &m.scenes {
+        let p = lc.scene_path(s);
+        if !p.is_file() {
+            return Err(bad("matrix.scenes", format!("scene `{s}` not found (looked for {})", p.display())));
+        }
+    }
+    unique("matrix.scenes", m.scenes.iter().map(|s| crate::plan::scene_label(s)).collect())?;
+    check_photons(&bad, "matrix.photons", &m.photons)?;
+    for &l in &m.lights {
+        if !(1..=caustics::render::gpu::MAX_LIGHTS as u32).contains(&l) {
+            let max = caustics::render::gpu::MAX_LIGHTS;
+            return Err(bad("matrix.lights", format!("{l} lights: must be between 1 and {max}")));
+        }
+    }
+    unique("matrix.lights", m.lights.iter().map(|l| l.to_string()).collect())?;
+    check_resolutions(&bad, "matrix.resolution", &m.resolution)?;
+    if m.lighting.is_empty() {
+        return Err(bad("matrix.lighting", "lists nothing; use [\"dynamic\"], [\"static\"] or both".into()));
+    }
+    for l in &m.lighting {
+        if l != "static" && l != "dynamic" {
+            return Err(bad("matrix.lighting", format!("unknown lighting `{l}`; expected static or dynamic")));
+        }
+    }
+    unique("matrix.lighting", m.lighting.clone())?;
+
+    if c.techniques.is_empty() {
+        return Err(bad("technique", "no [[technique]] entries".into()));
+    }
+    unique("technique.label", c.techniques.iter().map(|t| t.label.clone()).collect())?;
+    for (i, t) in c.techniques.iter().enumerate() {
+        let key = |k: &str| format!("technique[{i}].{k}");
+        if !TECHNIQUES.contains(&t.technique.as_str()) {
+            return Err(bad(
+                &key("technique"),
+                format!("unknown technique `{}`; expected one of {}", t.technique, TECHNIQUES.join(", ")),
+            ));
+        }
+        if !COPY_TYPES.contains(&t.photon_copy.as_str()) {
+            return Err(bad(
+                &key("photon_copy"),
+                format!("unknown copy `{}`; expected one of {}", t.photon_copy, COPY_TYPES.join(", ")),
+            ));
+        }
+        if t.photon_copy != "none" && !["wd-points", "shah"].contains(&t.technique.as_str()) {
+            return Err(bad(
+                &key("photon_copy"),
+                format!("copies a photon buffer, which technique `{}` does not have", t.technique),
+            ));
+        }
+        let mut s = CausticSettings::default();
+        crate::measure::apply_technique(&mut s, t);
+        s.validate(&file, &format!("technique[{i}]."))?;
+    }
+
+    if c.metrics.is_empty() {
+        return Err(bad("metric", "no [[metric]] entries".into()));
+    }
+    unique("metric.label", c.metrics.iter().map(|m| m.label.clone()).collect())?;
+    for (i, mt) in c.metrics.iter().enumerate() {
+        if !METRIC_KINDS.contains(&mt.kind.as_str()) {
+            return Err(bad(
+                &format!("metric[{i}].kind"),
+                format!("unknown kind `{}`; expected one of {}", mt.kind, METRIC_KINDS.join(", ")),
+            ));
+        }
+        if (mt.kind == "pass_ms") == mt.passes.is_empty() {
+            let msg =
+                if mt.passes.is_empty() { "kind pass_ms needs `passes`" } else { "only kind pass_ms takes `passes`" };
+            return Err(bad(&format!("metric[{i}].passes"), msg.into()));
+        }
+    }
+
+    let q = &c.quick;
+    check_photons(&bad, "quick.photons", &q.photons)?;
+    check_resolutions(&bad, "quick.resolution", &q.resolution)?;
+    if !(1..=MAX_FRAMES).contains(&q.measured_frames) || q.warmup_frames > MAX_FRAMES {
+        return Err(bad("quick.measured_frames", format!("must be between 1 and {MAX_FRAMES}")));
+    }
+    if !(16..=8192).contains(&q.caustic_map_resolution) {
+        return Err(bad(
+            "quick.caustic_map_resolution",
+            format!("must be between 16 and 8192, got {}", q.caustic_map_resolution),
+        ));
+    }
+    if !(1..=1 << 30).contains(&c.quality.reference_photons) || !(1..=1 << 30).contains(&q.reference_photons) {
+        return Err(bad("quality.reference_photons", "must be between 1 and 2^30".into()));
+    }
+    validate_layout(lc, &bad)
+}
+
+fn check_photons(bad: &dyn Fn(&str, String) -> anyhow::Error, key: &str, v: &[u32]) -> Result<()> {
+    if v.is_empty() {
+        return Err(bad(key, "lists no photon count".into()));
+    }
+    for &p in v {
+        if !(64..=MAX_PHOTONS).contains(&p) {
+            return Err(bad(key, format!("{p}: photon buffer sides must be between 64 and {MAX_PHOTONS}")));
+        }
+    }
+    if (1..v.len()).any(|i| v[..i].contains(&v[i])) {
+        return Err(bad(key, "lists a photon count twice".into()));
+    }
+    Ok(())
+}
+
+fn check_resolutions(bad: &dyn Fn(&str, String) -> anyhow::Error, key: &str, v: &[[u32; 2]]) -> Result<()> {
+    for r in v {
+        if r.iter().any(|&x| !(1..=MAX_RESOLUTION).contains(&x)) {
+            return Err(bad(key, format!("{}x{}: sides must be between 1 and {MAX_RESOLUTION}", r[0], r[1])));
+        }
+    }
+    Ok(())
+}
+
+fn validate_layout(lc: &LoadedConfig, bad: &dyn Fn(&str, String) -> anyhow::Error) -> Result<()> {
+    let c = &lc.config;
+    let l = &c.layout;
+    let m = Matrix::new(c, None);
+    let placed: Vec<&String> = l.rows.iter().chain(&l.columns).collect();
+    for (i, a) in placed.iter().enumerate() {
+        if !AXES.contains(&a.as_str()) {
+            return Err(bad("layout", format!("unknown axis `{a}`; axes: {}", AXES.join(", "))));
+        }
+        if placed[..i].contains(a) {
+            return Err(bad("layout", format!("axis `{a}` is placed twice")));
+        }
+    }
+    if l.rows.is_empty() || l.columns.is_empty() {
+        return Err(bad("layout", "needs at least one axis in `rows` and one in `columns`".into()));
+    }
+    for a in AXES {
+        if m.keys(c, a).len() > 1 && !placed.iter().any(|p| p == a) {
+            return Err(bad("layout", format!("axis `{a}` has several values but is in neither `rows` nor `columns`")));
+        }
+    }
+    if let Some(cmp) = &l.compare {
+        if !placed.iter().any(|p| **p == cmp.axis) {
+            return Err(bad("layout.compare.axis", format!("`{}` is not in the layout", cmp.axis)));
+        }
+        if !m.keys(c, &cmp.axis).contains(&cmp.baseline) {
+            return Err(bad(
+                "layout.compare.baseline",
+                format!("`{}` is not a value of axis `{}`", cmp.baseline, cmp.axis),
+            ));
+        }
+    }
+    let inner = l.columns.last().map(String::as_str).unwrap_or("metric");
+    let inner_keys = m.keys(c, inner);
+    for (i, e) in c.paper.iter().enumerate() {
+        let fixed = crate::paper::fixed_axes(e);
+        for (axis, value) in &fixed {
+            if *axis == inner {
+                return Err(bad(
+                    &format!("paper[{i}].{axis}"),
+                    format!("`{inner}` is the innermost column axis: its values are the keys of `values`"),
+                ));
+            }
+            if !m.keys(c, axis).contains(value) {
+                return Err(bad(
+                    &format!("paper[{i}].{axis}"),
+                    format!("`{value}` is not a value of axis `{axis}` ({})", m.keys(c, axis).join(", ")),
+                ));
+            }
+        }
+        for a in AXES.iter().filter(|a| **a != inner) {
+            if m.keys(c, a).len() > 1 && !fixed.iter().any(|(x, _)| x == a) {
+                return Err(bad(&format!("paper[{i}]"), format!("must name a `{a}` (the axis has several values)")));
+            }
+        }
+        for k in e.values.keys() {
+            if !inner_keys.contains(k) {
+                return Err(bad(
+                    &format!("paper[{i}].values"),
+                    format!("`{k}` is not a value of the innermost column axis `{inner}` ({})", inner_keys.join(", ")),
+                ));
+            }
+        }
+    }
+    Ok(())
+}

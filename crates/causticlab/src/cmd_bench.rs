@@ -1,0 +1,43 @@
+//! `causticlab bench CONFIG` and `causticlab bench merge PARTS...`: the config is read and
+//! checked before the device is opened; the tables are written only after every cell ran.
+
+use crate::cli::{BenchArgs, BenchCommand, GlobalOpts};
+use anyhow::{Context as _, Result};
+use bench::{BenchOptions, LoadedConfig};
+use std::sync::Arc;
+use vkcore::{Context, ShaderCompiler, ValidationLog};
+
+pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<ValidationLog>>) -> Result<()> {
+    if let Some(BenchCommand::Merge(m)) = &args.merge {
+        let out = bench::merge(&m.parts, &m.results)?;
+        report(&out);
+        return Ok(());
+    }
+    let Some(path) = &args.config else {
+        return Err(caustics::input_error!("bench: give a config file (bench_configs/*.toml) or `merge`").into());
+    };
+    let config = LoadedConfig::load(path)?;
+    let opts = crate::context_options(g)?;
+    if opts.validation && !args.quick {
+        eprintln!("warning: --validate slows every pass; the tables will say their times are not measurements");
+    }
+    let ctx = Context::new(&opts).context("opening the Vulkan device")?;
+    *validation = Some(ctx.validation_log());
+    let shaders = ShaderCompiler::new(&caustics::render::shader_root()).context("creating the shader compiler")?;
+    let bench_opts = BenchOptions {
+        quick: args.quick,
+        filter: args.filter.clone(),
+        shard: args.shard.clone(),
+        results_root: args.results.clone(),
+    };
+    let out = bench::run(&ctx, &shaders, &config, &bench_opts)?;
+    report(&out);
+    Ok(())
+}
+
+fn report(out: &bench::Outcome) {
+    println!("{}", out.markdown);
+    for f in &out.written {
+        println!("wrote {}", f.display());
+    }
+}

@@ -1,0 +1,261 @@
+//! A renderer that keeps its pipelines, targets and photon buffers between frames, so that a
+//! benchmark can render many frames of an animation (uniforms and moving meshes updated per
+//! frame) and time each one.
+
+use super::{dumps, eye, gpu, pipelines, setup, targets};
+use crate::caustic_map::{self, CausticFrame, CopyType, PhotonCopy};
+use crate::image_io::ImageF32;
+use crate::scene::Scene;
+use anyhow::{Context as _, Result};
+use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler, Use};
+
+/// Choices fixed for the renderer's lifetime.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RendererOptions {
+    /// Copy the photon buffer into a vertex array before splatting (Wyman 2008 Table 1-2).
+    pub photon_copy: Option<CopyType>,
+}
+
+/// What one frame does.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FrameStep {
+    /// Keep the previous frame's photon buffer (static lighting); ignored on the first frame.
+    pub reuse_photons: bool,
+    /// Pipeline-statistics queries around every pass (where the device has them).
+    pub pipeline_statistics: bool,
+}
+
+struct CausticResources {
+    pipelines: caustic_map::CausticPipelines,
+    photons: caustic_map::PhotonTargets,
+    vertex_areas: Vec<Option<Buffer>>,
+    splat_vertices: Buffer,
+    copy: Option<PhotonCopy>,
+}
+
+pub struct Renderer<'c> {
+    ctx: &'c Context,
+    scene: Scene,
+    active: bool,
+    pipelines: pipelines::EyePipelines,
+    meshes: Vec<setup::GpuMesh>,
+    uniforms: Buffer,
+    caustic_uniforms: Buffer,
+    /// New uniform contents to write at the start of the next frame.
+    pending_uniforms: Option<(gpu::FrameUniforms, caustic_map::gpu::CausticUniforms)>,
+    targets: targets::EyeTargets,
+    caustic_targets: caustic_map::CausticTargets,
+    nearest: Sampler,
+    linear: Sampler,
+    caustic: Option<CausticResources>,
+    specular_vertices: u32,
+    photons_ready: bool,
+}
+
+impl<'c> Renderer<'c> {
+    pub fn new(ctx: &'c Context, shaders: &ShaderCompiler, scene: &Scene, opts: &RendererOptions) -> Result<Self> {
+        let settings = &scene.caustics;
+        let technique = settings.technique.as_str();
+        ctx.require(&format!("technique `{technique}`"), super::required_features(technique).unwrap_or(&[]))?;
+        if scene.lights.len() > gpu::MAX_LIGHTS {
+            return Err(crate::input_error!(
+                "{}: {} lights; at most {} are supported",
+                scene.path.display(),
+                scene.lights.len(),
+                gpu::MAX_LIGHTS
+            )
+            .into());
+        }
+        if opts.photon_copy.is_some() && technique != "wd-points" && technique != "shah" {
+            return Err(crate::input_error!(
+                "photon_copy: copying the photon buffer into a vertex array needs a photon-buffer technique \
+                 (wd-points or shah), not `{technique}`"
+            )
+            .into());
+        }
+        let active = technique != "none" && caustic_map::gpu::specular_bounds(scene).is_some();
+        let pipelines = pipelines::EyePipelines::new(ctx, shaders)?;
+        let meshes = setup::upload_meshes(ctx, scene)?;
+        let (fu, cu) = uniforms_of(scene, active)?;
+        let uniforms = ctx.buffer_with_data("frame uniforms", bytemuck::bytes_of(&fu))?;
+        let caustic_uniforms = ctx.buffer_with_data("caustic uniforms", bytemuck::bytes_of(&cu))?;
+        let targets = targets::EyeTargets::new(ctx, scene)?;
+        let caustic_targets = caustic_map::CausticTargets::new(ctx, scene, active)?;
+        let spot = setup::spot_texture_layers(scene)?;
+        for l in 0..targets.shadow.lights {
+            let n = (setup::SPOT_TEXTURE_SIZE * setup::SPOT_TEXTURE_SIZE * 4) as usize;
+            ctx.upload_image(
+                &targets.spot_textures.image,
+                0,
+                l,
+                bytemuck::cast_slice(&spot[l as usize * n..(l as usize + 1) * n]),
+            )?;
+        }
+        let vertex_photons = technique == "shah-vertex";
+        let specular_vertices: u32 = meshes
+            .iter()
+            .filter(|m| m.kind() != gpu::MATERIAL_DIFFUSE)
+            .map(|m| (m.vertices.size() / std::mem::size_of::<gpu::MeshVertex>() as u64) as u32)
+            .sum();
+        let caustic = if active {
+            let photon_side =
+                if vertex_photons { (specular_vertices as f64).sqrt().ceil() as u32 } else { settings.photons };
+            let vertex_areas = if vertex_photons {
+                setup::vertex_areas(ctx, scene)?
+            } else {
+                scene.objects.iter().map(|_| None).collect()
+            };
+            let ids: Vec<u32> = (0..caustic_map::VERTS_PER_INSTANCE).collect();
+            let copy = match opts.photon_copy {
+                Some(ty) => Some(PhotonCopy::new(ctx, ty, photon_side)?),
+                None => None,
+            };
+            Some(CausticResources {
+                pipelines: caustic_map::CausticPipelines::new(ctx, shaders, technique, opts.photon_copy)?,
+                photons: caustic_map::PhotonTargets::new(ctx, settings.photons, photon_side)?,
+                vertex_areas,
+                splat_vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
+                copy,
+            })
+        } else {
+            None
+        };
+        Ok(Renderer {
+            ctx,
+            scene: scene.clone(),
+            active,
+            pipelines,
+            meshes,
+            uniforms,
+            caustic_uniforms,
+            pending_uniforms: None,
+            targets,
+            caustic_targets,
+            nearest: Sampler::new(ctx, Filter::Nearest)?,
+            linear: Sampler::new(ctx, Filter::Linear)?,
+            caustic,
+            specular_vertices,
+            photons_ready: false,
+        })
+    }
+
+    /// Moves to `scene`, a pose of the scene this renderer was made for (same objects, lights
+    /// and sizes; see `crate::animation`): new uniforms are written at the start of the next
+    /// frame, and meshes whose vertices moved are uploaded now (outside any frame).
+    pub fn set_pose(&mut self, scene: &Scene) -> Result<()> {
+        anyhow::ensure!(
+            scene.objects.len() == self.meshes.len() && scene.lights.len() == self.scene.lights.len(),
+            "set_pose: {} is not a pose of the scene this renderer was made for",
+            scene.path.display()
+        );
+        for ((obj, old), mesh) in scene.objects.iter().zip(&self.scene.objects).zip(&self.meshes) {
+            if obj.mesh.positions != old.mesh.positions || obj.mesh.normals != old.mesh.normals {
+                let vertices = setup::mesh_vertices(&obj.mesh, &mesh.thickness);
+                self.ctx
+                    .upload_buffer(&mesh.vertices, bytemuck::cast_slice(&vertices))
+                    .with_context(|| format!("uploading the moved object `{}`", obj.name))?;
+            }
+        }
+        self.pending_uniforms = Some(uniforms_of(scene, self.active)?);
+        self.scene = scene.clone();
+        Ok(())
+    }
+
+    /// Records, submits and waits for one frame; returns its per-pass timings.
+    pub fn frame(&mut self, step: FrameStep) -> Result<FrameReport> {
+        let mut f = self.ctx.frame(FrameOptions { timestamps: true, pipeline_statistics: step.pipeline_statistics })?;
+        if let Some((fu, cu)) = self.pending_uniforms.take() {
+            let uses = [
+                Use::buffer(&self.uniforms, Access::TRANSFER_WRITE),
+                Use::buffer(&self.caustic_uniforms, Access::TRANSFER_WRITE),
+            ];
+            f.pass("uniforms", &uses, |cmd| {
+                cmd.update_buffer(&self.uniforms, 0, bytemuck::bytes_of(&fu))?;
+                cmd.update_buffer(&self.caustic_uniforms, 0, bytemuck::bytes_of(&cu))?;
+                Ok(())
+            })?;
+        }
+        match &self.caustic {
+            Some(c) => {
+                let inputs = caustic_map::CausticInputs {
+                    frame_uniforms: &self.uniforms,
+                    caustic_uniforms: &self.caustic_uniforms,
+                    meshes: &self.meshes,
+                    vertex_areas: &c.vertex_areas,
+                    splat_vertices: &c.splat_vertices,
+                    nearest: &self.nearest,
+                };
+                let frame =
+                    CausticFrame { reuse_photons: step.reuse_photons && self.photons_ready, copy: c.copy.as_ref() };
+                caustic_map::record_caustics(
+                    &mut f,
+                    &c.pipelines,
+                    &self.caustic_targets,
+                    &c.photons,
+                    &inputs,
+                    self.targets.shadow.lights,
+                    frame,
+                )?;
+            }
+            None => caustic_map::record_cleared(&mut f, &self.caustic_targets)?,
+        }
+        let eye_inputs = eye::EyeInputs {
+            uniforms: &self.uniforms,
+            caustic_uniforms: &self.caustic_uniforms,
+            caustics: &self.caustic_targets,
+            meshes: &self.meshes,
+            nearest: &self.nearest,
+            linear: &self.linear,
+        };
+        eye::record(&mut f, &self.pipelines, &self.targets, &eye_inputs)?;
+        let report = f.submit()?;
+        self.photons_ready = true;
+        Ok(report)
+    }
+
+    /// The last frame's linear radiance.
+    pub fn final_image(&self) -> Result<ImageF32> {
+        dumps::final_image(self.ctx, &self.targets)
+    }
+
+    /// The named intermediate buffer of the last frame (None where this render has none).
+    pub fn dump(&self, name: &str) -> Result<Option<ImageF32>> {
+        let photons = self.caustic.as_ref().map(|c| &c.photons);
+        dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)
+    }
+
+    /// Photons emitted per frame over all lights (0 without a caustic technique).
+    pub fn photons_emitted(&self) -> u64 {
+        if !self.active {
+            return 0;
+        }
+        caustic_map::photons_per_light(&self.scene.caustics, self.specular_vertices) * self.targets.shadow.lights as u64
+    }
+
+    /// Points drawn by the splat passes per frame over all lights (every photon-buffer texel is
+    /// drawn; invalid ones are culled in the vertex shader).
+    pub fn splats_drawn(&self) -> u64 {
+        match &self.caustic {
+            Some(c) => {
+                let per_light = match &c.copy {
+                    Some(copy) => copy.vertices() as u64,
+                    None => {
+                        let total = c.photons.width * c.photons.width;
+                        (total.div_ceil(caustic_map::VERTS_PER_INSTANCE) * caustic_map::VERTS_PER_INSTANCE) as u64
+                    }
+                };
+                per_light * self.targets.shadow.lights as u64
+            }
+            None => 0,
+        }
+    }
+}
+
+/// Frame and caustic uniforms of `scene`; the caustic pass is switched off when not `active`.
+fn uniforms_of(scene: &Scene, active: bool) -> Result<(gpu::FrameUniforms, caustic_map::gpu::CausticUniforms)> {
+    let mut cu = caustic_map::gpu::caustic_uniforms(scene, &scene.caustics)?;
+    if !active {
+        cu.settings[0] = 0;
+    }
+    Ok((setup::frame_uniforms(scene), cu))
+}
