@@ -108,8 +108,9 @@ pub struct MatrixSpec {
     pub scenes: Vec<String>,
     /// Photon buffer sides N (N x N photons per light).
     pub photons: Vec<u32>,
-    /// Numbers of lights; empty = each scene's own. Extra lights copy the scene's last light,
-    /// turned about the vertical axis through the specular objects.
+    /// Numbers of lights; empty = each scene's own. Fewer than the scene has keeps the first
+    /// ones; more adds copies of the scene's last light turned about the vertical axis through
+    /// the centre of the scene's bounds, spread evenly (see `measure::set_light_count`).
     #[serde(default)]
     pub lights: Vec<u32>,
     /// Output sizes [width, height]; empty = each scene's camera.

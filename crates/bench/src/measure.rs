@@ -184,8 +184,9 @@ impl<'a> Runner<'a> {
     }
 }
 
-/// Keeps the first `n` lights, or adds copies of the last one turned by 360°·k/n about the
-/// vertical axis through the centre of the scene's bounds.
+/// Keeps the first `n` lights, or adds copies of the last one turned about the vertical axis
+/// through the centre of the scene's bounds: with m lights in the scene, the j-th copy
+/// (j = 1..=n−m) by 360°·j/(n−m+1).
 fn set_light_count(scene: &mut Scene, n: usize) -> Result<()> {
     anyhow::ensure!(!scene.lights.is_empty(), "{}: the scene has no light to copy", scene.path.display());
     if scene.lights.len() >= n {

@@ -45,7 +45,7 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     let _ = writeln!(
         s,
         "- **Run:** {} warm-up + {} measured frames per cell; light path {}, camera path {}, object path {} \
-         ({} frames per loop). Times are medians over the measured frames.",
+         ({} frames per loop). Times are medians over the measured frames; fps is 1000 / mean frame time.",
         r.warmup_frames, r.measured_frames, r.light_path, r.camera_path, r.object_path, r.period_frames
     );
     if !m.quirks.is_empty() {

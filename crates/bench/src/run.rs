@@ -59,6 +59,12 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         .collect();
     let mut progress = Progress::new(costs);
     let mut runner = Runner::new(ctx, shaders, lc, quick);
+    // Load every scene once before the first cell, so that a broken scene fails fast.
+    for (i, cell) in cells.iter().enumerate() {
+        if !cells[..i].iter().any(|c| c.scene == cell.scene) {
+            runner.cell_scene(cell)?;
+        }
+    }
     let mut done = vec![];
     for cell in &cells {
         progress.start_cell(&cell.describe());
@@ -100,10 +106,14 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
     if filter.is_empty() && shard.is_none() {
         write_table(c, &results, &dir, &opts.results_root)
     } else {
-        let tag = match shard {
-            Some(s) => format!("shard-{}-of-{}", s.index, s.count),
-            None => format!("filter-{}", crate::config::fnv1a(format!("{:?}", filter.terms).as_bytes())),
-        };
+        let mut tags = vec![];
+        if !filter.is_empty() {
+            tags.push(format!("filter-{}", crate::config::fnv1a(format!("{:?}", filter.terms).as_bytes())));
+        }
+        if let Some(s) = shard {
+            tags.push(format!("shard-{}-of-{}", s.index, s.count));
+        }
+        let tag = tags.join(".");
         let part = dir.join("parts").join(format!("{}.{tag}.json", lc.name));
         write_json(&part, &results)?;
         Ok(Outcome { written: vec![part], markdown: crate::report::markdown(c, &results) })
@@ -182,6 +192,7 @@ pub fn merge(parts: &[PathBuf], root: &Path) -> Result<Outcome> {
         same("device", &r.meta.device, &first.meta.device)?;
         same("driver", &r.meta.driver_info, &first.meta.driver_info)?;
         same("quick flag", &r.run.quick.to_string(), &first.run.quick.to_string())?;
+        same("validation flag", &r.run.validation.to_string(), &first.run.validation.to_string())?;
         for c in &r.cells {
             if cells.iter().any(|x: &crate::results::CellResult| x.cell.index == c.cell.index) {
                 return Err(input_error!("{}: cell {} is also in another part", p.display(), c.cell.describe()).into());

@@ -128,7 +128,8 @@ pub fn unit(kind: &str) -> &'static str {
     match kind {
         "pass_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
         "fps" => "fps",
-        "photons_emitted" | "splats_drawn" => "photons",
+        "photons_emitted" => "photons",
+        "splats_drawn" => "points",
         _ => "",
     }
 }

@@ -69,6 +69,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     }
     unique("matrix.lights", m.lights.iter().map(|l| l.to_string()).collect())?;
     check_resolutions(&bad, "matrix.resolution", &m.resolution)?;
+    unique("matrix.resolution", m.resolution.iter().map(|r| format!("{}x{}", r[0], r[1])).collect())?;
     if m.lighting.is_empty() {
         return Err(bad("matrix.lighting", "lists nothing; use [\"dynamic\"], [\"static\"] or both".into()));
     }
@@ -129,8 +130,12 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     let q = &c.quick;
     check_photons(&bad, "quick.photons", &q.photons)?;
     check_resolutions(&bad, "quick.resolution", &q.resolution)?;
-    if !(1..=MAX_FRAMES).contains(&q.measured_frames) || q.warmup_frames > MAX_FRAMES {
+    unique("quick.resolution", q.resolution.iter().map(|r| format!("{}x{}", r[0], r[1])).collect())?;
+    if !(1..=MAX_FRAMES).contains(&q.measured_frames) {
         return Err(bad("quick.measured_frames", format!("must be between 1 and {MAX_FRAMES}")));
+    }
+    if q.warmup_frames > MAX_FRAMES {
+        return Err(bad("quick.warmup_frames", format!("must be at most {MAX_FRAMES}")));
     }
     if !(16..=8192).contains(&q.caustic_map_resolution) {
         return Err(bad(
@@ -138,8 +143,19 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             format!("must be between 16 and 8192, got {}", q.caustic_map_resolution),
         ));
     }
-    if !(1..=1 << 30).contains(&c.quality.reference_photons) || !(1..=1 << 30).contains(&q.reference_photons) {
-        return Err(bad("quality.reference_photons", "must be between 1 and 2^30".into()));
+    for (key, n) in
+        [("quality.reference_photons", c.quality.reference_photons), ("quick.reference_photons", q.reference_photons)]
+    {
+        if !(1..=1 << 30).contains(&n) {
+            return Err(bad(key, format!("{n}: must be between 1 and 2^30")));
+        }
+    }
+    let quality = c.metrics.iter().any(|m| m.kind == "rel_rmse" || m.kind == "flux_ratio");
+    if quality && [&r.light_path, &r.camera_path, &r.object_path].iter().any(|p| *p != "static") {
+        return Err(bad(
+            "run",
+            "quality metrics compare the rest pose with the CPU reference: keep every path static".into(),
+        ));
     }
     validate_layout(lc, &bad)
 }
@@ -184,9 +200,15 @@ fn validate_layout(lc: &LoadedConfig, bad: &dyn Fn(&str, String) -> anyhow::Erro
     if l.rows.is_empty() || l.columns.is_empty() {
         return Err(bad("layout", "needs at least one axis in `rows` and one in `columns`".into()));
     }
+    let quick = Matrix::new(c, Some(&c.quick));
     for a in AXES {
-        if m.keys(c, a).len() > 1 && !placed.iter().any(|p| p == a) {
-            return Err(bad("layout", format!("axis `{a}` has several values but is in neither `rows` nor `columns`")));
+        for (matrix, which) in [(&m, ""), (&quick, " under --quick")] {
+            if matrix.keys(c, a).len() > 1 && !placed.iter().any(|p| p == a) {
+                return Err(bad(
+                    "layout",
+                    format!("axis `{a}` has several values{which} but is in neither `rows` nor `columns`"),
+                ));
+            }
         }
     }
     if let Some(cmp) = &l.compare {

@@ -47,9 +47,10 @@ pub fn record_caustics(
     for l in 0..lights {
         if !frame.reuse_photons {
             record_photons(f, p, ct, pt, inp, l)?;
-        }
-        if let Some(copy) = frame.copy {
-            copy.record(f, pt, l)?;
+            // The copied vertex arrays stay valid as long as the photon buffer does.
+            if let Some(copy) = frame.copy {
+                copy.record(f, pt, l)?;
+            }
         }
         record_splat(f, p, ct, pt, inp, l, frame.copy)?;
     }

@@ -6,7 +6,7 @@
 //!
 //! The photon buffer is rendered in 32-bit float. For the 16-bit sources of Table 2 a pass
 //! `photon_buffer.to_16bit` first converts it into 16-bit images (standing in for a 16-bit
-//! FBO; it is not part of the copy's cost). The copy pass `photon_copy` then does what the
+//! FBO; it is timed as its own pass, not as part of the copy). The copy pass `photon_copy` then does what the
 //! driver would: a plain copy when both sides have the same type, and for 16-bit to 32-bit a
 //! converting blit into a 32-bit image followed by the copy.
 

@@ -1,0 +1,367 @@
+//! `causticlab bench`: a `--quick` run of every shipped config (validation on, zero messages),
+//! config errors, atomic writes when a run fails half-way, and shards that merge into the
+//! unsharded table.
+
+mod common;
+
+use common::{causticlab, scratch, workspace, Run};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+fn assert_clean(r: &Run) {
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert!(!r.stderr.contains("[validation"), "validation messages:\n{}", r.describe());
+    assert!(r.stderr.contains("validation: no warnings or errors reported"), "{}", r.describe());
+}
+
+/// The one device folder under `root` (the run's device slug).
+fn device_dir(root: &Path) -> PathBuf {
+    let dirs: Vec<PathBuf> = std::fs::read_dir(root)
+        .expect("results folder")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.is_dir())
+        .collect();
+    assert_eq!(dirs.len(), 1, "expected one device folder in {}: {dirs:?}", root.display());
+    dirs[0].clone()
+}
+
+fn json(path: &Path) -> Value {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("parsing {}: {e}", path.display()))
+}
+
+fn quick_run(config: &str) -> (PathBuf, Value) {
+    let root = scratch("bench-quick");
+    let cfg = workspace().join("bench_configs").join(config);
+    let r = causticlab(&[
+        "--validate".as_ref(),
+        "bench".as_ref(),
+        cfg.as_os_str(),
+        "--quick".as_ref(),
+        "--results".as_ref(),
+        root.as_os_str(),
+    ]);
+    assert_clean(&r);
+    let dir = device_dir(&root).join("quick");
+    let stem = config.trim_end_matches(".toml");
+    for ext in ["md", "csv", "json", "svg"] {
+        let f = dir.join(format!("{stem}.{ext}"));
+        assert!(f.is_file(), "{} missing\n{}", f.display(), r.describe());
+    }
+    assert!(root.join("README.md").is_file(), "results index missing");
+    let results = json(&dir.join(format!("{stem}.json")));
+    let cells = results["cells"].as_array().expect("cells").len();
+    assert_eq!(results["run"]["total_cells"].as_u64(), Some(cells as u64), "a quick run measures every cell");
+    assert!(results["run"]["quick"].as_bool() == Some(true));
+    // One CSV row per cell and metric, plus the header.
+    let csv = std::fs::read_to_string(dir.join(format!("{stem}.csv"))).expect("csv");
+    let metrics = results["cells"][0]["metrics"].as_object().expect("metrics").len();
+    assert_eq!(csv.lines().count(), 1 + cells * metrics, "{csv}");
+    let svg = std::fs::read_to_string(dir.join(format!("{stem}.svg"))).expect("svg");
+    assert!(svg.starts_with("<svg") && svg.contains("<polyline"), "plot without lines");
+    (dir, results)
+}
+
+fn metric(cell: &Value, label: &str) -> Option<f64> {
+    cell["metrics"][label]["value"].as_f64()
+}
+
+#[test]
+fn quick_wyman2008_table1_times_every_phase_and_copies_only_on_the_copy_path() {
+    let (dir, r) = quick_run("wyman2008_table1.toml");
+    for cell in r["cells"].as_array().expect("cells") {
+        let technique = cell["cell"]["technique_label"].as_str().unwrap_or_default();
+        for m in ["Render Photon Buffer", "Splat Photons", "Eye Render"] {
+            let v = metric(cell, m).unwrap_or(-1.0);
+            assert!(v > 0.0, "{technique}: {m} = {v}");
+        }
+        // The copy pass exists exactly where the technique copies the photon buffer.
+        let copy = metric(cell, "Copy to Vertex Array");
+        assert_eq!(copy.is_some(), technique == "W&D copy", "{technique}: copy = {copy:?}");
+        let samples = cell["passes"][0]["samples_ms"].as_array().map(|s| s.len()).unwrap_or(0);
+        assert_eq!(samples, 2, "raw samples of the 2 measured quick frames are kept");
+    }
+    let md = std::fs::read_to_string(dir.join("wyman2008_table1.md")).expect("md");
+    assert!(md.contains("Costs for the caustic mapping phases") && md.contains("| 64² |"), "{md}");
+}
+
+#[test]
+fn quick_wyman2008_table2_copies_each_data_type() {
+    let (_, r) = quick_run("wyman2008_table2.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 6, "3 copy types x 2 photon counts");
+    for cell in cells {
+        assert!(metric(cell, "copy").unwrap_or(-1.0) > 0.0, "{}", cell["cell"]);
+    }
+}
+
+#[test]
+fn quick_wyman_davis2006_table1_runs_static_and_dynamic_lighting() {
+    let (_, r) = quick_run("wyman_davis2006_table1.toml");
+    for cell in r["cells"].as_array().expect("cells") {
+        let lighting = cell["cell"]["lighting"].as_str().unwrap_or_default();
+        assert!(metric(cell, "fps").unwrap_or(-1.0) > 0.0);
+        // Static lighting reuses the warm-up's photon buffer: no photon pass in measured frames
+        // (the quick run has no warm-up, so its first measured frame renders them once).
+        let photon_samples = cell["passes"]
+            .as_array()
+            .expect("passes")
+            .iter()
+            .find(|p| p["name"].as_str().is_some_and(|n| n.starts_with("photon_buffer.")))
+            .and_then(|p| p["samples_ms"].as_array().map(|s| s.len()))
+            .unwrap_or(0);
+        let expected = if lighting == "static" { 1 } else { 2 };
+        assert_eq!(photon_samples, expected, "{lighting}: photon buffer rendered in {photon_samples} frames");
+    }
+}
+
+#[test]
+fn quick_quality_compares_with_the_reference() {
+    let (_, r) = quick_run("quality.toml");
+    for cell in r["cells"].as_array().expect("cells") {
+        let rmse = metric(cell, "rel. RMSE").unwrap_or(f64::NAN);
+        let flux = metric(cell, "flux ratio").unwrap_or(f64::NAN);
+        assert!(rmse.is_finite() && rmse > 0.0 && rmse < 1.0, "{}: rel. RMSE {rmse}", cell["cell"]);
+        assert!((0.7..1.3).contains(&flux), "{}: flux ratio {flux}", cell["cell"]);
+    }
+}
+
+/// Writes `text` as a config next to the shipped ones' scenes (paths like ../scenes/x.toml).
+fn config_file(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let cfg_dir = dir.join("configs");
+    std::fs::create_dir_all(&cfg_dir).expect("config folder");
+    let p = cfg_dir.join(name);
+    let scenes = workspace().join("scenes").display().to_string();
+    std::fs::write(&p, text.replace("SCENES", &scenes)).expect("writing a config");
+    p
+}
+
+const SMALL: &str = r#"
+[table]
+paper = "test"
+number = "T"
+caption = "shard test"
+
+[run]
+warmup_frames = 0
+measured_frames = 1
+
+[matrix]
+scenes = ["SCENES/sphere_on_plane.toml", "SCENES/sphere_oblique.toml"]
+photons = [64, 128]
+resolution = [[64, 64]]
+
+[[technique]]
+label = "points"
+technique = "wd-points"
+
+[[technique]]
+label = "shah"
+technique = "shah"
+
+[[metric]]
+label = "photons"
+kind = "photons_emitted"
+
+[[metric]]
+label = "splats"
+kind = "splats_drawn"
+
+[[metric]]
+label = "splat ms"
+kind = "pass_ms"
+passes = ["splat.*"]
+
+[layout]
+rows = ["scene", "photons"]
+columns = ["technique", "metric"]
+"#;
+
+fn bench(args: &[&std::ffi::OsStr]) -> Run {
+    let mut all: Vec<&std::ffi::OsStr> = vec!["bench".as_ref()];
+    all.extend(args);
+    causticlab(&all)
+}
+
+/// CSV rows with the values of timing metrics blanked (device names may hold commas, so the
+/// row is cut after its `kind` field rather than split).
+fn csv_without_timings(path: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(path).expect("csv");
+    text.lines()
+        .map(|l| match l.find(",pass_ms,") {
+            Some(i) => format!("{},timing", &l[..i + ",pass_ms".len()]),
+            None => l.to_string(),
+        })
+        .collect()
+}
+
+#[test]
+fn shards_merge_into_the_unsharded_table() {
+    let dir = scratch("bench-shards");
+    let cfg = config_file(&dir, "small.toml", SMALL);
+    let whole = dir.join("whole");
+    let sharded = dir.join("sharded");
+    let r = bench(&[cfg.as_os_str(), "--results".as_ref(), whole.as_os_str()]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    let mut parts = vec![];
+    for i in 1..=3 {
+        let shard = format!("{i}/3");
+        let r =
+            bench(&[cfg.as_os_str(), "--shard".as_ref(), shard.as_ref(), "--results".as_ref(), sharded.as_os_str()]);
+        assert_eq!(r.code, Some(0), "{}", r.describe());
+        let part = device_dir(&sharded).join("parts").join(format!("small.shard-{i}-of-3.json"));
+        assert!(part.is_file(), "{}", r.describe());
+        parts.push(part);
+    }
+    // A shard alone is not a table.
+    assert!(!device_dir(&sharded).join("small.md").exists(), "a shard wrote the full table");
+    // Missing and duplicated cells are refused.
+    let r = bench(&["merge".as_ref(), parts[0].as_os_str(), "--results".as_ref(), sharded.as_os_str()]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(r.stderr.contains("missing"), "{}", r.describe());
+    let r = bench(&[
+        "merge".as_ref(),
+        parts[0].as_os_str(),
+        parts[0].as_os_str(),
+        "--results".as_ref(),
+        sharded.as_os_str(),
+    ]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    let mut args: Vec<&std::ffi::OsStr> = vec!["merge".as_ref()];
+    args.extend(parts.iter().map(|p| p.as_os_str()));
+    args.extend(["--results".as_ref(), sharded.as_os_str()]);
+    let r = bench(&args);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+
+    let (a, b) = (device_dir(&whole), device_dir(&sharded));
+    assert_eq!(csv_without_timings(&a.join("small.csv")), csv_without_timings(&b.join("small.csv")));
+    let (ja, jb) = (json(&a.join("small.json")), json(&b.join("small.json")));
+    let cells = |j: &Value| j["cells"].as_array().cloned().unwrap_or_default();
+    assert_eq!(cells(&ja).len(), 8);
+    for (x, y) in cells(&ja).iter().zip(cells(&jb).iter()) {
+        assert_eq!(x["cell"], y["cell"]);
+        assert_eq!(x["caustics"], y["caustics"]);
+        for m in ["photons", "splats"] {
+            assert_eq!(x["metrics"][m], y["metrics"][m], "{m} of {}", x["cell"]);
+        }
+    }
+    // Counts are exact: 64² photons per light, splats padded to whole instances of 1024.
+    let first = &cells(&ja)[0];
+    assert_eq!(metric(first, "photons"), Some(4096.0));
+    assert_eq!(metric(first, "splats"), Some(4096.0));
+}
+
+#[test]
+fn a_failing_run_leaves_the_previous_table_untouched() {
+    let dir = scratch("bench-atomic");
+    let root = dir.join("results");
+    // A complete earlier table to protect.
+    let cfg = config_file(&dir, "small.toml", SMALL);
+    let r = bench(&[cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    let dev = device_dir(&root);
+    let files = ["small.md", "small.json", "small.csv", "small.svg"];
+    let before: Vec<Vec<u8>> = files.iter().map(|f| std::fs::read(dev.join(f)).expect("table file")).collect();
+
+    // The same config with a second technique that needs a feature the device is told it
+    // lacks: the first technique's cells run, then the run fails half-way.
+    let half = config_file(&dir, "small.toml", &SMALL.replace("technique = \"shah\"", "technique = \"shah-vertex\""));
+    let r = causticlab(&[
+        "--without-feature".as_ref(),
+        "vertex_pipeline_stores_and_atomics".as_ref(),
+        "bench".as_ref(),
+        half.as_os_str(),
+        "--results".as_ref(),
+        root.as_os_str(),
+    ]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(r.stderr.contains("1/8 cells") || r.stderr.contains("2/8 cells"), "did not fail half-way:\n{}", r.stderr);
+    assert!(r.stderr.contains("vertex_pipeline_stores_and_atomics"), "{}", r.describe());
+    for (f, old) in files.iter().zip(&before) {
+        assert_eq!(&std::fs::read(dev.join(f)).expect("table file"), old, "{f} was touched by a failed run");
+    }
+    let leftovers: Vec<_> = std::fs::read_dir(&dev)
+        .expect("dir")
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().contains(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+
+    // A scene that cannot load fails before any cell runs, naming the missing model.
+    let broken = dir.join("configs").join("broken_scene.toml");
+    std::fs::write(
+        &broken,
+        "[camera]\neye = [0, 2, 4]\ntarget = [0, 0, 0]\nfov_y = 40.0\nresolution = [64, 64]\n[[lights]]\ntype = \"point\"\n\
+         position = [0, 5, 0]\nintensity = [10, 10, 10]\n[materials.glass]\ntype = \"refractive\"\nior = 1.5\n\
+         [[objects]]\nname = \"x\"\nshape = \"obj\"\nfile = \"no_such_model.obj\"\nmaterial = \"glass\"\n",
+    )
+    .expect("scene");
+    let cfg = config_file(&dir, "small.toml", &SMALL.replace("SCENES/sphere_oblique.toml", "broken_scene.toml"));
+    let r = bench(&[cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(r.stderr.contains("no_such_model.obj") && !r.stderr.contains("1/8 cells"), "{}", r.describe());
+    assert_eq!(std::fs::read(dev.join("small.md")).expect("md"), before[0]);
+}
+
+#[test]
+fn config_errors_name_the_file_and_key() {
+    let dir = scratch("bench-errors");
+    let cases: Vec<(&str, String, &str)> = vec![
+        ("syntax.toml", "[table\npaper = 1".into(), "syntax.toml"),
+        ("unknown_key.toml", SMALL.replace("[run]", "[run]\nwarmup = 3"), "warmup"),
+        ("absurd_photons.toml", SMALL.replace("photons = [64, 128]", "photons = [64, 100000]"), "matrix.photons"),
+        ("zero_frames.toml", SMALL.replace("measured_frames = 1", "measured_frames = 0"), "run.measured_frames"),
+        ("missing_scene.toml", SMALL.replace("sphere_oblique.toml", "nowhere.toml"), "nowhere.toml"),
+        ("bad_kind.toml", SMALL.replace("kind = \"splats_drawn\"", "kind = \"splats\""), "metric[1].kind"),
+        ("unplaced_axis.toml", SMALL.replace("rows = [\"scene\", \"photons\"]", "rows = [\"photons\"]"), "scene"),
+        (
+            "bad_technique.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"quads\""),
+            "technique[1].technique",
+        ),
+        (
+            "bad_copy.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"shah-vertex\"\nphoton_copy = \"32-to-32\""),
+            "photon_copy",
+        ),
+        (
+            "bad_paper.toml",
+            format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 64\nvalues = {{ bogus = 1.0 }}\n"),
+            "paper[0].values",
+        ),
+        (
+            "bad_radius.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"shah\"\nsplat_radius = 500.0"),
+            "splat_radius",
+        ),
+    ];
+    for (name, text, needle) in cases {
+        let cfg = config_file(&dir, name, &text);
+        let root = dir.join(format!("results-{name}"));
+        let r = bench(&[cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
+        assert_eq!(r.code, Some(2), "{name}: {}", r.describe());
+        assert!(
+            r.stderr.contains(name) && r.stderr.contains(needle),
+            "{name}: message lacks `{needle}`:\n{}",
+            r.stderr
+        );
+        assert!(!r.stderr.contains("panicked"), "{name}: {}", r.describe());
+        assert!(!root.exists(), "{name}: a failed config wrote results");
+    }
+    // Bad command-line selections.
+    let cfg = config_file(&dir, "small.toml", SMALL);
+    for (args, needle) in [
+        (vec!["--filter", "photons=77"], "photons"),
+        (vec!["--filter", "colour=red"], "colour"),
+        (vec!["--shard", "3/2"], "--shard"),
+    ] {
+        let mut all: Vec<&std::ffi::OsStr> = vec![cfg.as_os_str()];
+        all.extend(args.iter().map(std::ffi::OsStr::new));
+        let r = bench(&all);
+        assert_eq!(r.code, Some(2), "{args:?}: {}", r.describe());
+        assert!(r.stderr.contains(needle), "{args:?}: {}", r.stderr);
+    }
+    let r = bench(&["no_such_config.toml".as_ref()]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(r.stderr.contains("no_such_config.toml"), "{}", r.stderr);
+}

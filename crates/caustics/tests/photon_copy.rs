@@ -1,0 +1,78 @@
+//! The faithful Wyman & Davis 2006 path (copy the photon buffer into a vertex array, then one
+//! vertex per photon) must give the caustic map our instanced fetch gives (Wyman 2008 Sec. 4):
+//! the same photons, so the same map up to float summation order (32-bit) or half-float
+//! rounding (16-bit copies). Also: static lighting (reused photon buffer) leaves the map as
+//! it was. Validation layer on; any message fails.
+
+use caustics::caustic_map::CopyType;
+use caustics::render::{FrameStep, Renderer, RendererOptions};
+use caustics::scene::Scene;
+use std::path::PathBuf;
+use vkcore::{Context, ContextOptions, ShaderCompiler};
+
+fn context() -> (Context, ShaderCompiler) {
+    let opts = ContextOptions {
+        device: std::env::var("CAUSTICLAB_TEST_DEVICE").ok(),
+        validation: true,
+        echo_validation: true,
+        without: vec![],
+    };
+    let ctx = Context::new(&opts).expect("a Vulkan 1.3 device with the validation layer (run scripts/setup.sh)");
+    let shaders = ShaderCompiler::new(&caustics::render::shader_root()).expect("shaderc");
+    (ctx, shaders)
+}
+
+fn scene() -> Scene {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
+    let mut s = Scene::load(&p).expect("shipped scene");
+    s.caustics.technique = "wd-points".into();
+    s.caustics.photons = 128;
+    s.caustics.caustic_map_resolution = 256;
+    s.camera.width = 64;
+    s.camera.height = 64;
+    s.receiver_map = None;
+    s
+}
+
+/// Mean-RGB caustic map of light 0 after one frame (or `frames` frames with `step`).
+fn caustic_map(ctx: &Context, sh: &ShaderCompiler, copy: Option<CopyType>, steps: &[FrameStep]) -> Vec<f64> {
+    let mut r = Renderer::new(ctx, sh, &scene(), &RendererOptions { photon_copy: copy }).expect("renderer");
+    for s in steps {
+        r.frame(*s).expect("frame");
+    }
+    let img = r.dump("caustic_map").expect("dump").expect("a caustic map");
+    let layer = img.layers.first().expect("a layer");
+    let nc = layer.channels.len();
+    layer.data.chunks_exact(nc).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).collect()
+}
+
+/// (relative difference of the totals, Σ|a − b| / Σ|b|).
+fn difference(a: &[f64], b: &[f64]) -> (f64, f64) {
+    let (sa, sb): (f64, f64) = (a.iter().sum(), b.iter().sum());
+    let l1: f64 = a.iter().zip(b).map(|(x, y)| (x - y).abs()).sum();
+    ((sa - sb).abs() / sb, l1 / b.iter().map(|x| x.abs()).sum::<f64>())
+}
+
+#[test]
+fn copied_vertex_arrays_splat_the_same_caustic_map_as_instanced_fetch() {
+    let (ctx, sh) = context();
+    let once = [FrameStep::default()];
+    let fetched = caustic_map(&ctx, &sh, None, &once);
+    let total: f64 = fetched.iter().sum();
+    assert!(total > 0.0, "no caustic: the comparison would be vacuous");
+    let (dt, dl1) = difference(&caustic_map(&ctx, &sh, Some(CopyType::Float32ToFloat32), &once), &fetched);
+    assert!(dt < 1e-5 && dl1 < 1e-5, "32-to-32 copy: totals differ by {dt}, texels by {dl1}");
+    for ty in [CopyType::Half16ToFloat32, CopyType::Half16ToHalf16] {
+        let (dt, dl1) = difference(&caustic_map(&ctx, &sh, Some(ty), &once), &fetched);
+        // Half floats keep 11 bits: power within ~1e-3, positions within a fraction of a texel.
+        assert!(dt < 2e-3, "{ty:?}: totals differ by {dt}");
+        assert!(dl1 < 0.05, "{ty:?}: texels differ by {dl1} (L1, relative)");
+    }
+    // Static lighting: frames that reuse the photon buffer splat the same photons again.
+    let reused =
+        caustic_map(&ctx, &sh, None, &[FrameStep::default(), FrameStep { reuse_photons: true, ..Default::default() }]);
+    let (dt, dl1) = difference(&reused, &fetched);
+    assert!(dt < 1e-6 && dl1 < 1e-6, "reused photon buffer: totals differ by {dt}, texels by {dl1}");
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}
