@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: build causticlab, render every scene in scenes/ with Shah et al.'s caustics
 # mapping (validation on, every intermediate buffer dumped) into out/<scene>/, then regenerate a
-# quick quality table (every technique against the exact CPU photon reference) into out/quality/.
+# quick quality table (every technique against the exact CPU photon reference) into out/quality/,
+# and a quick run of Wyman 2008 Table 1 into out/results/<device>/quick/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -26,13 +27,14 @@ if ! REF_PHOTONS=2000000 WORK=out/quality RESULTS=out/quality bash scripts/quali
     failed+=("quality table")
 fi
 
-# --- benchmarks -------------------------------------------------------------------------------
-# `causticlab bench <config> --quick` arrives with the bench-harness issue; it goes here.
-# ------------------------------------------------------------------------------------------------
+# A quick table: Wyman 2008 Table 1 at small sizes (the committed tables: bash scripts/bench_all.sh).
+if ! "$bin" bench bench_configs/wyman2008_table1.toml --quick --results out/results; then
+    failed+=("quick bench table")
+fi
 
 echo
 if [ "${#failed[@]}" -ne 0 ]; then
     echo "demo: failed scenes: ${failed[*]}" >&2
     exit 1
 fi
-echo "demo: every scene rendered into out/"
+echo "demo: every scene rendered into out/; quick table in out/results/"
