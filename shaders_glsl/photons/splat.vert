@@ -1,14 +1,18 @@
 // Photon splatting (Shah et al.'s point splats; Wyman & Davis 2006 "points"): every photon is a
-// point drawn into the light-space caustic map. Photons are fetched from the photon texture by
-// gl_InstanceIndex and the index in a small vertex buffer (Wyman 2008 Sec. 4): no copy of the
-// photon buffer into a vertex array. The kernel is normalised over the texels it covers, so a
-// photon deposits exactly its power.
+// point drawn into the light-space caustic map. The kernel is normalised over the texels it
+// covers, so a photon deposits exactly its power. Where the photons come from:
+// - default: fetched from the photon texture by gl_InstanceIndex and the index in a small
+//   vertex buffer (Wyman 2008 Sec. 4): no copy of the photon buffer into a vertex array;
+// - PHOTON_VERTEX_ARRAY: the faithful Wyman & Davis 2006 path (Wyman 2008 Table 1 "copy to
+//   vertex array"): the photon buffer was copied into a vertex array (positions) and a buffer
+//   (power), one vertex per photon;
+// - HIERARCHY: one vertex per entry of the hierarchical traversal's final list (Wyman 2008
+//   Sec. 3.1-3.2): a photon of the photon buffer (level 0) or a cluster of converging photons
+//   at level k, whose summed power and mean position the photon hierarchy holds.
 #version 450
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
-#ifdef PHOTON_VERTEX_ARRAY
-// The faithful Wyman & Davis 2006 path (Wyman 2008 Table 1 "copy to vertex array"): the photon
-// buffer was copied into a vertex array (positions) and a buffer (power), one vertex per photon.
+#if defined(PHOTON_VERTEX_ARRAY)
 layout(location = 0) in vec4 a_position;
 #ifdef PHOTON_HALF
 layout(std430, binding = 2) readonly buffer PhotonPower { uvec2 powers[]; };   // RGBA16F texels
@@ -17,10 +21,45 @@ vec3 photon_power_of(uint id) { uvec2 h = powers[id]; return vec3(unpackHalf2x16
 layout(std430, binding = 2) readonly buffer PhotonPower { vec4 powers[]; };
 vec3 photon_power_of(uint id) { return powers[id].rgb; }
 #endif
+bool fetch_photon(out vec4 pos, out vec3 power) {
+    pos = a_position;
+    power = photon_power_of(gl_VertexIndex);
+    return true;
+}
+#elif defined(HIERARCHY)
+layout(binding = 2) uniform sampler2D photon_position;
+layout(binding = 3) uniform sampler2D photon_power;
+layout(binding = 4) uniform sampler2D hierarchy_power;      // level k at mip k-1: (power sum, count)
+layout(binding = 5) uniform sampler2D hierarchy_position;   // (position sum, 0)
+layout(location = 0) in uvec4 a_entry;                      // (x, y, level, final)
+bool fetch_photon(out vec4 pos, out vec3 power) {
+    ivec2 t = ivec2(a_entry.xy);
+    if (a_entry.z == 0u) {
+        pos = texelFetch(photon_position, t, 0);
+        power = texelFetch(photon_power, t, 0).rgb;
+        return true;
+    }
+    int mip = int(a_entry.z) - 1;
+    vec4 a = texelFetch(hierarchy_power, t, mip);
+    pos = vec4(texelFetch(hierarchy_position, t, mip).xyz / max(a.w, 1.0), a.w > 0.0 ? 1.0 : 0.0);
+    power = a.rgb;
+    return true;
+}
 #else
 layout(binding = 2) uniform sampler2D photon_position;
 layout(binding = 3) uniform sampler2D photon_power;
 layout(location = 0) in uint a_vertex;
+bool fetch_photon(out vec4 pos, out vec3 power) {
+    uint width = uint(textureSize(photon_position, 0).x);
+    uint id = gl_InstanceIndex * object.info.z + a_vertex;   // info.z: vertices per instance
+    ivec2 texel = ivec2(id % width, id / width);
+    pos = vec4(0.0);
+    power = vec3(0.0);
+    if (texel.y >= textureSize(photon_position, 0).y) return false;
+    pos = texelFetch(photon_position, texel, 0);
+    power = texelFetch(photon_power, texel, 0).rgb;
+    return true;
+}
 #endif
 layout(location = 0) flat out vec4 v_power;     // (power, 1) / (sum of kernel weights)
 layout(location = 1) flat out vec2 v_centre;    // photon position in caustic-map pixels
@@ -36,23 +75,14 @@ float kernel(float d, float r) {
 void main() {
     uint l = object.info.y;
     CausticLight cl = caustics.lights[l];
-#ifdef PHOTON_VERTEX_ARRAY
-    uint id = gl_VertexIndex;
-    vec4 pos = a_position;
-    bool outside = false;
-#else
-    uint width = uint(textureSize(photon_position, 0).x);
-    uint id = gl_InstanceIndex * object.info.z + a_vertex;   // info.z: vertices per instance
-    ivec2 texel = ivec2(id % width, id / width);
-    vec4 pos = texelFetch(photon_position, texel, 0);
-    bool outside = texel.y >= textureSize(photon_position, 0).y;
-#endif
     gl_PointSize = 1.0;
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);     // culled unless it is a live photon
     v_power = vec4(0.0);
     v_centre = vec2(0.0);
     v_radius = 0.0;
-    if (outside || pos.w < 0.5) return;
+    vec4 pos;
+    vec3 power;
+    if (!fetch_photon(pos, power) || pos.w < 0.5) return;
     vec4 clip = cl.caustic_view_proj * vec4(pos.xyz, 1.0);
     if (clip.w <= 0.0) return;
     float m = cl.caustic_plane.y;
@@ -67,11 +97,6 @@ void main() {
             sum += kernel(distance(vec2(x, y) + 0.5, centre), r);
         }
     }
-#ifdef PHOTON_VERTEX_ARRAY
-    vec3 power = photon_power_of(id);
-#else
-    vec3 power = texelFetch(photon_power, texel, 0).rgb;
-#endif
     v_power = vec4(power, 1.0) / (sum > 0.0 ? sum : 1.0);
     v_centre = centre;
     v_radius = sum > 0.0 ? r : -1.0;            // -1: the kernel misses every centre: nearest texel

@@ -142,6 +142,10 @@ pub struct TechniqueSpec {
     pub fresnel: Option<bool>,
     pub back_face_iterations: Option<u32>,
     pub intersect: Option<String>,
+    /// `hcm`: `xfb` or `compute`.
+    pub path: Option<String>,
+    /// `hcm`: `none`, `last` or `all`.
+    pub cluster: Option<String>,
 }
 
 fn default_copy() -> String {
@@ -278,6 +282,8 @@ pub struct LoadedConfig {
     pub name: String,
     /// FNV-1a 64 of the file's bytes, hex.
     pub hash: String,
+    /// The file's text as loaded (what the hash covers; embedded in the results).
+    pub text: String,
     pub config: Config,
 }
 
@@ -303,7 +309,7 @@ impl LoadedConfig {
             .and_then(|s| s.to_str())
             .with_context(|| format!("{}: the config file has no name", path.display()))?
             .to_string();
-        let loaded = LoadedConfig { path: path.to_path_buf(), name, hash: fnv1a(&bytes), config };
+        let loaded = LoadedConfig { path: path.to_path_buf(), name, hash: fnv1a(&bytes), text, config };
         super::validate::validate(&loaded)?;
         Ok(loaded)
     }

@@ -41,6 +41,12 @@ pub fn apply_technique(s: &mut CausticSettings, t: &TechniqueSpec) {
     if let Some(v) = &t.intersect {
         s.intersect = Some(v.clone());
     }
+    if let Some(v) = &t.path {
+        s.path = v.clone();
+    }
+    if let Some(v) = &t.cluster {
+        s.cluster = v.clone();
+    }
 }
 
 /// What one cell measured.
@@ -84,7 +90,8 @@ impl<'a> Runner<'a> {
     /// The scene of `cell`: technique settings, photons, lights and output size applied.
     pub fn cell_scene(&self, cell: &Cell) -> Result<Scene> {
         let path = self.config.scene_path(&cell.scene);
-        let mut scene = Scene::load(&path)?;
+        let mut scene = Scene::load(&path)
+            .with_context(|| format!("{}: key `matrix.scenes`: loading {}", self.config.path.display(), cell.scene))?;
         let t = &self.config.config.techniques[cell.technique];
         apply_technique(&mut scene.caustics, t);
         scene.caustics.photons = cell.photons;
@@ -96,7 +103,8 @@ impl<'a> Runner<'a> {
             }
         }
         if cell.lights > 0 {
-            set_light_count(&mut scene, cell.lights as usize)?;
+            set_light_count(&mut scene, cell.lights as usize)
+                .with_context(|| format!("{}: key `matrix.lights`", self.config.path.display()))?;
         }
         if cell.resolution != [0, 0] {
             scene.camera.width = cell.resolution[0];
@@ -112,7 +120,17 @@ impl<'a> Runner<'a> {
                 path.display()
             ));
         }
-        scene.caustics.validate(&self.config.path.display().to_string(), "technique.")?;
+        scene.caustics.validate(&self.config.path.display().to_string(), &format!("technique[{}].", cell.technique))?;
+        if cell.lighting == "static" && scene.lights.len() > 1 {
+            // The photon buffer is shared between lights: reusing it needs one light.
+            anyhow::bail!(caustics::input_error!(
+                "{}: key `matrix.lighting`: static lighting reuses the photon buffer, which holds one light, \
+                 but {} has {} lights",
+                self.config.path.display(),
+                path.display(),
+                scene.lights.len()
+            ));
+        }
         Ok(scene)
     }
 
@@ -134,6 +152,10 @@ impl<'a> Runner<'a> {
             None => (c.run.warmup_frames, c.run.measured_frames),
         };
         let step = FrameStep { reuse_photons: static_lighting, pipeline_statistics: false };
+        if static_lighting {
+            // Static lighting renders its photon buffer once, before any frame is timed.
+            renderer.frame(FrameStep::default())?;
+        }
         let mut frames = vec![];
         let mut wall_ms = vec![];
         for f in 0..warmup + measured {
@@ -159,7 +181,7 @@ impl<'a> Runner<'a> {
             wall_ms,
             stats_frame,
             photons_emitted: renderer.photons_emitted(),
-            splats_drawn: renderer.splats_drawn(),
+            splats_drawn: renderer.splats_drawn()?,
             quality,
             caustics: scene.caustics.clone(),
             triangles: scene.triangle_count(),

@@ -59,10 +59,16 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         .collect();
     let mut progress = Progress::new(costs);
     let mut runner = Runner::new(ctx, shaders, lc, quick);
-    // Load every scene once before the first cell, so that a broken scene fails fast.
+    // Everything that can be checked before the first cell is: every scene with every
+    // technique and light count (settings, sizes, files), and the device features each
+    // technique needs, so that a sweep does not fail hours in.
     for (i, cell) in cells.iter().enumerate() {
-        if !cells[..i].iter().any(|c| c.scene == cell.scene) {
-            runner.cell_scene(cell)?;
+        let same =
+            |c: &crate::plan::Cell| c.scene == cell.scene && c.technique == cell.technique && c.lights == cell.lights;
+        if !cells[..i].iter().any(same) {
+            let scene = runner.cell_scene(cell)?;
+            caustics::render::check_device(ctx, &scene)
+                .with_context(|| format!("{}: technique[{}]", lc.path.display(), cell.technique))?;
         }
     }
     let mut done = vec![];
@@ -74,7 +80,6 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         progress.finish_cell();
     }
     progress.finish();
-    let text = std::fs::read_to_string(&lc.path).with_context(|| format!("re-reading {}", lc.path.display()))?;
     let results = Results {
         schema: SCHEMA,
         config: ConfigInfo {
@@ -84,7 +89,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
             paper: c.table.paper.clone(),
             table: c.table.number.clone(),
             caption: c.table.caption.clone(),
-            toml: text,
+            toml: lc.text.clone(),
         },
         run: RunInfo {
             quick: opts.quick,

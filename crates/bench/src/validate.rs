@@ -215,7 +215,7 @@ fn validate_layout(lc: &LoadedConfig, bad: &dyn Fn(&str, String) -> anyhow::Erro
         if !placed.iter().any(|p| **p == cmp.axis) {
             return Err(bad("layout.compare.axis", format!("`{}` is not in the layout", cmp.axis)));
         }
-        if !m.keys(c, &cmp.axis).contains(&cmp.baseline) {
+        if !m.keys(c, &cmp.axis).contains(&cmp.baseline) || !quick.keys(c, &cmp.axis).contains(&cmp.baseline) {
             return Err(bad(
                 "layout.compare.baseline",
                 format!("`{}` is not a value of axis `{}`", cmp.baseline, cmp.axis),

@@ -151,7 +151,7 @@ pub struct RenderArgs {
 /// Overrides of the scene's `[caustics]` table (see scenes/README.md).
 #[derive(Debug, Args, Clone, Default)]
 pub struct CausticArgs {
-    /// Caustic technique: none, shah, shah-vertex, wd-points (default: the scene's, else none).
+    /// Caustic technique: none, shah, shah-vertex, wd-points, hcm (default: the scene's, else none).
     #[arg(long)]
     pub technique: Option<String>,
     /// Photon buffer resolution N (N x N photons per light), 64..=4096.
@@ -178,6 +178,12 @@ pub struct CausticArgs {
     /// Exit-point refinements against the light-space back faces (0 = Wyman 2005 alone).
     #[arg(long)]
     pub back_face_iterations: Option<u32>,
+    /// hcm: hierarchical traversal by geometry shader + transform feedback (xfb) or compute.
+    #[arg(long)]
+    pub path: Option<String>,
+    /// hcm: converging-photon clustering: none, last (last level only) or all (every level).
+    #[arg(long)]
+    pub cluster: Option<String>,
 }
 
 impl CausticArgs {
@@ -209,6 +215,12 @@ impl CausticArgs {
         }
         if let Some(v) = &self.intersect {
             s.intersect = Some(v.clone());
+        }
+        if let Some(v) = &self.path {
+            s.path = v.clone();
+        }
+        if let Some(v) = &self.cluster {
+            s.cluster = v.clone();
         }
         s.validate("command line", "--")
     }

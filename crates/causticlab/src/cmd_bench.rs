@@ -18,8 +18,13 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     };
     let config = LoadedConfig::load(path)?;
     let opts = crate::context_options(g)?;
-    if opts.validation && !args.quick {
-        eprintln!("warning: --validate slows every pass; the tables will say their times are not measurements");
+    // Timing runs never have validation on, and never pretend a feature is missing: those
+    // are for --quick smoke tests, whose tables go to their own folder.
+    if !args.quick && (opts.validation || !opts.without.is_empty()) {
+        return Err(caustics::input_error!(
+            "bench: --validate and --without-feature are for --quick runs only: a timing run measures the device as it is"
+        )
+        .into());
     }
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
     *validation = Some(ctx.validation_log());

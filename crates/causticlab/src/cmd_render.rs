@@ -39,12 +39,9 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         }
         dumps.retain(|d| !CAUSTIC_DUMPS.contains(&d.as_str()));
     }
-    let required = render::required_features(&technique).unwrap_or(&[]);
-
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
     *validation = Some(ctx.validation_log());
-    let who = format!("technique `{technique}`");
-    ctx.require(&who, required)?;
+    render::check_device(&ctx, &scene)?;
     check_sizes(&scene, ctx.info())?;
 
     let out = OutputDir::create(&args.out)?;

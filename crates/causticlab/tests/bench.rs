@@ -101,8 +101,8 @@ fn quick_wyman_davis2006_table1_runs_static_and_dynamic_lighting() {
     for cell in r["cells"].as_array().expect("cells") {
         let lighting = cell["cell"]["lighting"].as_str().unwrap_or_default();
         assert!(metric(cell, "fps").unwrap_or(-1.0) > 0.0);
-        // Static lighting reuses the warm-up's photon buffer: no photon pass in measured frames
-        // (the quick run has no warm-up, so its first measured frame renders them once).
+        // Static lighting renders its photon buffer once before the timed frames and reuses it:
+        // no photon pass in any measured frame.
         let photon_samples = cell["passes"]
             .as_array()
             .expect("passes")
@@ -110,7 +110,7 @@ fn quick_wyman_davis2006_table1_runs_static_and_dynamic_lighting() {
             .find(|p| p["name"].as_str().is_some_and(|n| n.starts_with("photon_buffer.")))
             .and_then(|p| p["samples_ms"].as_array().map(|s| s.len()))
             .unwrap_or(0);
-        let expected = if lighting == "static" { 1 } else { 2 };
+        let expected = if lighting == "static" { 0 } else { 2 };
         assert_eq!(photon_samples, expected, "{lighting}: photon buffer rendered in {photon_samples} frames");
     }
 }
@@ -148,7 +148,7 @@ measured_frames = 1
 
 [matrix]
 scenes = ["SCENES/sphere_on_plane.toml", "SCENES/sphere_oblique.toml"]
-photons = [64, 128]
+photons = [80, 128]
 resolution = [[64, 64]]
 
 [[technique]]
@@ -245,14 +245,15 @@ fn shards_merge_into_the_unsharded_table() {
             assert_eq!(x["metrics"][m], y["metrics"][m], "{m} of {}", x["cell"]);
         }
     }
-    // Counts are exact: 64² photons per light, splats padded to whole instances of 1024.
+    // Counts are exact: 80² photons per light, splats padded to whole instances of 1024.
     let first = &cells(&ja)[0];
-    assert_eq!(metric(first, "photons"), Some(4096.0));
-    assert_eq!(metric(first, "splats"), Some(4096.0));
+    assert_eq!(metric(first, "photons"), Some(6400.0));
+    assert_eq!(metric(first, "splats"), Some(7168.0));
 }
 
 #[test]
-fn a_failing_run_leaves_the_previous_table_untouched() {
+fn an_interrupted_run_leaves_the_previous_table_untouched() {
+    use std::io::BufRead;
     let dir = scratch("bench-atomic");
     let root = dir.join("results");
     // A complete earlier table to protect.
@@ -263,22 +264,30 @@ fn a_failing_run_leaves_the_previous_table_untouched() {
     let files = ["small.md", "small.json", "small.csv", "small.svg"];
     let before: Vec<Vec<u8>> = files.iter().map(|f| std::fs::read(dev.join(f)).expect("table file")).collect();
 
-    // The same config with a second technique that needs a feature the device is told it
-    // lacks: the first technique's cells run, then the run fails half-way.
-    let half = config_file(&dir, "small.toml", &SMALL.replace("technique = \"shah\"", "technique = \"shah-vertex\""));
-    let r = causticlab(&[
-        "--without-feature".as_ref(),
-        "vertex_pipeline_stores_and_atomics".as_ref(),
-        "bench".as_ref(),
-        half.as_os_str(),
-        "--results".as_ref(),
-        root.as_os_str(),
-    ]);
-    assert_eq!(r.code, Some(2), "{}", r.describe());
-    assert!(r.stderr.contains("1/8 cells") || r.stderr.contains("2/8 cells"), "did not fail half-way:\n{}", r.stderr);
-    assert!(r.stderr.contains("vertex_pipeline_stores_and_atomics"), "{}", r.describe());
+    // The same sweep again, killed (SIGKILL: no chance to clean up) once two cells are done.
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_causticlab"))
+        .args(["bench".as_ref(), cfg.as_os_str(), "--results".as_ref(), root.as_os_str()])
+        .current_dir(workspace())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("spawning causticlab");
+    let stderr = child.stderr.take().expect("stderr");
+    let mut seen = String::new();
+    for line in std::io::BufReader::new(stderr).lines() {
+        let line = line.unwrap_or_default();
+        seen.push_str(&line);
+        seen.push('\n');
+        if line.contains("2/8 cells") {
+            break;
+        }
+    }
+    child.kill().expect("killing the run");
+    let status = child.wait().expect("waiting for the killed run");
+    assert!(!status.success(), "the run finished before it was killed:\n{seen}");
+    assert!(seen.contains("2/8 cells"), "never saw the third cell start:\n{seen}");
     for (f, old) in files.iter().zip(&before) {
-        assert_eq!(&std::fs::read(dev.join(f)).expect("table file"), old, "{f} was touched by a failed run");
+        assert_eq!(&std::fs::read(dev.join(f)).expect("table file"), old, "{f} was touched by an interrupted run");
     }
     let leftovers: Vec<_> = std::fs::read_dir(&dev)
         .expect("dir")
@@ -296,10 +305,28 @@ fn a_failing_run_leaves_the_previous_table_untouched() {
          [[objects]]\nname = \"x\"\nshape = \"obj\"\nfile = \"no_such_model.obj\"\nmaterial = \"glass\"\n",
     )
     .expect("scene");
-    let cfg = config_file(&dir, "small.toml", &SMALL.replace("SCENES/sphere_oblique.toml", "broken_scene.toml"));
-    let r = bench(&[cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
+    let bad = config_file(&dir, "small.toml", &SMALL.replace("SCENES/sphere_oblique.toml", "broken_scene.toml"));
+    let r = bench(&[bad.as_os_str(), "--results".as_ref(), root.as_os_str()]);
     assert_eq!(r.code, Some(2), "{}", r.describe());
-    assert!(r.stderr.contains("no_such_model.obj") && !r.stderr.contains("1/8 cells"), "{}", r.describe());
+    assert!(r.stderr.contains("no_such_model.obj") && !r.stderr.contains("0/8 cells"), "{}", r.describe());
+    // So does a technique the device lacks a feature for (told so with --without-feature).
+    let r = causticlab(&[
+        "--without-feature".as_ref(),
+        "vertex_pipeline_stores_and_atomics".as_ref(),
+        "bench".as_ref(),
+        config_file(&dir, "small.toml", &SMALL.replace("technique = \"shah\"", "technique = \"shah-vertex\""))
+            .as_os_str(),
+        "--quick".as_ref(),
+        "--results".as_ref(),
+        root.as_os_str(),
+    ]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(r.stderr.contains("vertex_pipeline_stores_and_atomics") && !r.stderr.contains("0/"), "{}", r.describe());
+    // Timing runs refuse validation and masked features.
+    let r =
+        causticlab(&["--validate".as_ref(), "bench".as_ref(), cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(r.stderr.contains("--quick"), "{}", r.describe());
     assert_eq!(std::fs::read(dev.join("small.md")).expect("md"), before[0]);
 }
 
@@ -309,7 +336,7 @@ fn config_errors_name_the_file_and_key() {
     let cases: Vec<(&str, String, &str)> = vec![
         ("syntax.toml", "[table\npaper = 1".into(), "syntax.toml"),
         ("unknown_key.toml", SMALL.replace("[run]", "[run]\nwarmup = 3"), "warmup"),
-        ("absurd_photons.toml", SMALL.replace("photons = [64, 128]", "photons = [64, 100000]"), "matrix.photons"),
+        ("absurd_photons.toml", SMALL.replace("photons = [80, 128]", "photons = [80, 100000]"), "matrix.photons"),
         ("zero_frames.toml", SMALL.replace("measured_frames = 1", "measured_frames = 0"), "run.measured_frames"),
         ("missing_scene.toml", SMALL.replace("sphere_oblique.toml", "nowhere.toml"), "nowhere.toml"),
         ("bad_kind.toml", SMALL.replace("kind = \"splats_drawn\"", "kind = \"splats\""), "metric[1].kind"),
@@ -326,7 +353,7 @@ fn config_errors_name_the_file_and_key() {
         ),
         (
             "bad_paper.toml",
-            format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 64\nvalues = {{ bogus = 1.0 }}\n"),
+            format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 80\nvalues = {{ bogus = 1.0 }}\n"),
             "paper[0].values",
         ),
         (

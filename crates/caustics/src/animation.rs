@@ -110,13 +110,15 @@ mod tests {
     }
 
     #[test]
-    fn frame_zero_and_full_period_are_the_rest_pose() {
+    fn the_path_is_periodic() {
         let base = scene();
         let anim = Animation { light: true, camera: true, object: true, period_frames: 8 };
         assert_eq!(scene_at(&base, &anim, 0).lights, base.lights);
-        let back = scene_at(&base, &anim, 8);
-        assert_eq!(back.camera, base.camera);
-        assert_eq!(back.objects, base.objects);
+        let (a, b) = (scene_at(&base, &anim, 3), scene_at(&base, &anim, 3 + 8));
+        assert_ne!(a.camera, base.camera, "frame 3 is not the rest pose");
+        assert_eq!(a.camera, b.camera);
+        assert_eq!(a.lights, b.lights);
+        assert_eq!(a.objects, b.objects);
     }
 
     #[test]

@@ -321,6 +321,12 @@ impl<'f> Cmd<'f> {
         unsafe { self.d().cmd_copy_buffer(self.cb, src.raw, dst.raw, &[region]) };
     }
 
+    /// Copies `bytes` from `src` at `src_offset` into `dst` at `dst_offset`.
+    pub fn copy_buffer_region(&mut self, src: &Buffer, src_offset: u64, dst: &Buffer, dst_offset: u64, bytes: u64) {
+        let region = vk::BufferCopy { src_offset, dst_offset, size: bytes };
+        unsafe { self.d().cmd_copy_buffer(self.cb, src.raw, dst.raw, &[region]) };
+    }
+
     fn image_region(image: &Image, mip: u32, layer: u32) -> vk::BufferImageCopy {
         let (w, h) = image.mip_extent(mip);
         vk::BufferImageCopy {

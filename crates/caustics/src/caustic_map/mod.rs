@@ -5,12 +5,15 @@
 //!   ray/receiver intersection, point splats;
 //! - `shah-vertex`: a photon per vertex of the specular meshes (Shah's original first pass);
 //! - `wd-points`: the Wyman & Davis photon buffer splatted as points, with their search of the
-//!   light's render of the first diffuse surface.
+//!   light's render of the first diffuse surface;
+//! - `hcm`: Wyman 2008's hierarchical caustic maps over the `wd-points` photon buffer: only
+//!   valid photons (or clusters of converging ones) are splatted (see [`hierarchy`]).
 //!
 //! Every technique writes power (W) into caustic-map texels; `common/caustic_lookup.glsl` turns
 //! that into irradiance with the texel's area on the receiver (Wyman & Davis 2006, Eq. 5-8).
 
 pub mod gpu;
+pub mod hierarchy;
 mod passes;
 pub mod photon_copy;
 mod pipelines;

@@ -2,6 +2,7 @@
 //! the refractor's back faces from the light, the photon buffer (or vertex photons), and the
 //! splat into the light's caustic-map layer.
 
+use super::hierarchy::{Hierarchy, Inputs as HierarchyInputs};
 use super::photon_copy::PhotonCopy;
 use super::pipelines::CausticPipelines;
 use super::targets::{CausticTargets, PhotonTargets};
@@ -33,6 +34,8 @@ pub struct CausticFrame<'a> {
     pub reuse_photons: bool,
     /// Copy the photon buffer into a vertex array and splat from it (Wyman 2008 Table 1).
     pub copy: Option<&'a PhotonCopy>,
+    /// Traverse the photon hierarchy and splat its final list (Wyman 2008 Sec. 3.1-3.2).
+    pub hierarchy: Option<&'a Hierarchy>,
 }
 
 pub fn record_caustics(
@@ -45,14 +48,26 @@ pub fn record_caustics(
     frame: CausticFrame,
 ) -> Result<()> {
     for l in 0..lights {
+        let hierarchy_inputs = HierarchyInputs {
+            frame_uniforms: inp.frame_uniforms,
+            caustic_uniforms: inp.caustic_uniforms,
+            nearest: inp.nearest,
+        };
         if !frame.reuse_photons {
             record_photons(f, p, ct, pt, inp, l)?;
-            // The copied vertex arrays stay valid as long as the photon buffer does.
+            // The copied vertex arrays and the traversal's list stay valid as long as the
+            // photon buffer does.
             if let Some(copy) = frame.copy {
                 copy.record(f, pt, l)?;
             }
+            if let Some(h) = frame.hierarchy {
+                h.record_traversal(f, &hierarchy_inputs, pt, l)?;
+            }
         }
-        record_splat(f, p, ct, pt, inp, l, frame.copy)?;
+        match frame.hierarchy {
+            Some(h) => h.record_splat(f, &hierarchy_inputs, pt, &ct.per_light[l as usize].0, l)?,
+            None => record_splat(f, p, ct, pt, inp, l, frame.copy)?,
+        }
     }
     Ok(())
 }

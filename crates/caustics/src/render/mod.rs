@@ -61,7 +61,7 @@ pub fn required_features(name: &str) -> Option<&'static [vkcore::Feature]> {
     match name {
         "none" => Some(&[vkcore::Feature::ShaderOutputLayer]),
         // Splats are points wider than one pixel.
-        "shah" | "wd-points" => Some(&[vkcore::Feature::ShaderOutputLayer, vkcore::Feature::LargePoints]),
+        "shah" | "wd-points" | "hcm" => Some(&[vkcore::Feature::ShaderOutputLayer, vkcore::Feature::LargePoints]),
         "shah-vertex" => Some(&[
             vkcore::Feature::ShaderOutputLayer,
             vkcore::Feature::LargePoints,
@@ -69,6 +69,20 @@ pub fn required_features(name: &str) -> Option<&'static [vkcore::Feature]> {
         ]),
         _ => None,
     }
+}
+
+/// Checks that the device has every feature the scene's caustic technique (and, for `hcm`, its
+/// traversal path) needs; the error names the feature.
+pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
+    let c = &scene.caustics;
+    ctx.require(&format!("technique `{}`", c.technique), required_features(&c.technique).unwrap_or(&[]))?;
+    if c.technique == "hcm" {
+        if let Some(path) = crate::caustic_map::hierarchy::parse_path(&c.path) {
+            let features = crate::caustic_map::hierarchy::path_features(path);
+            ctx.require(&format!("technique `hcm` with --path {}", c.path), features)?;
+        }
+    }
+    Ok(())
 }
 
 /// Renders `scene` with the caustic technique in `scene.caustics` `req.frames` times (at

@@ -3,6 +3,7 @@
 //! frame) and time each one.
 
 use super::{dumps, eye, gpu, pipelines, setup, targets};
+use crate::caustic_map::hierarchy::{self, Hierarchy};
 use crate::caustic_map::{self, CausticFrame, CopyType, PhotonCopy};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
@@ -19,7 +20,8 @@ pub struct RendererOptions {
 /// What one frame does.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct FrameStep {
-    /// Keep the previous frame's photon buffer (static lighting); ignored on the first frame.
+    /// Keep the previous frame's photon buffer (static lighting); ignored on the first frame,
+    /// after a pose moved the lights or meshes, and with more than one light.
     pub reuse_photons: bool,
     /// Pipeline-statistics queries around every pass (where the device has them).
     pub pipeline_statistics: bool,
@@ -31,6 +33,7 @@ struct CausticResources {
     vertex_areas: Vec<Option<Buffer>>,
     splat_vertices: Buffer,
     copy: Option<PhotonCopy>,
+    hierarchy: Option<Hierarchy>,
 }
 
 pub struct Renderer<'c> {
@@ -56,7 +59,7 @@ impl<'c> Renderer<'c> {
     pub fn new(ctx: &'c Context, shaders: &ShaderCompiler, scene: &Scene, opts: &RendererOptions) -> Result<Self> {
         let settings = &scene.caustics;
         let technique = settings.technique.as_str();
-        ctx.require(&format!("technique `{technique}`"), super::required_features(technique).unwrap_or(&[]))?;
+        super::check_device(ctx, scene)?;
         if scene.lights.len() > gpu::MAX_LIGHTS {
             return Err(crate::input_error!(
                 "{}: {} lights; at most {} are supported",
@@ -110,12 +113,22 @@ impl<'c> Renderer<'c> {
                 Some(ty) => Some(PhotonCopy::new(ctx, ty, photon_side)?),
                 None => None,
             };
+            let hierarchy = if technique == "hcm" {
+                let bad = |what: &str, v: &str| crate::input_error!("caustics.{what}: unknown value `{v}`");
+                let path = hierarchy::parse_path(&settings.path).ok_or_else(|| bad("path", &settings.path))?;
+                let cluster =
+                    hierarchy::Cluster::parse(&settings.cluster).ok_or_else(|| bad("cluster", &settings.cluster))?;
+                Some(Hierarchy::new(ctx, shaders, photon_side, scene.lights.len() as u32, path, cluster)?)
+            } else {
+                None
+            };
             Some(CausticResources {
                 pipelines: caustic_map::CausticPipelines::new(ctx, shaders, technique, opts.photon_copy)?,
                 photons: caustic_map::PhotonTargets::new(ctx, settings.photons, photon_side)?,
                 vertex_areas,
                 splat_vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
                 copy,
+                hierarchy,
             })
         } else {
             None
@@ -148,8 +161,12 @@ impl<'c> Renderer<'c> {
             "set_pose: {} is not a pose of the scene this renderer was made for",
             scene.path.display()
         );
+        if scene.lights != self.scene.lights {
+            self.photons_ready = false;
+        }
         for ((obj, old), mesh) in scene.objects.iter().zip(&self.scene.objects).zip(&self.meshes) {
             if obj.mesh.positions != old.mesh.positions || obj.mesh.normals != old.mesh.normals {
+                self.photons_ready = false;
                 let vertices = setup::mesh_vertices(&obj.mesh, &mesh.thickness);
                 self.ctx
                     .upload_buffer(&mesh.vertices, bytemuck::cast_slice(&vertices))
@@ -185,8 +202,12 @@ impl<'c> Renderer<'c> {
                     splat_vertices: &c.splat_vertices,
                     nearest: &self.nearest,
                 };
-                let frame =
-                    CausticFrame { reuse_photons: step.reuse_photons && self.photons_ready, copy: c.copy.as_ref() };
+                let frame = CausticFrame {
+                    // One photon buffer serves every light: only one light's can be kept.
+                    reuse_photons: step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1,
+                    copy: c.copy.as_ref(),
+                    hierarchy: c.hierarchy.as_ref(),
+                };
                 caustic_map::record_caustics(
                     &mut f,
                     &c.pipelines,
@@ -232,10 +253,20 @@ impl<'c> Renderer<'c> {
         caustic_map::photons_per_light(&self.scene.caustics, self.specular_vertices) * self.targets.shadow.lights as u64
     }
 
-    /// Points drawn by the splat passes per frame over all lights (every photon-buffer texel is
-    /// drawn; invalid ones are culled in the vertex shader).
-    pub fn splats_drawn(&self) -> u64 {
-        match &self.caustic {
+    /// The hierarchy of `hcm` (None for the other techniques).
+    pub fn hierarchy(&self) -> Option<&Hierarchy> {
+        self.caustic.as_ref().and_then(|c| c.hierarchy.as_ref())
+    }
+
+    /// Points drawn by the splat passes per frame over all lights: every photon-buffer texel
+    /// for the dense techniques (invalid ones are culled in the vertex shader), the final list
+    /// of the last traversal for `hcm` (read back from the GPU).
+    pub fn splats_drawn(&self) -> Result<u64> {
+        if let Some(h) = self.hierarchy() {
+            let sizes = h.list_sizes(self.ctx)?;
+            return Ok(sizes.iter().map(|s| s.last().copied().unwrap_or(0)).sum());
+        }
+        Ok(match &self.caustic {
             Some(c) => {
                 let per_light = match &c.copy {
                     Some(copy) => copy.vertices() as u64,
@@ -247,7 +278,7 @@ impl<'c> Renderer<'c> {
                 per_light * self.targets.shadow.lights as u64
             }
             None => 0,
-        }
+        })
     }
 }
 

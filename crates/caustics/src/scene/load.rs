@@ -131,6 +131,8 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         fresnel: c.fresnel.unwrap_or(d.fresnel),
         back_face_iterations: c.back_face_iterations.unwrap_or(d.back_face_iterations),
         intersect: c.intersect.clone().or(d.intersect),
+        path: c.path.clone().unwrap_or(d.path),
+        cluster: c.cluster.clone().unwrap_or(d.cluster),
     };
     caustics.validate(&ctx.file.display().to_string(), "caustics.")?;
     Ok(Scene { path: ctx.file.to_path_buf(), camera, lights, materials, objects, receiver_map, render, caustics })

@@ -36,7 +36,13 @@ pub struct Scene {
 }
 
 /// Caustic technique names `--technique` and `caustics.technique` accept.
-pub const TECHNIQUES: &[&str] = &["none", "shah", "shah-vertex", "wd-points"];
+pub const TECHNIQUES: &[&str] = &["none", "shah", "shah-vertex", "wd-points", "hcm"];
+/// Traversal paths of `hcm` (`caustics.path`, `--path`): geometry shader + transform feedback
+/// (the paper's) or compute append.
+pub const HIERARCHY_PATHS: &[&str] = &["xfb", "compute"];
+/// Converging-photon clustering of `hcm` (`caustics.cluster`, `--cluster`, Wyman 2008 Sec. 3.2):
+/// never, at the last hierarchy level only, or at every level.
+pub const CLUSTER_MODES: &[&str] = &["none", "last", "all"];
 /// Ray/receiver intersection variants (`caustics.intersect`, `--intersect`).
 pub const INTERSECTS: &[&str] = &["shah-iterative", "wd-depth-search"];
 /// Splat kernels (`caustics.splat_kernel`, `--splat-kernel`).
@@ -64,6 +70,10 @@ pub struct CausticSettings {
     pub back_face_iterations: u32,
     /// One of [`INTERSECTS`]; None = the technique's own (see [`CausticSettings::intersect`]).
     pub intersect: Option<String>,
+    /// `hcm` only: one of [`HIERARCHY_PATHS`]; default `xfb`.
+    pub path: String,
+    /// `hcm` only: one of [`CLUSTER_MODES`]; default `none`.
+    pub cluster: String,
 }
 
 impl Default for CausticSettings {
@@ -78,6 +88,8 @@ impl Default for CausticSettings {
             fresnel: true,
             back_face_iterations: 4,
             intersect: None,
+            path: "xfb".into(),
+            cluster: "none".into(),
         }
     }
 }
@@ -88,7 +100,7 @@ impl CausticSettings {
     pub fn intersect(&self) -> &str {
         match (&self.intersect, self.technique.as_str()) {
             (Some(i), _) => i,
-            (None, "wd-points") => "wd-depth-search",
+            (None, "wd-points" | "hcm") => "wd-depth-search",
             (None, _) => "shah-iterative",
         }
     }
@@ -108,6 +120,8 @@ impl CausticSettings {
         };
         one_of("technique", &self.technique, TECHNIQUES)?;
         one_of("splat_kernel", &self.splat_kernel, SPLAT_KERNELS)?;
+        one_of("path", &self.path, HIERARCHY_PATHS)?;
+        one_of("cluster", &self.cluster, CLUSTER_MODES)?;
         if let Some(i) = &self.intersect {
             one_of("intersect", i, INTERSECTS)?;
         }

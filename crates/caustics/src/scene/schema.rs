@@ -37,6 +37,8 @@ pub struct CausticsDef {
     pub fresnel: Option<bool>,
     pub back_face_iterations: Option<u32>,
     pub intersect: Option<String>,
+    pub path: Option<String>,
+    pub cluster: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -1,0 +1,123 @@
+//! Hierarchical caustic maps (Wyman 2008 Sec. 3.1-3.2), validation layer on:
+//! - without clustering, the traversal emits exactly the valid photons of the dense photon
+//!   buffer (same set, any order), on the transform-feedback and the compute path, at awkward
+//!   (non-power-of-two) resolutions, and splats the same caustic map as dense `wd-points`;
+//! - both paths give identical photon sets in every clustering mode;
+//! - clustering conserves the caustic map's total power.
+
+use caustics::render::{FrameStep, Renderer, RendererOptions};
+use caustics::scene::Scene;
+use std::collections::BTreeSet;
+use std::path::PathBuf;
+use vkcore::{Context, ContextOptions, ShaderCompiler};
+
+fn context() -> (Context, ShaderCompiler) {
+    let opts = ContextOptions {
+        device: std::env::var("CAUSTICLAB_TEST_DEVICE").ok(),
+        validation: true,
+        echo_validation: true,
+        without: vec![],
+    };
+    let ctx = Context::new(&opts).expect("a Vulkan 1.3 device with the validation layer (run scripts/setup.sh)");
+    let shaders = ShaderCompiler::new(&caustics::render::shader_root()).expect("shaderc");
+    (ctx, shaders)
+}
+
+fn scene(technique: &str, photons: u32, path: &str, cluster: &str) -> Scene {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
+    let mut s = Scene::load(&p).expect("shipped scene");
+    s.caustics.technique = technique.into();
+    s.caustics.photons = photons;
+    s.caustics.path = path.into();
+    s.caustics.cluster = cluster.into();
+    s.caustics.caustic_map_resolution = 256;
+    s.camera.width = 64;
+    s.camera.height = 64;
+    s.receiver_map = None;
+    s
+}
+
+struct Run {
+    /// (x, y, level, final) of the final list.
+    entries: Vec<[u32; 4]>,
+    /// Mean-RGB caustic map of light 0.
+    map: Vec<f64>,
+    /// Texels of the photon buffer holding a valid photon.
+    valid: BTreeSet<(u32, u32)>,
+    /// List sizes from level L down to 0.
+    sizes: Vec<u64>,
+}
+
+fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
+    let mut r = Renderer::new(ctx, sh, s, &RendererOptions::default()).expect("renderer");
+    r.frame(FrameStep::default()).expect("frame");
+    let (entries, sizes) = match r.hierarchy() {
+        Some(h) => (h.final_entries(ctx).expect("entries"), h.list_sizes(ctx).expect("sizes")[0].clone()),
+        None => (vec![], vec![]),
+    };
+    let img = r.dump("caustic_map").expect("dump").expect("a caustic map");
+    let layer = &img.layers[0];
+    let nc = layer.channels.len();
+    let map = layer.data.chunks_exact(nc).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).collect();
+    let pb = r.dump("photon_buffer").expect("dump").expect("a photon buffer");
+    let pos = pb.layer(Some("position")).expect("position layer");
+    let valid = (0..pb.width * pb.height)
+        .filter(|&i| pos.data[i as usize * 4 + 3] > 0.5)
+        .map(|i| (i % pb.width, i / pb.width))
+        .collect();
+    Run { entries, map, valid, sizes }
+}
+
+fn photon_set(entries: &[[u32; 4]]) -> BTreeSet<(u32, u32)> {
+    entries.iter().map(|e| (e[0], e[1])).collect()
+}
+
+fn total(map: &[f64]) -> f64 {
+    map.iter().sum()
+}
+
+#[test]
+fn unclustered_traversal_emits_exactly_the_valid_photons_on_both_paths() {
+    let (ctx, sh) = context();
+    for n in [100, 128, 200] {
+        let dense = run(&ctx, &sh, &scene("wd-points", n, "xfb", "none"));
+        assert!(dense.valid.len() > 100, "{n}: only {} valid photons: a vacuous test", dense.valid.len());
+        assert!(dense.valid.len() < (n * n) as usize, "{n}: every texel valid: nothing to discard");
+        for path in ["xfb", "compute"] {
+            let h = run(&ctx, &sh, &scene("hcm", n, path, "none"));
+            assert!(h.entries.iter().all(|e| e[2] == 0 && e[3] == 0), "{n} {path}: a non-photon entry");
+            assert_eq!(h.entries.len(), dense.valid.len(), "{n} {path}: duplicates or missing photons");
+            assert_eq!(photon_set(&h.entries), dense.valid, "{n} {path}: not the dense buffer's valid photons");
+            assert_eq!(h.sizes.last().copied(), Some(dense.valid.len() as u64), "{n} {path}: counter");
+            // Same photons, same splats: the maps agree up to the order of additive blending.
+            let diff: f64 = h.map.iter().zip(&dense.map).map(|(a, b)| (a - b).abs()).sum();
+            assert!(diff <= 1e-5 * total(&dense.map), "{n} {path}: maps differ by {diff} of {}", total(&dense.map));
+        }
+    }
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}
+
+#[test]
+fn both_paths_agree_and_clustering_conserves_power() {
+    let (ctx, sh) = context();
+    let n = 256;
+    let dense = total(&run(&ctx, &sh, &scene("hcm", n, "compute", "none")).map);
+    for cluster in ["last", "all"] {
+        let x = run(&ctx, &sh, &scene("hcm", n, "xfb", cluster));
+        let c = run(&ctx, &sh, &scene("hcm", n, "compute", cluster));
+        let set = |r: &Run| r.entries.iter().map(|e| (e[0], e[1], e[2], e[3])).collect::<BTreeSet<_>>();
+        assert_eq!(x.entries.len(), c.entries.len(), "{cluster}");
+        assert_eq!(set(&x), set(&c), "{cluster}: the paths emit different photon sets");
+        assert_eq!(x.sizes, c.sizes, "{cluster}: per-level list sizes differ");
+        let clusters = x.entries.iter().filter(|e| e[3] == 1).count();
+        assert!(clusters > 0, "{cluster}: no converging photons clustered at {n}²: a vacuous test");
+        let ratio = total(&x.map) / dense;
+        assert!((ratio - 1.0).abs() < 0.01, "{cluster}: clustering changed the caustic power by {ratio}");
+        if cluster == "last" {
+            assert!(x.entries.iter().all(|e| e[2] <= 1), "`last` clustered above level 1");
+        }
+    }
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}
