@@ -9,6 +9,7 @@
 //!   next level is drawn with vkCmdDrawIndirectByteCountEXT from this level's counter buffer;
 //! - `compute`: a compute kernel per level appends with an atomic counter; the next level is
 //!   dispatched indirectly.
+//!
 //! Nothing is read back on the CPU between levels. Shaders: `shaders_glsl/hierarchy/`.
 
 use super::targets::{PhotonTargets, COLOR};
