@@ -10,6 +10,21 @@
 layout(binding = CAUSTIC_MAP_BINDING) uniform sampler2DArray caustic_map;
 layout(binding = RECEIVER_POSITIONS_BINDING) uniform sampler2DArray receiver_positions;
 
+// Power of base-resolution texel `texel` of light `l`. With the multi-resolution map, Eq. 3 of
+// Wyman 2008: C = sum_i C_i / 4^i, level i holding its splats in the corner (M/2^i)^2 of layer
+// 4l + i; a level-i texel's power spreads evenly over the 4^i base texels under it.
+vec3 caustic_power(ivec2 texel, uint l) {
+    if (caustics.splat.w != SPLAT_VARYING_MULTIRES) {
+        return texelFetch(caustic_map, ivec3(texel, int(l)), 0).rgb;
+    }
+    vec3 c = vec3(0.0);
+    for (uint i = 0u; i < MULTIRES_LEVELS; ++i) {
+        int layer = int(l * MULTIRES_LEVELS + i);
+        c += texelFetch(caustic_map, ivec3(texel >> int(i), layer), 0).rgb / float(1u << (2u * i));
+    }
+    return c;
+}
+
 vec3 caustic_irradiance(vec3 p, vec3 n) {
     vec3 e = vec3(0.0);
     for (uint l = 0u; l < caustics.settings.x; ++l) {
@@ -26,7 +41,7 @@ vec3 caustic_irradiance(vec3 p, vec3 n) {
         float cos_theta = max(dot(n, to_light / d), 0.0);
         vec2 centre = (vec2(texel) + 0.5) / cl.caustic_plane.y * 2.0 - 1.0;
         float w = texel_solid_angle(centre, cl.caustic_plane);
-        e += texelFetch(caustic_map, ivec3(texel, int(l)), 0).rgb * cos_theta / (w * d * d);
+        e += caustic_power(texel, l) * cos_theta / (w * d * d);
     }
     return e;
 }

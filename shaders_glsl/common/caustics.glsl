@@ -6,6 +6,14 @@
 
 #define CAUSTIC_FRESNEL 1u          // settings.w bit: Fresnel transmittance at both interfaces
 #define CAUSTIC_WD_DEPTH_SEARCH 2u  // settings.w bit: Wyman & Davis depth search, else Shah rayGeo
+#define SPLAT_FIXED 0.0
+#define SPLAT_VARYING_SINGLE 1.0
+#define SPLAT_VARYING_MULTIRES 2.0
+// Levels of the multi-resolution caustic map (Wyman 2008 Sec. 3.3): splats that would need the
+// 4th level or beyond are discarded.
+#define MULTIRES_LEVELS 4u
+// Largest splat diameter in any level (the paper's threshold).
+#define MULTIRES_MAX_DIAMETER 5.0
 
 struct CausticLight {
     mat4 photon_view_proj;    // the photon buffer's frustum (tight around the specular objects)
@@ -18,7 +26,8 @@ struct CausticLight {
 
 layout(std140, binding = CAUSTICS_BINDING) uniform Caustics {
     uvec4 settings;   // x: lights with caustics (0 = none), y: photons per side, z: iterations, w: flags
-    vec4 splat;       // x: splat radius (caustic-map texels), y: kernel (0 Gaussian, 1 box), z: back-face iterations
+    vec4 splat;       // x: splat radius (caustic-map texels), y: kernel (0 Gaussian, 1 box), z: back-face iterations,
+                      // w: splat sizes (SPLAT_FIXED, SPLAT_VARYING_SINGLE, SPLAT_VARYING_MULTIRES)
     CausticLight lights[MAX_LIGHTS];
 } caustics;
 

@@ -10,6 +10,9 @@
 //   Sec. 3.1-3.2): a photon of the photon buffer (level 0) or a cluster of converging photons
 //   at level k, whose summed power and mean position the photon hierarchy holds.
 #version 450
+#ifdef HIERARCHY
+#extension GL_ARB_shader_viewport_layer_array : require
+#endif
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
 #if defined(PHOTON_VERTEX_ARRAY)
@@ -44,6 +47,29 @@ bool fetch_photon(out vec4 pos, out vec3 power) {
     pos = vec4(texelFetch(hierarchy_position, t, mip).xyz / max(a.w, 1.0), a.w > 0.0 ? 1.0 : 0.0);
     power = a.rgb;
     return true;
+}
+
+// Splat radius (caustic-map texels) from the photon's neighbours (Wyman 2008 Sec. 3.3, Eq. 1-2
+// with the paper's approximation by the largest distance between adjacent photons rather than
+// the area they span). Measured in the caustic map itself, the distance already carries Eq. 2's
+// d^2 and obliquity: it is the footprint of the photon's beam in texels. Clusters of converging
+// photons land in one texel by construction.
+float varying_radius(vec2 centre, CausticLight cl) {
+    if (a_entry.z != 0u) return 1.0;
+    ivec2 t = ivec2(a_entry.xy);
+    int n = textureSize(photon_position, 0).x;
+    const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+    float dmax = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 q = t + offsets[k];
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(n)))) continue;
+        vec4 p = texelFetch(photon_position, q, 0);
+        if (p.w < 0.5) continue;
+        vec4 clip = cl.caustic_view_proj * vec4(p.xyz, 1.0);
+        if (clip.w <= 0.0) continue;
+        dmax = max(dmax, distance((clip.xy / clip.w * 0.5 + 0.5) * cl.caustic_plane.y, centre));
+    }
+    return max(dmax, 1.0);
 }
 #else
 layout(binding = 2) uniform sampler2D photon_position;
@@ -88,6 +114,24 @@ void main() {
     float m = cl.caustic_plane.y;
     vec2 centre = (clip.xy / clip.w * 0.5 + 0.5) * m;
     float r = caustics.splat.x;
+#ifdef HIERARCHY
+    int level = 0;
+    if (caustics.splat.w != SPLAT_FIXED) {
+        r = varying_radius(centre, cl);
+        // photonMipLevel = trunc(log2(max(1, D / 5))); splats needing level 4 or beyond (D > 40)
+        // are discarded, in the single map too, so that both maps hold the same photons.
+        int wanted = int(floor(log2(max(1.0, 2.0 * r / MULTIRES_MAX_DIAMETER))));
+        if (wanted >= int(MULTIRES_LEVELS)) return;
+        if (caustics.splat.w == SPLAT_VARYING_MULTIRES) {
+            // Level i: splatSize = D / 2^i, into the layer's corner region of (M / 2^i)^2.
+            level = wanted;
+            float s = exp2(float(level));
+            centre /= s;
+            r /= s;
+        }
+    }
+    gl_Layer = level;
+#endif
     float size = 2.0 * ceil(r) + 2.0;
     // Sum of the kernel over every texel centre the point covers.
     float sum = 0.0;
@@ -100,6 +144,6 @@ void main() {
     v_power = vec4(power, 1.0) / (sum > 0.0 ? sum : 1.0);
     v_centre = centre;
     v_radius = sum > 0.0 ? r : -1.0;            // -1: the kernel misses every centre: nearest texel
-    gl_Position = vec4(clip.xy / clip.w, 0.5, 1.0);
+    gl_Position = vec4(centre / m * 2.0 - 1.0, 0.5, 1.0);
     gl_PointSize = size;
 }

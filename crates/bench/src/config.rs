@@ -146,6 +146,8 @@ pub struct TechniqueSpec {
     pub path: Option<String>,
     /// `hcm`: `none`, `last` or `all`.
     pub cluster: Option<String>,
+    /// `hcm`: `fixed`, `varying-single` or `varying-multires`.
+    pub splat: Option<String>,
 }
 
 fn default_copy() -> String {

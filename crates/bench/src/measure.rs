@@ -47,6 +47,9 @@ pub fn apply_technique(s: &mut CausticSettings, t: &TechniqueSpec) {
     if let Some(v) = &t.cluster {
         s.cluster = v.clone();
     }
+    if let Some(v) = &t.splat {
+        s.splat = v.clone();
+    }
 }
 
 /// What one cell measured.

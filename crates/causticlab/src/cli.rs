@@ -184,6 +184,9 @@ pub struct CausticArgs {
     /// hcm: converging-photon clustering: none, last (last level only) or all (every level).
     #[arg(long)]
     pub cluster: Option<String>,
+    /// hcm: splat sizes: fixed, varying-single (one map) or varying-multires (layered map).
+    #[arg(long)]
+    pub splat: Option<String>,
 }
 
 impl CausticArgs {
@@ -221,6 +224,9 @@ impl CausticArgs {
         }
         if let Some(v) = &self.cluster {
             s.cluster = v.clone();
+        }
+        if let Some(v) = &self.splat {
+            s.splat = v.clone();
         }
         s.validate("command line", "--")
     }

@@ -121,3 +121,59 @@ fn both_paths_agree_and_clustering_conserves_power() {
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
 }
+
+/// (Σ power over every caustic-map layer, Σ over layers 1.. only, caustic flux on the receiver
+/// map in W).
+fn splat_totals(ctx: &Context, sh: &ShaderCompiler, splat: &str) -> (f64, f64, f64) {
+    let mut s = scene("hcm", 256, "compute", "last");
+    s.caustics.splat = splat.into();
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
+    s.receiver_map = Scene::load(&p).expect("scene").receiver_map;
+    let spec = s.receiver_map.clone().expect("the scene has a receiver map");
+    let mut r = Renderer::new(ctx, sh, &s, &RendererOptions::default()).expect("renderer");
+    r.frame(FrameStep::default()).expect("frame");
+    let img = r.dump("caustic_map").expect("dump").expect("a caustic map");
+    let mut all = 0.0;
+    let mut coarse = 0.0;
+    for (i, layer) in img.layers.iter().enumerate() {
+        let nc = layer.channels.len();
+        let t: f64 = layer.data.chunks_exact(nc).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).sum();
+        all += t;
+        if i > 0 {
+            coarse += t;
+        }
+    }
+    let rec = r.dump("receiver").expect("dump").expect("a receiver map");
+    let caustic = rec.layer(Some("caustic")).expect("caustic layer");
+    let texel_area = (spec.x_range[1] - spec.x_range[0]) as f64 * (spec.z_range[1] - spec.z_range[0]) as f64
+        / (spec.resolution as f64 * spec.resolution as f64);
+    let flux: f64 =
+        caustic.data.chunks_exact(3).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).sum::<f64>() * texel_area;
+    (all, coarse, flux)
+}
+
+#[test]
+fn varying_splats_conserve_power_and_the_multires_map_sums_to_the_single_map() {
+    let (ctx, sh) = context();
+    let (fixed, _, fixed_flux) = splat_totals(&ctx, &sh, "fixed");
+    let (single, single_coarse, single_flux) = splat_totals(&ctx, &sh, "varying-single");
+    let (multi, multi_coarse, multi_flux) = splat_totals(&ctx, &sh, "varying-multires");
+    assert!(fixed > 0.0 && fixed_flux > 0.0, "no caustic: a vacuous test");
+    assert_eq!(single_coarse, 0.0, "a single map has one layer per light");
+    assert!(
+        multi_coarse > 0.01 * multi,
+        "no splat went to a coarser level: a vacuous test ({multi_coarse} of {multi})"
+    );
+    // Varying splats only drop photons whose splat would be wider than 40 texels.
+    assert!((single / fixed - 1.0).abs() < 0.01, "varying-single holds {single} W of the fixed map's {fixed} W");
+    // The same splats, rasterised at coarser levels: the same power.
+    assert!((multi / single - 1.0).abs() < 1e-3, "multires holds {multi} W, the single map {single} W");
+    // Eq. 3 in the final render: the receiver sees the same caustic flux from either map.
+    assert!(
+        (multi_flux / single_flux - 1.0).abs() < 0.02,
+        "receiver flux {multi_flux} W (multires) vs {single_flux} W"
+    );
+    assert!((single_flux / fixed_flux - 1.0).abs() < 0.02, "receiver flux {single_flux} W (varying) vs {fixed_flux} W");
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}

@@ -67,7 +67,13 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
         settings.splat_radius,
         if settings.splat_kernel == "box" { 1.0 } else { 0.0 },
         settings.back_face_iterations as f32,
-        0.0,
+        // Splat sizes of hcm (Wyman 2008 Sec. 3.3): 0 fixed, 1 varying in one map, 2 varying
+        // in the multi-resolution map (caustics.glsl SPLAT_*).
+        match (settings.technique.as_str(), settings.splat.as_str()) {
+            ("hcm", "varying-single") => 1.0,
+            ("hcm", "varying-multires") => 2.0,
+            _ => 0.0,
+        },
     ];
     let Some((centre, radius)) = specular_bounds(scene) else { return Ok(u) };
     if settings.technique == "none" {

@@ -398,13 +398,15 @@ impl Hierarchy {
         Ok(())
     }
 
-    /// Splats the traversal's final list (photons and clusters) into `cmap`.
+    /// Splats the traversal's final list (photons and clusters) into `cmap`: one layer, or the
+    /// `layers` levels of the multi-resolution map, each splat picking its layer (gl_Layer).
     pub fn record_splat(
         &self,
         f: &mut Frame,
         inp: &Inputs,
         pt: &PhotonTargets,
         cmap: &ImageView,
+        layers: u32,
         l: u32,
     ) -> Result<()> {
         let py = &self.pyramid;
@@ -421,7 +423,7 @@ impl Hierarchy {
             Use::view(cmap, Access::COLOR_ATTACHMENT),
         ];
         f.pass(&format!("splat.light{l}"), &uses, |cmd| {
-            cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
+            cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])).layered(layers))?;
             cmd.bind_pipeline(&self.splat);
             cmd.bind(&[
                 Bind::Uniform(inp.frame_uniforms),

@@ -65,7 +65,7 @@ pub fn record_caustics(
             }
         }
         match frame.hierarchy {
-            Some(h) => h.record_splat(f, &hierarchy_inputs, pt, &ct.per_light[l as usize].0, l)?,
+            Some(h) => h.record_splat(f, &hierarchy_inputs, pt, &ct.per_light[l as usize].0, ct.levels, l)?,
             None => record_splat(f, p, ct, pt, inp, l, frame.copy)?,
         }
     }

@@ -17,7 +17,9 @@ pub struct CausticTargets {
     /// World position (xyz, w = 1 if a receiver) of the first diffuse surface per texel.
     pub receiver_positions: Target,
     pub receiver_depth: Image,
-    /// Per light: (caustic-map layer view, receiver-positions layer view, depth layer view).
+    /// Caustic-map layers per light (4 for the multi-resolution map, else 1).
+    pub levels: u32,
+    /// Per light: (caustic-map layers view, receiver-positions layer view, depth layer view).
     pub per_light: Vec<(ImageView, ImageView, ImageView)>,
 }
 
@@ -25,20 +27,22 @@ impl CausticTargets {
     pub fn new(ctx: &Context, scene: &Scene, active: bool) -> Result<CausticTargets> {
         let m = if active { scene.caustics.caustic_map_resolution } else { 1 };
         let lights = scene.lights.len().clamp(1, MAX_LIGHTS) as u32;
-        let caustic_map = Target::array(ctx, ImageDesc::new_2d("caustic_map", COLOR, m, m).layers(lights))?;
+        // One layer per light, or per light and level of the multi-resolution map.
+        let levels = if active { scene.caustics.caustic_levels() } else { 1 };
+        let caustic_map = Target::array(ctx, ImageDesc::new_2d("caustic_map", COLOR, m, m).layers(lights * levels))?;
         let receiver_positions =
             Target::array(ctx, ImageDesc::new_2d("receiver_positions", COLOR, m, m).layers(lights))?;
         let receiver_depth = Image::new(ctx, ImageDesc::new_2d("receiver depth", DEPTH, m, m).layers(lights))?;
         let per_light = (0..lights)
             .map(|l| {
                 Ok((
-                    caustic_map.image.view(ViewKind::D2, 0..1, l..l + 1)?,
+                    caustic_map.image.view(ViewKind::D2Array, 0..1, l * levels..(l + 1) * levels)?,
                     receiver_positions.image.view(ViewKind::D2, 0..1, l..l + 1)?,
                     receiver_depth.view(ViewKind::D2, 0..1, l..l + 1)?,
                 ))
             })
             .collect::<Result<Vec<_>>>()?;
-        Ok(CausticTargets { caustic_map, receiver_positions, receiver_depth, per_light })
+        Ok(CausticTargets { caustic_map, receiver_positions, receiver_depth, levels, per_light })
     }
 }
 

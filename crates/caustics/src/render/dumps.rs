@@ -100,6 +100,18 @@ pub fn dump(
             return Ok(None)
         }
         "receiver_positions" => per_light(ctx, &ct.receiver_positions, &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?,
+        "caustic_map" if ct.levels > 1 => {
+            // The multi-resolution map: level i of light l in layer 4l + i, its splats in the
+            // layer's corner of (M / 2^i)^2 texels (Wyman 2008 Sec. 3.3).
+            let t = &ct.caustic_map;
+            let layers = (0..t.image.desc.array_layers)
+                .map(|i| {
+                    let name = format!("light{}_level{}", i / ct.levels, i % ct.levels);
+                    layer(ctx, t, i, Some(&name), &["R", "G", "B", "photons"], &[0, 1, 2, 3])
+                })
+                .collect::<Result<Vec<_>>>()?;
+            image(t, layers)
+        }
         "caustic_map" => per_light(ctx, &ct.caustic_map, &["R", "G", "B", "photons"], &[0, 1, 2, 3])?,
         "photon_back_faces" => {
             let p = photons.expect("checked above");

@@ -133,6 +133,7 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         intersect: c.intersect.clone().or(d.intersect),
         path: c.path.clone().unwrap_or(d.path),
         cluster: c.cluster.clone().unwrap_or(d.cluster),
+        splat: c.splat.clone().unwrap_or(d.splat),
     };
     caustics.validate(&ctx.file.display().to_string(), "caustics.")?;
     Ok(Scene { path: ctx.file.to_path_buf(), camera, lights, materials, objects, receiver_map, render, caustics })

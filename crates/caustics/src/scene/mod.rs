@@ -43,6 +43,11 @@ pub const HIERARCHY_PATHS: &[&str] = &["xfb", "compute"];
 /// Converging-photon clustering of `hcm` (`caustics.cluster`, `--cluster`, Wyman 2008 Sec. 3.2):
 /// never, at the last hierarchy level only, or at every level.
 pub const CLUSTER_MODES: &[&str] = &["none", "last", "all"];
+/// Splat sizes of `hcm` (`caustics.splat`, `--splat`, Wyman 2008 Sec. 3.3): the fixed
+/// `splat_radius`, a radius from the photon's neighbours in one caustic map (the paper's slow
+/// baseline), or that radius with each splat in the layer of a multi-resolution caustic map
+/// where its diameter is at most 5 texels.
+pub const SPLAT_MODES: &[&str] = &["fixed", "varying-single", "varying-multires"];
 /// Ray/receiver intersection variants (`caustics.intersect`, `--intersect`).
 pub const INTERSECTS: &[&str] = &["shah-iterative", "wd-depth-search"];
 /// Splat kernels (`caustics.splat_kernel`, `--splat-kernel`).
@@ -74,6 +79,8 @@ pub struct CausticSettings {
     pub path: String,
     /// `hcm` only: one of [`CLUSTER_MODES`]; default `none`.
     pub cluster: String,
+    /// `hcm` only: one of [`SPLAT_MODES`]; default `fixed`.
+    pub splat: String,
 }
 
 impl Default for CausticSettings {
@@ -90,11 +97,22 @@ impl Default for CausticSettings {
             intersect: None,
             path: "xfb".into(),
             cluster: "none".into(),
+            splat: "fixed".into(),
         }
     }
 }
 
 impl CausticSettings {
+    /// Caustic-map layers per light: 4 for the multi-resolution map (levels 0-3, Wyman 2008
+    /// Sec. 3.3), else 1.
+    pub fn caustic_levels(&self) -> u32 {
+        if self.technique == "hcm" && self.splat == "varying-multires" {
+            4
+        } else {
+            1
+        }
+    }
+
     /// The ray/receiver intersection in effect: the one asked for, else the technique's own
     /// (Wyman & Davis' depth search for `wd-points`, Shah's rayGeo otherwise).
     pub fn intersect(&self) -> &str {
@@ -122,6 +140,10 @@ impl CausticSettings {
         one_of("splat_kernel", &self.splat_kernel, SPLAT_KERNELS)?;
         one_of("path", &self.path, HIERARCHY_PATHS)?;
         one_of("cluster", &self.cluster, CLUSTER_MODES)?;
+        one_of("splat", &self.splat, SPLAT_MODES)?;
+        if self.splat != "fixed" && self.technique != "hcm" {
+            bad("splat", format!("`{}` splats are part of technique hcm, not `{}`", self.splat, self.technique))?;
+        }
         if let Some(i) = &self.intersect {
             one_of("intersect", i, INTERSECTS)?;
         }

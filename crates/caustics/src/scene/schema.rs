@@ -39,6 +39,7 @@ pub struct CausticsDef {
     pub intersect: Option<String>,
     pub path: Option<String>,
     pub cluster: Option<String>,
+    pub splat: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]
