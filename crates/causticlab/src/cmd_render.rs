@@ -28,6 +28,16 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let mut scene = Scene::load(&args.scene)?;
     args.caustics.apply(&mut scene.caustics)?;
     let technique = scene.caustics.technique.clone();
+    if technique != "hcm" {
+        if let Some(n) =
+            dumps.iter().find(|d| render::HIERARCHY_DUMPS.contains(&d.as_str()) && !dump_all(args.dump.as_deref()))
+        {
+            return Err(
+                input_error!("--dump: `{n}` is a buffer of the hierarchical technique; add --technique hcm").into()
+            );
+        }
+        dumps.retain(|d| !render::HIERARCHY_DUMPS.contains(&d.as_str()));
+    }
     if technique == "none" {
         // `all` means every buffer this render has; naming a caustic buffer without a caustic
         // technique is a mistake worth saying.

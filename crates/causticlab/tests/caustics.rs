@@ -234,7 +234,9 @@ fn caustics_match_the_exact_reference_within_regression_thresholds() {
 fn every_intermediate_buffer_is_dumped_with_named_channels() {
     let out = render("dumps", &scene("sphere_on_plane"), &["--technique", "wd-points", "--photons", "128"], "all");
     for name in caustics::render::DUMP_NAMES {
-        assert!(out.join(format!("{name}.exr")).is_file(), "{name}.exr missing");
+        // The hierarchy's buffers belong to `hcm` (hierarchical_caustic_maps_dump_every_level...).
+        let hcm_only = caustics::render::HIERARCHY_DUMPS.contains(name);
+        assert_eq!(out.join(format!("{name}.exr")).is_file(), !hcm_only, "{name}.exr");
     }
     let expect = [
         ("photon_buffer.exr", &["position.X", "position.valid", "direction.Z", "direction.W", "power.R"][..]),
@@ -296,5 +298,42 @@ fn a_render_into_an_earlier_output_folder_removes_its_stale_dumps() {
     assert!(out.join("receiver.exr").is_file());
     for stale in ["caustic_map.exr", "photon_buffer.exr", "shadow_map.exr"] {
         assert!(!out.join(stale).exists(), "{stale} from the first render is still there");
+    }
+}
+
+#[test]
+fn hierarchical_caustic_maps_dump_every_level_list_and_layer() {
+    let out = render(
+        "hcm-dumps",
+        &scene("sphere_on_plane"),
+        &["--technique", "hcm", "--photons", "200", "--cluster", "none", "--splat", "varying-multires"],
+        "all",
+    );
+    // 200² photons pad to 256²: levels 1..=4 (128² .. 16²), in the corners of a 128² image.
+    let levels = exr(&out, "hierarchy.exr");
+    assert_eq!((levels.width, levels.height), (128, 128));
+    for k in 1..=4 {
+        for part in ["power", "position", "texels"] {
+            assert!(levels.layer(Some(&format!("level{k}.{part}"))).is_some(), "no level{k}.{part}");
+        }
+    }
+    assert!(levels.layer(Some("level5.power")).is_none());
+    // Every level counts the same photons: the valid texels of the photon buffer.
+    let valid: f64 =
+        channel(&exr(&out, "photon_buffer.exr"), "position.valid").iter().filter(|v| **v > 0.5).count() as f64;
+    assert!(valid > 100.0, "only {valid} valid photons");
+    for k in 1..=4 {
+        let count: f64 = channel(&levels, &format!("level{k}.power.count")).iter().sum();
+        assert_eq!(count, valid, "level {k} counts {count} photons, the photon buffer has {valid}");
+    }
+    // Without clustering the last list is those photons, at level 0, none final.
+    let lists = exr(&out, "hierarchy_lists.exr");
+    let listed: f64 = channel(&lists, "list0.valid").iter().sum();
+    assert_eq!(listed, valid);
+    assert_eq!(channel(&lists, "list0.final").iter().sum::<f64>(), 0.0);
+    // The multi-resolution caustic map: 4 levels of light 0.
+    let map = exr(&out, "caustic_map.exr");
+    for i in 0..4 {
+        assert!(map.layer(Some(&format!("light0_level{i}"))).is_some(), "no caustic-map level {i}");
     }
 }

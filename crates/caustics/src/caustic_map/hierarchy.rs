@@ -13,6 +13,7 @@
 //! Nothing is read back on the CPU between levels. Shaders: `shaders_glsl/hierarchy/`.
 
 use super::targets::{PhotonTargets, COLOR};
+use crate::image_io::{ImageF32, Layer};
 use crate::render::gpu::ObjectConstants;
 use crate::render::targets::Target;
 use anyhow::Result;
@@ -471,6 +472,75 @@ impl Hierarchy {
     /// The final list of the last traversal (photons at level 0, clusters flagged final).
     pub fn final_entries(&self, ctx: &Context) -> Result<Vec<[u32; 4]>> {
         Ok(self.lists[0].read(ctx)?)
+    }
+}
+
+impl Hierarchy {
+    /// `hierarchy.exr`: every level of the photon hierarchy of the last light, level k in the
+    /// top-left (P/2^k)² corner of layers `level<k>.power` (R, G, B, count), `level<k>.position`
+    /// (mean X, Y, Z of the subtree's photons) and `level<k>.texels` (caustic-map texel box).
+    pub fn dump_levels(&self, ctx: &Context) -> Result<ImageF32> {
+        let side = self.padded / 2;
+        let mut layers = vec![];
+        for k in 1..=self.levels {
+            let s = (self.padded >> k) as usize;
+            let read = |i: &Image| ctx.read_image_f32(i, k - 1, 0);
+            let (power, position, texels) =
+                (read(&self.pyramid.power)?, read(&self.pyramid.position)?, read(&self.pyramid.texels)?);
+            let place = |src: &[f32], pick: &dyn Fn(&[f32]) -> Vec<f32>, nc: usize| {
+                let mut out = vec![0.0f32; side as usize * side as usize * nc];
+                for y in 0..s {
+                    for x in 0..s {
+                        let v = pick(&src[(y * s + x) * 4..(y * s + x) * 4 + 4]);
+                        let o = (y * side as usize + x) * nc;
+                        out[o..o + nc].copy_from_slice(&v);
+                    }
+                }
+                out
+            };
+            let mean = |p: &[f32]| -> Vec<f32> { p[..3].to_vec() };
+            let counts: Vec<f32> = power.chunks(4).map(|p| p[3]).collect();
+            let mut mean_pos = position.clone();
+            for (i, c) in counts.iter().enumerate() {
+                for v in &mut mean_pos[i * 4..i * 4 + 3] {
+                    *v /= c.max(1.0);
+                }
+            }
+            layers.push(Layer::new(
+                Some(&format!("level{k}.power")),
+                &["R", "G", "B", "count"],
+                place(&power, &|p| p.to_vec(), 4),
+            ));
+            layers.push(Layer::new(Some(&format!("level{k}.position")), &["X", "Y", "Z"], place(&mean_pos, &mean, 3)));
+            layers.push(Layer::new(
+                Some(&format!("level{k}.texels")),
+                &["min_x", "min_y", "max_x", "max_y"],
+                place(&texels, &|p| p.to_vec(), 4),
+            ));
+        }
+        Ok(ImageF32 { width: side, height: side, layers })
+    }
+
+    /// `hierarchy_lists.exr`: the traversal's list after each level of the last light, one
+    /// layer `list<k>` per level k (k = 0: what was splatted), an entry per pixel in row-major
+    /// order: x, y, level, final (1 = a cluster of converging photons), valid (1 = an entry).
+    pub fn dump_lists(&self, ctx: &Context) -> Result<ImageF32> {
+        let lists: Vec<Vec<[u32; 4]>> = self.lists.iter().map(|s| s.read(ctx)).collect::<vkcore::Result<_>>()?;
+        let longest = lists.iter().map(Vec::len).max().unwrap_or(0).max(1);
+        let w = (longest as f64).sqrt().ceil() as usize;
+        let h = longest.div_ceil(w);
+        let layers = lists
+            .iter()
+            .enumerate()
+            .map(|(k, list)| {
+                let mut data = vec![0.0f32; w * h * 5];
+                for (i, e) in list.iter().enumerate() {
+                    data[i * 5..i * 5 + 5].copy_from_slice(&[e[0] as f32, e[1] as f32, e[2] as f32, e[3] as f32, 1.0]);
+                }
+                Layer::new(Some(&format!("list{k}")), &["x", "y", "level", "final", "valid"], data)
+            })
+            .collect();
+        Ok(ImageF32 { width: w as u32, height: h as u32, layers })
     }
 }
 

@@ -29,10 +29,15 @@ pub const DUMP_NAMES: &[&str] = &[
     "photon_back_faces",
     "photon_buffer",
     "caustic_map",
+    "hierarchy",
+    "hierarchy_lists",
 ];
 
 /// The buffers only a caustic technique has.
-pub const CAUSTIC_DUMPS: &[&str] = &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map"];
+pub const CAUSTIC_DUMPS: &[&str] =
+    &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map", "hierarchy", "hierarchy_lists"];
+/// The buffers only `hcm` has.
+pub const HIERARCHY_DUMPS: &[&str] = &["hierarchy", "hierarchy_lists"];
 
 /// Techniques `--technique` accepts.
 pub use crate::scene::TECHNIQUES;

@@ -241,6 +241,12 @@ impl<'c> Renderer<'c> {
 
     /// The named intermediate buffer of the last frame (None where this render has none).
     pub fn dump(&self, name: &str) -> Result<Option<ImageF32>> {
+        match (name, self.hierarchy()) {
+            ("hierarchy", Some(h)) => return Ok(Some(h.dump_levels(self.ctx)?)),
+            ("hierarchy_lists", Some(h)) => return Ok(Some(h.dump_lists(self.ctx)?)),
+            ("hierarchy" | "hierarchy_lists", None) => return Ok(None),
+            _ => {}
+        }
         let photons = self.caustic.as_ref().map(|c| &c.photons);
         dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)
     }
