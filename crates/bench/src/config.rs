@@ -155,8 +155,17 @@ fn default_copy() -> String {
 }
 
 /// Metric kinds: see `bench_configs/README.md`.
-pub const METRIC_KINDS: &[&str] =
-    &["pass_ms", "gpu_frame_ms", "frame_ms", "fps", "photons_emitted", "splats_drawn", "rel_rmse", "flux_ratio"];
+pub const METRIC_KINDS: &[&str] = &[
+    "pass_ms",
+    "gpu_frame_ms",
+    "frame_ms",
+    "fps",
+    "photons_emitted",
+    "splats_drawn",
+    "photons_processed",
+    "rel_rmse",
+    "flux_ratio",
+];
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]

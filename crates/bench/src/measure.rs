@@ -61,6 +61,8 @@ pub struct CellRun {
     pub stats_frame: Option<FrameReport>,
     pub photons_emitted: u64,
     pub splats_drawn: u64,
+    /// `hcm`: per light, the traversal's list sizes from the 16² level down to the splatted list.
+    pub hierarchy_sizes: Option<Vec<Vec<u64>>>,
     pub quality: Option<Comparison>,
     /// The caustic settings in effect (after the technique entry and `--quick`).
     pub caustics: CausticSettings,
@@ -185,6 +187,7 @@ impl<'a> Runner<'a> {
             stats_frame,
             photons_emitted: renderer.photons_emitted(),
             splats_drawn: renderer.splats_drawn()?,
+            hierarchy_sizes: renderer.hierarchy().map(|h| h.list_sizes(self.ctx)).transpose()?,
             quality,
             caustics: scene.caustics.clone(),
             triangles: scene.triangle_count(),

@@ -74,6 +74,16 @@ fn pass_samples(run: &CellRun, patterns: &[String]) -> Vec<f64> {
         .collect()
 }
 
+/// Photons (points) a frame pushes through the pipeline after the photon buffer: every texel
+/// for the dense techniques; for `hcm` every entry each traversal level reads plus the splatted
+/// list (Wyman & Nichols 2009 Table 1 counts the splatted ones: `splats_drawn`).
+fn photons_processed(run: &CellRun) -> u64 {
+    match &run.hierarchy_sizes {
+        Some(lights) => lights.iter().flatten().sum(),
+        None => run.splats_drawn,
+    }
+}
+
 pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> {
     let mut out = BTreeMap::new();
     for m in specs {
@@ -91,6 +101,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
             }
             "photons_emitted" => exact(k, Some(run.photons_emitted as f64)),
             "splats_drawn" => exact(k, Some(run.splats_drawn as f64)),
+            "photons_processed" => exact(k, Some(photons_processed(run) as f64)),
             "rel_rmse" => exact(k, run.quality.as_ref().map(|q| q.rel_rmse)),
             "flux_ratio" => exact(k, run.quality.as_ref().map(|q| q.caustic_flux_ratio)),
             _ => exact(k, None),

@@ -106,7 +106,7 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
             }
         }
         "fps" => format!("{v:.1}"),
-        "photons_emitted" | "splats_drawn" => thousands(v.round() as u64),
+        "photons_emitted" | "splats_drawn" | "photons_processed" => thousands(v.round() as u64),
         "rel_rmse" | "flux_ratio" => format!("{v:.4}"),
         _ => format!("{v}"),
     }
@@ -129,7 +129,7 @@ pub fn unit(kind: &str) -> &'static str {
         "pass_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
         "fps" => "fps",
         "photons_emitted" => "photons",
-        "splats_drawn" => "points",
+        "splats_drawn" | "photons_processed" => "points",
         _ => "",
     }
 }

@@ -392,3 +392,41 @@ fn config_errors_name_the_file_and_key() {
     assert_eq!(r.code, Some(2), "{}", r.describe());
     assert!(r.stderr.contains("no_such_config.toml"), "{}", r.stderr);
 }
+
+#[test]
+fn quick_hierarchical_tables_count_and_time_every_cell() {
+    // Wyman 2008 Tables 3-5: every timed column has a value in every cell.
+    for config in ["wyman2008_table3.toml", "wyman2008_table4.toml", "wyman2008_table5.toml"] {
+        let (_, r) = quick_run(config);
+        for cell in r["cells"].as_array().expect("cells") {
+            for (label, v) in cell["metrics"].as_object().expect("metrics") {
+                let x = v["value"].as_f64().unwrap_or(-1.0);
+                // W&D + Sec. 4 has no copy; every other column is a time or a rate.
+                assert!(x > 0.0, "{config}: {} {label} = {x}", cell["cell"]);
+            }
+        }
+    }
+    // Wyman & Nichols 2009 Table 1: the hierarchy splats only valid photons, clustering fewer.
+    let (_, r) = quick_run("wyman_nichols2009_table1.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    for scene in ["bunny_in_room", "sphere_in_room"] {
+        for photons in [64u64, 128] {
+            let find = |t: &str| {
+                cells
+                    .iter()
+                    .find(|c| {
+                        c["cell"]["scene"].as_str().is_some_and(|s| s.contains(scene))
+                            && c["cell"]["technique_label"] == t
+                            && c["cell"]["photons"].as_u64() == Some(photons)
+                    })
+                    .unwrap_or_else(|| panic!("no cell {scene} {t} {photons}"))
+            };
+            let (dense, hier, last) = (find("Caustic Maps"), find("Hier. Caustic Maps"), find("combine last"));
+            let s = |c: &Value, m: &str| metric(c, m).unwrap_or(f64::NAN);
+            assert_eq!(s(dense, "splatted"), (photons * photons) as f64, "{scene} {photons}");
+            assert!(s(hier, "splatted") > 0.0 && s(hier, "splatted") < s(dense, "splatted"), "{scene} {photons}");
+            assert!(s(hier, "processed") > s(hier, "splatted"), "{scene} {photons}: traversal entries not counted");
+            assert!(s(last, "splatted") <= s(hier, "splatted"), "{scene} {photons}: clustering splatted more");
+        }
+    }
+}
