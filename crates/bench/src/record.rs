@@ -85,23 +85,8 @@ impl Timings {
         validation: bool,
         frames: &[FrameReport],
     ) -> Timings {
-        let mut profiler = Profiler::default();
-        for f in frames {
-            profiler.record(f);
-        }
         let last_stats = |name: &str| frames.iter().rev().find_map(|f| f.pass(name).and_then(|p| p.stats));
-        let passes = profiler
-            .summary()
-            .into_iter()
-            .map(|s| Pass {
-                pipeline_stats: last_stats(&s.name).map(Stats::from),
-                name: s.name,
-                median_ms: s.median_ms,
-                min_ms: s.min_ms,
-                max_ms: s.max_ms,
-                samples_ms: s.samples_ms,
-            })
-            .collect();
+        let passes = pass_summaries(frames, last_stats);
         Timings {
             causticlab_version: env!("CARGO_PKG_VERSION"),
             device: Device {
@@ -118,9 +103,30 @@ impl Timings {
             intersect: caustics.intersect().to_string(),
             photons_emitted,
             scene: scene.display().to_string(),
-            frames: profiler.frames(),
+            frames: frames.len(),
             validation,
             passes,
         }
     }
+}
+
+/// Per-pass median/min/max GPU times over `frames` with every raw sample, in first-seen order;
+/// `stats` gives a pass's pipeline statistics (from whichever frame the caller trusts).
+pub fn pass_summaries(frames: &[FrameReport], stats: impl Fn(&str) -> Option<PipelineStats>) -> Vec<Pass> {
+    let mut profiler = Profiler::default();
+    for f in frames {
+        profiler.record(f);
+    }
+    profiler
+        .summary()
+        .into_iter()
+        .map(|s| Pass {
+            pipeline_stats: stats(&s.name).map(Stats::from),
+            name: s.name,
+            median_ms: s.median_ms,
+            min_ms: s.min_ms,
+            max_ms: s.max_ms,
+            samples_ms: s.samples_ms,
+        })
+        .collect()
 }

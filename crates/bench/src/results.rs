@@ -3,10 +3,10 @@
 
 use crate::measure::CellRun;
 use crate::plan::{Cell, Filter, Shard};
-use crate::record::{Pass, Stats};
+use crate::record::{pass_summaries, Pass};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use vkcore::{PipelineStats, Profiler};
+use vkcore::PipelineStats;
 
 pub const SCHEMA: u32 = 1;
 
@@ -98,23 +98,8 @@ pub fn is_timing(kind: &str) -> bool {
 }
 
 pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>, photon_copy: &str) -> CellResult {
-    let mut profiler = Profiler::default();
-    for f in &run.frames {
-        profiler.record(f);
-    }
     let stats = |name: &str| -> Option<PipelineStats> { run.stats_frame.as_ref()?.pass(name)?.stats };
-    let passes = profiler
-        .summary()
-        .into_iter()
-        .map(|s| Pass {
-            pipeline_stats: stats(&s.name).map(Stats::from),
-            name: s.name,
-            median_ms: s.median_ms,
-            min_ms: s.min_ms,
-            max_ms: s.max_ms,
-            samples_ms: s.samples_ms,
-        })
-        .collect();
+    let passes = pass_summaries(&run.frames, stats);
     CellResult {
         cell: cell.clone(),
         caustics: serde_json::to_value(&run.caustics).unwrap_or(serde_json::Value::Null),

@@ -9,19 +9,10 @@ use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
 use std::collections::BTreeSet;
 use std::path::PathBuf;
-use vkcore::{Context, ContextOptions, ShaderCompiler};
+use vkcore::{Context, ShaderCompiler};
 
-fn context() -> (Context, ShaderCompiler) {
-    let opts = ContextOptions {
-        device: std::env::var("CAUSTICLAB_TEST_DEVICE").ok(),
-        validation: true,
-        echo_validation: true,
-        without: vec![],
-    };
-    let ctx = Context::new(&opts).expect("a Vulkan 1.3 device with the validation layer (run scripts/setup.sh)");
-    let shaders = ShaderCompiler::new(&caustics::render::shader_root()).expect("shaderc");
-    (ctx, shaders)
-}
+mod common;
+use common::context;
 
 fn scene(technique: &str, photons: u32, path: &str, cluster: &str) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
