@@ -70,7 +70,7 @@ pub fn markdown(config: &Config, results: &Results) -> String {
         for e in &g.entries[ri] {
             cells.push(format_value(&e.kind, e.ours));
             if has_paper {
-                cells.push(format_value(&e.kind, e.paper));
+                cells.push(paper_value(&e.kind, e.paper));
             }
         }
         let _ = writeln!(s, "| {} |", cells.join(" | "));
@@ -264,4 +264,27 @@ pub fn plot(config: &Config, results: &Results) -> String {
         series,
     };
     crate::svg::render(&chart)
+}
+
+/// A paper's value as the paper prints it (the config holds it verbatim): 3.6 stays 3.6, 8.0 stays
+/// 8.0 (TOML keeps no trailing zeros beyond that).
+/// Counts keep their thousands separators.
+fn paper_value(kind: &str, v: Option<f64>) -> String {
+    match (kind, v) {
+        ("photons_emitted" | "splats_drawn" | "photons_processed", _) | (_, None) => format_value(kind, v),
+        (_, Some(v)) if v.fract() == 0.0 => format!("{v:.1}"),
+        (_, Some(v)) => format!("{v}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn paper_values_print_as_the_paper_prints_them() {
+        assert_eq!(super::paper_value("fps", Some(3.6)), "3.6");
+        assert_eq!(super::paper_value("pass_ms", Some(861.0)), "861.0");
+        assert_eq!(super::paper_value("pass_ms", Some(0.02)), "0.02");
+        assert_eq!(super::paper_value("photons_processed", Some(262144.0)), "262,144");
+        assert_eq!(super::paper_value("fps", None), "–");
+    }
 }

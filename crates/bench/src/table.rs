@@ -98,18 +98,23 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         return "n/a".into();
     }
     match kind {
-        "pass_ms" | "gpu_frame_ms" | "frame_ms" => {
-            if v.abs() < 10.0 {
-                format!("{v:.2}")
-            } else {
-                format!("{v:.1}")
-            }
-        }
-        "fps" => format!("{v:.1}"),
+        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" => significant(v),
         "photons_emitted" | "splats_drawn" | "photons_processed" => thousands(v.round() as u64),
         "rel_rmse" | "flux_ratio" => format!("{v:.4}"),
         _ => format!("{v}"),
     }
+}
+
+/// A time or a rate with at least three significant digits and at most one decimal above 10, so
+/// that lavapipe's 0.013 fps and a GPU's 0.024 ms passes do not print as 0.0.
+fn significant(v: f64) -> String {
+    let a = v.abs();
+    if a >= 10.0 || a == 0.0 {
+        return format!("{v:.1}");
+    }
+    // Digits before the decimal point are 1 for a ≥ 1; below 1, leading zeros add decimals.
+    let decimals = (2.0 - a.log10().floor()).max(2.0) as usize;
+    format!("{v:.decimals$}")
 }
 
 fn thousands(n: u64) -> String {
@@ -146,6 +151,11 @@ mod tests {
         assert_eq!(format_value("pass_ms", Some(4.256)), "4.26");
         assert_eq!(format_value("pass_ms", Some(861.54)), "861.5");
         assert_eq!(format_value("fps", None), "–");
+        assert_eq!(format_value("fps", Some(32.44)), "32.4");
+        assert_eq!(format_value("fps", Some(3.456)), "3.46");
+        assert_eq!(format_value("fps", Some(0.01234)), "0.0123");
+        assert_eq!(format_value("pass_ms", Some(0.5)), "0.500");
+        assert_eq!(format_value("fps", Some(0.0)), "0.0");
         assert_eq!(display("photons", "256"), "256²");
         assert_eq!(display("lights", "2"), "2 lights");
     }

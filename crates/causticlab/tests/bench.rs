@@ -249,6 +249,16 @@ fn shards_merge_into_the_unsharded_table() {
     let first = &cells(&ja)[0];
     assert_eq!(metric(first, "photons"), Some(6400.0));
     assert_eq!(metric(first, "splats"), Some(7168.0));
+
+    // A complete result merged alone re-renders its table: the same JSON, CSV and Markdown,
+    // byte for byte (floats re-read exactly), which is how a report change regenerates tables.
+    let again = dir.join("again");
+    let r = bench(&["merge".as_ref(), a.join("small.json").as_os_str(), "--results".as_ref(), again.as_os_str()]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    for f in ["small.json", "small.csv", "small.md"] {
+        let read = |d: &std::path::Path| std::fs::read(d.join(f)).unwrap_or_default();
+        assert!(!read(&a).is_empty() && read(&a) == read(&device_dir(&again)), "{f} changed when re-merged");
+    }
 }
 
 #[test]
