@@ -195,38 +195,43 @@ fn caustics_match_the_exact_reference_within_regression_thresholds() {
         assert!(f("peak_offset_texels") <= 3.0, "{technique}: {c}");
     }
     // Hierarchical caustic maps (Wyman 2008) over the same photon buffer are no worse than the
-    // dense map at equal photon count: relative RMSE within 0.01 of `wd-points`'. Varying splats
+    // dense map at equal photon count: relative RMSE within 0.01 of `wd-points'`. Varying splats
     // discard photons whose splat would be wider than 40 texels (Sec. 3.3: "such photons
-    // contribute little"); here, with `--fresnel false` and a 1024² map, those are grazing
-    // photons from the sphere's rim carrying 7% of the flux (measured flux ratio 0.927), so that
-    // mode gets its own bounds: flux ratio 0.90-0.95 and RMSE within 0.05 of the dense map's.
-    let dense = {
+    // contribute little"). With `--fresnel false` and a 1024² map those are grazing photons from
+    // the sphere's rim: at 256² photons they carry 7% of the flux (measured flux ratio 0.927-0.933,
+    // RMSE 0.015-0.037 above the dense map's), so at 256² that mode gets its own bounds (flux
+    // ratio 0.90-0.95, RMSE within 0.05); at 512², where neighbours are closer and fewer splats
+    // reach level 4 (the paper's regime), it meets the 0.01 margin (measured: 0.005-0.006 above,
+    // flux ratio 0.956).
+    let dense = |photons: &str| {
         let out = render(
-            "regression-dense",
+            &format!("regression-dense-{photons}"),
             &scene("sphere_on_plane"),
-            &["--technique", "wd-points", "--photons", "256", "--fresnel", "false"],
+            &["--technique", "wd-points", "--photons", photons, "--fresnel", "false"],
             "receiver",
         );
         compare(&out.join("receiver.exr"), &reference.join("receiver.exr"))["rel_rmse"].as_f64().unwrap_or(f64::NAN)
     };
-    for (name, args) in [
-        ("hcm-none-xfb", ["--path", "xfb", "--cluster", "none", "--splat", "fixed"]),
-        ("hcm-last-compute", ["--path", "compute", "--cluster", "last", "--splat", "fixed"]),
-        ("hcm-all-multires", ["--path", "xfb", "--cluster", "all", "--splat", "varying-multires"]),
+    let (dense256, dense512) = (dense("256"), dense("512"));
+    for (name, photons, args) in [
+        ("hcm-none-xfb", "256", ["--path", "xfb", "--cluster", "none", "--splat", "fixed"]),
+        ("hcm-last-compute", "256", ["--path", "compute", "--cluster", "last", "--splat", "fixed"]),
+        ("hcm-all-multires", "256", ["--path", "xfb", "--cluster", "all", "--splat", "varying-multires"]),
+        ("hcm-all-multires", "512", ["--path", "xfb", "--cluster", "all", "--splat", "varying-multires"]),
     ] {
-        let mut a = vec!["--technique", "hcm", "--photons", "256", "--fresnel", "false"];
+        let mut a = vec!["--technique", "hcm", "--photons", photons, "--fresnel", "false"];
         a.extend(args);
-        let out = render(&format!("regression-{name}"), &scene("sphere_on_plane"), &a, "receiver");
+        let out = render(&format!("regression-{name}-{photons}"), &scene("sphere_on_plane"), &a, "receiver");
         let c = compare(&out.join("receiver.exr"), &reference.join("receiver.exr"));
         let rmse = c["rel_rmse"].as_f64().unwrap_or(f64::NAN);
         let flux = c["caustic_flux_ratio"].as_f64().unwrap_or(f64::NAN);
-        if name.ends_with("multires") {
-            assert!(rmse <= dense + 0.05, "{name}: rel. RMSE {rmse} vs the dense map's {dense}: {c}");
-            assert!((0.90..=0.95).contains(&flux), "{name}: {c}");
-        } else {
-            assert!(rmse <= dense + 0.01, "{name}: rel. RMSE {rmse} vs the dense map's {dense}: {c}");
-            assert!((0.95..=1.01).contains(&flux), "{name}: {c}");
-        }
+        let (dense, margin, fluxes) = match (name.ends_with("multires"), photons) {
+            (true, "256") => (dense256, 0.05, 0.90..=0.95),
+            (true, _) => (dense512, 0.01, 0.94..=0.98),
+            (false, _) => (dense256, 0.01, 0.95..=1.01),
+        };
+        assert!(rmse <= dense + margin, "{name} at {photons}²: rel. RMSE {rmse} vs the dense map's {dense}: {c}");
+        assert!(fluxes.contains(&flux), "{name} at {photons}²: {c}");
     }
 }
 
