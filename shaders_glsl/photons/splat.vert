@@ -77,7 +77,10 @@ layout(binding = 3) uniform sampler2D photon_power;
 layout(location = 0) in uint a_vertex;
 bool fetch_photon(out vec4 pos, out vec3 power) {
     uint width = uint(textureSize(photon_position, 0).x);
-    uint id = gl_InstanceIndex * object.info.z + a_vertex;   // info.z: vertices per instance
+    // Wyman 2008 Sec. 4: a small vertex buffer drawn instanced; info.z: vertices per instance.
+    // With as many vertices as the photon buffer is wide this is the paper's s = gl_VertexID,
+    // t = gl_InstanceID; other sizes index the buffer row by row.
+    uint id = gl_InstanceIndex * object.info.z + a_vertex;
     ivec2 texel = ivec2(id % width, id / width);
     pos = vec4(0.0);
     power = vec3(0.0);

@@ -190,18 +190,21 @@ pub fn csv(config: &Config, results: &Results) -> String {
 }
 
 /// Values against photon count (photons² on a log2 axis), one solid line per table column and
-/// other row axis, the paper's values dashed.
+/// other row axis, the paper's values dashed in the same colour. A table whose columns cross
+/// the metrics with another axis (techniques × passes, as Wyman 2008 Table 3) gets a panel per
+/// metric, each technique keeping its colour, rather than one chart of 30-odd lines.
 pub fn plot(config: &Config, results: &Results) -> String {
     let g = grid(config, results);
     let photons_row = g.row_axes.iter().position(|a| a == "photons");
-    let mut series: Vec<Series> = vec![];
-    let mut ticks: Vec<(f64, String)> = vec![];
+    let metric_col = g.col_axes.iter().position(|a| a == "metric");
+    let panelled = metric_col.is_some() && g.col_axes.len() > 1 && config.metrics.len() > 1;
     let x_of = |ri: usize, row: &[String]| -> f64 {
         match photons_row {
             Some(p) => row[p].parse::<f64>().map(|n| n * n).unwrap_or(f64::NAN),
             None => ri as f64 + 1.0,
         }
     };
+    let mut ticks: Vec<(f64, String)> = vec![];
     for (ri, row) in g.rows.iter().enumerate() {
         let label = match photons_row {
             Some(p) => display("photons", &row[p]),
@@ -212,8 +215,11 @@ pub fn plot(config: &Config, results: &Results) -> String {
             ticks.push((x, label));
         }
     }
-    // Series = columns x the row axes other than photons.
-    let mut names: Vec<String> = vec![];
+    // Series = columns (less the metric when panelled) x the row axes other than photons.
+    let panel_names: Vec<String> =
+        if panelled { config.metrics.iter().map(|m| m.label.clone()).collect() } else { vec![String::new()] };
+    let mut panels: Vec<Vec<Series>> = vec![vec![]; panel_names.len()];
+    let mut colours: Vec<String> = vec![];
     for (ri, row) in g.rows.iter().enumerate() {
         let others: Vec<String> = g
             .row_axes
@@ -224,20 +230,35 @@ pub fn plot(config: &Config, results: &Results) -> String {
             .map(|(_, (a, k))| display(a, k))
             .collect();
         for (ci, col) in g.cols.iter().enumerate() {
-            let mut name = header_of(&g.col_axes, col);
+            let (panel, axes, keys): (usize, Vec<String>, Vec<String>) = match metric_col.filter(|_| panelled) {
+                Some(m) => (
+                    panel_names.iter().position(|n| *n == col[m]).unwrap_or(0),
+                    g.col_axes.iter().enumerate().filter(|(i, _)| *i != m).map(|(_, a)| a.clone()).collect(),
+                    col.iter().enumerate().filter(|(i, _)| *i != m).map(|(_, k)| k.clone()).collect(),
+                ),
+                None => (0, g.col_axes.clone(), col.clone()),
+            };
+            let mut name = header_of(&axes, &keys);
             if !others.is_empty() {
                 name = format!("{} · {name}", others.join(" · "));
             }
+            let colour = match colours.iter().position(|n| *n == name) {
+                Some(i) => i,
+                None => {
+                    colours.push(name.clone());
+                    colours.len() - 1
+                }
+            };
             let e = &g.entries[ri][ci];
             let x = x_of(ri, row);
+            let series = &mut panels[panel];
             for (paper, v) in [(false, e.ours), (true, e.paper)] {
                 let label = if paper { format!("{name} (paper)") } else { name.clone() };
-                let idx = match names.iter().position(|n| *n == label) {
+                let idx = match series.iter().position(|s| s.label == label) {
                     Some(i) => i,
                     None => {
-                        names.push(label.clone());
-                        series.push(Series { label, points: vec![], dashed: paper });
-                        names.len() - 1
+                        series.push(Series { label, points: vec![], dashed: paper, colour: Some(colour) });
+                        series.len() - 1
                     }
                 };
                 if let Some(v) = v {
@@ -246,24 +267,35 @@ pub fn plot(config: &Config, results: &Results) -> String {
             }
         }
     }
-    // Drop paper series the paper has no value for.
-    series.retain(|s| !s.dashed || !s.points.is_empty());
     let kinds: Vec<&str> = config.metrics.iter().map(|m| unit(&m.kind)).collect();
     let y_label = match kinds.first() {
         Some(u) if !u.is_empty() && kinds.iter().all(|k| k == u) => u.to_string(),
         _ => "value".into(),
     };
-    let chart = Chart {
-        title: format!("{}, Table {}", config.table.paper, config.table.number),
-        subtitle: format!("{} · {} · {}", results.meta.device, results.meta.driver_info, results.meta.date),
-        x_label: if photons_row.is_some() { "photons".into() } else { g.row_axes.join(" · ") },
-        y_label,
-        x_log2: photons_row.is_some(),
-        x_tick_labels: ticks,
-        y_log: config.table.plot_log_y,
-        series,
-    };
-    crate::svg::render(&chart)
+    let title = format!("{}, Table {}", config.table.paper, config.table.number);
+    let subtitle = format!("{} · {} · {}", results.meta.device, results.meta.driver_info, results.meta.date);
+    let charts: Vec<Chart> = panels
+        .into_iter()
+        .zip(&panel_names)
+        .map(|(mut series, panel)| {
+            // Drop paper series the paper has no value for.
+            series.retain(|s| !s.dashed || !s.points.is_empty());
+            Chart {
+                title: panel.clone(),
+                subtitle: String::new(),
+                x_label: if photons_row.is_some() { "photons".into() } else { g.row_axes.join(" · ") },
+                y_label: y_label.clone(),
+                x_log2: photons_row.is_some(),
+                x_tick_labels: ticks.clone(),
+                y_log: config.table.plot_log_y,
+                series,
+            }
+        })
+        .collect();
+    match charts.as_slice() {
+        [one] if !panelled => crate::svg::render(&Chart { title, subtitle, ..one.clone() }),
+        _ => crate::svg::render_panels(&title, &subtitle, &charts),
+    }
 }
 
 /// A paper's value as the paper prints it (the config holds it verbatim): 3.6 stays 3.6, 8.0 stays

@@ -16,6 +16,15 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// Dashed line and hollow markers (used for the papers' published values).
     pub dashed: bool,
+    /// Palette index; `None` takes the series' position. A paper's series shares its
+    /// measured twin's colour, and a technique keeps its colour across panels.
+    pub colour: Option<usize>,
+}
+
+impl Series {
+    fn colour(&self, position: usize) -> &'static str {
+        PALETTE[self.colour.unwrap_or(position) % PALETTE.len()]
+    }
 }
 
 /// A line chart: title, axes and series.
@@ -38,7 +47,7 @@ pub struct Chart {
     pub series: Vec<Series>,
 }
 
-const WIDTH: f64 = 720.0;
+const WIDTH: f64 = 800.0;
 const HEIGHT: f64 = 440.0;
 /// Plot area.
 const LEFT: f64 = 80.0;
@@ -61,8 +70,58 @@ macro_rules! w {
     }};
 }
 
-/// Renders `chart` as a standalone 720×440 SVG document (ends with `</svg>\n`).
+/// Renders `chart` as a standalone 800×440 SVG document (ends with `</svg>\n`).
 pub fn render(chart: &Chart) -> String {
+    let mut out = String::with_capacity(4096);
+    draw_chart(&mut out, chart, 0.0);
+    out
+}
+
+/// Small multiples: `panels` stacked one above the other under a shared title and subtitle,
+/// each an 800×440 chart with its own axes and legend (each panel's own title names it), so
+/// a table of many techniques × metrics stays readable. One standalone SVG document.
+pub fn render_panels(title: &str, subtitle: &str, panels: &[Chart]) -> String {
+    const HEAD: f64 = 48.0;
+    let height = HEAD + HEIGHT * panels.len() as f64;
+    let mut out = String::with_capacity(4096 * panels.len().max(1));
+    w!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{h}" viewBox="0 0 {WIDTH} {h}" font-family="Helvetica, Arial, sans-serif" font-size="11">"#,
+        h = num(height)
+    );
+    w!(out, r##"<rect x="0" y="0" width="{WIDTH}" height="{}" fill="#ffffff"/>"##, num(height));
+    draw_titles(&mut out, title, subtitle);
+    for (i, panel) in panels.iter().enumerate() {
+        draw_chart(&mut out, panel, HEAD + HEIGHT * i as f64);
+    }
+    out.push_str("</svg>\n");
+    out
+}
+
+fn draw_titles(out: &mut String, title: &str, subtitle: &str) {
+    if !title.is_empty() {
+        w!(
+            out,
+            r#"<text x="{}" y="24" text-anchor="middle" font-size="16" font-weight="bold"{}>{}</text>"#,
+            WIDTH / 2.0,
+            fit(title, 9.0, WIDTH - 20.0),
+            esc(title)
+        );
+    }
+    if !subtitle.is_empty() {
+        w!(
+            out,
+            r##"<text x="{}" y="42" text-anchor="middle" font-size="11" fill="#555555"{}>{}</text>"##,
+            WIDTH / 2.0,
+            fit(subtitle, 6.0, WIDTH - 20.0),
+            esc(subtitle)
+        );
+    }
+}
+
+/// One chart as an `<svg>` element whose top edge is at `y` in its parent (a standalone
+/// document when `y` is 0 and nothing encloses it).
+fn draw_chart(out: &mut String, chart: &Chart, y: f64) {
     let sx = if chart.x_log2 { Scale::Log2 } else { Scale::Linear };
     let sy = if chart.y_log { Scale::Log10 } else { Scale::Linear };
     let drawable: Vec<Vec<(f64, f64)>> = chart
@@ -78,32 +137,15 @@ pub fn render(chart: &Chart) -> String {
     let xs: Vec<f64> = drawable.iter().flatten().map(|p| p.0).collect();
     let ys: Vec<f64> = drawable.iter().flatten().map(|p| p.1).collect();
 
-    let mut out = String::with_capacity(4096);
+    let at = if y == 0.0 { String::new() } else { format!(r#" x="0" y="{}""#, num(y)) };
     w!(
         out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="Helvetica, Arial, sans-serif" font-size="11">"#,
+        r#"<svg xmlns="http://www.w3.org/2000/svg"{at} width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="Helvetica, Arial, sans-serif" font-size="11">"#,
         w = WIDTH,
         h = HEIGHT
     );
     w!(out, r##"<rect x="0" y="0" width="{WIDTH}" height="{HEIGHT}" fill="#ffffff"/>"##);
-    if !chart.title.is_empty() {
-        w!(
-            out,
-            r#"<text x="{}" y="24" text-anchor="middle" font-size="16" font-weight="bold"{}>{}</text>"#,
-            WIDTH / 2.0,
-            fit(&chart.title, 9.0, WIDTH - 20.0),
-            esc(&chart.title)
-        );
-    }
-    if !chart.subtitle.is_empty() {
-        w!(
-            out,
-            r##"<text x="{}" y="42" text-anchor="middle" font-size="11" fill="#555555"{}>{}</text>"##,
-            WIDTH / 2.0,
-            fit(&chart.subtitle, 6.0, WIDTH - 20.0),
-            esc(&chart.subtitle)
-        );
-    }
+    draw_titles(out, &chart.title, &chart.subtitle);
 
     if xs.is_empty() {
         w!(
@@ -121,13 +163,12 @@ pub fn render(chart: &Chart) -> String {
     } else {
         let (xa, xticks) = x_axis(&xs, sx, &chart.x_tick_labels);
         let (ya, yticks) = y_axis(&ys, sy);
-        draw_grid_and_axes(&mut out, &xa, &xticks, &ya, &yticks);
-        draw_series(&mut out, chart, &drawable, &xa, &ya);
+        draw_grid_and_axes(out, &xa, &xticks, &ya, &yticks);
+        draw_series(out, chart, &drawable, &xa, &ya);
     }
-    draw_axis_labels(&mut out, chart);
-    draw_legend(&mut out, chart, &drawable);
+    draw_axis_labels(out, chart);
+    draw_legend(out, chart, &drawable);
     out.push_str("</svg>\n");
-    out
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -396,7 +437,7 @@ fn draw_series(out: &mut String, chart: &Chart, drawable: &[Vec<(f64, f64)>], xa
         if pts.is_empty() {
             continue;
         }
-        let colour = PALETTE[i % PALETTE.len()];
+        let colour = s.colour(i);
         let px: Vec<(String, String)> = pts.iter().map(|&(x, y)| (num(xa.map(x)), num(ya.map(y)))).collect();
         let coords: Vec<String> = px.iter().map(|(x, y)| format!("{x},{y}")).collect();
         w!(out, r#"<g stroke="{colour}">"#);
@@ -446,7 +487,7 @@ fn draw_legend(out: &mut String, chart: &Chart, drawable: &[Vec<(f64, f64)>]) {
     let spacing = ((HEIGHT - 8.0 - y0) / chart.series.len() as f64).min(18.0);
     let text_x = LEGEND_X + 30.0;
     for (i, s) in chart.series.iter().enumerate() {
-        let colour = PALETTE[i % PALETTE.len()];
+        let colour = s.colour(i);
         let cy = y0 + spacing * (i as f64 + 0.5);
         let mut label: String = s.label.chars().take(LEGEND_MAX_CHARS).collect();
         if s.label.chars().nth(LEGEND_MAX_CHARS).is_some() {
@@ -592,7 +633,7 @@ mod tests {
     use super::*;
 
     fn series(label: &str, points: &[(f64, f64)]) -> Series {
-        Series { label: label.to_string(), points: points.to_vec(), dashed: false }
+        Series { label: label.to_string(), points: points.to_vec(), dashed: false, colour: None }
     }
 
     fn chart(series: Vec<Series>) -> Chart {
@@ -674,7 +715,7 @@ mod tests {
         assert!(svg.starts_with("<svg"), "{svg}");
         assert!(svg.ends_with("</svg>\n"));
         assert!(svg.contains(r#"xmlns="http://www.w3.org/2000/svg""#));
-        assert!(svg.contains(r#"width="720""#) && svg.contains(r#"height="440""#));
+        assert!(svg.contains(r#"width="800""#) && svg.contains(r#"height="440""#));
         assert!(svg.contains(r##"fill="#ffffff""##));
         assert_eq!(count(&svg, "<g>") + count(&svg, "<g "), count(&svg, "</g>"));
         assert_eq!(count(&svg, "<svg"), 1);
@@ -702,7 +743,7 @@ mod tests {
         let c = chart(vec![
             series("a", &[(1.0, 2.0), (2.0, 3.0), (3.0, 5.0)]),
             series("b", &[(1.0, 1.0), (2.0, f64::NAN), (f64::INFINITY, 1.0), (4.0, 4.0)]),
-            Series { label: "paper".into(), points: vec![(1.0, 1.5)], dashed: true },
+            Series { label: "paper".into(), points: vec![(1.0, 1.5)], dashed: true, colour: None },
         ]);
         let svg = render(&c);
         let lines = polylines(&svg);
@@ -892,5 +933,31 @@ mod tests {
         // Series 10 reuses the first colour.
         assert_eq!(count(&svg, &format!(r#"<g stroke="{}">"#, PALETTE[0])), 4);
         well_formed(&svg).unwrap();
+    }
+
+    #[test]
+    fn panels_stack_charts_and_twins_share_a_colour() {
+        let mut paper = series("a (paper)", &[(1.0, 1.5), (2.0, 2.5)]);
+        paper.dashed = true;
+        paper.colour = Some(3);
+        let mut ours = series("a", &[(1.0, 1.0), (2.0, 2.0)]);
+        ours.colour = Some(3);
+        let mut first = chart(vec![ours, paper]);
+        first.title = "Gather".into();
+        let mut second = chart(vec![series("b", &[(1.0, 4.0)])]);
+        second.title = "Final Render".into();
+        let svg = render_panels("Table 3", "device", &[first, second]);
+        well_formed(&svg).unwrap();
+        // One document holding a chart per panel, each below the shared title.
+        assert_eq!(count(&svg, "<svg"), 3);
+        assert!(svg.contains(r#"height="928""#), "48 + 2 × 440");
+        assert!(svg.contains(r#" y="48" "#) && svg.contains(r#" y="488" "#));
+        for t in ["Table 3", "Gather", "Final Render"] {
+            assert!(svg.contains(&format!(">{t}</text>")), "no title {t}");
+        }
+        // Both lines of `a` and their legend entries in palette colour 3; `b` takes its position.
+        assert_eq!(count(&svg, &format!(r#"<g stroke="{}">"#, PALETTE[3])), 4);
+        assert_eq!(count(&svg, &format!(r#"<g stroke="{}">"#, PALETTE[0])), 2);
+        assert_eq!(polylines(&svg).len(), 3);
     }
 }

@@ -145,6 +145,13 @@ fn caustic_setting_out_of_range() {
     );
     let scene_file = edited_scene("iterations", "[receiver_map]", "[caustics]\niterations = 0\n\n[receiver_map]");
     expect_input_error(&["render", "--scene", &scene_file.display().to_string()], &["caustics.iterations"]);
+    // Instanced draws need a power-of-two vertex buffer of a sane size.
+    for bad in ["1000", "32", "131072"] {
+        expect_input_error(
+            &["render", "--scene", &scene("sphere_on_plane"), "--technique", "wd-points", "--instance-vertices", bad],
+            &["--instance-vertices", "power of two", bad],
+        );
+    }
 }
 
 #[test]

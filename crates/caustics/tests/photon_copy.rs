@@ -14,6 +14,10 @@ mod common;
 use common::context;
 
 fn scene() -> Scene {
+    scene_with(1024)
+}
+
+fn scene_with(instance_vertices: u32) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
     let mut s = Scene::load(&p).expect("shipped scene");
     s.caustics.technique = "wd-points".into();
@@ -21,13 +25,24 @@ fn scene() -> Scene {
     s.caustics.caustic_map_resolution = 256;
     s.camera.width = 64;
     s.camera.height = 64;
+    s.caustics.instance_vertices = instance_vertices;
     s.receiver_map = None;
     s
 }
 
 /// Mean-RGB caustic map of light 0 after one frame (or `frames` frames with `step`).
 fn caustic_map(ctx: &Context, sh: &ShaderCompiler, copy: Option<CopyType>, steps: &[FrameStep]) -> Vec<f64> {
-    let mut r = Renderer::new(ctx, sh, &scene(), &RendererOptions { photon_copy: copy }).expect("renderer");
+    caustic_map_of(ctx, sh, &scene(), copy, steps)
+}
+
+fn caustic_map_of(
+    ctx: &Context,
+    sh: &ShaderCompiler,
+    scene: &Scene,
+    copy: Option<CopyType>,
+    steps: &[FrameStep],
+) -> Vec<f64> {
+    let mut r = Renderer::new(ctx, sh, scene, &RendererOptions { photon_copy: copy }).expect("renderer");
     for s in steps {
         r.frame(*s).expect("frame");
     }
@@ -64,6 +79,24 @@ fn copied_vertex_arrays_splat_the_same_caustic_map_as_instanced_fetch() {
         caustic_map(&ctx, &sh, None, &[FrameStep::default(), FrameStep { reuse_photons: true, ..Default::default() }]);
     let (dt, dl1) = difference(&reused, &fetched);
     assert!(dt < 1e-6 && dl1 < 1e-6, "reused photon buffer: totals differ by {dt}, texels by {dl1}");
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}
+
+/// Wyman 2008 Sec. 4 draws one small vertex buffer (1024, 2048 or 4096 vertices) instanced: the
+/// size must not change which photons are splatted. 128² photons are 16 instances of 1024,
+/// 8 of 2048, 4 of 4096, and 1 of 65536 (which pads 49,152 vertices past the photon buffer:
+/// those must splat nothing); 64 vertices make 256 instances.
+#[test]
+fn every_instance_size_splats_the_same_photons() {
+    let (ctx, sh) = context();
+    let once = [FrameStep::default()];
+    let base = caustic_map(&ctx, &sh, None, &once);
+    assert!(base.iter().sum::<f64>() > 0.0, "no caustic: the comparison would be vacuous");
+    for n in [64, 2048, 4096, 65536] {
+        let (dt, dl1) = difference(&caustic_map_of(&ctx, &sh, &scene_with(n), None, &once), &base);
+        assert!(dt < 1e-5 && dl1 < 1e-5, "{n} vertices per instance: totals differ by {dt}, texels by {dl1}");
+    }
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
 }

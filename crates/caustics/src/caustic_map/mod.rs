@@ -19,13 +19,8 @@ pub mod photon_copy;
 mod pipelines;
 mod targets;
 
-pub use passes::{record_caustics, record_cleared, CausticFrame, CausticInputs, VERTS_PER_INSTANCE};
+pub use passes::{record_caustics, record_cleared, CausticFrame, CausticInputs};
 pub use photon_copy::{CopyType, PhotonCopy, COPY_TYPES};
-
-/// Vertices per instance of the instanced photon fetch.
-pub fn passes_verts_per_instance() -> u32 {
-    VERTS_PER_INSTANCE
-}
 pub use pipelines::CausticPipelines;
 pub use targets::{CausticTargets, PhotonTargets};
 

@@ -17,13 +17,12 @@ pub struct CausticInputs<'a> {
     pub meshes: &'a [GpuMesh],
     /// Per mesh: a third of each vertex's triangle areas (vertex photons only).
     pub vertex_areas: &'a [Option<Buffer>],
-    /// 0..VERTS_PER_INSTANCE, for instanced photon fetch.
+    /// 0..instance_vertices, for instanced photon fetch.
     pub splat_vertices: &'a Buffer,
+    /// Vertices per instance of the instanced fetch (Wyman 2008 Sec. 4).
+    pub instance_vertices: u32,
     pub nearest: &'a Sampler,
 }
-
-/// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4 uses 1024-4096).
-pub const VERTS_PER_INSTANCE: u32 = 1024;
 
 /// What one frame records beyond the splat.
 #[derive(Clone, Copy, Default)]
@@ -237,11 +236,14 @@ fn record_splat(
                 Bind::Sampled(&pt.position.view, inp.nearest),
                 Bind::Sampled(&pt.power.view, inp.nearest),
             ])?;
-            let c = crate::render::gpu::ObjectConstants { info: [0, l, VERTS_PER_INSTANCE, 0], ..Default::default() };
+            let c =
+                crate::render::gpu::ObjectConstants { info: [0, l, inp.instance_vertices, 0], ..Default::default() };
             cmd.push(&c)?;
             cmd.bind_vertex_buffer(inp.splat_vertices, 0);
             let total = pt.width * pt.width;
-            cmd.draw(VERTS_PER_INSTANCE, total.div_ceil(VERTS_PER_INSTANCE), 0, 0);
+            // Wyman 2008 Sec. 4: one small vertex buffer drawn instanced; the vertex shader
+            // finds its photon from gl_InstanceIndex and the vertex's index.
+            cmd.draw(inp.instance_vertices, total.div_ceil(inp.instance_vertices), 0, 0);
             cmd.end_rendering();
             Ok(())
         })?;

@@ -32,6 +32,8 @@ struct CausticResources {
     photons: caustic_map::PhotonTargets,
     vertex_areas: Vec<Option<Buffer>>,
     splat_vertices: Buffer,
+    /// Vertices per instance of the instanced photon fetch (`splat_vertices` holds 0..this).
+    instance_vertices: u32,
     copy: Option<PhotonCopy>,
     hierarchy: Option<Hierarchy>,
 }
@@ -108,7 +110,7 @@ impl<'c> Renderer<'c> {
             } else {
                 scene.objects.iter().map(|_| None).collect()
             };
-            let ids: Vec<u32> = (0..caustic_map::VERTS_PER_INSTANCE).collect();
+            let ids: Vec<u32> = (0..settings.instance_vertices).collect();
             let copy = match opts.photon_copy {
                 Some(ty) => Some(PhotonCopy::new(ctx, ty, photon_side)?),
                 None => None,
@@ -127,6 +129,7 @@ impl<'c> Renderer<'c> {
                 photons: caustic_map::PhotonTargets::new(ctx, settings.photons, photon_side)?,
                 vertex_areas,
                 splat_vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
+                instance_vertices: settings.instance_vertices,
                 copy,
                 hierarchy,
             })
@@ -200,6 +203,7 @@ impl<'c> Renderer<'c> {
                     meshes: &self.meshes,
                     vertex_areas: &c.vertex_areas,
                     splat_vertices: &c.splat_vertices,
+                    instance_vertices: c.instance_vertices,
                     nearest: &self.nearest,
                 };
                 let frame = CausticFrame {
@@ -278,7 +282,8 @@ impl<'c> Renderer<'c> {
                     Some(copy) => copy.vertices() as u64,
                     None => {
                         let total = c.photons.width * c.photons.width;
-                        (total.div_ceil(caustic_map::VERTS_PER_INSTANCE) * caustic_map::VERTS_PER_INSTANCE) as u64
+                        let per = c.instance_vertices;
+                        (total.div_ceil(per) * per) as u64
                     }
                 };
                 per_light * self.targets.shadow.lights as u64

@@ -81,6 +81,10 @@ pub struct CausticSettings {
     pub cluster: String,
     /// `hcm` only: one of [`SPLAT_MODES`]; default `fixed`.
     pub splat: String,
+    /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4: "a smaller
+    /// buffer of size 1024, 2048, or 4096" drawn instanced); a power of two, 64..=65536;
+    /// default 1024. Not used by the copy path or by `hcm`'s splatted lists.
+    pub instance_vertices: u32,
 }
 
 impl Default for CausticSettings {
@@ -98,6 +102,7 @@ impl Default for CausticSettings {
             path: "xfb".into(),
             cluster: "none".into(),
             splat: "fixed".into(),
+            instance_vertices: 1024,
         }
     }
 }
@@ -127,6 +132,8 @@ impl CausticSettings {
     /// line) and `key` prefixes key names, e.g. `caustics.`.
     pub fn validate(&self, origin: &str, key: &str) -> anyhow::Result<()> {
         let bad = |k: &str, msg: String| -> anyhow::Result<()> {
+            // On the command line the key is a flag: `--splat-radius`, not `--splat_radius`.
+            let k = if key == "--" { k.replace('_', "-") } else { k.to_string() };
             Err(crate::input_error!("{origin}: key `{key}{k}`: {msg}").into())
         };
         let one_of = |k: &str, v: &str, list: &[&str]| -> anyhow::Result<()> {
@@ -158,6 +165,12 @@ impl CausticSettings {
         }
         if self.back_face_iterations > 16 {
             bad("back_face_iterations", format!("must be between 0 and 16, got {}", self.back_face_iterations))?;
+        }
+        if !(64..=65536).contains(&self.instance_vertices) || !self.instance_vertices.is_power_of_two() {
+            bad(
+                "instance_vertices",
+                format!("must be a power of two between 64 and 65536, got {}", self.instance_vertices),
+            )?;
         }
         if !(1..=64).contains(&self.iterations) {
             bad("iterations", format!("must be between 1 and 64, got {}", self.iterations))?;
