@@ -332,7 +332,11 @@ fn an_interrupted_run_leaves_the_previous_table_untouched() {
     ]);
     assert_eq!(r.code, Some(2), "{}", r.describe());
     // (No progress line: "0/8 cells" would mean a cell started.)
-    assert!(r.stderr.contains("vertex_pipeline_stores_and_atomics") && !r.stderr.contains(" cells"), "{}", r.describe());
+    assert!(
+        r.stderr.contains("vertex_pipeline_stores_and_atomics") && !r.stderr.contains(" cells"),
+        "{}",
+        r.describe()
+    );
     // Timing runs refuse validation and masked features.
     let r =
         causticlab(&["--validate".as_ref(), "bench".as_ref(), cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
