@@ -15,6 +15,7 @@ pub mod record;
 pub mod report;
 pub mod results;
 pub mod run;
+pub mod steal;
 pub mod svg;
 pub mod table;
 mod validate;

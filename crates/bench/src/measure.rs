@@ -70,6 +70,9 @@ pub struct CellRun {
     /// The caustic settings in effect (after the technique entry and `--quick`).
     pub caustics: CausticSettings,
     pub triangles: usize,
+    /// Share of the host's CPU time stolen by the hypervisor over the warm-up and measured
+    /// frames (see [`crate::steal`]); `None` where the OS does not say.
+    pub cpu_steal: Option<f64>,
 }
 
 /// Runs cells on one device, keeping CPU references between cells of the same scene.
@@ -166,6 +169,7 @@ impl<'a> Runner<'a> {
         }
         let mut frames = vec![];
         let mut wall_ms = vec![];
+        let cpu_before = crate::steal::sample();
         for f in 0..warmup + measured {
             if f > 0 && !anim.is_static() {
                 renderer.set_pose(&scene_at(&scene, &anim, f))?;
@@ -178,6 +182,7 @@ impl<'a> Runner<'a> {
                 wall_ms.push(ms);
             }
         }
+        let cpu_steal = cpu_before.zip(crate::steal::sample()).and_then(|(a, b)| crate::steal::fraction(a, b));
         let stats_frame = if self.ctx.info().has(vkcore::Feature::PipelineStatisticsQuery) {
             Some(renderer.frame(FrameStep { pipeline_statistics: true, ..step })?)
         } else {
@@ -194,6 +199,7 @@ impl<'a> Runner<'a> {
             quality,
             caustics: scene.caustics.clone(),
             triangles: scene.triangle_count(),
+            cpu_steal,
         })
     }
 

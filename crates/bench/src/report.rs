@@ -51,6 +51,9 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     if !m.quirks.is_empty() {
         let _ = writeln!(s, "- **Device quirks worked around:** {}", m.quirks.join("; "));
     }
+    if let Some(line) = steal_line(results) {
+        let _ = writeln!(s, "{line}");
+    }
     let _ = writeln!(s);
     // The table: for each column, ours then the paper's.
     let mut head = g.row_axes.iter().map(|a| a.to_string()).collect::<Vec<_>>();
@@ -296,6 +299,44 @@ pub fn plot(config: &Config, results: &Results) -> String {
         [one] if !panelled => crate::svg::render(&Chart { title, subtitle, ..one.clone() }),
         _ => crate::svg::render_panels(&title, &subtitle, &charts),
     }
+}
+
+/// Cells above this CPU steal are named in the table's header.
+const NOTABLE_STEAL: f64 = 0.10;
+
+/// How much CPU the hypervisor took while the cells ran, and which cells lost most: on a
+/// software device their times are inflated by about 1 / (1 - steal).
+fn steal_line(results: &Results) -> Option<String> {
+    let mut steal: Vec<(f64, String)> =
+        results.cells.iter().filter_map(|c| Some((c.cpu_steal?, short(&c.cell)))).collect();
+    if steal.is_empty() {
+        return None;
+    }
+    steal.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let pct = |v: f64| format!("{:.0}%", v * 100.0);
+    let median = steal[steal.len() / 2].0;
+    let mut line = format!(
+        "- **Host CPU steal** (CPU time the hypervisor gave to other guests while a cell's frames ran): median {}, \
+         max {}",
+        pct(median),
+        pct(steal[steal.len() - 1].0)
+    );
+    let notable: Vec<String> =
+        steal.iter().rev().filter(|(v, _)| *v > NOTABLE_STEAL).map(|(v, d)| format!("{d} ({})", pct(*v))).collect();
+    if !notable.is_empty() {
+        let shown = notable.len().min(5);
+        let more = if notable.len() > shown { format!(" and {} more", notable.len() - shown) } else { String::new() };
+        line.push_str(&format!(
+            ". Above {}, times run long by about 1 / (1 − steal): {}{more}",
+            pct(NOTABLE_STEAL),
+            notable[..shown].join("; ")
+        ));
+    }
+    Some(line)
+}
+
+fn short(cell: &crate::plan::Cell) -> String {
+    format!("{} · {} · {}²", cell.key("scene"), cell.key("technique"), cell.key("photons"))
 }
 
 /// A paper's value as the paper prints it (the config holds it verbatim): 3.6 stays 3.6, 8.0 stays

@@ -79,6 +79,10 @@ pub struct CellResult {
     pub wall_ms: Vec<f64>,
     /// Per-pass GPU times over the measured frames.
     pub passes: Vec<Pass>,
+    /// Share of the host's CPU time the hypervisor gave to other guests while the cell's frames
+    /// ran (Linux steal time; absent where unknown, and in results written before it was kept).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cpu_steal: Option<f64>,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -108,5 +112,6 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         metrics,
         wall_ms: run.wall_ms.clone(),
         passes,
+        cpu_steal: run.cpu_steal,
     }
 }

@@ -83,6 +83,14 @@ fn quick_wyman2008_table1_times_every_phase_and_copies_only_on_the_copy_path() {
     }
     let md = std::fs::read_to_string(dir.join("wyman2008_table1.md")).expect("md");
     assert!(md.contains("Costs for the caustic mapping phases") && md.contains("| 64² |"), "{md}");
+    // On Linux each cell records how much CPU the hypervisor took while it ran, and the table says so.
+    if cfg!(target_os = "linux") {
+        for cell in r["cells"].as_array().expect("cells") {
+            let steal = cell["cpu_steal"].as_f64().unwrap_or(-1.0);
+            assert!((0.0..=1.0).contains(&steal), "cpu_steal {steal} in {}", cell["cell"]);
+        }
+        assert!(md.contains("**Host CPU steal**"), "{md}");
+    }
 }
 
 #[test]
