@@ -35,8 +35,8 @@ pub fn cpu_model() -> String {
     format!("{model}, {threads} threads")
 }
 
-/// `git rev-parse --short HEAD` (with `-dirty` when tracked files outside `results/` have
-/// changes), or `unknown`.
+/// `git rev-parse --short HEAD` (with `-dirty` when tracked files other than `results/` and
+/// Markdown documents have changes: what was measured differs from the commit), or `unknown`.
 pub fn commit() -> String {
     let git = |args: &[&str]| {
         std::process::Command::new("git")
@@ -48,9 +48,18 @@ pub fn commit() -> String {
     };
     match git(&["rev-parse", "--short", "HEAD"]) {
         Some(c) if !c.is_empty() => {
-            // Results being rewritten by this very run do not make the code dirty.
-            let dirty = git(&["status", "--porcelain", "--untracked-files=no", "--", ".", ":(exclude)results"])
-                .is_some_and(|s| !s.is_empty());
+            // Results being rewritten by this very run, or docs edited while it runs, do not
+            // make the measured code dirty.
+            let dirty = git(&[
+                "status",
+                "--porcelain",
+                "--untracked-files=no",
+                "--",
+                ".",
+                ":(exclude)results",
+                ":(exclude,glob)**/*.md",
+            ])
+            .is_some_and(|s| !s.is_empty());
             if dirty {
                 format!("{c}-dirty")
             } else {
