@@ -87,8 +87,9 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     if m.driver_name.to_lowercase().contains("llvmpipe") || m.device.to_lowercase().contains("llvmpipe") {
         notes.push(
             "lavapipe runs every pass serially on the CPU: its times are CPU time, fine for ratios between \
-             techniques on this machine, never comparable with GPU numbers. Its timestamps miss compute \
-             dispatches, so passes built on compute shaders read too low; `frame_ms` (host wall time) does not."
+             techniques on this machine, never comparable with GPU numbers. Its timestamps miss the draws that \
+             stream out with rasterization discarded (the `xfb` hierarchical traversal): their work falls \
+             outside every timestamp pair, so those passes read near zero; `frame_ms` (host wall time) counts it."
                 .into(),
         );
     }

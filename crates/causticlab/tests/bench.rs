@@ -453,3 +453,56 @@ fn quick_hierarchical_tables_count_and_time_every_cell() {
         }
     }
 }
+
+/// The cell of `r` with this technique label and photon count.
+fn cell<'a>(r: &'a Value, technique: &str, photons: u64) -> &'a Value {
+    r["cells"]
+        .as_array()
+        .expect("cells")
+        .iter()
+        .find(|c| c["cell"]["technique_label"] == technique && c["cell"]["photons"].as_u64() == Some(photons))
+        .unwrap_or_else(|| panic!("no cell {technique} {photons}"))
+}
+
+#[test]
+fn quick_traversal_paths_process_the_same_photons_and_sparse_gathers_splat_fewer() {
+    // P1: the transform-feedback and compute traversals read and emit the same photons in
+    // every clustering mode, and every frame is timed.
+    let (_, r) = quick_run("hcm_paths.toml");
+    for photons in [64u64, 128] {
+        for cluster in ["none", "last", "all"] {
+            let (x, c) =
+                (cell(&r, &format!("{cluster} · xfb"), photons), cell(&r, &format!("{cluster} · compute"), photons));
+            let px = metric(x, "processed").unwrap_or(-1.0);
+            assert!(px > 0.0, "{cluster} {photons}: nothing processed");
+            assert_eq!(Some(px), metric(c, "processed"), "{cluster} {photons}: the paths processed different photons");
+            for m in ["Traversal", "Gather", "Frame"] {
+                assert!(metric(x, m).unwrap_or(-1.0) > 0.0, "{cluster} · xfb {photons}: {m} not timed");
+            }
+            assert!(metric(c, "Frame").unwrap_or(-1.0) > 0.0, "{cluster} · compute {photons}: Frame not timed");
+        }
+    }
+    // Table 3 on a sparse photon buffer: the hierarchy splats only the valid photons.
+    let (_, r) = quick_run("wyman2008_table3_sparse.toml");
+    for photons in [64u64, 128] {
+        let dense = metric(cell(&r, "W&D + Sec. 4", photons), "splatted").unwrap_or(-1.0);
+        let hier = metric(cell(&r, "hierarchical", photons), "splatted").unwrap_or(-1.0);
+        assert!(dense >= (photons * photons) as f64, "{photons}: dense splatted {dense}");
+        assert!(hier > 0.0 && hier < 0.5 * dense, "{photons}: hierarchical splatted {hier} of {dense}: not sparse");
+        for t in ["W&D 2006", "W&D + Sec. 4", "hierarchical", "combine last", "combine all"] {
+            assert!(metric(cell(&r, t, photons), "Gather").unwrap_or(-1.0) > 0.0, "{t} {photons}: Gather not timed");
+        }
+    }
+}
+
+#[test]
+fn every_bench_config_has_a_quick_test() {
+    // A config no test runs could rot unnoticed: each must be named in this file.
+    let src = include_str!("bench.rs");
+    for e in std::fs::read_dir(workspace().join("bench_configs")).expect("bench_configs") {
+        let name = e.expect("entry").file_name().to_string_lossy().to_string();
+        if name.ends_with(".toml") {
+            assert!(src.contains(&format!("\"{name}\"")), "bench_configs/{name} is run by no test in tests/bench.rs");
+        }
+    }
+}
