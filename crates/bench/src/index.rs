@@ -16,7 +16,8 @@ rebuilt after each run. One folder per device (`<driver>-<device>` slug); in eac
 time: compare techniques within one device, never lavapipe against a GPU.
 
 Other folders: `quality/` (caustic error against the CPU reference, `scripts/quality_table.sh`),
-`criterion/` (CPU benchmarks, `scripts/criterion.sh`).
+`criterion/` (CPU benchmarks, `scripts/criterion.sh`). [`wyman2008_findings.md`](wyman2008_findings.md)
+reads the Wyman 2008 tables of both devices: which of the paper's claims hold, and why.
 ";
 
 /// Rebuilds `<root>/README.md` from `<root>/*/*.json`.
