@@ -50,6 +50,9 @@ pub fn apply_technique(s: &mut CausticSettings, t: &TechniqueSpec) {
     if let Some(v) = &t.splat {
         s.splat = v.clone();
     }
+    if let Some(v) = &t.splat_path {
+        s.splat_path = v.clone();
+    }
     if let Some(v) = t.instance_vertices {
         s.instance_vertices = v;
     }

@@ -187,6 +187,9 @@ pub struct CausticArgs {
     /// hcm: splat sizes: fixed, varying-single (one map) or varying-multires (layered map).
     #[arg(long)]
     pub splat: Option<String>,
+    /// Splat photons as points (raster, the papers') or with a compute shader (compute)
+    #[arg(long)]
+    pub splat_path: Option<String>,
     /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4: 1024, 2048, 4096).
     #[arg(long)]
     pub instance_vertices: Option<u32>,
@@ -230,6 +233,9 @@ impl CausticArgs {
         }
         if let Some(v) = &self.splat {
             s.splat = v.clone();
+        }
+        if let Some(v) = &self.splat_path {
+            s.splat_path = v.clone();
         }
         if let Some(v) = self.instance_vertices {
             s.instance_vertices = v;

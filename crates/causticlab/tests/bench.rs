@@ -496,6 +496,34 @@ fn quick_traversal_paths_process_the_same_photons_and_sparse_gathers_splat_fewer
 }
 
 #[test]
+fn quick_splat_paths_splat_the_same_photons_and_time_every_splat() {
+    // P2: points and the compute splat splat the same photons (the maps themselves are compared
+    // in crates/caustics/tests/compute_splat.rs), and every splat is timed, the compute splat's
+    // clear and resolve passes included.
+    let (_, r) = quick_run("splat_paths.toml");
+    for photons in [64u64, 128] {
+        for t in ["W&D + Sec. 4", "combine all", "varying multi-res"] {
+            let (raster, compute) =
+                (cell(&r, &format!("{t} · raster"), photons), cell(&r, &format!("{t} · compute"), photons));
+            let splatted = metric(raster, "splatted").unwrap_or(-1.0);
+            assert!(splatted > 0.0, "{t} {photons}: nothing splatted");
+            assert_eq!(
+                Some(splatted),
+                metric(compute, "splatted"),
+                "{t} {photons}: the paths splatted different photons"
+            );
+            for (c, path) in [(raster, "raster"), (compute, "compute")] {
+                for m in ["Splat", "Gather", "Frame"] {
+                    assert!(metric(c, m).unwrap_or(-1.0) > 0.0, "{t} · {path} {photons}: {m} not timed");
+                }
+            }
+        }
+        let dense = metric(cell(&r, "W&D + Sec. 4 · compute", photons), "splatted");
+        assert_eq!(dense, Some((photons * photons) as f64), "{photons}: the dense compute splat covers every texel");
+    }
+}
+
+#[test]
 fn every_bench_config_has_a_quick_test() {
     // A config no test runs could rot unnoticed: each must be named in this file.
     let src = include_str!("bench.rs");

@@ -118,6 +118,26 @@ fn technique_needing_an_absent_feature() {
 }
 
 #[test]
+fn compute_splat_without_float_atomics() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(
+        &[
+            "--without-feature",
+            "buffer_float32_atomic_add",
+            "render",
+            "--scene",
+            &s,
+            "--technique",
+            "wd-points",
+            "--splat-path",
+            "compute",
+        ],
+        &["buffer_float32_atomic_add", "splat_path"],
+    );
+    expect_input_error(&["render", "--scene", &s, "--splat-path", "scatter"], &["--splat-path", "scatter", "compute"]);
+}
+
+#[test]
 fn unknown_technique() {
     let s = scene("sphere_on_plane");
     expect_input_error(&["render", "--scene", &s, "--technique", "photon_magic"], &["photon_magic", "none"]);

@@ -26,7 +26,8 @@ use vkcore::{
 /// The traversal starts at a 16² level (Sec. 3.1: "to avoid processing mipmaps containing only
 /// a handful of photons").
 pub const TOP_SIDE: u32 = 16;
-const ENTRY_BYTES: u64 = 16;
+/// Bytes of a list entry (x, y, level, final), u32 each.
+pub const ENTRY_BYTES: u64 = 16;
 
 /// Converging-photon clustering (Sec. 3.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -447,6 +448,15 @@ impl Hierarchy {
             Ok(())
         })?;
         Ok(())
+    }
+
+    /// What the compute splat reads: the hierarchy and the traversal's final list.
+    pub fn final_list(&self) -> super::compute_splat::Photons<'_> {
+        super::compute_splat::Photons::List {
+            power: &self.pyramid.all[0],
+            position: &self.pyramid.all[1],
+            list: &self.lists[0],
+        }
     }
 
     /// Per light: the size of each list from level L (the seed) down to 0 (the splatted

@@ -9,9 +9,13 @@
 //! - `hcm`: Wyman 2008's hierarchical caustic maps over the `wd-points` photon buffer: only
 //!   valid photons (or clusters of converging ones) are splatted (see [`hierarchy`]).
 //!
+//! Each technique splats as points (the papers' path) or, with `splat_path = compute`, with a
+//! compute shader that gives the same map (see [`compute_splat`]).
+//!
 //! Every technique writes power (W) into caustic-map texels; `common/caustic_lookup.glsl` turns
 //! that into irradiance with the texel's area on the receiver (Wyman & Davis 2006, Eq. 5-8).
 
+pub mod compute_splat;
 pub mod gpu;
 pub mod hierarchy;
 mod passes;
@@ -19,6 +23,7 @@ pub mod photon_copy;
 mod pipelines;
 mod targets;
 
+pub use compute_splat::ComputeSplat;
 pub use passes::{record_caustics, record_cleared, CausticFrame, CausticInputs};
 pub use photon_copy::{CopyType, PhotonCopy, COPY_TYPES};
 pub use pipelines::CausticPipelines;

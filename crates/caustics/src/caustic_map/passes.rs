@@ -2,6 +2,7 @@
 //! the refractor's back faces from the light, the photon buffer (or vertex photons), and the
 //! splat into the light's caustic-map layer.
 
+use super::compute_splat::{self, ComputeSplat};
 use super::hierarchy::{Hierarchy, Inputs as HierarchyInputs};
 use super::photon_copy::PhotonCopy;
 use super::pipelines::CausticPipelines;
@@ -35,6 +36,8 @@ pub struct CausticFrame<'a> {
     pub copy: Option<&'a PhotonCopy>,
     /// Traverse the photon hierarchy and splat its final list (Wyman 2008 Sec. 3.1-3.2).
     pub hierarchy: Option<&'a Hierarchy>,
+    /// Splat with a compute shader instead of points (`splat_path = compute`).
+    pub compute_splat: Option<&'a ComputeSplat>,
 }
 
 pub fn record_caustics(
@@ -63,9 +66,17 @@ pub fn record_caustics(
                 h.record_traversal(f, &hierarchy_inputs, pt, l)?;
             }
         }
-        match frame.hierarchy {
-            Some(h) => h.record_splat(f, &hierarchy_inputs, pt, &ct.per_light[l as usize].0, ct.levels, l)?,
-            None => record_splat(f, p, ct, pt, inp, l, frame.copy)?,
+        let cmap = &ct.per_light[l as usize].0;
+        let splat_inputs = compute_splat::Inputs {
+            frame_uniforms: inp.frame_uniforms,
+            caustic_uniforms: inp.caustic_uniforms,
+            nearest: inp.nearest,
+        };
+        match (frame.hierarchy, frame.compute_splat) {
+            (Some(h), None) => h.record_splat(f, &hierarchy_inputs, pt, cmap, ct.levels, l)?,
+            (Some(h), Some(cs)) => cs.record(f, &splat_inputs, pt, &h.final_list(), cmap, l)?,
+            (None, Some(cs)) => cs.record(f, &splat_inputs, pt, &compute_splat::Photons::Dense, cmap, l)?,
+            (None, None) => record_splat(f, p, ct, pt, inp, l, frame.copy)?,
         }
     }
     Ok(())

@@ -87,6 +87,12 @@ pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
             ctx.require(&format!("technique `hcm` with --path {}", c.path), features)?;
         }
     }
+    if c.technique != "none" && c.splat_path == "compute" {
+        ctx.require(
+            "splat_path `compute` (float atomics in photons/splat.comp)",
+            crate::caustic_map::compute_splat::FEATURES,
+        )?;
+    }
     Ok(())
 }
 

@@ -36,6 +36,7 @@ struct CausticResources {
     instance_vertices: u32,
     copy: Option<PhotonCopy>,
     hierarchy: Option<Hierarchy>,
+    compute_splat: Option<caustic_map::ComputeSplat>,
 }
 
 pub struct Renderer<'c> {
@@ -75,6 +76,13 @@ impl<'c> Renderer<'c> {
             return Err(crate::input_error!(
                 "photon_copy: copying the photon buffer into a vertex array needs a photon-buffer technique \
                  (wd-points or shah), not `{technique}`"
+            )
+            .into());
+        }
+        if opts.photon_copy.is_some() && settings.splat_path == "compute" {
+            return Err(crate::input_error!(
+                "photon_copy: the copied vertex array is splatted as points; it has no compute splat \
+                 (splat_path = \"compute\")"
             )
             .into());
         }
@@ -124,6 +132,13 @@ impl<'c> Renderer<'c> {
             } else {
                 None
             };
+            let compute_splat = if settings.splat_path == "compute" {
+                let (side, layers) = (settings.caustic_map_resolution, settings.caustic_levels());
+                let list = hierarchy.as_ref().map(|h| h.path);
+                Some(caustic_map::ComputeSplat::new(ctx, shaders, side, layers, list)?)
+            } else {
+                None
+            };
             Some(CausticResources {
                 pipelines: caustic_map::CausticPipelines::new(ctx, shaders, technique, opts.photon_copy)?,
                 photons: caustic_map::PhotonTargets::new(ctx, settings.photons, photon_side)?,
@@ -132,6 +147,7 @@ impl<'c> Renderer<'c> {
                 instance_vertices: settings.instance_vertices,
                 copy,
                 hierarchy,
+                compute_splat,
             })
         } else {
             None
@@ -211,6 +227,7 @@ impl<'c> Renderer<'c> {
                     reuse_photons: step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1,
                     copy: c.copy.as_ref(),
                     hierarchy: c.hierarchy.as_ref(),
+                    compute_splat: c.compute_splat.as_ref(),
                 };
                 caustic_map::record_caustics(
                     &mut f,
@@ -268,8 +285,9 @@ impl<'c> Renderer<'c> {
         self.caustic.as_ref().and_then(|c| c.hierarchy.as_ref())
     }
 
-    /// Points drawn by the splat passes per frame over all lights: every photon-buffer texel
-    /// for the dense techniques (invalid ones are culled in the vertex shader), the final list
+    /// Points drawn (or compute-splat invocations) per frame over all lights: every
+    /// photon-buffer texel for the dense techniques (invalid ones are culled in the vertex
+    /// shader; the instanced draw rounds up to whole instances), the final list
     /// of the last traversal for `hcm` (read back from the GPU).
     pub fn splats_drawn(&self) -> Result<u64> {
         if let Some(h) = self.hierarchy() {
@@ -278,9 +296,11 @@ impl<'c> Renderer<'c> {
         }
         Ok(match &self.caustic {
             Some(c) => {
-                let per_light = match &c.copy {
-                    Some(copy) => copy.vertices() as u64,
-                    None => {
+                let per_light = match (&c.copy, &c.compute_splat) {
+                    (Some(copy), _) => copy.vertices() as u64,
+                    // One invocation per photon-buffer texel.
+                    (None, Some(_)) => (c.photons.width * c.photons.width) as u64,
+                    (None, None) => {
                         let total = c.photons.width * c.photons.width;
                         let per = c.instance_vertices;
                         (total.div_ceil(per) * per) as u64

@@ -134,6 +134,7 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         path: c.path.clone().unwrap_or(d.path),
         cluster: c.cluster.clone().unwrap_or(d.cluster),
         splat: c.splat.clone().unwrap_or(d.splat),
+        splat_path: c.splat_path.clone().unwrap_or(d.splat_path),
         instance_vertices: c.instance_vertices.unwrap_or(d.instance_vertices),
     };
     caustics.validate(&ctx.file.display().to_string(), "caustics.")?;

@@ -48,6 +48,10 @@ pub const CLUSTER_MODES: &[&str] = &["none", "last", "all"];
 /// baseline), or that radius with each splat in the layer of a multi-resolution caustic map
 /// where its diameter is at most 5 texels.
 pub const SPLAT_MODES: &[&str] = &["fixed", "varying-single", "varying-multires"];
+/// How photons are splatted into the caustic map (`caustics.splat_path`, `--splat-path`): points
+/// drawn by the graphics pipeline (the papers') or a compute shader adding each splat with float
+/// atomics (photons/splat.comp); both give the same map.
+pub const SPLAT_PATHS: &[&str] = &["raster", "compute"];
 /// Ray/receiver intersection variants (`caustics.intersect`, `--intersect`).
 pub const INTERSECTS: &[&str] = &["shah-iterative", "wd-depth-search"];
 /// Splat kernels (`caustics.splat_kernel`, `--splat-kernel`).
@@ -81,6 +85,8 @@ pub struct CausticSettings {
     pub cluster: String,
     /// `hcm` only: one of [`SPLAT_MODES`]; default `fixed`.
     pub splat: String,
+    /// One of [`SPLAT_PATHS`]; default `raster`.
+    pub splat_path: String,
     /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4: "a smaller
     /// buffer of size 1024, 2048, or 4096" drawn instanced); a power of two, 64..=65536;
     /// default 1024. Not used by the copy path or by `hcm`'s splatted lists.
@@ -102,6 +108,7 @@ impl Default for CausticSettings {
             path: "xfb".into(),
             cluster: "none".into(),
             splat: "fixed".into(),
+            splat_path: "raster".into(),
             instance_vertices: 1024,
         }
     }
@@ -148,6 +155,7 @@ impl CausticSettings {
         one_of("path", &self.path, HIERARCHY_PATHS)?;
         one_of("cluster", &self.cluster, CLUSTER_MODES)?;
         one_of("splat", &self.splat, SPLAT_MODES)?;
+        one_of("splat_path", &self.splat_path, SPLAT_PATHS)?;
         if self.splat != "fixed" && self.technique != "hcm" {
             bad("splat", format!("`{}` splats are part of technique hcm, not `{}`", self.splat, self.technique))?;
         }

@@ -40,6 +40,7 @@ pub struct CausticsDef {
     pub path: Option<String>,
     pub cluster: Option<String>,
     pub splat: Option<String>,
+    pub splat_path: Option<String>,
     pub instance_vertices: Option<u32>,
 }
 

@@ -1,0 +1,124 @@
+// One photon's splat, shared by the point splat (photons/splat.vert + splat.frag) and the compute
+// splat (photons/splat.comp) so that both deposit the same power in the same texels: where the
+// photon lands in the caustic map, its radius and layer, and its power divided by the kernel's
+// sum over the texel centres it covers (a photon deposits exactly its power).
+// Needs common/caustics.glsl; binds photon_position and photon_power at 2-3 and, with
+// HIERARCHY, the photon hierarchy at 4-5 (PHOTON_VERTEX_ARRAY brings its own photons).
+#ifndef SPLAT_PHOTON_GLSL
+#define SPLAT_PHOTON_GLSL
+#include "photons/splat_kernel.glsl"
+
+#ifndef PHOTON_VERTEX_ARRAY
+layout(binding = 2) uniform sampler2D photon_position;
+layout(binding = 3) uniform sampler2D photon_power;
+
+// Photon `id` of the photon texture, row by row; false past its last row.
+bool photon_of_texel(uint id, out vec4 pos, out vec3 power) {
+    uint width = uint(textureSize(photon_position, 0).x);
+    ivec2 texel = ivec2(id % width, id / width);
+    pos = vec4(0.0);
+    power = vec3(0.0);
+    if (texel.y >= textureSize(photon_position, 0).y) return false;
+    pos = texelFetch(photon_position, texel, 0);
+    power = texelFetch(photon_power, texel, 0).rgb;
+    return true;
+}
+#endif
+
+#ifdef HIERARCHY
+layout(binding = 4) uniform sampler2D hierarchy_power;      // level k at mip k-1: (power sum, count)
+layout(binding = 5) uniform sampler2D hierarchy_position;   // (position sum, 0)
+
+// An entry (x, y, level, final) of the traversal's final list (Wyman 2008 Sec. 3.1-3.2): a
+// photon of the photon buffer (level 0) or a cluster of converging photons at level k, whose
+// summed power and mean position the photon hierarchy holds.
+bool photon_of_entry(uvec4 entry, out vec4 pos, out vec3 power) {
+    ivec2 t = ivec2(entry.xy);
+    if (entry.z == 0u) {
+        pos = texelFetch(photon_position, t, 0);
+        power = texelFetch(photon_power, t, 0).rgb;
+        return true;
+    }
+    int mip = int(entry.z) - 1;
+    vec4 a = texelFetch(hierarchy_power, t, mip);
+    pos = vec4(texelFetch(hierarchy_position, t, mip).xyz / max(a.w, 1.0), a.w > 0.0 ? 1.0 : 0.0);
+    power = a.rgb;
+    return true;
+}
+
+// Splat radius (caustic-map texels) from the photon's neighbours (Wyman 2008 Sec. 3.3, Eq. 1-2
+// with the paper's approximation by the largest distance between adjacent photons rather than
+// the area they span). Measured in the caustic map itself, the distance already carries Eq. 2's
+// d^2 and obliquity: it is the footprint of the photon's beam in texels. Clusters of converging
+// photons land in one texel by construction.
+float varying_radius(uvec4 entry, vec2 centre, CausticLight cl) {
+    if (entry.z != 0u) return 1.0;
+    ivec2 t = ivec2(entry.xy);
+    int n = textureSize(photon_position, 0).x;
+    const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+    float dmax = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 q = t + offsets[k];
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(n)))) continue;
+        vec4 p = texelFetch(photon_position, q, 0);
+        if (p.w < 0.5) continue;
+        vec4 clip = cl.caustic_view_proj * vec4(p.xyz, 1.0);
+        if (clip.w <= 0.0) continue;
+        dmax = max(dmax, distance((clip.xy / clip.w * 0.5 + 0.5) * cl.caustic_plane.y, centre));
+    }
+    return max(dmax, 1.0);
+}
+#endif
+
+struct Splat {
+    vec4 power;     // (power, 1) / (sum of kernel weights): a: photon count
+    vec2 centre;    // in the layer's pixels
+    float radius;   // -1: the kernel misses every texel centre: all goes to the nearest texel
+    float size;     // side of the point sprite that covers the kernel, pixels
+    int layer;      // of the multi-resolution map (0 otherwise)
+};
+
+// The splat of a photon at `pos` with `power` for light `cl`; false when it splats nothing
+// (no photon, behind the light, or a varying splat too wide for the last map level).
+// `entry` is the hierarchy entry (HIERARCHY only).
+bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
+    s = Splat(vec4(0.0), vec2(0.0), 0.0, 1.0, 0);
+    if (pos.w < 0.5) return false;
+    vec4 clip = cl.caustic_view_proj * vec4(pos.xyz, 1.0);
+    if (clip.w <= 0.0) return false;
+    float m = cl.caustic_plane.y;
+    vec2 centre = (clip.xy / clip.w * 0.5 + 0.5) * m;
+    float r = caustics.splat.x;
+#ifdef HIERARCHY
+    if (caustics.splat.w != SPLAT_FIXED) {
+        r = varying_radius(entry, centre, cl);
+        // photonMipLevel = trunc(log2(max(1, D / 5))); splats needing level 4 or beyond (D > 40)
+        // are discarded, in the single map too, so that both maps hold the same photons.
+        int wanted = int(floor(log2(max(1.0, 2.0 * r / MULTIRES_MAX_DIAMETER))));
+        if (wanted >= int(MULTIRES_LEVELS)) return false;
+        if (caustics.splat.w == SPLAT_VARYING_MULTIRES) {
+            // Level i: splatSize = D / 2^i, into the layer's corner region of (M / 2^i)^2.
+            s.layer = wanted;
+            float f = exp2(float(wanted));
+            centre /= f;
+            r /= f;
+        }
+    }
+#endif
+    float size = 2.0 * ceil(r) + 2.0;
+    // Sum of the kernel over every texel centre the point covers.
+    float sum = 0.0;
+    vec2 lo = floor(centre - 0.5 * size);
+    for (float y = lo.y; y <= lo.y + size + 1.0; y += 1.0) {
+        for (float x = lo.x; x <= lo.x + size + 1.0; x += 1.0) {
+            sum += splat_kernel(distance(vec2(x, y) + 0.5, centre), r);
+        }
+    }
+    s.power = vec4(power, 1.0) / (sum > 0.0 ? sum : 1.0);
+    s.centre = centre;
+    s.radius = sum > 0.0 ? r : -1.0;            // -1: nearest texel (see splat_weight)
+    s.size = size;
+    return true;
+}
+
+#endif
