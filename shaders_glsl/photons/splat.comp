@@ -51,10 +51,7 @@ void main() {
     Splat s;
     if (!splat_of(pos, power, entry, cl, s)) return;
     int m = int(cl.caustic_plane.y);
-    // A point is clipped by its centre (the Vulkan clip volume): one whose centre leaves the map
-    // draws nothing, even where its kernel would reach inside.
-    if (any(lessThan(s.centre, vec2(0.0))) || any(greaterThan(s.centre, vec2(m)))) return;
-    // The point sprite's texels: those whose centres lie within half its size of the centre.
+    // The point sprite's texels (splat_of dropped splats centred off the map), clipped to it: those whose centres lie within half its size of the centre.
     ivec2 lo = max(ivec2(ceil(s.centre - 0.5 * s.size - 0.5)), ivec2(0));
     ivec2 hi = min(ivec2(floor(s.centre + 0.5 * s.size - 0.5)), ivec2(m - 1));
     for (int y = lo.y; y <= hi.y; ++y) {

@@ -79,7 +79,8 @@ struct Splat {
 };
 
 // The splat of a photon at `pos` with `power` for light `cl`; false when it splats nothing
-// (no photon, behind the light, or a varying splat too wide for the last map level).
+// (no photon, behind the light, centred off the map, or a varying splat too wide for the last
+// map level).
 // `entry` is the hierarchy entry (HIERARCHY only).
 bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
     s = Splat(vec4(0.0), vec2(0.0), 0.0, 1.0, 0);
@@ -105,6 +106,11 @@ bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
         }
     }
 #endif
+    // A point whose centre leaves the clip volume may or may not be drawn where its sprite
+    // overlaps the map (Vulkan's pointClippingBehavior is the driver's choice): drop it on every
+    // path, so that the point and compute splats agree on every device. (Written so that a NaN
+    // centre is dropped too.)
+    if (!(all(greaterThanEqual(centre, vec2(0.0))) && all(lessThanEqual(centre, vec2(m))))) return false;
     float size = 2.0 * ceil(r) + 2.0;
     // Sum of the kernel over every texel centre the point covers.
     float sum = 0.0;

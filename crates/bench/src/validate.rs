@@ -104,6 +104,13 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                 format!("copies a photon buffer, which technique `{}` does not have", t.technique),
             ));
         }
+        if t.photon_copy != "none" && t.splat_path.as_deref() == Some("compute") {
+            return Err(bad(
+                &key("photon_copy"),
+                "the copied vertex array is splatted as points; it has no compute splat (splat_path = \"compute\")"
+                    .into(),
+            ));
+        }
         let mut s = CausticSettings::default();
         crate::measure::apply_technique(&mut s, t);
         s.validate(&file, &format!("technique[{i}]."))?;

@@ -155,12 +155,18 @@ fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
     if c.technique != "none" {
         sizes.push(("caustics.caustic_map_resolution", c.caustic_map_resolution));
         sizes.push(("caustics.photons", c.photons));
-        // A splat is a point of 2 ceil(r) + 2 pixels (photons/splat.vert).
-        let point = 2.0 * c.splat_radius.ceil() + 2.0;
-        if point > info.point_size_range[1] {
+        // A splat is a point of 2 ceil(r) + 2 pixels (photons/splat_photon.glsl). Varying splats
+        // reach r < 40 texels in one map (wider ones are discarded) and r < 5 in their layer of
+        // the multi-resolution map. The compute splat draws no points.
+        let (key, what, point) = match c.splat.as_str() {
+            "varying-single" => ("caustics.splat", c.splat.clone(), 82.0),
+            "varying-multires" => ("caustics.splat", c.splat.clone(), 12.0),
+            _ => ("caustics.splat_radius", c.splat_radius.to_string(), 2.0 * c.splat_radius.ceil() + 2.0),
+        };
+        if c.splat_path == "raster" && point > info.point_size_range[1] {
             return Err(input_error!(
-                "{file}: key `caustics.splat_radius`: {} needs points of {point} pixels, but `{}` draws points of at most {}",
-                c.splat_radius,
+                "{file}: key `{key}`: {what} needs points of {point} pixels, but `{}` draws points of at most {} \
+                 (splat_path = \"compute\" draws none)",
                 info.name,
                 info.point_size_range[1]
             )

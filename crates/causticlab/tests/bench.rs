@@ -375,6 +375,16 @@ fn config_errors_name_the_file_and_key() {
             "photon_copy",
         ),
         (
+            "copy_and_compute_splat.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"shah\"\nphoton_copy = \"32-to-32\"\nsplat_path = \"compute\""),
+            "compute splat",
+        ),
+        (
+            "bad_splat_path.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"shah\"\nsplat_path = \"scatter\""),
+            "splat_path",
+        ),
+        (
             "bad_paper.toml",
             format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 80\nvalues = {{ bogus = 1.0 }}\n"),
             "paper[0].values",

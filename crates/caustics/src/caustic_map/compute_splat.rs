@@ -6,8 +6,9 @@
 //! of the float additions (`tests/compute_splat.rs`).
 //!
 //! Passes per light, all named `splat.*` so that the tables' Gather columns count them:
-//! `splat.clear` (zero the buffer), `splat.arguments` (hcm: the dispatch over the traversal's
-//! final list, from its counter, nothing read back), `splat` and `splat.resolve`.
+//! `splat.clear` (zero the buffer), `splat.arguments` (hcm on the xfb path: the dispatch over
+//! the traversal's final list, from its byte count, nothing read back), `splat` and
+//! `splat.resolve`.
 
 use super::hierarchy::ENTRY_BYTES;
 use super::targets::PhotonTargets;
@@ -44,11 +45,20 @@ pub struct Inputs<'a> {
     pub nearest: &'a Sampler,
 }
 
+/// Where the dispatch over the traversal's final list finds its work groups.
+enum ListDispatch {
+    /// The compute traversal's append counter holds them (vkcore/compact_finalize.comp).
+    AppendCounter,
+    /// The xfb traversal's counter holds bytes: photons/splat_args.comp turns them into work
+    /// groups in this buffer.
+    ByteCount(Box<(Pipeline, Buffer)>),
+}
+
 pub struct ComputeSplat {
     /// One light's caustic-map layers as (power rgb, photon count) floats, layer by layer.
     accumulated: Buffer,
-    /// (x, y, z) work groups over the traversal's final list (hcm only).
-    arguments: Option<(Pipeline, Buffer)>,
+    /// hcm: what the dispatch over the traversal's final list reads its work groups from.
+    list: Option<ListDispatch>,
     splat: Pipeline,
     resolve: Pipeline,
     side: u32,
@@ -80,7 +90,7 @@ impl ComputeSplat {
         let entry_bytes = ENTRY_BYTES.to_string();
         let mut defines = vec![("ENTRY_BYTES", entry_bytes.as_str())];
         let mut bindings = vec![K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
-        let arguments = match list {
+        let list = match list {
             // Binding 4: the accumulation buffer.
             None => {
                 bindings.push(K::StorageBuffer);
@@ -89,9 +99,6 @@ impl ComputeSplat {
             // Bindings 4-8: the hierarchy, the accumulation buffer, the list and its counter.
             Some(path) => {
                 defines.push(("HIERARCHY", "1"));
-                if path == CompactionPath::TransformFeedback {
-                    defines.push(("XFB", "1"));
-                }
                 bindings.extend([
                     K::SampledImage,
                     K::SampledImage,
@@ -99,13 +106,22 @@ impl ComputeSplat {
                     K::StorageBuffer,
                     K::StorageBuffer,
                 ]);
-                let args = Pipeline::compute(
-                    ctx,
-                    "splat.arguments",
-                    &sh.compile("photons/splat_args.comp", &defines)?,
-                    &[K::StorageBuffer, K::StorageBuffer],
-                )?;
-                Some((args, Buffer::new(ctx, "compute splat arguments", 16, Memory::Gpu)?))
+                Some(match path {
+                    CompactionPath::Compute => ListDispatch::AppendCounter,
+                    CompactionPath::TransformFeedback => {
+                        defines.push(("XFB", "1"));
+                        let args = Pipeline::compute(
+                            ctx,
+                            "splat.arguments",
+                            &sh.compile("photons/splat_args.comp", &defines)?,
+                            &[K::StorageBuffer, K::StorageBuffer],
+                        )?;
+                        ListDispatch::ByteCount(Box::new((
+                            args,
+                            Buffer::new(ctx, "compute splat arguments", 16, Memory::Gpu)?,
+                        )))
+                    }
+                })
             }
         };
         let splat = Pipeline::compute(ctx, "splat.compute", &sh.compile("photons/splat.comp", &defines)?, &bindings)?;
@@ -115,7 +131,7 @@ impl ComputeSplat {
             &sh.compile("photons/splat_resolve.comp", &[])?,
             &[K::StorageImage, K::StorageBuffer],
         )?;
-        Ok(ComputeSplat { accumulated, arguments, splat, resolve, side, layers })
+        Ok(ComputeSplat { accumulated, list, splat, resolve, side, layers })
     }
 
     /// Splats light `l`'s photons into `cmap`, the light's caustic-map layers.
@@ -128,6 +144,13 @@ impl ComputeSplat {
         cmap: &ImageView,
         l: u32,
     ) -> Result<()> {
+        let texels = pt.width * pt.width;
+        // Check before recording anything.
+        match (photons, &self.list) {
+            (Photons::Dense, None) | (Photons::List { .. }, Some(_)) => {}
+            (Photons::Dense, Some(_)) => anyhow::bail!("compute splat: built for a hierarchy's list, given photons"),
+            (Photons::List { .. }, None) => anyhow::bail!("compute splat: built for the photon texture, given a list"),
+        }
         f.pass(&format!("splat.clear.light{l}"), &[Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)], |cmd| {
             cmd.fill_buffer(&self.accumulated, 0);
             Ok(())
@@ -145,24 +168,38 @@ impl ComputeSplat {
             Bind::Sampled(&pt.position.view, inp.nearest),
             Bind::Sampled(&pt.power.view, inp.nearest),
         ];
-        let texels = pt.width * pt.width;
-        match (photons, &self.arguments) {
-            (Photons::Dense, _) => binds.push(Bind::Buffer(&self.accumulated)),
-            (Photons::List { power, position, list }, Some((pipeline, args))) => {
-                let counter =
-                    [Use::buffer(&list.counter, Access::STORAGE_READ), Use::buffer(args, Access::COMPUTE_READ_WRITE)];
-                f.pass(&format!("splat.arguments.light{l}"), &counter, |cmd| {
-                    cmd.bind_pipeline(pipeline);
-                    cmd.bind(&[Bind::Buffer(&list.counter), Bind::Buffer(args)])?;
-                    cmd.dispatch(1, 1, 1);
-                    Ok(())
-                })?;
+        // The indirect dispatch's arguments (buffer, byte offset); None: a grid over the texels.
+        let mut indirect = None;
+        match photons {
+            Photons::Dense => binds.push(Bind::Buffer(&self.accumulated)),
+            Photons::List { power, position, list } => {
+                match &self.list {
+                    Some(ListDispatch::ByteCount(b)) => {
+                        let (pipeline, args) = &**b;
+                        let counter = [
+                            Use::buffer(&list.counter, Access::STORAGE_READ),
+                            Use::buffer(args, Access::COMPUTE_READ_WRITE),
+                        ];
+                        f.pass(&format!("splat.arguments.light{l}"), &counter, |cmd| {
+                            cmd.bind_pipeline(pipeline);
+                            cmd.bind(&[Bind::Buffer(&list.counter), Bind::Buffer(args)])?;
+                            cmd.dispatch(1, 1, 1);
+                            Ok(())
+                        })?;
+                        uses.push(Use::buffer(args, Access::INDIRECT));
+                        indirect = Some((args, 0));
+                    }
+                    // The dispatch arguments of compact_counter.glsl start at byte 16.
+                    _ => {
+                        uses.push(Use::buffer(&list.counter, Access::INDIRECT));
+                        indirect = Some((&list.counter, 16));
+                    }
+                }
                 uses.extend([
                     Use::view(power, Access::SHADER_READ),
                     Use::view(position, Access::SHADER_READ),
                     Use::buffer(&list.data, Access::STORAGE_READ),
                     Use::buffer(&list.counter, Access::STORAGE_READ),
-                    Use::buffer(args, Access::INDIRECT),
                 ]);
                 binds.extend([
                     Bind::Sampled(power, inp.nearest),
@@ -172,15 +209,14 @@ impl ComputeSplat {
                     Bind::Buffer(&list.counter),
                 ]);
             }
-            (Photons::List { .. }, None) => anyhow::bail!("compute splat: built for the dense photon texture"),
         }
         f.pass(&format!("splat.light{l}"), &uses, |cmd| {
             cmd.bind_pipeline(&self.splat);
             cmd.bind(&binds)?;
             cmd.push(&ObjectConstants { info: [texels, l, 0, 0], ..Default::default() })?;
-            match (photons, &self.arguments) {
-                (Photons::List { .. }, Some((_, args))) => cmd.dispatch_indirect(args, 0),
-                _ => {
+            match indirect {
+                Some((args, offset)) => cmd.dispatch_indirect(args, offset),
+                None => {
                     let (x, y) = groups(texels);
                     cmd.dispatch(x, y, 1);
                 }
