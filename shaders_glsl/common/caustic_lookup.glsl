@@ -18,7 +18,9 @@ layout(binding = RECEIVER_POSITIONS_BINDING) uniform sampler2DArray receiver_pos
 // levels add no 2^i-texel blocks to the caustic.
 vec3 caustic_level(ivec2 texel, int layer, uint i, float size) {
     float scale = float(1u << i);
-    int last = int(size / scale) - 1;
+    // The corner holds ceil(M / 2^i) texels a side: with M not a multiple of 2^i the last one
+    // straddles the map's edge and still holds power.
+    int last = int(ceil(size / scale)) - 1;
     vec2 u = (vec2(texel) + 0.5) / scale - 0.5;
     ivec2 t0 = ivec2(floor(u));
     vec2 f = u - vec2(t0);

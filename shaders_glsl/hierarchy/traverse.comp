@@ -6,19 +6,19 @@
 #include "hierarchy/traverse.glsl"
 #include "vkcore/compact_counter.glsl"
 layout(local_size_x = 64) in;
-layout(std430, binding = 5) readonly buffer Input { uvec4 in_entries[]; };
+layout(std430, binding = 5) readonly buffer Input { uint in_entries[]; };
 layout(std430, binding = 6) readonly buffer InputCounter { CompactCounter in_counter; };
-layout(std430, binding = 7) writeonly buffer Output { uvec4 out_entries[]; };
+layout(std430, binding = 7) writeonly buffer Output { uint out_entries[]; };
 layout(std430, binding = 8) buffer OutputCounter { CompactCounter out_counter; };
 
 void main() {
     uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x;
     if (i >= min(in_counter.count, in_counter.capacity)) return;
     uvec4 outs[4];
-    uint n = expand(in_entries[i], outs);
+    uint n = expand(unpack_entry(in_entries[i]), outs);
     if (n == 0u) return;
     uint slot = atomicAdd(out_counter.count, n);
     for (uint k = 0u; k < n; ++k) {
-        if (slot + k < out_counter.capacity) out_entries[slot + k] = outs[k];
+        if (slot + k < out_counter.capacity) out_entries[slot + k] = pack_entry(outs[k]);
     }
 }

@@ -6,15 +6,15 @@
 #include "hierarchy/traverse.glsl"
 layout(points) in;
 layout(points, max_vertices = 4) out;
-layout(location = 0) flat in uvec4 v_entry[];
-layout(location = 0, xfb_buffer = 0, xfb_offset = 0, xfb_stride = 16) flat out uvec4 g_entry;
+layout(location = 0) flat in uint v_entry[];
+layout(location = 0, xfb_buffer = 0, xfb_offset = 0, xfb_stride = 4) flat out uint g_entry;
 
 void main() {
     uvec4 outs[4];
-    uint n = expand(v_entry[0], outs);
+    uint n = expand(unpack_entry(v_entry[0]), outs);
     for (uint i = 0u; i < n; ++i) {
         // Every output is rewritten before every emit.
-        g_entry = outs[i];
+        g_entry = pack_entry(outs[i]);
         gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
         EmitVertex();
         EndPrimitive();

@@ -1,8 +1,8 @@
 // Hierarchical traversal, transform-feedback path, stage 1: one point per entry of the
-// previous level's list (a vertex attribute fetched from its xfb buffer).
+// previous level's list (a packed entry, hierarchy/entry.glsl, fetched from its xfb buffer).
 #version 450
-layout(location = 0) in uvec4 a_entry;
-layout(location = 0) flat out uvec4 v_entry;
+layout(location = 0) in uint a_entry;
+layout(location = 0) flat out uint v_entry;
 
 void main() {
     v_entry = a_entry;

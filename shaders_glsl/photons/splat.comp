@@ -13,7 +13,7 @@ layout(local_size_x = 64) in;
 // Layers x M x M texels of (power rgb, photon count), zeroed before the dispatch.
 #ifdef HIERARCHY
 layout(std430, binding = 6) buffer Accumulated { float texels[]; };
-layout(std430, binding = 7) readonly buffer Entries { uvec4 entries[]; };
+layout(std430, binding = 7) readonly buffer Entries { uint entries[]; };   // packed (hierarchy/entry.glsl)
 // The list's counter: transform feedback's byte count (XFB) or vkcore's append counter.
 #ifdef XFB
 layout(std430, binding = 8) readonly buffer Counter { uint bytes; };
@@ -42,7 +42,7 @@ void main() {
     vec3 power;
 #ifdef HIERARCHY
     if (i >= entry_count()) return;
-    uvec4 entry = entries[i];
+    uvec4 entry = unpack_entry(entries[i]);
     if (!photon_of_entry(entry, pos, power)) return;
 #else
     uvec4 entry = uvec4(0u);

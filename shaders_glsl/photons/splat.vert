@@ -32,9 +32,9 @@ bool fetch_photon(out vec4 pos, out vec3 power) {
 }
 uvec4 entry() { return uvec4(0u); }
 #elif defined(HIERARCHY)
-layout(location = 0) in uvec4 a_entry;                      // (x, y, level, final)
-bool fetch_photon(out vec4 pos, out vec3 power) { return photon_of_entry(a_entry, pos, power); }
-uvec4 entry() { return a_entry; }
+layout(location = 0) in uint a_entry;                       // packed (x, y, level, final)
+bool fetch_photon(out vec4 pos, out vec3 power) { return photon_of_entry(unpack_entry(a_entry), pos, power); }
+uvec4 entry() { return unpack_entry(a_entry); }
 #else
 layout(location = 0) in uint a_vertex;
 // Wyman 2008 Sec. 4: a small vertex buffer drawn instanced; info.z: vertices per instance.

@@ -26,12 +26,14 @@ bool photon_of_texel(uint id, out vec4 pos, out vec3 power) {
 #endif
 
 #ifdef HIERARCHY
+#include "hierarchy/entry.glsl"
 layout(binding = 4) uniform sampler2D hierarchy_power;      // level k at mip k-1: (power sum, count)
 layout(binding = 5) uniform sampler2D hierarchy_position;   // (position sum, 0)
 
 // An entry (x, y, level, final) of the traversal's final list (Wyman 2008 Sec. 3.1-3.2): a
 // photon of the photon buffer (level 0) or a cluster of converging photons at level k, whose
-// summed power and mean position the photon hierarchy holds.
+// summed power and mean position the photon hierarchy holds. pos.w: photons (1 for a photon,
+// the cluster's count for a cluster; 0: none).
 bool photon_of_entry(uvec4 entry, out vec4 pos, out vec3 power) {
     ivec2 t = ivec2(entry.xy);
     if (entry.z == 0u) {
@@ -41,7 +43,7 @@ bool photon_of_entry(uvec4 entry, out vec4 pos, out vec3 power) {
     }
     int mip = int(entry.z) - 1;
     vec4 a = texelFetch(hierarchy_power, t, mip);
-    pos = vec4(texelFetch(hierarchy_position, t, mip).xyz / max(a.w, 1.0), a.w > 0.0 ? 1.0 : 0.0);
+    pos = vec4(texelFetch(hierarchy_position, t, mip).xyz / max(a.w, 1.0), a.w);
     power = a.rgb;
     return true;
 }
@@ -71,14 +73,15 @@ float varying_radius(uvec4 entry, vec2 centre, CausticLight cl) {
 #endif
 
 struct Splat {
-    vec4 power;     // (power, 1) / (sum of kernel weights): a: photon count
+    vec4 power;     // (power, photons) / (sum of kernel weights): a: photon count
     vec2 centre;    // in the layer's pixels
     float radius;   // -1: the kernel misses every texel centre: all goes to the nearest texel
     float size;     // side of the point sprite that covers the kernel, pixels
     int layer;      // of the multi-resolution map (0 otherwise)
 };
 
-// The splat of a photon at `pos` with `power` for light `cl`; false when it splats nothing
+// The splat of a photon at `pos` (w: how many photons it stands for, 0 for none) with `power`
+// for light `cl`; false when it splats nothing
 // (no photon, behind the light, centred off the map, or a varying splat too wide for the last
 // map level).
 // `entry` is the hierarchy entry (HIERARCHY only).
@@ -93,8 +96,10 @@ bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
 #ifdef HIERARCHY
     if (caustics.splat.w != SPLAT_FIXED) {
         r = varying_radius(entry, centre, cl);
-        // photonMipLevel = trunc(log2(max(1, D / 5))); splats needing level 4 or beyond (D > 40)
-        // are discarded, in the single map too, so that both maps hold the same photons.
+        // photonMipLevel = trunc(log2(max(1, D / 5))); splats needing level 4 or beyond are
+        // discarded (D >= 80 by this formula: radius >= 40 texels; the paper's text says "a
+        // diameter of more than 40 pixels", which its formula puts at level 3), in the single map
+        // too, so that both maps hold the same photons.
         int wanted = int(floor(log2(max(1.0, 2.0 * r / MULTIRES_MAX_DIAMETER))));
         if (wanted >= int(MULTIRES_LEVELS)) return false;
         if (caustics.splat.w == SPLAT_VARYING_MULTIRES) {
@@ -120,7 +125,7 @@ bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
             sum += splat_kernel(distance(vec2(x, y) + 0.5, centre), r);
         }
     }
-    s.power = vec4(power, 1.0) / (sum > 0.0 ? sum : 1.0);
+    s.power = vec4(power, pos.w) / (sum > 0.0 ? sum : 1.0);
     s.centre = centre;
     s.radius = sum > 0.0 ? r : -1.0;            // -1: nearest texel (see splat_weight)
     s.size = size;

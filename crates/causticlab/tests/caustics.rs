@@ -196,7 +196,7 @@ fn caustics_match_the_exact_reference_within_regression_thresholds() {
     }
     // Hierarchical caustic maps (Wyman 2008) over the same photon buffer are no worse than the
     // dense map at equal photon count: relative RMSE within 0.01 of `wd-points'`. Varying splats
-    // discard photons whose splat would be wider than 40 texels (Sec. 3.3: "such photons
+    // discard photons whose splat radius would reach 40 texels (level 4; Sec. 3.3: "such photons
     // contribute little"). With `--fresnel false` and a 1024² map those are grazing photons from
     // the sphere's rim: at 256² photons they carry 7% of the flux (measured flux ratio 0.927-0.933,
     // RMSE 0.015-0.037 above the dense map's), so at 256² that mode gets its own bounds (flux

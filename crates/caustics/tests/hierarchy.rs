@@ -115,8 +115,8 @@ fn both_paths_agree_and_clustering_conserves_power() {
 }
 
 /// (Σ power over every caustic-map layer, Σ over layers 1.. only, caustic flux on the receiver
-/// map in W).
-fn splat_totals(ctx: &Context, sh: &ShaderCompiler, splat: &str) -> (f64, f64, f64) {
+/// map in W, caustic-map layers).
+fn splat_totals(ctx: &Context, sh: &ShaderCompiler, splat: &str) -> (f64, f64, f64, usize) {
     let mut s = scene("hcm", 256, "compute", "last");
     s.caustics.splat = splat.into();
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
@@ -141,22 +141,22 @@ fn splat_totals(ctx: &Context, sh: &ShaderCompiler, splat: &str) -> (f64, f64, f
         / (spec.resolution as f64 * spec.resolution as f64);
     let flux: f64 =
         caustic.data.chunks_exact(3).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).sum::<f64>() * texel_area;
-    (all, coarse, flux)
+    (all, coarse, flux, img.layers.len())
 }
 
 #[test]
 fn varying_splats_conserve_power_and_the_multires_map_sums_to_the_single_map() {
     let (ctx, sh) = context();
-    let (fixed, _, fixed_flux) = splat_totals(&ctx, &sh, "fixed");
-    let (single, single_coarse, single_flux) = splat_totals(&ctx, &sh, "varying-single");
-    let (multi, multi_coarse, multi_flux) = splat_totals(&ctx, &sh, "varying-multires");
+    let (fixed, _, fixed_flux, _) = splat_totals(&ctx, &sh, "fixed");
+    let (single, _, single_flux, single_layers) = splat_totals(&ctx, &sh, "varying-single");
+    let (multi, multi_coarse, multi_flux, multi_layers) = splat_totals(&ctx, &sh, "varying-multires");
     assert!(fixed > 0.0 && fixed_flux > 0.0, "no caustic: a vacuous test");
-    assert_eq!(single_coarse, 0.0, "a single map has one layer per light");
+    assert_eq!((single_layers, multi_layers), (1, 4), "caustic-map layers of one light: single map, Sec. 3.3 levels");
     assert!(
         multi_coarse > 0.01 * multi,
         "no splat went to a coarser level: a vacuous test ({multi_coarse} of {multi})"
     );
-    // Varying splats only drop photons whose splat would be wider than 40 texels.
+    // Varying splats only drop photons whose splat radius would reach 40 texels (level 4).
     assert!((single / fixed - 1.0).abs() < 0.01, "varying-single holds {single} W of the fixed map's {fixed} W");
     // The same splats, rasterised at coarser levels: the same power.
     assert!((multi / single - 1.0).abs() < 1e-3, "multires holds {multi} W, the single map {single} W");
@@ -191,7 +191,7 @@ fn caustic_power(ctx: &Context, sh: &ShaderCompiler, path: &str, cluster: &str, 
 fn every_mode_runs_clean_and_keeps_the_caustic_power() {
     // Every combination of --path, --cluster and --splat: no validation message, and the
     // caustic map holds the unclustered fixed-splat map's power. Clustering sums power
-    // (Sec. 3.2); varying splats (Sec. 3.3) only drop splats wider than 40 texels, few at 128²
+    // (Sec. 3.2); varying splats (Sec. 3.3) only drop splats of radius 40 texels or more, few at 128²
     // photons into a 256² map.
     let (ctx, sh) = context();
     let reference = caustic_power(&ctx, &sh, "xfb", "none", "fixed");

@@ -2,7 +2,8 @@
 //! kept points into transform-feedback buffers, the next step drawn with
 //! vkCmdDrawIndirectByteCountEXT from the xfb counter buffer; (b) the modern way, a compute
 //! append buffer with an atomic counter and indirect dispatch/draw arguments. Neither reads
-//! anything back on the CPU between steps. Elements are 16-byte `uvec4`s.
+//! anything back on the CPU between steps. The [`Compactor`]'s elements are 16-byte `uvec4`s; a
+//! [`CompactStream`] of other users may hold elements of any size.
 
 use crate::buffer::{Buffer, Memory};
 use crate::context::Context;
@@ -16,7 +17,7 @@ use crate::tracker::Access;
 use crate::Feature;
 use ash::vk;
 
-/// Bytes per element.
+/// Bytes per element of the [`Compactor`]'s streams.
 pub const ELEMENT_BYTES: u64 = 16;
 /// Bytes of the compute path's counter (see `shaders_glsl/vkcore/compact_counter.glsl`).
 pub const COUNTER_BYTES: u64 = 48;
@@ -45,30 +46,60 @@ pub struct CompactStream {
     /// xfb: the transform-feedback counter (bytes written, u32 at 0); compute: an append counter.
     pub counter: Buffer,
     pub capacity: u32,
+    /// Bytes per element (the xfb counter counts bytes).
+    pub element_bytes: u64,
 }
 
 impl CompactStream {
+    /// A stream of `capacity` elements of [`ELEMENT_BYTES`] (the [`Compactor`]'s).
     pub fn new(ctx: &Context, name: &str, path: CompactionPath, capacity: u32) -> Result<CompactStream> {
-        let data = Buffer::new(ctx, &format!("{name} elements"), capacity.max(1) as u64 * ELEMENT_BYTES, Memory::Gpu)?;
+        Self::with_element_bytes(ctx, name, path, capacity, ELEMENT_BYTES)
+    }
+
+    /// A stream of `capacity` elements of `element_bytes` each (a multiple of 4).
+    pub fn with_element_bytes(
+        ctx: &Context,
+        name: &str,
+        path: CompactionPath,
+        capacity: u32,
+        element_bytes: u64,
+    ) -> Result<CompactStream> {
+        if element_bytes == 0 || element_bytes % 4 != 0 {
+            return Err(crate::VkError::Invalid(format!("{name}: elements of {element_bytes} bytes")));
+        }
+        let bytes = capacity.max(1) as u64 * element_bytes;
+        let data = Buffer::new(ctx, &format!("{name} elements"), bytes, Memory::Gpu)?;
         let counter = Buffer::new(ctx, &format!("{name} counter"), COUNTER_BYTES, Memory::Gpu)?;
-        Ok(CompactStream { path, data, counter, capacity })
+        Ok(CompactStream { path, data, counter, capacity, element_bytes })
     }
 
     /// Reads the element count back (for tests and statistics, never between steps).
     pub fn count(&self, ctx: &Context) -> Result<u32> {
         let c: Vec<u32> = ctx.read_buffer_as(&self.counter)?;
         Ok(match self.path {
-            CompactionPath::TransformFeedback => (c[0] as u64 / ELEMENT_BYTES) as u32,
+            CompactionPath::TransformFeedback => (c[0] as u64 / self.element_bytes) as u32,
             CompactionPath::Compute => c[0].min(self.capacity),
         })
     }
 
-    /// Reads the kept elements back.
-    pub fn read(&self, ctx: &Context) -> Result<Vec<[u32; 4]>> {
+    /// Reads the kept elements back as `T`s (`T` of `element_bytes` bytes).
+    pub fn read_as<T: bytemuck::Pod>(&self, ctx: &Context) -> Result<Vec<T>> {
+        if std::mem::size_of::<T>() as u64 != self.element_bytes {
+            return Err(crate::VkError::Invalid(format!(
+                "reading elements of {} bytes as {} bytes",
+                self.element_bytes,
+                std::mem::size_of::<T>()
+            )));
+        }
         let n = self.count(ctx)? as usize;
-        let mut all: Vec<[u32; 4]> = ctx.read_buffer_as(&self.data)?;
+        let mut all: Vec<T> = ctx.read_buffer_as(&self.data)?;
         all.truncate(n);
         Ok(all)
+    }
+
+    /// Reads the kept elements of a [`Compactor`] stream back.
+    pub fn read(&self, ctx: &Context) -> Result<Vec<[u32; 4]>> {
+        self.read_as(ctx)
     }
 }
 

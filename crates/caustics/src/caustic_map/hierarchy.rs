@@ -26,8 +26,24 @@ use vkcore::{
 /// The traversal starts at a 16² level (Sec. 3.1: "to avoid processing mipmaps containing only
 /// a handful of photons").
 pub const TOP_SIDE: u32 = 16;
-/// Bytes of a list entry (x, y, level, final), u32 each.
-pub const ENTRY_BYTES: u64 = 16;
+/// Bytes of a list entry: (x, y, level, final) packed into a u32 (`hierarchy/entry.glsl`).
+pub const ENTRY_BYTES: u64 = 4;
+/// Bit offsets of y, level and final in a packed entry (x in bits 0-11), as in `entry.glsl`.
+const ENTRY_Y_SHIFT: u32 = 12;
+const ENTRY_LEVEL_SHIFT: u32 = 24;
+const ENTRY_FINAL_SHIFT: u32 = 28;
+/// The largest padded photon buffer side a packed entry can address (12 bits of x and y).
+pub const MAX_SIDE: u32 = 1 << ENTRY_Y_SHIFT;
+
+/// (x, y, level, final) packed as `pack_entry` in `shaders_glsl/hierarchy/entry.glsl` does.
+pub fn pack_entry(e: [u32; 4]) -> u32 {
+    e[0] | (e[1] << ENTRY_Y_SHIFT) | (e[2] << ENTRY_LEVEL_SHIFT) | (e[3] << ENTRY_FINAL_SHIFT)
+}
+
+/// The (x, y, level, final) of a packed entry.
+pub fn unpack_entry(p: u32) -> [u32; 4] {
+    [p & 0xFFF, (p >> ENTRY_Y_SHIFT) & 0xFFF, (p >> ENTRY_LEVEL_SHIFT) & 0xF, p >> ENTRY_FINAL_SHIFT]
+}
 
 /// Converging-photon clustering (Sec. 3.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -133,6 +149,12 @@ impl Hierarchy {
     ) -> Result<Hierarchy> {
         ctx.require(&format!("technique `hcm` with --path {}", path.name()), path_features(path))?;
         let (padded, levels) = levels(n);
+        if padded > MAX_SIDE {
+            return Err(crate::input_error!(
+                "caustics.photons: the hierarchy's packed entries address photon buffers up to {MAX_SIDE}², not {n}²"
+            )
+            .into());
+        }
         let image = |name: &str| Image::new(ctx, ImageDesc::new_2d(name, COLOR, padded / 2, padded / 2).mips(levels));
         let (power, position, texels) =
             (image("hierarchy power")?, image("hierarchy position")?, image("hierarchy texels")?);
@@ -141,19 +163,30 @@ impl Hierarchy {
         let mips = (0..levels)
             .map(|m| Ok([view(&power, m..m + 1)?, view(&position, m..m + 1)?, view(&texels, m..m + 1)?]))
             .collect::<Result<Vec<_>>>()?;
-        let seed_entries: Vec<[u32; 4]> =
-            (0..TOP_SIDE * TOP_SIDE).map(|i| [i % TOP_SIDE, i / TOP_SIDE, levels, 0]).collect();
-        let seed = CompactStream::new(ctx, "hierarchy seed", path, seed_entries.len() as u32)?;
+        let seed_entries: Vec<u32> =
+            (0..TOP_SIDE * TOP_SIDE).map(|i| pack_entry([i % TOP_SIDE, i / TOP_SIDE, levels, 0])).collect();
+        let stream =
+            |name: &str, capacity: u32| CompactStream::with_element_bytes(ctx, name, path, capacity, ENTRY_BYTES);
+        let seed = stream("hierarchy seed", seed_entries.len() as u32)?;
         ctx.upload_buffer(&seed.data, bytemuck::cast_slice(&seed_entries))?;
         let count = seed_entries.len() as u32;
         let header: [u32; 12] = [count, count, 0, 0, count.div_ceil(64), 1, 1, 0, count, 1, 0, 0];
         ctx.upload_buffer(&seed.counter, bytemuck::cast_slice(&header))?;
+        // List k holds level-k nodes and clusters finished above level k, each covering at least
+        // one level-k node with photons: no more entries than level-k nodes over the N² photons.
+        let capacity = |k: u32| n.div_ceil(1 << k) * n.div_ceil(1 << k);
+        let bytes = capacity(0) as u64 * ENTRY_BYTES;
+        let xfb_limit = ctx.info().max_transform_feedback_buffer_size;
+        if path == CompactionPath::TransformFeedback && bytes > xfb_limit {
+            return Err(crate::input_error!(
+                "caustics.photons: the xfb traversal's last list of {n}² photons needs {bytes} bytes of \
+                 transform-feedback buffer, more than this device's maxTransformFeedbackBufferSize ({xfb_limit}); \
+                 use fewer photons or path = \"compute\""
+            )
+            .into());
+        }
         let lists = (0..levels)
-            .map(|k| {
-                let side = (padded >> k) as u64;
-                let capacity = (side * side * 4 / 3 + 256).min(u32::MAX as u64) as u32;
-                CompactStream::new(ctx, &format!("hierarchy level {k}"), path, capacity)
-            })
+            .map(|k| stream(&format!("hierarchy level {k}"), capacity(k)))
             .collect::<vkcore::Result<Vec<_>>>()?;
         let counts = Buffer::new(ctx, "hierarchy counts", (lights.max(1) * levels) as u64 * 4, Memory::Gpu)?;
         let dummy = Target::new(ctx, ImageDesc::new_2d("hierarchy dummy", COLOR, 1, 1))?;
@@ -177,7 +210,7 @@ impl Hierarchy {
         )?;
         let entries = VertexLayout {
             stride: ENTRY_BYTES as u32,
-            attributes: vec![VertexAttribute { location: 0, format: Format::R32G32B32A32_UINT, offset: 0 }],
+            attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }],
         };
         let textures = [K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage, K::SampledImage];
         let (traverse, finalize) = match path {
@@ -481,7 +514,7 @@ impl Hierarchy {
 
     /// The final list of the last traversal (photons at level 0, clusters flagged final).
     pub fn final_entries(&self, ctx: &Context) -> Result<Vec<[u32; 4]>> {
-        Ok(self.lists[0].read(ctx)?)
+        Ok(self.lists[0].read_as::<u32>(ctx)?.into_iter().map(unpack_entry).collect())
     }
 }
 
@@ -535,7 +568,10 @@ impl Hierarchy {
     /// layer `list<k>` per level k (k = 0: what was splatted), an entry per pixel in row-major
     /// order: x, y, level, final (1 = a cluster of converging photons), valid (1 = an entry).
     pub fn dump_lists(&self, ctx: &Context) -> Result<ImageF32> {
-        let lists: Vec<Vec<[u32; 4]>> = self.lists.iter().map(|s| s.read(ctx)).collect::<vkcore::Result<_>>()?;
+        let read = |s: &CompactStream| -> vkcore::Result<Vec<[u32; 4]>> {
+            Ok(s.read_as::<u32>(ctx)?.into_iter().map(unpack_entry).collect())
+        };
+        let lists: Vec<Vec<[u32; 4]>> = self.lists.iter().map(read).collect::<vkcore::Result<_>>()?;
         let longest = lists.iter().map(Vec::len).max().unwrap_or(0).max(1);
         let w = (longest as f64).sqrt().ceil() as usize;
         let h = longest.div_ceil(w);
@@ -572,6 +608,22 @@ mod tests {
         assert_eq!(levels(1024), (1024, 6));
         assert_eq!(levels(4096), (4096, 8));
         assert_eq!(levels(17), (32, 1));
+    }
+
+    #[test]
+    fn entries_round_trip_and_match_the_glsl() {
+        for e in [[0, 0, 0, 0], [4095, 4095, 8, 1], [17, 4000, 3, 0], [1, 2, 15, 1]] {
+            assert_eq!(unpack_entry(pack_entry(e)), e);
+        }
+        let glsl =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/hierarchy/entry.glsl"))
+                .expect("entry.glsl");
+        for (name, v) in [("Y", ENTRY_Y_SHIFT), ("LEVEL", ENTRY_LEVEL_SHIFT), ("FINAL", ENTRY_FINAL_SHIFT)] {
+            assert!(glsl.contains(&format!("#define ENTRY_{name}_SHIFT {v}u")), "entry.glsl: ENTRY_{name}_SHIFT");
+        }
+        // The largest photon buffer and its deepest level fit the fields.
+        let (p, l) = levels(4096);
+        assert!(p <= MAX_SIDE && l < 16);
     }
 
     #[test]
