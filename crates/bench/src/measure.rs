@@ -191,7 +191,7 @@ impl<'a> Runner<'a> {
         } else {
             None
         };
-        let quality = if self.needs_quality() { Some(self.quality(&renderer, &scene)?) } else { None };
+        let quality = if self.needs_quality() { Some(self.quality(&mut renderer, &scene)?) } else { None };
         Ok(CellRun {
             frames,
             wall_ms,
@@ -207,7 +207,7 @@ impl<'a> Runner<'a> {
     }
 
     /// The last frame's receiver map against the CPU reference of the same scene and lights.
-    fn quality(&mut self, renderer: &Renderer, scene: &Scene) -> Result<Comparison> {
+    fn quality(&mut self, renderer: &mut Renderer, scene: &Scene) -> Result<Comparison> {
         let q = &self.config.config.quality;
         let photons = self.quick.map(|k| k.reference_photons).unwrap_or(q.reference_photons);
         let key = format!("{:?}|{:?}|{:?}|{}", scene.path, scene.lights, scene.receiver_map, scene.caustics.fresnel);

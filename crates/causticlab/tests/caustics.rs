@@ -47,9 +47,9 @@ fn photon_power_is_the_lights_intensity_times_the_spheres_solid_angle_and_splats
             "photon_buffer,caustic_map,receiver",
         );
         let photons = exr(&out, "photon_buffer.exr");
-        let power = channel(&photons, "power.G");
-        let landed = channel(&photons, "position.valid");
-        let lost_code = channel(&photons, "direction.W");
+        let power = channel(&photons, "light0.power.G");
+        let landed = channel(&photons, "light0.position.valid");
+        let lost_code = channel(&photons, "light0.direction.W");
         // Every texel covering the sphere is a photon: landed or lost, its power is I * its
         // solid angle, so they add up to I * Omega_sphere (light at 6 m, centre at 1 m, r 0.5).
         let emitted: f64 = power.iter().sum();
@@ -131,7 +131,7 @@ fn coloured_glass_gives_a_coloured_caustic() {
 fn metal_ring_gives_a_reflective_caustic() {
     let out = render("ring", &scene("ring"), &["--technique", "shah", "--photons", "256"], "receiver,photon_buffer");
     let photons = exr(&out, "photon_buffer.exr");
-    assert!(channel(&photons, "position.valid").iter().sum::<f64>() > 1000.0, "few reflected photons landed");
+    assert!(channel(&photons, "light0.position.valid").iter().sum::<f64>() > 1000.0, "few reflected photons landed");
     let r = exr(&out, "receiver.exr");
     let flux: f64 = channel(&r, "caustic.G").iter().sum();
     assert!(flux > 0.0, "no reflected light on the floor");
@@ -141,7 +141,7 @@ fn metal_ring_gives_a_reflective_caustic() {
 fn vertex_photons_follow_the_tessellation() {
     let out = render("vertex", &scene("sphere_on_plane"), &["--technique", "shah-vertex"], "photon_buffer,receiver");
     let photons = exr(&out, "photon_buffer.exr");
-    let landed = channel(&photons, "position.valid").iter().filter(|v| **v > 0.5).count();
+    let landed = channel(&photons, "light0.position.valid").iter().filter(|v| **v > 0.5).count();
     // Subdivision 5 icosphere: 10 * 4^5 + 2 = 10242 vertices; about the half facing the light
     // (a cap of 1 - sin(asin(0.1)) ... ) carries photons.
     assert!(landed > 3000 && landed < 10242 / 2 + 200, "{landed} vertex photons landed");
@@ -244,10 +244,19 @@ fn every_intermediate_buffer_is_dumped_with_named_channels() {
         assert_eq!(out.join(format!("{name}.exr")).is_file(), !hcm_only, "{name}.exr");
     }
     let expect = [
-        ("photon_buffer.exr", &["position.X", "position.valid", "direction.Z", "direction.W", "power.R"][..]),
+        (
+            "photon_buffer.exr",
+            &[
+                "light0.position.X",
+                "light0.position.valid",
+                "light0.direction.Z",
+                "light0.direction.W",
+                "light0.power.R",
+            ][..],
+        ),
         ("caustic_map.exr", &["light0.R", "light0.photons"][..]),
         ("receiver_positions.exr", &["light0.X", "light0.hit"][..]),
-        ("photon_back_faces.exr", &["NX", "distance"][..]),
+        ("photon_back_faces.exr", &["light0.NX", "light0.distance"][..]),
         ("receiver.exr", &["R", "E0", "caustic.G", "irradiance.B"][..]),
         ("shadow_map.exr", &["light0_px.distance", "light0_nz.distance"][..]),
     ];
@@ -319,26 +328,62 @@ fn hierarchical_caustic_maps_dump_every_level_list_and_layer() {
     assert_eq!((levels.width, levels.height), (128, 128));
     for k in 1..=4 {
         for part in ["power", "position", "texels"] {
-            assert!(levels.layer(Some(&format!("level{k}.{part}"))).is_some(), "no level{k}.{part}");
+            assert!(levels.layer(Some(&format!("light0.level{k}.{part}"))).is_some(), "no level{k}.{part}");
         }
     }
-    assert!(levels.layer(Some("level5.power")).is_none());
+    assert!(levels.layer(Some("light0.level5.power")).is_none());
     // Every level counts the same photons: the valid texels of the photon buffer.
     let valid: f64 =
-        channel(&exr(&out, "photon_buffer.exr"), "position.valid").iter().filter(|v| **v > 0.5).count() as f64;
+        channel(&exr(&out, "photon_buffer.exr"), "light0.position.valid").iter().filter(|v| **v > 0.5).count() as f64;
     assert!(valid > 100.0, "only {valid} valid photons");
     for k in 1..=4 {
-        let count: f64 = channel(&levels, &format!("level{k}.power.count")).iter().sum();
+        let count: f64 = channel(&levels, &format!("light0.level{k}.power.count")).iter().sum();
         assert_eq!(count, valid, "level {k} counts {count} photons, the photon buffer has {valid}");
     }
     // Without clustering the last list is those photons, at level 0, none final.
     let lists = exr(&out, "hierarchy_lists.exr");
-    let listed: f64 = channel(&lists, "list0.valid").iter().sum();
+    let listed: f64 = channel(&lists, "light0.list0.valid").iter().sum();
     assert_eq!(listed, valid);
-    assert_eq!(channel(&lists, "list0.final").iter().sum::<f64>(), 0.0);
+    assert_eq!(channel(&lists, "light0.list0.final").iter().sum::<f64>(), 0.0);
     // The multi-resolution caustic map: 4 levels of light 0.
     let map = exr(&out, "caustic_map.exr");
     for i in 0..4 {
         assert!(map.layer(Some(&format!("light0_level{i}"))).is_some(), "no caustic-map level {i}");
     }
+}
+
+/// With two lights, the light-space buffers are dumped for each light (`light<l>.` layers), and
+/// each light's hierarchy and lists are built over that light's own photon buffer.
+#[test]
+fn two_lights_dump_each_lights_photon_buffer_hierarchy_and_lists() {
+    let out = render(
+        "hcm-two-lights",
+        &scene("two_lights"),
+        &["--technique", "hcm", "--photons", "100", "--cluster", "none"],
+        "photon_buffer,photon_back_faces,hierarchy,hierarchy_lists",
+    );
+    let (photons, levels, lists) =
+        (exr(&out, "photon_buffer.exr"), exr(&out, "hierarchy.exr"), exr(&out, "hierarchy_lists.exr"));
+    assert!(find_channel(&exr(&out, "photon_back_faces.exr"), "light1.distance").is_some());
+    let mut blue_over_red = vec![];
+    for l in 0..2 {
+        let valid = channel(&photons, &format!("light{l}.position.valid"));
+        let count = valid.iter().filter(|v| **v > 0.5).count() as f64;
+        assert!(count > 100.0, "light {l}: only {count} valid photons");
+        // 100² photons pad to 128²: levels 1..=3.
+        for k in 1..=3 {
+            let counted: f64 = channel(&levels, &format!("light{l}.level{k}.power.count")).iter().sum();
+            assert_eq!(counted, count, "light {l} level {k}");
+        }
+        assert_eq!(channel(&lists, &format!("light{l}.list0.valid")).iter().sum::<f64>(), count, "light {l} list 0");
+        let power = |c: &str| -> f64 {
+            let p = channel(&photons, &format!("light{l}.power.{c}"));
+            p.iter().zip(&valid).filter(|(_, v)| **v > 0.5).map(|(p, _)| p).sum()
+        };
+        blue_over_red.push(power("B") / power("R"));
+    }
+    // The scene's light 0 is warm (17/30 blue to red), light 1 cool (30/16): each light's
+    // photons carry its own colour, so neither dump is the other light's.
+    assert!((blue_over_red[0] - 17.0 / 30.0).abs() < 0.02, "light 0 B/R {}", blue_over_red[0]);
+    assert!((blue_over_red[1] - 30.0 / 16.0).abs() < 0.05, "light 1 B/R {}", blue_over_red[1]);
 }

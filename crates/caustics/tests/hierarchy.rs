@@ -52,7 +52,7 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
     let nc = layer.channels.len();
     let map = layer.data.chunks_exact(nc).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).collect();
     let pb = r.dump("photon_buffer").expect("dump").expect("a photon buffer");
-    let pos = pb.layer(Some("position")).expect("position layer");
+    let pos = pb.layer(Some("light0.position")).expect("position layer");
     let valid = (0..pb.width * pb.height)
         .filter(|&i| pos.data[i as usize * 4 + 3] > 0.5)
         .map(|i| (i % pb.width, i / pb.width))
@@ -207,6 +207,48 @@ fn every_mode_runs_clean_and_keeps_the_caustic_power() {
                 );
             }
         }
+    }
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}
+
+/// With two lights, one photon buffer and one set of lists serve both lights in turn: each
+/// light's final list is exactly the valid photons of that light's own photon buffer (read back
+/// light by light with `Renderer::dumps`), on both paths.
+#[test]
+fn every_light_traverses_its_own_photon_buffer() {
+    let (ctx, sh) = context();
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/two_lights.toml");
+    for path in ["xfb", "compute"] {
+        let mut s = Scene::load(&p).expect("shipped scene");
+        s.caustics.technique = "hcm".into();
+        s.caustics.photons = 100;
+        s.caustics.path = path.into();
+        s.caustics.caustic_map_resolution = 256;
+        s.camera.width = 64;
+        s.camera.height = 48;
+        let mut r = Renderer::new(&ctx, &sh, &s, &RendererOptions::default()).expect("renderer");
+        r.frame(FrameStep::default()).expect("frame");
+        let sizes = r.hierarchy().expect("hcm").list_sizes(&ctx).expect("sizes");
+        let names = ["photon_buffer".to_string(), "hierarchy_lists".to_string()];
+        let dumps = r.dumps(&names).expect("dumps");
+        let (pb, lists) = (&dumps[0].1, &dumps[1].1);
+        let mut per_light = vec![];
+        for l in 0..2 {
+            let pos = pb.layer(Some(&format!("light{l}.position"))).expect("position layer");
+            let valid: BTreeSet<(u32, u32)> = (0..pb.width * pb.height)
+                .filter(|&i| pos.data[i as usize * 4 + 3] > 0.5)
+                .map(|i| (i % pb.width, i / pb.width))
+                .collect();
+            let list = lists.layer(Some(&format!("light{l}.list0"))).expect("list layer");
+            let listed: BTreeSet<(u32, u32)> =
+                list.data.chunks_exact(5).filter(|e| e[4] > 0.5).map(|e| (e[0] as u32, e[1] as u32)).collect();
+            assert!(valid.len() > 100, "light {l}: {} valid photons: a vacuous test", valid.len());
+            assert_eq!(listed, valid, "{path}: light {l}'s final list is not its photon buffer's valid photons");
+            assert_eq!(sizes[l].last().copied(), Some(valid.len() as u64), "{path}: light {l}'s counter");
+            per_light.push(valid);
+        }
+        assert_ne!(per_light[0], per_light[1], "both lights see the same photons: a vacuous test");
     }
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));

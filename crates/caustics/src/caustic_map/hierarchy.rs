@@ -519,9 +519,10 @@ impl Hierarchy {
 }
 
 impl Hierarchy {
-    /// `hierarchy.exr`: every level of the photon hierarchy of the last light, level k in the
-    /// top-left (P/2^k)² corner of layers `level<k>.power` (R, G, B, count), `level<k>.position`
-    /// (mean X, Y, Z of the subtree's photons) and `level<k>.texels` (caustic-map texel box).
+    /// `hierarchy.exr` for the light traversed last: every level of the photon hierarchy (level
+    /// 0 is the photon buffer), level k in the top-left (P/2^k)² corner of layers
+    /// `level<k>.power` (R, G, B, count), `level<k>.position` (mean X, Y, Z of the subtree's
+    /// photons) and `level<k>.texels` (caustic-map texel box).
     pub fn dump_levels(&self, ctx: &Context) -> Result<ImageF32> {
         let side = self.padded / 2;
         let mut layers = vec![];
@@ -564,30 +565,34 @@ impl Hierarchy {
         Ok(ImageF32 { width: side, height: side, layers })
     }
 
-    /// `hierarchy_lists.exr`: the traversal's list after each level of the last light, one
-    /// layer `list<k>` per level k (k = 0: what was splatted), an entry per pixel in row-major
-    /// order: x, y, level, final (1 = a cluster of converging photons), valid (1 = an entry).
-    pub fn dump_lists(&self, ctx: &Context) -> Result<ImageF32> {
+    /// The traversal's lists of the light traversed last: `[k]` is the list the step at level
+    /// k+1 wrote (level-k nodes and the clusters finished above), `[0]` what was splatted.
+    pub fn read_lists(&self, ctx: &Context) -> Result<Vec<Vec<[u32; 4]>>> {
         let read = |s: &CompactStream| -> vkcore::Result<Vec<[u32; 4]>> {
             Ok(s.read_as::<u32>(ctx)?.into_iter().map(unpack_entry).collect())
         };
-        let lists: Vec<Vec<[u32; 4]>> = self.lists.iter().map(read).collect::<vkcore::Result<_>>()?;
-        let longest = lists.iter().map(Vec::len).max().unwrap_or(0).max(1);
-        let w = (longest as f64).sqrt().ceil() as usize;
-        let h = longest.div_ceil(w);
-        let layers = lists
-            .iter()
-            .enumerate()
-            .map(|(k, list)| {
-                let mut data = vec![0.0f32; w * h * 5];
-                for (i, e) in list.iter().enumerate() {
-                    data[i * 5..i * 5 + 5].copy_from_slice(&[e[0] as f32, e[1] as f32, e[2] as f32, e[3] as f32, 1.0]);
-                }
-                Layer::new(Some(&format!("list{k}")), &["x", "y", "level", "final", "valid"], data)
-            })
-            .collect();
-        Ok(ImageF32 { width: w as u32, height: h as u32, layers })
+        Ok(self.lists.iter().map(read).collect::<vkcore::Result<_>>()?)
     }
+}
+
+/// `hierarchy_lists.exr` from each light's [`Hierarchy::read_lists`]: layer `light<l>.list<k>`
+/// holds light l's list k, an entry per pixel in row-major order: x, y, level, final (1 = a
+/// cluster of converging photons), valid (1 = an entry; the rest of the image is padding).
+pub fn lists_image(per_light: &[Vec<Vec<[u32; 4]>>]) -> ImageF32 {
+    let longest = per_light.iter().flatten().map(Vec::len).max().unwrap_or(0).max(1);
+    let w = (longest as f64).sqrt().ceil() as usize;
+    let h = longest.div_ceil(w);
+    let mut layers = vec![];
+    for (l, lists) in per_light.iter().enumerate() {
+        for (k, list) in lists.iter().enumerate() {
+            let mut data = vec![0.0f32; w * h * 5];
+            for (i, e) in list.iter().enumerate() {
+                data[i * 5..i * 5 + 5].copy_from_slice(&[e[0] as f32, e[1] as f32, e[2] as f32, e[3] as f32, 1.0]);
+            }
+            layers.push(Layer::new(Some(&format!("light{l}.list{k}")), &["x", "y", "level", "final", "valid"], data));
+        }
+    }
+    ImageF32 { width: w as u32, height: h as u32, layers }
 }
 
 /// What the hierarchy passes read besides the photon buffer.

@@ -24,7 +24,7 @@ mod pipelines;
 mod targets;
 
 pub use compute_splat::ComputeSplat;
-pub use passes::{record_caustics, record_cleared, CausticFrame, CausticInputs};
+pub use passes::{record_caustics, record_cleared, record_light_space, CausticFrame, CausticInputs};
 pub use photon_copy::{CopyType, PhotonCopy, COPY_TYPES};
 pub use pipelines::CausticPipelines;
 pub use targets::{CausticTargets, PhotonTargets};

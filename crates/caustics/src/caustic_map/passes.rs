@@ -40,6 +40,35 @@ pub struct CausticFrame<'a> {
     pub compute_splat: Option<&'a ComputeSplat>,
 }
 
+fn hierarchy_inputs<'a>(inp: &CausticInputs<'a>) -> HierarchyInputs<'a> {
+    HierarchyInputs { frame_uniforms: inp.frame_uniforms, caustic_uniforms: inp.caustic_uniforms, nearest: inp.nearest }
+}
+
+/// Light `l`'s light-space work before its splat: receiver positions, back faces, the photon
+/// buffer, and the copy or the hierarchy's build and traversal that read it. One set of these
+/// buffers serves every light, light after light; `Renderer::dumps` records this alone to read a
+/// light's back.
+pub fn record_light_space(
+    f: &mut Frame,
+    p: &CausticPipelines,
+    ct: &CausticTargets,
+    pt: &PhotonTargets,
+    inp: &CausticInputs,
+    l: u32,
+    frame: CausticFrame,
+) -> Result<()> {
+    record_photons(f, p, ct, pt, inp, l)?;
+    // The copied vertex arrays and the traversal's list stay valid as long as the photon
+    // buffer does.
+    if let Some(copy) = frame.copy {
+        copy.record(f, pt, l)?;
+    }
+    if let Some(h) = frame.hierarchy {
+        h.record_traversal(f, &hierarchy_inputs(inp), pt, l)?;
+    }
+    Ok(())
+}
+
 pub fn record_caustics(
     f: &mut Frame,
     p: &CausticPipelines,
@@ -50,21 +79,9 @@ pub fn record_caustics(
     frame: CausticFrame,
 ) -> Result<()> {
     for l in 0..lights {
-        let hierarchy_inputs = HierarchyInputs {
-            frame_uniforms: inp.frame_uniforms,
-            caustic_uniforms: inp.caustic_uniforms,
-            nearest: inp.nearest,
-        };
+        let hierarchy_inputs = hierarchy_inputs(inp);
         if !frame.reuse_photons {
-            record_photons(f, p, ct, pt, inp, l)?;
-            // The copied vertex arrays and the traversal's list stay valid as long as the
-            // photon buffer does.
-            if let Some(copy) = frame.copy {
-                copy.record(f, pt, l)?;
-            }
-            if let Some(h) = frame.hierarchy {
-                h.record_traversal(f, &hierarchy_inputs, pt, l)?;
-            }
+            record_light_space(f, p, ct, pt, inp, l, frame)?;
         }
         let cmap = &ct.per_light[l as usize].0;
         let splat_inputs = compute_splat::Inputs {

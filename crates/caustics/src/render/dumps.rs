@@ -94,11 +94,8 @@ pub fn dump(
                 )
             }
         },
-        // Light-space buffers of the caustic techniques (the photon buffer and light-space back
-        // faces hold the last light's).
-        "receiver_positions" | "caustic_map" | "photon_back_faces" | "photon_buffer" if photons.is_none() => {
-            return Ok(None)
-        }
+        // Light-space buffers of the caustic techniques.
+        "receiver_positions" | "caustic_map" if photons.is_none() => return Ok(None),
         "receiver_positions" => per_light(ctx, &ct.receiver_positions, &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?,
         "caustic_map" if ct.levels > 1 => {
             // The multi-resolution map: level i of light l in layer 4l + i, its splats in the
@@ -113,24 +110,57 @@ pub fn dump(
             image(t, layers)
         }
         "caustic_map" => per_light(ctx, &ct.caustic_map, &["R", "G", "B", "photons"], &[0, 1, 2, 3])?,
-        "photon_back_faces" => {
-            let p = photons.expect("checked above");
-            image(
-                &p.back_faces,
-                vec![layer(ctx, &p.back_faces, 0, None, &["NX", "NY", "NZ", "distance"], &[0, 1, 2, 3])?],
-            )
-        }
-        "photon_buffer" => {
-            let p = photons.expect("checked above");
-            image(
-                &p.position,
-                vec![
-                    layer(ctx, &p.position, 0, Some("position"), &["X", "Y", "Z", "valid"], &[0, 1, 2, 3])?,
-                    layer(ctx, &p.direction, 0, Some("direction"), &["X", "Y", "Z", "W"], &[0, 1, 2, 3])?,
-                    layer(ctx, &p.power, 0, Some("power"), &["R", "G", "B"], &[0, 1, 2])?,
-                ],
-            )
-        }
         other => anyhow::bail!("no intermediate buffer called `{other}`"),
     }))
+}
+
+/// The photon buffer or its back faces (`name`) as they are now: the light that rendered them
+/// last. Layers are unprefixed; [`for_light`] names them.
+pub fn photon_targets(ctx: &Context, p: &PhotonTargets, name: &str) -> Result<ImageF32> {
+    Ok(match name {
+        "photon_back_faces" => image(
+            &p.back_faces,
+            vec![layer(ctx, &p.back_faces, 0, None, &["NX", "NY", "NZ", "distance"], &[0, 1, 2, 3])?],
+        ),
+        "photon_buffer" => image(
+            &p.position,
+            vec![
+                layer(ctx, &p.position, 0, Some("position"), &["X", "Y", "Z", "valid"], &[0, 1, 2, 3])?,
+                layer(ctx, &p.direction, 0, Some("direction"), &["X", "Y", "Z", "W"], &[0, 1, 2, 3])?,
+                layer(ctx, &p.power, 0, Some("power"), &["R", "G", "B"], &[0, 1, 2])?,
+            ],
+        ),
+        other => anyhow::bail!("no photon buffer called `{other}`"),
+    })
+}
+
+/// `img`'s layers renamed for light `l`: `light<l>` (the main layer) or `light<l>.<name>`.
+pub fn for_light(img: ImageF32, l: u32) -> ImageF32 {
+    let layers = img
+        .layers
+        .into_iter()
+        .map(|mut layer| {
+            layer.name = Some(match layer.name {
+                None => format!("light{l}"),
+                Some(n) => format!("light{l}.{n}"),
+            });
+            layer
+        })
+        .collect();
+    ImageF32 { layers, ..img }
+}
+
+/// `a` with `b`'s layers added (the same size: one buffer of several lights).
+pub fn merge(a: Option<ImageF32>, b: ImageF32) -> Result<ImageF32> {
+    let Some(mut a) = a else { return Ok(b) };
+    anyhow::ensure!(
+        (a.width, a.height) == (b.width, b.height),
+        "merging {}x{} and {}x{} dumps",
+        a.width,
+        a.height,
+        b.width,
+        b.height
+    );
+    a.layers.extend(b.layers);
+    Ok(a)
 }

@@ -38,6 +38,9 @@ pub const CAUSTIC_DUMPS: &[&str] =
     &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map", "hierarchy", "hierarchy_lists"];
 /// The buffers only `hcm` has.
 pub const HIERARCHY_DUMPS: &[&str] = &["hierarchy", "hierarchy_lists"];
+/// The light-space buffers that serve every light in turn (dumped light by light, layers
+/// `light<l>.<layer>`; see `Renderer::dumps`).
+pub const LIGHT_SPACE_DUMPS: &[&str] = &["photon_back_faces", "photon_buffer", "hierarchy", "hierarchy_lists"];
 
 /// Techniques `--technique` accepts.
 pub use crate::scene::TECHNIQUES;
@@ -105,12 +108,7 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
         frames.push(renderer.frame(FrameStep { reuse_photons: false, pipeline_statistics: true })?);
     }
     let final_image = renderer.final_image()?;
-    let mut dumps = vec![];
-    for name in &req.dumps {
-        if let Some(img) = renderer.dump(name)? {
-            dumps.push((name.clone(), img));
-        }
-    }
+    let dumps = renderer.dumps(&req.dumps)?;
     Ok(Rendered { final_image, dumps, frames, photons_emitted: renderer.photons_emitted() })
 }
 

@@ -213,28 +213,17 @@ impl<'c> Renderer<'c> {
         }
         match &self.caustic {
             Some(c) => {
-                let inputs = caustic_map::CausticInputs {
-                    frame_uniforms: &self.uniforms,
-                    caustic_uniforms: &self.caustic_uniforms,
-                    meshes: &self.meshes,
-                    vertex_areas: &c.vertex_areas,
-                    splat_vertices: &c.splat_vertices,
-                    instance_vertices: c.instance_vertices,
-                    nearest: &self.nearest,
-                };
                 let frame = CausticFrame {
                     // One photon buffer serves every light: only one light's can be kept.
                     reuse_photons: step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1,
-                    copy: c.copy.as_ref(),
-                    hierarchy: c.hierarchy.as_ref(),
-                    compute_splat: c.compute_splat.as_ref(),
+                    ..self.caustic_frame(c)
                 };
                 caustic_map::record_caustics(
                     &mut f,
                     &c.pipelines,
                     &self.caustic_targets,
                     &c.photons,
-                    &inputs,
+                    &self.caustic_inputs(c),
                     self.targets.shadow.lights,
                     frame,
                 )?;
@@ -260,16 +249,92 @@ impl<'c> Renderer<'c> {
         dumps::final_image(self.ctx, &self.targets)
     }
 
-    /// The named intermediate buffer of the last frame (None where this render has none).
-    pub fn dump(&self, name: &str) -> Result<Option<ImageF32>> {
-        match (name, self.hierarchy()) {
-            ("hierarchy", Some(h)) => return Ok(Some(h.dump_levels(self.ctx)?)),
-            ("hierarchy_lists", Some(h)) => return Ok(Some(h.dump_lists(self.ctx)?)),
-            ("hierarchy" | "hierarchy_lists", None) => return Ok(None),
-            _ => {}
+    fn caustic_inputs<'a>(&'a self, c: &'a CausticResources) -> caustic_map::CausticInputs<'a> {
+        caustic_map::CausticInputs {
+            frame_uniforms: &self.uniforms,
+            caustic_uniforms: &self.caustic_uniforms,
+            meshes: &self.meshes,
+            vertex_areas: &c.vertex_areas,
+            splat_vertices: &c.splat_vertices,
+            instance_vertices: c.instance_vertices,
+            nearest: &self.nearest,
         }
-        let photons = self.caustic.as_ref().map(|c| &c.photons);
-        dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)
+    }
+
+    fn caustic_frame<'a>(&self, c: &'a CausticResources) -> CausticFrame<'a> {
+        CausticFrame {
+            reuse_photons: false,
+            copy: c.copy.as_ref(),
+            hierarchy: c.hierarchy.as_ref(),
+            compute_splat: c.compute_splat.as_ref(),
+        }
+    }
+
+    /// The named intermediate buffer of the last frame (None where this render has none).
+    pub fn dump(&mut self, name: &str) -> Result<Option<ImageF32>> {
+        Ok(self.dumps(&[name.to_string()])?.pop().map(|(_, img)| img))
+    }
+
+    /// The named intermediate buffers of the last frame, as (name, image), skipping those this
+    /// render has none of. One photon buffer, back-face target and hierarchy serve every light
+    /// in turn (`super::LIGHT_SPACE_DUMPS`), so a frame leaves only its last light's there:
+    /// with several lights, each light's light-space passes are recorded again alone (the same
+    /// inputs, so the same buffers) and read back. Their layers are named `light<l>.<layer>`.
+    pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
+        let light_space = |n: &str| super::LIGHT_SPACE_DUMPS.contains(&n);
+        let has = |n: &str| match n {
+            "hierarchy" | "hierarchy_lists" => self.hierarchy().is_some(),
+            _ => self.caustic.is_some(),
+        };
+        let wanted: Vec<&str> = names.iter().map(String::as_str).filter(|n| light_space(n) && has(n)).collect();
+        let mut per_light: Vec<Option<ImageF32>> = vec![None; wanted.len()];
+        let mut lists = vec![];
+        let lights = self.targets.shadow.lights;
+        for l in 0..if wanted.is_empty() { 0 } else { lights } {
+            if lights > 1 {
+                self.record_light_space_alone(l)?;
+            }
+            let Some(c) = &self.caustic else { break };
+            for (i, name) in wanted.iter().enumerate() {
+                let img = match (*name, &c.hierarchy) {
+                    ("hierarchy", Some(h)) => h.dump_levels(self.ctx)?,
+                    ("hierarchy_lists", Some(h)) => {
+                        lists.push(h.read_lists(self.ctx)?);
+                        continue;
+                    }
+                    _ => dumps::photon_targets(self.ctx, &c.photons, name)?,
+                };
+                per_light[i] = Some(dumps::merge(per_light[i].take(), dumps::for_light(img, l))?);
+            }
+        }
+        let mut out = vec![];
+        for name in names {
+            let img = match wanted.iter().position(|w| w == name) {
+                Some(_) if name == "hierarchy_lists" => Some(hierarchy::lists_image(&lists)),
+                Some(i) => per_light[i].take(),
+                None if light_space(name) => None,
+                None => {
+                    let photons = self.caustic.as_ref().map(|c| &c.photons);
+                    dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)?
+                }
+            };
+            if let Some(img) = img {
+                out.push((name.clone(), img));
+            }
+        }
+        Ok(out)
+    }
+
+    /// Records light `l`'s light-space passes (`caustic_map::record_light_space`) alone, as
+    /// the last frame recorded them, and waits for them.
+    fn record_light_space_alone(&mut self, l: u32) -> Result<()> {
+        let Some(c) = &self.caustic else { return Ok(()) };
+        let mut f = self.ctx.frame(FrameOptions { timestamps: false, pipeline_statistics: false })?;
+        let inputs = self.caustic_inputs(c);
+        let frame = self.caustic_frame(c);
+        caustic_map::record_light_space(&mut f, &c.pipelines, &self.caustic_targets, &c.photons, &inputs, l, frame)?;
+        f.submit()?;
+        Ok(())
     }
 
     /// Photons emitted per frame over all lights (0 without a caustic technique).
