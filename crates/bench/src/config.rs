@@ -317,8 +317,8 @@ impl LoadedConfig {
             std::fs::read(path).map_err(|e| input_error!("{}: cannot read the bench config: {e}", path.display()))?;
         let text = String::from_utf8(bytes.clone())
             .map_err(|_| input_error!("{}: the bench config is not UTF-8", path.display()))?;
-        let config: Config =
-            toml::from_str(&text).map_err(|e| input_error!("{}: {}", path.display(), e.to_string().trim_end()))?;
+        // The scene parser's error mapping: unknown keys name their path (`technique[0].clustr`).
+        let config: Config = caustics::scene::parse_toml(path, &text)?;
         let name = path
             .file_stem()
             .and_then(|s| s.to_str())

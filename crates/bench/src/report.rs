@@ -78,9 +78,8 @@ pub fn markdown(config: &Config, results: &Results) -> String {
         }
         let _ = writeln!(s, "| {} |", cells.join(" | "));
     }
-    let units: Vec<&str> = config.metrics.iter().map(|m| unit(&m.kind)).filter(|u| !u.is_empty()).collect();
-    if let Some(u) = units.first() {
-        let _ = writeln!(s, "\nValues in {u}{}.", if units.iter().all(|x| x == u) { "" } else { " (per metric kind)" });
+    if let Some(line) = units_line(config.metrics.iter().map(|m| (m.label.as_str(), m.kind.as_str()))) {
+        let _ = writeln!(s, "\n{line}");
     }
     ratios(&mut s, config, &g, has_paper);
     let mut notes = config.table.notes.clone();
@@ -109,6 +108,38 @@ pub fn markdown(config: &Config, results: &Results) -> String {
         results.config.name
     );
     s
+}
+
+/// The unit of every column: `Values in ms.` when all metrics share one, else each unit with the
+/// metrics (by label) in it, e.g. ``Values: `Gather`, `Frame` in ms; `processed` in points.``.
+/// `None` when no metric has a unit (quality tables).
+fn units_line<'a>(metrics: impl Iterator<Item = (&'a str, &'a str)>) -> Option<String> {
+    let mut groups: Vec<(&str, Vec<&str>)> = vec![];
+    for (label, kind) in metrics {
+        let u = unit(kind);
+        match groups.iter_mut().find(|(g, _)| *g == u) {
+            Some((_, labels)) => labels.push(label),
+            None => groups.push((u, vec![label])),
+        }
+    }
+    match groups.as_slice() {
+        [] | [("", _)] => None,
+        [(u, _)] => Some(format!("Values in {u}.")),
+        _ => {
+            let parts: Vec<String> = groups
+                .iter()
+                .map(|(u, labels)| {
+                    let names = labels.iter().map(|l| format!("`{l}`")).collect::<Vec<_>>().join(", ");
+                    if u.is_empty() {
+                        format!("{names} unitless")
+                    } else {
+                        format!("{names} in {u}")
+                    }
+                })
+                .collect();
+            Some(format!("Values: {}.", parts.join("; ")))
+        }
+    }
 }
 
 /// Ratios against the baseline of `layout.compare`: ours, the paper's, and ours ÷ the paper's
@@ -360,5 +391,21 @@ mod tests {
         assert_eq!(super::paper_value("pass_ms", Some(0.02)), "0.02");
         assert_eq!(super::paper_value("photons_processed", Some(262144.0)), "262,144");
         assert_eq!(super::paper_value("fps", None), "–");
+    }
+
+    #[test]
+    fn units_line_names_the_unit_of_every_metric() {
+        let line = |m: &[(&'static str, &'static str)]| super::units_line(m.iter().copied());
+        assert_eq!(line(&[("a", "pass_ms"), ("b", "frame_ms")]).as_deref(), Some("Values in ms."));
+        assert_eq!(line(&[("rel", "rel_rmse"), ("flux", "flux_ratio")]), None);
+        // hcm_paths: times and a photon count in one table.
+        assert_eq!(
+            line(&[("Traversal", "pass_ms"), ("Frame", "frame_ms"), ("processed", "photons_processed")]).as_deref(),
+            Some("Values: `Traversal`, `Frame` in ms; `processed` in points.")
+        );
+        assert_eq!(
+            line(&[("fps", "fps"), ("rel", "rel_rmse")]).as_deref(),
+            Some("Values: `fps` in fps; `rel` unitless.")
+        );
     }
 }

@@ -9,6 +9,7 @@ use vkcore::{Context, ShaderCompiler, ValidationLog};
 
 pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<ValidationLog>>) -> Result<()> {
     if let Some(BenchCommand::Merge(m)) = &args.merge {
+        caustics::image_io::check_output_dir(&m.results).context("--results")?;
         let out = bench::merge(&m.parts, &m.results)?;
         report(&out);
         return Ok(());
@@ -17,6 +18,8 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
         return Err(caustics::input_error!("bench: give a config file (bench_configs/*.toml) or `merge`").into());
     };
     let config = LoadedConfig::load(path)?;
+    // The tables are written after every cell ran: a --results that cannot be a folder fails now.
+    caustics::image_io::check_output_dir(&args.results).context("--results")?;
     let opts = crate::context_options(g)?;
     // Timing runs never have validation on, and never pretend a feature is missing: those
     // are for --quick smoke tests, whose tables go to their own folder.

@@ -4,8 +4,13 @@ use crate::cli::CompareArgs;
 use anyhow::{Context as _, Result};
 use caustics::compare::compare_files;
 use caustics::image_io;
+use caustics::input_error;
+use std::io::{ErrorKind, Read as _};
+use std::path::Path;
 
 pub fn run(args: &CompareArgs) -> Result<()> {
+    check_exr(&args.a)?;
+    check_exr(&args.b)?;
     let (c, error_image) = compare_files(&args.a, &args.b)?;
     if args.json {
         let v = serde_json::json!({
@@ -28,4 +33,31 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         println!("wrote {}", p.display());
     }
     Ok(())
+}
+
+/// OpenEXR files start with these four bytes (the "magic number" of the EXR file layout).
+const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+
+/// A missing input or one that is not an EXR file (`final.png`, say) is the user's to fix, as a
+/// missing scene file is; the EXR reader's own message ("file identifier missing") does not say so.
+fn check_exr(path: &Path) -> Result<()> {
+    let not_exr = |what: &str| -> Result<()> {
+        Err(input_error!(
+            "{}: {what}; compare reads the OpenEXR files causticlab writes (receiver.exr or final.exr of a \
+             render, receiver.exr of a reference), not final.png",
+            path.display()
+        )
+        .into())
+    };
+    if path.is_dir() {
+        return not_exr("is a directory");
+    }
+    let mut head = [0u8; 4];
+    match std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head)) {
+        Ok(()) if head == EXR_MAGIC => Ok(()),
+        Ok(()) => not_exr("not an OpenEXR file"),
+        Err(e) if e.kind() == ErrorKind::UnexpectedEof => not_exr("not an OpenEXR file (shorter than its header)"),
+        Err(e) if e.kind() == ErrorKind::NotFound => Err(input_error!("{}: no such file", path.display()).into()),
+        Err(e) => Err(anyhow::Error::new(e).context(format!("reading {}", path.display()))),
+    }
 }

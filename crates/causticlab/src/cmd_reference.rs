@@ -34,7 +34,7 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
         threads: args.threads,
         smooth_normals: !args.facet_normals,
     };
-    let out = OutputDir::create(&args.out)?;
+    let out = OutputDir::create(&args.out).context("--out")?;
     let start = std::time::Instant::now();
     let r =
         trace_reference(&scene, &opts).with_context(|| format!("tracing the reference of {}", args.scene.display()))?;

@@ -49,12 +49,13 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         }
         dumps.retain(|d| !CAUSTIC_DUMPS.contains(&d.as_str()));
     }
+    // Before the device: an --out that cannot become a directory fails now, not after the render.
+    let out = OutputDir::create(&args.out).context("--out")?;
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
     *validation = Some(ctx.validation_log());
     render::check_device(&ctx, &scene)?;
     check_sizes(&scene, ctx.info())?;
 
-    let out = OutputDir::create(&args.out)?;
     let shaders = ShaderCompiler::new(&render::shader_root()).context("creating the shader compiler")?;
     let req = RenderRequest { dumps, frames: args.frames };
     let rendered = render::render(&ctx, &shaders, &scene, &req)

@@ -544,3 +544,58 @@ fn every_bench_config_has_a_quick_test() {
         }
     }
 }
+
+#[test]
+fn config_unknown_keys_name_their_path_and_line() {
+    let dir = scratch("bench-key-paths");
+    let cases = [
+        (
+            "nested.toml",
+            SMALL.replace("measured_frames = 1", "measurd_frames = 1"),
+            "run.measurd_frames",
+            "measurd_frames",
+        ),
+        (
+            "array_of_tables.toml",
+            SMALL.replace("technique = \"wd-points\"", "technique = \"wd-points\"\nclustr = \"all\""),
+            "technique[0].clustr",
+            "clustr =",
+        ),
+    ];
+    for (name, text, key, line_of) in cases {
+        let cfg = config_file(&dir, name, &text);
+        let line = text.lines().position(|l| l.starts_with(line_of)).expect("the bad key is in the config") + 1;
+        let root = dir.join(format!("results-{name}"));
+        let r = bench(&[cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
+        assert_eq!(r.code, Some(2), "{name}: {}", r.describe());
+        let want = format!("{}: key `{key}` (line {line}): unknown field", cfg.display());
+        assert!(r.stderr.contains(&want), "{name}: stderr lacks `{want}`:\n{}", r.stderr);
+        assert!(!r.stderr.contains("TOML parse error"), "{name}: toml's raw message:\n{}", r.stderr);
+        assert!(!root.exists(), "{name}: a failed config wrote results");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn results_over_a_regular_file_fails_before_the_device_is_opened() {
+    let dir = scratch("bench-results-file");
+    let cfg = config_file(&dir, "small.toml", SMALL);
+    let file = dir.join("results");
+    std::fs::write(&file, b"keep me").expect("writing a file where --results points");
+    let part = dir.join("small.shard-0-of-2.json");
+    // The device named does not exist: only a check made before opening it reports the path.
+    let runs = [
+        vec!["--device".as_ref(), "no-such-gpu".as_ref(), cfg.as_os_str(), "--results".as_ref(), file.as_os_str()],
+        vec!["merge".as_ref(), part.as_os_str(), "--results".as_ref(), file.as_os_str()],
+    ];
+    for args in runs {
+        let r = bench(&args);
+        assert_eq!(r.code, Some(2), "{args:?}: {}", r.describe());
+        for needle in ["--results", &file.display().to_string(), "not a directory"] {
+            assert!(r.stderr.contains(needle), "{args:?}: stderr lacks `{needle}`\n{}", r.describe());
+        }
+        assert!(!r.stderr.contains("no-such-gpu"), "{args:?}: the device was opened first\n{}", r.describe());
+    }
+    assert_eq!(std::fs::read(&file).expect("the file is still there"), b"keep me");
+    let _ = std::fs::remove_dir_all(&dir);
+}

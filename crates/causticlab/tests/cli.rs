@@ -405,3 +405,71 @@ fn analytic_helpers_agree_with_geometry() {
     let i = ((0.603 + 2.0) / TEXEL - 0.5).round() as u32;
     assert!(near_shadow_boundary(i, 128, light));
 }
+
+// ---------------------------------------------------------------------------------------------
+// Output paths and compare inputs: input errors before any work.
+
+#[test]
+fn out_over_a_regular_file_fails_before_the_device_is_opened() {
+    let dir = scratch("out-file");
+    let file = dir.join("out");
+    std::fs::write(&file, b"keep me").expect("writing a file where --out points");
+    let f = file.display().to_string();
+    let inside = file.join("sub").display().to_string();
+    let s = scene("sphere_on_plane");
+    // The device named does not exist: only a check made before opening it reports the path.
+    for out in [&f, &inside] {
+        for args in [
+            vec!["--device", "no-such-gpu", "render", "--scene", &s, "--out", out],
+            vec!["reference", "--scene", &s, "--photons", "64", "--out", out],
+        ] {
+            let run = causticlab(&args);
+            assert_eq!(run.code, Some(2), "{args:?}\n{}", run.describe());
+            for needle in ["--out", out.as_str(), "not a directory"] {
+                assert!(run.stderr.contains(needle), "{args:?}: stderr lacks `{needle}`\n{}", run.describe());
+            }
+            assert!(!run.stderr.contains("no-such-gpu"), "{args:?}: the device was opened first\n{}", run.describe());
+        }
+    }
+    assert_eq!(std::fs::read(&file).expect("the file is still there"), b"keep me");
+    let left: Vec<_> =
+        std::fs::read_dir(&dir).expect("scratch").filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
+    assert_eq!(left, vec![std::ffi::OsString::from("out")], "nothing staged beside it");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A 2×2 receiver map (main layer E/E0 in R, G, B and E0) at `path`.
+fn small_exr(path: &std::path::Path) {
+    let data = vec![1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.5, 0.5, 0.5, 1.0];
+    let layer = caustics::image_io::Layer::new(None, &["R", "G", "B", "E0"], data);
+    let image = caustics::image_io::ImageF32 { width: 2, height: 2, layers: vec![layer] };
+    caustics::image_io::write_exr(path, &image).expect("writing a test EXR");
+}
+
+#[test]
+fn compare_names_a_missing_or_non_exr_input() {
+    let dir = scratch("compare-inputs");
+    let exr = dir.join("receiver.exr");
+    small_exr(&exr);
+    let png = dir.join("final.png");
+    caustics::image_io::write_png_tonemapped(&png, 1, 1, &[1.0, 1.0, 1.0], 1.0).expect("writing a test PNG");
+    let missing = dir.join("missing.exr");
+    let (e, p, m) = (exr.display().to_string(), png.display().to_string(), missing.display().to_string());
+    // The real EXR compares: the check does not reject the files causticlab writes.
+    let run = causticlab(&["compare", &e, &e]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    for (args, needles) in [
+        ([&e, &p], [p.as_str(), "not an OpenEXR file", "receiver.exr"]),
+        ([&p, &e], [p.as_str(), "not an OpenEXR file", "receiver.exr"]),
+        ([&e, &m], [m.as_str(), "no such file", "error: "]),
+        ([&m, &e], [m.as_str(), "no such file", "error: "]),
+    ] {
+        let run = causticlab(&["compare", args[0], args[1]]);
+        assert_eq!(run.code, Some(2), "{args:?}\n{}", run.describe());
+        for needle in needles {
+            assert!(run.stderr.contains(needle), "{args:?}: stderr lacks `{needle}`\n{}", run.describe());
+        }
+        assert!(!run.stderr.contains("file identifier missing"), "{}", run.describe());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

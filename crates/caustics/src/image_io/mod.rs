@@ -339,7 +339,10 @@ pub struct OutputDir {
 }
 
 impl OutputDir {
+    /// Fails with an input error, before anything is created, when `final_dir` or one of its
+    /// ancestors is not a directory (see [`check_output_dir`]).
     pub fn create(final_dir: &Path) -> Result<OutputDir> {
+        check_output_dir(final_dir)?;
         let run = || -> Result<OutputDir> {
             let final_dir = match final_dir.file_name() {
                 Some(_) => final_dir.to_path_buf(),
@@ -347,6 +350,7 @@ impl OutputDir {
                 None => final_dir.canonicalize()?,
             };
             let name = final_dir.file_name().context("output directory has no name")?.to_string_lossy().into_owned();
+            remove_stale_staging(&final_dir, &name);
             let staging = final_dir.with_file_name(format!(".{name}.partial-{}", unique_suffix()));
             if staging.exists() {
                 std::fs::remove_dir_all(&staging)?;
@@ -395,6 +399,58 @@ impl OutputDir {
         self.committed = result.is_ok();
         result.with_context(|| format!("committing output directory {}", self.final_dir.display()))
     }
+}
+
+/// An input error when `dir`, or the nearest ancestor of it that exists, is not a directory:
+/// otherwise a run would do all its work and only fail when it moves its files in. Commands call
+/// it before they open the device.
+pub fn check_output_dir(dir: &Path) -> Result<()> {
+    let existing = dir.ancestors().find(|a| !a.as_os_str().is_empty() && a.exists());
+    match existing {
+        Some(a) if !a.is_dir() => Err(crate::input_error!(
+            "output directory {}: {} exists and is not a directory",
+            dir.display(),
+            if a == dir { "it".to_string() } else { a.display().to_string() }
+        )
+        .into()),
+        _ => Ok(()),
+    }
+}
+
+/// Removes the staging directories of `final_dir` that killed runs left behind
+/// (`.<name>.partial-<pid>-<n>`, only where that process no longer exists). A killed process
+/// cannot clean up after itself, and nothing else would. Only Linux can tell (`/proc/<pid>`);
+/// elsewhere they are left. A reused PID keeps a stale directory, which is safe.
+fn remove_stale_staging(final_dir: &Path, name: &str) {
+    let proc = Path::new("/proc");
+    if !cfg!(target_os = "linux") || !proc.join("self").exists() {
+        return;
+    }
+    let parent = match final_dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let Ok(entries) = std::fs::read_dir(parent) else { return };
+    let prefix = format!(".{name}.partial-");
+    for entry in entries.flatten().filter(|e| e.file_type().is_ok_and(|t| t.is_dir())) {
+        let file = entry.file_name();
+        let Some(pid) = file.to_str().and_then(|f| f.strip_prefix(&prefix)).and_then(staging_pid) else {
+            continue;
+        };
+        if pid == std::process::id() || proc.join(pid.to_string()).exists() {
+            continue;
+        }
+        if let Err(e) = std::fs::remove_dir_all(entry.path()) {
+            log::warn!("could not remove the stale staging directory {}: {e}", entry.path().display());
+        }
+    }
+}
+
+/// `<pid>-<n>` (the staging suffix) -> pid.
+fn staging_pid(suffix: &str) -> Option<u32> {
+    let (pid, n) = suffix.split_once('-')?;
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    (digits(pid) && digits(n)).then(|| pid.parse().ok()).flatten()
 }
 
 fn move_contents(from: &Path, to: &Path) -> Result<()> {

@@ -298,3 +298,42 @@ fn output_dir_dropped_uncommitted_leaves_nothing() {
     assert!(!final_dir.exists());
     assert!(entries(&root.0).is_empty());
 }
+
+#[test]
+#[cfg(target_os = "linux")]
+fn output_dir_removes_staging_left_by_dead_processes_only() {
+    let root = TempDir::new("outdir-stale");
+    // A PID above pid_max can never be alive; our own PID is.
+    let pid_max: u32 = std::fs::read_to_string("/proc/sys/kernel/pid_max").unwrap().trim().parse().unwrap();
+    let dead = root.0.join(format!(".run.partial-{}-0", pid_max + 1));
+    let ours = root.0.join(format!(".run.partial-{}-999999", std::process::id()));
+    let other_output = root.0.join(format!(".other.partial-{}-0", pid_max + 1));
+    let not_staging = root.0.join(format!(".run.partial-{}-x", pid_max + 1));
+    for d in [&dead, &ours, &other_output, &not_staging] {
+        std::fs::create_dir_all(d).unwrap();
+        std::fs::write(d.join("final.exr"), b"half").unwrap();
+    }
+    let out = OutputDir::create(&root.0.join("run")).unwrap();
+    assert!(!dead.exists(), "a dead process's staging directory is removed");
+    assert!(ours.join("final.exr").is_file(), "a live process's staging directory is kept");
+    assert!(other_output.is_dir(), "another output's staging directory is not ours to remove");
+    assert!(not_staging.is_dir(), "only `<pid>-<n>` names are staging directories");
+    drop(out);
+    assert!(ours.join("final.exr").is_file(), "dropping the new OutputDir removes only its own staging");
+}
+
+#[test]
+fn output_dir_over_a_file_is_an_input_error_before_anything_is_created() {
+    let root = TempDir::new("outdir-file");
+    let file = root.0.join("out");
+    std::fs::write(&file, b"not a directory").unwrap();
+    for target in [file.clone(), file.join("sub")] {
+        let err = OutputDir::create(&target).unwrap_err();
+        assert!(err.chain().any(|c| c.downcast_ref::<crate::InputError>().is_some()), "{err:#}");
+        let msg = format!("{err:#}");
+        assert!(msg.contains(&target.display().to_string()) && msg.contains("not a directory"), "{msg}");
+    }
+    assert_eq!(entries(&root.0), vec!["out"], "no staging directory beside it");
+    assert_eq!(std::fs::read(&file).unwrap(), b"not a directory");
+    assert!(check_output_dir(&root.0.join("new/dir")).is_ok());
+}

@@ -16,6 +16,7 @@ pub mod search_path;
 pub use glam::Vec3;
 pub use load::{MAX_RESOLUTION, MAX_SUBDIVISIONS};
 pub use mesh::Mesh;
+pub use parse::parse_toml;
 pub use search_path::ModelSearchPath;
 
 use std::path::{Path, PathBuf};

@@ -1,12 +1,20 @@
-//! TOML text -> schema structs, mapping toml's errors (which carry a byte span) to the dotted
-//! key path (`objects[1].radius`) and line they concern.
+//! TOML text -> serde structs (scene files, and the bench crate's configs), mapping toml's
+//! errors (which carry a byte span) to the dotted key path (`objects[1].radius`) and line they
+//! concern.
 
 use super::schema;
 use crate::input_error;
+use serde::de::DeserializeOwned;
 use std::path::Path;
 
-/// TOML text -> schema, with errors that name the file, the key path and the line.
+/// TOML text -> scene schema, with errors that name the file, the key path and the line.
 pub fn parse(path: &Path, text: &str) -> anyhow::Result<schema::SceneFile> {
+    parse_toml(path, text)
+}
+
+/// TOML text -> `T`. Every error is an input error naming `path`, and, where toml's span falls
+/// on a key or value, its dotted path and line: ``x.toml: key `run.measurd_frames` (line 21): …``.
+pub fn parse_toml<T: DeserializeOwned>(path: &Path, text: &str) -> anyhow::Result<T> {
     let line_col = |offset: usize| {
         let before = &text[..offset.min(text.len())];
         let line = before.matches('\n').count() + 1;
@@ -24,7 +32,7 @@ pub fn parse(path: &Path, text: &str) -> anyhow::Result<schema::SceneFile> {
             )));
         }
     };
-    toml::from_str::<schema::SceneFile>(text).map_err(|e| {
+    toml::from_str::<T>(text).map_err(|e| {
         let span = e.span();
         let key = span.as_ref().and_then(|s| key_at(doc.as_table(), s.start, ""));
         let msg = e.message().trim_end().replace('\n', "; ");
