@@ -234,7 +234,7 @@ fn every_light_traverses_its_own_photon_buffer() {
         let dumps = r.dumps(&names).expect("dumps");
         let (pb, lists) = (&dumps[0].1, &dumps[1].1);
         let mut per_light = vec![];
-        for l in 0..2 {
+        for (l, light_sizes) in sizes.iter().enumerate() {
             let pos = pb.layer(Some(&format!("light{l}.position"))).expect("position layer");
             let valid: BTreeSet<(u32, u32)> = (0..pb.width * pb.height)
                 .filter(|&i| pos.data[i as usize * 4 + 3] > 0.5)
@@ -245,9 +245,10 @@ fn every_light_traverses_its_own_photon_buffer() {
                 list.data.chunks_exact(5).filter(|e| e[4] > 0.5).map(|e| (e[0] as u32, e[1] as u32)).collect();
             assert!(valid.len() > 100, "light {l}: {} valid photons: a vacuous test", valid.len());
             assert_eq!(listed, valid, "{path}: light {l}'s final list is not its photon buffer's valid photons");
-            assert_eq!(sizes[l].last().copied(), Some(valid.len() as u64), "{path}: light {l}'s counter");
+            assert_eq!(light_sizes.last().copied(), Some(valid.len() as u64), "{path}: light {l}'s counter");
             per_light.push(valid);
         }
+        assert_eq!(per_light.len(), 2, "{path}: list sizes of {} lights", per_light.len());
         assert_ne!(per_light[0], per_light[1], "both lights see the same photons: a vacuous test");
     }
     let log = ctx.validation_log();

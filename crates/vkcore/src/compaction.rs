@@ -64,7 +64,7 @@ impl CompactStream {
         capacity: u32,
         element_bytes: u64,
     ) -> Result<CompactStream> {
-        if element_bytes == 0 || element_bytes % 4 != 0 {
+        if element_bytes == 0 || !element_bytes.is_multiple_of(4) {
             return Err(crate::VkError::Invalid(format!("{name}: elements of {element_bytes} bytes")));
         }
         let bytes = capacity.max(1) as u64 * element_bytes;
