@@ -23,12 +23,23 @@ for s in "${scenes[@]}"; do
       $bin reference --scene "$scene" --photons "$ref_photons" --seed $seed --fresnel false --out "$work/$s/ref$seed"
   done
   echo "reference-noise|$ref_photons|$($bin compare "$work/$s/ref2/receiver.exr" "$work/$s/ref1/receiver.exr" --json | tr -d '\n')" >> "$rows"
-  for t in shah wd-points shah-vertex; do
+  # label|folder|render flags
+  variants=(
+    "shah|shah|--technique shah"
+    "wd-points|wd-points|--technique wd-points"
+    "shah-vertex|shah-vertex|--technique shah-vertex"
+    "hcm (compute, combine last)|hcm|--technique hcm --path compute --cluster last"
+    "hcm varying multi-res (max distance)|hcm-varying|--technique hcm --path compute --cluster last --splat varying-multires"
+    "hcm varying multi-res (beam area, Eq. 2)|hcm-beam-area|--technique hcm --path compute --cluster last --splat varying-multires --varying-radius beam-area"
+  )
+  for v in "${variants[@]}"; do
+    IFS='|' read -r label folder flags <<< "$v"
     for n in 256 512 1024 2048; do
-      [ "$t" = shah-vertex ] && [ "$n" != 256 ] && continue   # photons follow the tessellation
-      out=$work/$s/$t-$n
-      $bin render --scene "$scene" --technique "$t" --photons "$n" --fresnel false --out "$out" --dump receiver > "$out.log"
-      echo "$t|$n|$($bin compare "$out/receiver.exr" "$work/$s/ref1/receiver.exr" --json | tr -d '\n')" >> "$rows"
+      [ "$folder" = shah-vertex ] && [ "$n" != 256 ] && continue   # photons follow the tessellation
+      out=$work/$s/$folder-$n
+      # shellcheck disable=SC2086 # the flags are words
+      $bin render --scene "$scene" $flags --photons "$n" --fresnel false --out "$out" --dump receiver > "$out.log"
+      echo "$label|$n|$($bin compare "$out/receiver.exr" "$work/$s/ref1/receiver.exr" --json | tr -d '\n')" >> "$rows"
     done
   done
   device=$($bin devices | sed -n 's/^\[\([0-9]*\)\] \(.*\) \[default\].*/\2/p' | head -1)

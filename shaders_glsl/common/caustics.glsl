@@ -6,6 +6,7 @@
 
 #define CAUSTIC_FRESNEL 1u          // settings.w bit: Fresnel transmittance at both interfaces
 #define CAUSTIC_WD_DEPTH_SEARCH 2u  // settings.w bit: Wyman & Davis depth search, else Shah rayGeo
+#define CAUSTIC_BEAM_AREA 4u        // settings.w bit: varying splats by Eq. 1-2, else max distance
 #define SPLAT_FIXED 0.0
 #define SPLAT_VARYING_SINGLE 1.0
 #define SPLAT_VARYING_MULTIRES 2.0

@@ -48,28 +48,7 @@ bool photon_of_entry(uvec4 entry, out vec4 pos, out vec3 power) {
     return true;
 }
 
-// Splat radius (caustic-map texels) from the photon's neighbours (Wyman 2008 Sec. 3.3, Eq. 1-2
-// with the paper's approximation by the largest distance between adjacent photons rather than
-// the area they span). Measured in the caustic map itself, the distance already carries Eq. 2's
-// d^2 and obliquity: it is the footprint of the photon's beam in texels. Clusters of converging
-// photons land in one texel by construction.
-float varying_radius(uvec4 entry, vec2 centre, CausticLight cl) {
-    if (entry.z != 0u) return 1.0;
-    ivec2 t = ivec2(entry.xy);
-    int n = textureSize(photon_position, 0).x;
-    const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
-    float dmax = 0.0;
-    for (int k = 0; k < 4; ++k) {
-        ivec2 q = t + offsets[k];
-        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(n)))) continue;
-        vec4 p = texelFetch(photon_position, q, 0);
-        if (p.w < 0.5) continue;
-        vec4 clip = cl.caustic_view_proj * vec4(p.xyz, 1.0);
-        if (clip.w <= 0.0) continue;
-        dmax = max(dmax, distance((clip.xy / clip.w * 0.5 + 0.5) * cl.caustic_plane.y, centre));
-    }
-    return max(dmax, 1.0);
-}
+#include "photons/varying_splat.glsl"
 #endif
 
 struct Splat {
@@ -95,7 +74,7 @@ bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
     float r = caustics.splat.x;
 #ifdef HIERARCHY
     if (caustics.splat.w != SPLAT_FIXED) {
-        r = varying_radius(entry, centre, cl);
+        r = varying_radius(entry, pos.xyz, centre, cl);
         // photonMipLevel = trunc(log2(max(1, D / 5))); splats needing level 4 or beyond are
         // discarded (D >= 80 by this formula: radius >= 40 texels; the paper's text says "a
         // diameter of more than 40 pixels", which its formula puts at level 3), in the single map

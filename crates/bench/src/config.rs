@@ -148,6 +148,8 @@ pub struct TechniqueSpec {
     pub cluster: Option<String>,
     /// `hcm`: `fixed`, `varying-single` or `varying-multires`.
     pub splat: Option<String>,
+    /// `hcm` with varying splats: `max-distance` or `beam-area`.
+    pub varying_radius: Option<String>,
     /// `raster` (points) or `compute` (photons/splat.comp).
     pub splat_path: Option<String>,
     /// Vertices per instance of the instanced photon fetch (1024, 2048, 4096 in the paper).

@@ -19,43 +19,24 @@ use vkcore::{Context, FrameReport, ShaderCompiler};
 
 /// Writes a technique entry's settings over `s` (unset keys keep `s`'s values).
 pub fn apply_technique(s: &mut CausticSettings, t: &TechniqueSpec) {
-    s.technique = t.technique.clone();
-    if let Some(v) = t.splat_radius {
-        s.splat_radius = v;
+    caustics::scene::CausticOverrides {
+        technique: Some(t.technique.clone()),
+        photons: None,
+        splat_radius: t.splat_radius,
+        splat_kernel: t.splat_kernel.clone(),
+        caustic_map_resolution: t.caustic_map_resolution,
+        iterations: t.iterations,
+        fresnel: t.fresnel,
+        back_face_iterations: t.back_face_iterations,
+        intersect: t.intersect.clone(),
+        path: t.path.clone(),
+        cluster: t.cluster.clone(),
+        splat: t.splat.clone(),
+        varying_radius: t.varying_radius.clone(),
+        splat_path: t.splat_path.clone(),
+        instance_vertices: t.instance_vertices,
     }
-    if let Some(v) = &t.splat_kernel {
-        s.splat_kernel = v.clone();
-    }
-    if let Some(v) = t.caustic_map_resolution {
-        s.caustic_map_resolution = v;
-    }
-    if let Some(v) = t.iterations {
-        s.iterations = v;
-    }
-    if let Some(v) = t.fresnel {
-        s.fresnel = v;
-    }
-    if let Some(v) = t.back_face_iterations {
-        s.back_face_iterations = v;
-    }
-    if let Some(v) = &t.intersect {
-        s.intersect = Some(v.clone());
-    }
-    if let Some(v) = &t.path {
-        s.path = v.clone();
-    }
-    if let Some(v) = &t.cluster {
-        s.cluster = v.clone();
-    }
-    if let Some(v) = &t.splat {
-        s.splat = v.clone();
-    }
-    if let Some(v) = &t.splat_path {
-        s.splat_path = v.clone();
-    }
-    if let Some(v) = t.instance_vertices {
-        s.instance_vertices = v;
-    }
+    .apply(s);
 }
 
 /// What one cell measured.

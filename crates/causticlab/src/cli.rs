@@ -187,6 +187,10 @@ pub struct CausticArgs {
     /// hcm: splat sizes: fixed, varying-single (one map) or varying-multires (layered map).
     #[arg(long)]
     pub splat: Option<String>,
+    /// hcm, varying splats: radius from the largest distance to the adjacent photons
+    /// (max-distance, the paper's approximation) or from their beam area (beam-area, Eq. 1-2).
+    #[arg(long)]
+    pub varying_radius: Option<String>,
     /// Splat photons as points (raster, the papers') or with a compute shader (compute)
     #[arg(long)]
     pub splat_path: Option<String>,
@@ -198,48 +202,24 @@ pub struct CausticArgs {
 impl CausticArgs {
     /// Applies the overrides to `s` and checks the result.
     pub fn apply(&self, s: &mut caustics::scene::CausticSettings) -> anyhow::Result<()> {
-        if let Some(v) = &self.technique {
-            s.technique = v.clone();
+        caustics::scene::CausticOverrides {
+            technique: self.technique.clone(),
+            photons: self.photons,
+            splat_radius: self.splat_radius,
+            splat_kernel: self.splat_kernel.clone(),
+            caustic_map_resolution: self.caustic_map_resolution,
+            iterations: self.iterations,
+            fresnel: self.fresnel,
+            back_face_iterations: self.back_face_iterations,
+            intersect: self.intersect.clone(),
+            path: self.path.clone(),
+            cluster: self.cluster.clone(),
+            splat: self.splat.clone(),
+            varying_radius: self.varying_radius.clone(),
+            splat_path: self.splat_path.clone(),
+            instance_vertices: self.instance_vertices,
         }
-        if let Some(v) = self.photons {
-            s.photons = v;
-        }
-        if let Some(v) = self.splat_radius {
-            s.splat_radius = v;
-        }
-        if let Some(v) = &self.splat_kernel {
-            s.splat_kernel = v.clone();
-        }
-        if let Some(v) = self.caustic_map_resolution {
-            s.caustic_map_resolution = v;
-        }
-        if let Some(v) = self.iterations {
-            s.iterations = v;
-        }
-        if let Some(v) = self.fresnel {
-            s.fresnel = v;
-        }
-        if let Some(v) = self.back_face_iterations {
-            s.back_face_iterations = v;
-        }
-        if let Some(v) = &self.intersect {
-            s.intersect = Some(v.clone());
-        }
-        if let Some(v) = &self.path {
-            s.path = v.clone();
-        }
-        if let Some(v) = &self.cluster {
-            s.cluster = v.clone();
-        }
-        if let Some(v) = &self.splat {
-            s.splat = v.clone();
-        }
-        if let Some(v) = &self.splat_path {
-            s.splat_path = v.clone();
-        }
-        if let Some(v) = self.instance_vertices {
-            s.instance_vertices = v;
-        }
+        .apply(s);
         s.validate("command line", "--")
     }
 }

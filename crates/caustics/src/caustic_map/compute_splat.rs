@@ -236,7 +236,7 @@ impl ComputeSplat {
 
 /// (x, y) work groups of [`GROUP`] invocations covering `n`, with x within the 65535 every
 /// device allows (splat.comp flattens the grid row by row).
-fn groups(n: u32) -> (u32, u32) {
+pub(crate) fn groups(n: u32) -> (u32, u32) {
     let groups = n.div_ceil(GROUP).max(1);
     let x = groups.min(65535);
     (x, groups.div_ceil(x))

@@ -30,6 +30,7 @@ pub struct CausticUniforms {
 
 pub const FLAG_FRESNEL: u32 = 1;
 pub const FLAG_WD_DEPTH_SEARCH: u32 = 2;
+pub const FLAG_BEAM_AREA: u32 = 4;
 
 const _: () = assert!(std::mem::size_of::<CausticLightUniforms>() == 2 * 64 + 4 * 16);
 const _: () = assert!(std::mem::size_of::<CausticUniforms>() == 32 + MAX_LIGHTS * 192);
@@ -61,7 +62,8 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
     let mut u =
         CausticUniforms { settings: [0; 4], splat: [0.0; 4], lights: [CausticLightUniforms::zeroed(); MAX_LIGHTS] };
     let flags = if settings.fresnel { FLAG_FRESNEL } else { 0 }
-        | if settings.intersect() == "wd-depth-search" { FLAG_WD_DEPTH_SEARCH } else { 0 };
+        | if settings.intersect() == "wd-depth-search" { FLAG_WD_DEPTH_SEARCH } else { 0 }
+        | if settings.varying_radius == "beam-area" { FLAG_BEAM_AREA } else { 0 };
     u.settings = [0, settings.photons, settings.iterations, flags];
     u.splat = [
         settings.splat_radius,
@@ -174,5 +176,6 @@ mod tests {
         assert_eq!(found, names);
         assert!(src.contains(&format!("#define CAUSTIC_FRESNEL {FLAG_FRESNEL}u")));
         assert!(src.contains(&format!("#define CAUSTIC_WD_DEPTH_SEARCH {FLAG_WD_DEPTH_SEARCH}u")));
+        assert!(src.contains(&format!("#define CAUSTIC_BEAM_AREA {FLAG_BEAM_AREA}u")));
     }
 }

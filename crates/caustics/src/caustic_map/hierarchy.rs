@@ -579,20 +579,14 @@ impl Hierarchy {
 /// holds light l's list k, an entry per pixel in row-major order: x, y, level, final (1 = a
 /// cluster of converging photons), valid (1 = an entry; the rest of the image is padding).
 pub fn lists_image(per_light: &[Vec<Vec<[u32; 4]>>]) -> ImageF32 {
-    let longest = per_light.iter().flatten().map(Vec::len).max().unwrap_or(0).max(1);
-    let w = (longest as f64).sqrt().ceil() as usize;
-    let h = longest.div_ceil(w);
-    let mut layers = vec![];
-    for (l, lists) in per_light.iter().enumerate() {
-        for (k, list) in lists.iter().enumerate() {
-            let mut data = vec![0.0f32; w * h * 5];
-            for (i, e) in list.iter().enumerate() {
-                data[i * 5..i * 5 + 5].copy_from_slice(&[e[0] as f32, e[1] as f32, e[2] as f32, e[3] as f32, 1.0]);
-            }
-            layers.push(Layer::new(Some(&format!("light{l}.list{k}")), &["x", "y", "level", "final", "valid"], data));
+    let mut lists = vec![];
+    for (l, light) in per_light.iter().enumerate() {
+        for (k, list) in light.iter().enumerate() {
+            let records = list.iter().map(|e| vec![e[0] as f32, e[1] as f32, e[2] as f32, e[3] as f32, 1.0]).collect();
+            lists.push((format!("light{l}.list{k}"), records));
         }
     }
-    ImageF32 { width: w as u32, height: h as u32, layers }
+    super::records_image(lists, &["x", "y", "level", "final", "valid"])
 }
 
 /// What the hierarchy passes read besides the photon buffer.

@@ -21,6 +21,7 @@ pub mod hierarchy;
 mod passes;
 pub mod photon_copy;
 mod pipelines;
+pub mod splat_footprints;
 mod targets;
 
 pub use compute_splat::ComputeSplat;
@@ -29,7 +30,29 @@ pub use photon_copy::{CopyType, PhotonCopy, COPY_TYPES};
 pub use pipelines::CausticPipelines;
 pub use targets::{CausticTargets, PhotonTargets};
 
+use crate::image_io::{ImageF32, Layer};
 use crate::scene::CausticSettings;
+
+/// Lists of records as one image for the dumps: a record (of `channels.len()` values) per pixel
+/// in row-major order, zeros after the list's end, in an image just large enough for the
+/// longest list; one layer per (name, list).
+pub(crate) fn records_image(lists: Vec<(String, Vec<Vec<f32>>)>, channels: &[&str]) -> ImageF32 {
+    let longest = lists.iter().map(|(_, l)| l.len()).max().unwrap_or(0).max(1);
+    let w = (longest as f64).sqrt().ceil() as usize;
+    let h = longest.div_ceil(w);
+    let nc = channels.len();
+    let layers = lists
+        .into_iter()
+        .map(|(name, records)| {
+            let mut data = vec![0.0f32; w * h * nc];
+            for (i, r) in records.iter().enumerate() {
+                data[i * nc..(i + 1) * nc].copy_from_slice(r);
+            }
+            Layer::new(Some(&name), channels, data)
+        })
+        .collect();
+    ImageF32 { width: w as u32, height: h as u32, layers }
+}
 
 /// Photons the technique emits per light (for tables; hardware independent).
 pub fn photons_per_light(settings: &CausticSettings, specular_vertices: u32) -> u64 {

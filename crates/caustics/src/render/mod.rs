@@ -31,16 +31,25 @@ pub const DUMP_NAMES: &[&str] = &[
     "caustic_map",
     "hierarchy",
     "hierarchy_lists",
+    "splats",
 ];
 
 /// The buffers only a caustic technique has.
-pub const CAUSTIC_DUMPS: &[&str] =
-    &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map", "hierarchy", "hierarchy_lists"];
+pub const CAUSTIC_DUMPS: &[&str] = &[
+    "receiver_positions",
+    "photon_back_faces",
+    "photon_buffer",
+    "caustic_map",
+    "hierarchy",
+    "hierarchy_lists",
+    "splats",
+];
 /// The buffers only `hcm` has.
-pub const HIERARCHY_DUMPS: &[&str] = &["hierarchy", "hierarchy_lists"];
+pub const HIERARCHY_DUMPS: &[&str] = &["hierarchy", "hierarchy_lists", "splats"];
 /// The light-space buffers that serve every light in turn (dumped light by light, layers
 /// `light<l>.<layer>`; see `Renderer::dumps`).
-pub const LIGHT_SPACE_DUMPS: &[&str] = &["photon_back_faces", "photon_buffer", "hierarchy", "hierarchy_lists"];
+pub const LIGHT_SPACE_DUMPS: &[&str] =
+    &["photon_back_faces", "photon_buffer", "hierarchy", "hierarchy_lists", "splats"];
 
 /// Techniques `--technique` accepts.
 pub use crate::scene::TECHNIQUES;

@@ -4,6 +4,7 @@
 
 use super::{dumps, eye, gpu, pipelines, setup, targets};
 use crate::caustic_map::hierarchy::{self, Hierarchy};
+use crate::caustic_map::splat_footprints::{self, SplatFootprints};
 use crate::caustic_map::{self, CausticFrame, CopyType, PhotonCopy};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
@@ -36,6 +37,8 @@ struct CausticResources {
     instance_vertices: u32,
     copy: Option<PhotonCopy>,
     hierarchy: Option<Hierarchy>,
+    /// What the `splats` dump reads the hierarchy's splats with.
+    footprints: Option<SplatFootprints>,
     compute_splat: Option<caustic_map::ComputeSplat>,
 }
 
@@ -146,6 +149,7 @@ impl<'c> Renderer<'c> {
                 splat_vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
                 instance_vertices: settings.instance_vertices,
                 copy,
+                footprints: if hierarchy.is_some() { Some(SplatFootprints::new(ctx, shaders)?) } else { None },
                 hierarchy,
                 compute_splat,
             })
@@ -283,12 +287,12 @@ impl<'c> Renderer<'c> {
     pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
         let light_space = |n: &str| super::LIGHT_SPACE_DUMPS.contains(&n);
         let has = |n: &str| match n {
-            "hierarchy" | "hierarchy_lists" => self.hierarchy().is_some(),
+            "hierarchy" | "hierarchy_lists" | "splats" => self.hierarchy().is_some(),
             _ => self.caustic.is_some(),
         };
         let wanted: Vec<&str> = names.iter().map(String::as_str).filter(|n| light_space(n) && has(n)).collect();
         let mut per_light: Vec<Option<ImageF32>> = vec![None; wanted.len()];
-        let mut lists = vec![];
+        let (mut lists, mut splats) = (vec![], vec![]);
         let lights = self.targets.shadow.lights;
         for l in 0..if wanted.is_empty() { 0 } else { lights } {
             if lights > 1 {
@@ -302,6 +306,16 @@ impl<'c> Renderer<'c> {
                         lists.push(h.read_lists(self.ctx)?);
                         continue;
                     }
+                    ("splats", Some(h)) => {
+                        let footprints = c.footprints.as_ref().context("no splat footprints pipeline")?;
+                        let inputs = hierarchy::Inputs {
+                            frame_uniforms: &self.uniforms,
+                            caustic_uniforms: &self.caustic_uniforms,
+                            nearest: &self.nearest,
+                        };
+                        splats.push(footprints.read(self.ctx, h, &inputs, &c.photons, l)?);
+                        continue;
+                    }
                     _ => dumps::photon_targets(self.ctx, &c.photons, name)?,
                 };
                 per_light[i] = Some(dumps::merge(per_light[i].take(), dumps::for_light(img, l))?);
@@ -311,6 +325,7 @@ impl<'c> Renderer<'c> {
         for name in names {
             let img = match wanted.iter().position(|w| w == name) {
                 Some(_) if name == "hierarchy_lists" => Some(hierarchy::lists_image(&lists)),
+                Some(_) if name == "splats" => Some(splat_footprints::splats_image(&splats)),
                 Some(i) => per_light[i].take(),
                 None if light_space(name) => None,
                 None => {

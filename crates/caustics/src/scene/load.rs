@@ -119,24 +119,8 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         exposure: ctx.positive("render.exposure", r.exposure.unwrap_or(1.0))?,
         background: ctx.colour("render.background", r.background.unwrap_or([0.0; 3]), f32::INFINITY)?,
     };
-    let c = &def.caustics;
-    let d = super::CausticSettings::default();
-    let caustics = super::CausticSettings {
-        technique: c.technique.clone().unwrap_or(d.technique),
-        photons: c.photons.unwrap_or(d.photons),
-        splat_radius: c.splat_radius.unwrap_or(d.splat_radius),
-        splat_kernel: c.splat_kernel.clone().unwrap_or(d.splat_kernel),
-        caustic_map_resolution: c.caustic_map_resolution.unwrap_or(d.caustic_map_resolution),
-        iterations: c.iterations.unwrap_or(d.iterations),
-        fresnel: c.fresnel.unwrap_or(d.fresnel),
-        back_face_iterations: c.back_face_iterations.unwrap_or(d.back_face_iterations),
-        intersect: c.intersect.clone().or(d.intersect),
-        path: c.path.clone().unwrap_or(d.path),
-        cluster: c.cluster.clone().unwrap_or(d.cluster),
-        splat: c.splat.clone().unwrap_or(d.splat),
-        splat_path: c.splat_path.clone().unwrap_or(d.splat_path),
-        instance_vertices: c.instance_vertices.unwrap_or(d.instance_vertices),
-    };
+    let mut caustics = super::CausticSettings::default();
+    def.caustics.apply(&mut caustics);
     caustics.validate(&ctx.file.display().to_string(), "caustics.")?;
     Ok(Scene { path: ctx.file.to_path_buf(), camera, lights, materials, objects, receiver_map, render, caustics })
 }

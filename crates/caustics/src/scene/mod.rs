@@ -8,6 +8,7 @@ pub mod load;
 pub mod mesh;
 pub mod obj;
 mod object;
+mod overrides;
 mod parse;
 pub mod procedural;
 pub mod schema;
@@ -16,6 +17,7 @@ pub mod search_path;
 pub use glam::Vec3;
 pub use load::{MAX_RESOLUTION, MAX_SUBDIVISIONS};
 pub use mesh::Mesh;
+pub use overrides::CausticOverrides;
 pub use parse::parse_toml;
 pub use search_path::ModelSearchPath;
 
@@ -49,6 +51,11 @@ pub const CLUSTER_MODES: &[&str] = &["none", "last", "all"];
 /// baseline), or that radius with each splat in the layer of a multi-resolution caustic map
 /// where its diameter is at most 5 texels.
 pub const SPLAT_MODES: &[&str] = &["fixed", "varying-single", "varying-multires"];
+/// How varying splats (`caustics.varying_radius`, `--varying-radius`) find their radius from the
+/// photon's neighbours in the photon buffer (Wyman 2008 Sec. 3.3): the largest distance to its
+/// four adjacent photons (the approximation the paper used, for robustness), or Eq. 1-2, the
+/// area of the quadrilaterals it forms with its adjacent photons over its unoccluded beam's.
+pub const VARYING_RADII: &[&str] = &["max-distance", "beam-area"];
 /// How photons are splatted into the caustic map (`caustics.splat_path`, `--splat-path`): points
 /// drawn by the graphics pipeline (the papers') or a compute shader adding each splat with float
 /// atomics (photons/splat.comp); both give the same map.
@@ -86,6 +93,8 @@ pub struct CausticSettings {
     pub cluster: String,
     /// `hcm` only: one of [`SPLAT_MODES`]; default `fixed`.
     pub splat: String,
+    /// `hcm` with varying splats only: one of [`VARYING_RADII`]; default `max-distance`.
+    pub varying_radius: String,
     /// One of [`SPLAT_PATHS`]; default `raster`.
     pub splat_path: String,
     /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4: "a smaller
@@ -109,6 +118,7 @@ impl Default for CausticSettings {
             path: "xfb".into(),
             cluster: "none".into(),
             splat: "fixed".into(),
+            varying_radius: "max-distance".into(),
             splat_path: "raster".into(),
             instance_vertices: 1024,
         }
@@ -156,9 +166,26 @@ impl CausticSettings {
         one_of("path", &self.path, HIERARCHY_PATHS)?;
         one_of("cluster", &self.cluster, CLUSTER_MODES)?;
         one_of("splat", &self.splat, SPLAT_MODES)?;
+        one_of("varying_radius", &self.varying_radius, VARYING_RADII)?;
         one_of("splat_path", &self.splat_path, SPLAT_PATHS)?;
-        if self.splat != "fixed" && self.technique != "hcm" {
-            bad("splat", format!("`{}` splats are part of technique hcm, not `{}`", self.splat, self.technique))?;
+        // The hierarchy's settings mean nothing to the other techniques: saying one there is a
+        // mistake (and would be recorded in timings.json as if it had been applied).
+        let d = CausticSettings::default();
+        let hcm_only =
+            [("path", &self.path, &d.path), ("cluster", &self.cluster, &d.cluster), ("splat", &self.splat, &d.splat)];
+        for (k, v, default) in hcm_only {
+            if self.technique != "hcm" && v != default {
+                bad(k, format!("`{v}` is a setting of technique hcm, not of `{}`", self.technique))?;
+            }
+        }
+        if self.varying_radius != d.varying_radius && (self.technique != "hcm" || self.splat == "fixed") {
+            bad(
+                "varying_radius",
+                format!(
+                    "`{}` sizes varying splats (hcm with splat = varying-single or varying-multires)",
+                    self.varying_radius
+                ),
+            )?;
         }
         if let Some(i) = &self.intersect {
             one_of("intersect", i, INTERSECTS)?;

@@ -21,27 +21,8 @@ pub struct SceneFile {
     #[serde(default)]
     pub render: RenderDef,
     #[serde(default)]
-    pub caustics: CausticsDef,
-}
-
-/// `[caustics]`: the caustic technique and its parameters (each overridable on the command line).
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CausticsDef {
-    pub technique: Option<String>,
-    pub photons: Option<u32>,
-    pub splat_radius: Option<f32>,
-    pub splat_kernel: Option<String>,
-    pub caustic_map_resolution: Option<u32>,
-    pub iterations: Option<u32>,
-    pub fresnel: Option<bool>,
-    pub back_face_iterations: Option<u32>,
-    pub intersect: Option<String>,
-    pub path: Option<String>,
-    pub cluster: Option<String>,
-    pub splat: Option<String>,
-    pub splat_path: Option<String>,
-    pub instance_vertices: Option<u32>,
+    /// `[caustics]`: the caustic technique and its parameters (each overridable on the command line).
+    pub caustics: super::CausticOverrides,
 }
 
 #[derive(Debug, Deserialize)]

@@ -281,3 +281,27 @@ fn obj_fit_scales_and_places() {
     assert!((hi - Vec3::new(0.5, 3.0, 0.25)).length() < 1e-5, "{hi}");
     assert!(o.mesh.signed_volume() > 0.0);
 }
+
+#[test]
+fn hierarchy_settings_belong_to_hcm() {
+    let with = |caustics: &str| format!("{BASE}\n[caustics]\n{caustics}\n");
+    let cases: Vec<(String, &[&str])> = vec![
+        (with("technique = \"wd-points\"\ncluster = \"all\""), &["caustics.cluster", "hcm", "wd-points"]),
+        (with("technique = \"shah\"\npath = \"compute\""), &["caustics.path", "hcm", "shah"]),
+        (with("technique = \"wd-points\"\nsplat = \"varying-single\""), &["caustics.splat", "hcm"]),
+        (with("technique = \"hcm\"\nvarying_radius = \"beam-area\""), &["caustics.varying_radius", "varying"]),
+        (
+            with("technique = \"hcm\"\nsplat = \"varying-multires\"\nvarying_radius = \"area\""),
+            &["caustics.varying_radius", "beam-area", "max-distance"],
+        ),
+    ];
+    for (i, (text, needles)) in cases.iter().enumerate() {
+        expect_error(&format!("hcm_only{i}.toml"), text, needles);
+    }
+    let ok = load_text(
+        "hcm_ok.toml",
+        &with("technique = \"hcm\"\nsplat = \"varying-single\"\nvarying_radius = \"beam-area\""),
+    );
+    let s = ok.expect("hcm with beam-area varying splats loads");
+    assert_eq!((s.caustics.splat.as_str(), s.caustics.varying_radius.as_str()), ("varying-single", "beam-area"));
+}

@@ -1,0 +1,29 @@
+// The `splats` dump of hcm: each entry of the traversal's final list as the splat passes
+// (photons/splat.vert, splat.comp) splat it, from the same photons/splat_photon.glsl: where it
+// lands, its radius and layer, its power. Two vec4 per entry: (centre x, centre y, radius,
+// layer) in texels of the base caustic map (the layer holds it at 1/2^layer of both), and
+// (power rgb, photons); all zero for an entry that splats nothing (off the map, or a varying
+// splat too wide for the last map level). object.info: x = entries, y = light.
+#version 450
+#define CAUSTICS_BINDING 1
+#define HIERARCHY 1
+#include "common/caustics.glsl"
+#include "photons/splat_photon.glsl"
+layout(local_size_x = 64) in;
+layout(std430, binding = 6) readonly buffer Entries { uint entries[]; };   // packed (hierarchy/entry.glsl)
+layout(std430, binding = 7) writeonly buffer Footprints { vec4 footprints[]; };
+
+void main() {
+    uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x;
+    if (i >= object.info.x) return;
+    uvec4 entry = unpack_entry(entries[i]);
+    vec4 pos;
+    vec3 power;
+    Splat s;
+    footprints[2u * i] = vec4(0.0);
+    footprints[2u * i + 1u] = vec4(0.0);
+    if (!photon_of_entry(entry, pos, power) || !splat_of(pos, power, entry, caustics.lights[object.info.y], s)) return;
+    float scale = exp2(float(s.layer));
+    footprints[2u * i] = vec4(s.centre * scale, max(s.radius, 0.0) * scale, float(s.layer));
+    footprints[2u * i + 1u] = vec4(power, pos.w);
+}
