@@ -17,7 +17,9 @@ use crate::scene::Scene;
 use anyhow::Result;
 use vkcore::{Context, FrameReport, ShaderCompiler};
 
-/// Every intermediate buffer `--dump` accepts (`all` = every one).
+/// Every intermediate buffer `--dump` accepts (`all` = every one): those of every render, then
+/// those of the caustic techniques ([`CAUSTIC_DUMPS`]), the last of them `hcm`'s
+/// ([`HIERARCHY_DUMPS`]).
 pub const DUMP_NAMES: &[&str] = &[
     "shadow_map",
     "background",
@@ -35,17 +37,9 @@ pub const DUMP_NAMES: &[&str] = &[
 ];
 
 /// The buffers only a caustic technique has.
-pub const CAUSTIC_DUMPS: &[&str] = &[
-    "receiver_positions",
-    "photon_back_faces",
-    "photon_buffer",
-    "caustic_map",
-    "hierarchy",
-    "hierarchy_lists",
-    "splats",
-];
+pub const CAUSTIC_DUMPS: &[&str] = DUMP_NAMES.split_at(6).1;
 /// The buffers only `hcm` has.
-pub const HIERARCHY_DUMPS: &[&str] = &["hierarchy", "hierarchy_lists", "splats"];
+pub const HIERARCHY_DUMPS: &[&str] = DUMP_NAMES.split_at(10).1;
 /// The light-space buffers that serve every light in turn (dumped light by light, layers
 /// `light<l>.<layer>`; see `Renderer::dumps`).
 pub const LIGHT_SPACE_DUMPS: &[&str] =
@@ -145,4 +139,16 @@ pub fn shader_root() -> std::path::PathBuf {
         }
     }
     std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl"))
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn dump_groups_start_where_their_buffers_do() {
+        assert_eq!(super::CAUSTIC_DUMPS.first(), Some(&"receiver_positions"));
+        assert_eq!(super::HIERARCHY_DUMPS, &["hierarchy", "hierarchy_lists", "splats"]);
+        for light_space in super::LIGHT_SPACE_DUMPS {
+            assert!(super::CAUSTIC_DUMPS.contains(light_space), "{light_space}");
+        }
+    }
 }
