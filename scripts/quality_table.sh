@@ -49,7 +49,8 @@ scene, rows, ref_photons, device, commit = sys.argv[1:6]
 print(f"# Caustic quality: `{scene}` against the exact CPU photon reference\n")
 print(f"Device: {device or 'default device'}; commit {commit}; {datetime.date.today()}. "
       f"Reference: `causticlab reference --photons {ref_photons} --fresnel false` (seed 1); all techniques "
-      "`--fresnel false` (two refractions, all power transmitted), default splat (Gaussian, radius 1.5 texels), "
+      "`--fresnel false` (two refractions, all power transmitted), default splat (Gaussian, radius 1.5 texels; "
+      "the `hcm varying` rows size each splat from its neighbours instead), "
       "caustic map 1024^2, 4 back-face iterations. Regenerate: `bash scripts/quality_table.sh " + scene + "`.\n")
 print("Errors are over the texels where either receiver map differs from 1 by more than 0.05 "
       "(see `causticlab compare`). `shah-vertex` traces one photon per mesh vertex, so its photon count is "

@@ -1,10 +1,11 @@
 // One step of the hierarchical photon traversal (Wyman 2008 Sec. 3.1-3.2), shared by the
-// geometry-shader (transform feedback) and compute paths. An entry is uvec4(x, y, level,
-// final), packed into a uint in the lists (hierarchy/entry.glsl). A final entry (a converged cluster) is passed on unchanged, as the paper's single
-// output stream with a flag does. Otherwise the entry at level k either converges (every
-// photon below it lands in one caustic-map texel: Sec. 3.2, when clustering is tested at this
-// level) and becomes final, or emits those of its four children at level k-1 that hold at
-// least one valid photon; children of a level-1 entry are photons of the photon buffer.
+// geometry-shader (transform feedback) and compute paths. An entry is uvec4(x, y, level, final),
+// packed into a uint in the lists (hierarchy/entry.glsl). A final entry (a converged cluster) is
+// passed on unchanged, as the paper's single output stream with a flag does. Otherwise the entry
+// at level k either converges (two or more photons below it, all landing in one texel of the
+// caustic map: Sec. 3.2, when clustering is tested at this level) and becomes final, or emits
+// those of its four children at level k-1 that hold at least one valid photon; children of a
+// level-1 entry are photons of the photon buffer.
 // object.info: x = level k, y = light, z = 1 when convergence is tested at this level,
 // w = photon buffer side N.
 #ifndef TRAVERSE_GLSL

@@ -45,7 +45,7 @@ bool fetch_photon(out vec4 pos, out vec3 power) {
 }
 uvec4 entry() { return uvec4(0u); }
 #endif
-layout(location = 0) flat out vec4 v_power;     // (power, 1) / (sum of kernel weights)
+layout(location = 0) flat out vec4 v_power;     // (power, photons) / (sum of kernel weights)
 layout(location = 1) flat out vec2 v_centre;    // photon position in caustic-map pixels
 layout(location = 2) flat out float v_radius;
 

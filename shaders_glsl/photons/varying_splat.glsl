@@ -42,7 +42,9 @@ float max_distance_radius(ivec2 t, vec2 centre, CausticLight cl) {
 // (w_c: the caustic-map texel's solid angle there). A_i (N.D_i) is the quadrilateral's area
 // vector projected on D_i, the direction from the light (the unoccluded beam's). The paper takes
 // the quadrilateral p_i p_j p_l p_k of one quadrant; the four quadrants' whose photons are all
-// valid are averaged here, centring the estimate on p_i.
+// valid are averaged here, centring the estimate on p_i. w_i cancels: the radius is the square
+// root of the quadrilateral's footprint in caustic-map texels (tests/varying_splats.rs checks
+// both routes agree); it is kept to read as the paper's equation.
 float beam_area_radius(ivec2 t, vec3 p, CausticLight cl) {
     vec3 to_p = p - cl.position.xyz;
     float d = length(to_p);

@@ -115,7 +115,9 @@ impl<'a> Runner<'a> {
                 path.display()
             ));
         }
-        scene.caustics.validate(&self.config.path.display().to_string(), &format!("technique[{}].", cell.technique))?;
+        let (file, key) = (self.config.path.display().to_string(), format!("technique[{}].", cell.technique));
+        scene.caustics.validate(&file, &key)?;
+        scene.caustics.validate_combination(&format!("{file} with scene {}", path.display()), &key)?;
         if cell.lighting == "static" && scene.lights.len() > 1 {
             // The photon buffer is shared between lights: reusing it needs one light.
             anyhow::bail!(caustics::input_error!(

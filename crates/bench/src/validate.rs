@@ -114,6 +114,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
         let mut s = CausticSettings::default();
         crate::measure::apply_technique(&mut s, t);
         s.validate(&file, &format!("technique[{i}]."))?;
+        s.validate_combination(&file, &format!("technique[{i}]."))?;
     }
 
     if c.metrics.is_empty() {

@@ -200,8 +200,9 @@ pub struct CausticArgs {
 }
 
 impl CausticArgs {
-    /// Applies the overrides to `s` and checks the result.
-    pub fn apply(&self, s: &mut caustics::scene::CausticSettings) -> anyhow::Result<()> {
+    /// Applies the overrides to `s` (the caustic settings of the scene file `scene`) and checks
+    /// the result.
+    pub fn apply(&self, s: &mut caustics::scene::CausticSettings, scene: &std::path::Path) -> anyhow::Result<()> {
         caustics::scene::CausticOverrides {
             technique: self.technique.clone(),
             photons: self.photons,
@@ -220,6 +221,7 @@ impl CausticArgs {
             instance_vertices: self.instance_vertices,
         }
         .apply(s);
-        s.validate("command line", "--")
+        s.validate("command line", "--")?;
+        s.validate_combination(&format!("{} with the command line", scene.display()), "caustics.")
     }
 }

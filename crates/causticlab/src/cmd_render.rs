@@ -26,7 +26,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let mut dumps = parse_dumps(args.dump.as_deref())?;
     // The loader's messages already name the file and the key.
     let mut scene = Scene::load(&args.scene)?;
-    args.caustics.apply(&mut scene.caustics)?;
+    args.caustics.apply(&mut scene.caustics, &args.scene)?;
     let technique = scene.caustics.technique.clone();
     if technique != "hcm" {
         if let Some(n) =

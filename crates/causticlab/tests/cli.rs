@@ -174,6 +174,39 @@ fn caustic_setting_out_of_range() {
     }
 }
 
+/// `hcm`'s settings are refused for the other techniques, in the final settings: a scene may set
+/// them and leave the technique to `--technique`.
+#[test]
+fn hierarchy_settings_need_technique_hcm() {
+    let s = scene("sphere_on_plane");
+    for (flag, value) in [("--cluster", "all"), ("--path", "compute"), ("--splat", "varying-single")] {
+        expect_input_error(
+            &["render", "--scene", &s, "--technique", "wd-points", flag, value],
+            &[&flag[2..], value, "hcm", "wd-points"],
+        );
+    }
+    expect_input_error(
+        &["render", "--scene", &s, "--technique", "hcm", "--varying-radius", "beam-area"],
+        &["varying_radius", "--varying-radius", "varying-single"],
+    );
+    let file = edited_scene("hcm-keys", "[receiver_map]", "[caustics]\ncluster = \"last\"\n\n[receiver_map]");
+    let f = file.display().to_string();
+    expect_input_error(&["render", "--scene", &f, "--technique", "shah"], &[&f, "caustics.cluster", "shah"]);
+    let out = scratch("hcm-keys-ok").join("out");
+    let run = causticlab(&[
+        "render",
+        "--scene",
+        &f,
+        "--technique",
+        "hcm",
+        "--photons",
+        "64",
+        "--out",
+        &out.display().to_string(),
+    ]);
+    assert_eq!(run.code, Some(0), "a scene's cluster key with --technique hcm: {}", run.describe());
+}
+
 #[test]
 fn unknown_feature_name() {
     let s = scene("sphere_on_plane");

@@ -181,7 +181,7 @@ impl Hierarchy {
             return Err(crate::input_error!(
                 "caustics.photons: the xfb traversal's last list of {n}² photons needs {bytes} bytes of \
                  transform-feedback buffer, more than this device's maxTransformFeedbackBufferSize ({xfb_limit}); \
-                 use fewer photons or path = \"compute\""
+                 use fewer photons or the compute traversal (--path compute)"
             )
             .into());
         }

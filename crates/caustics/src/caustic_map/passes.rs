@@ -79,7 +79,6 @@ pub fn record_caustics(
     frame: CausticFrame,
 ) -> Result<()> {
     for l in 0..lights {
-        let hierarchy_inputs = hierarchy_inputs(inp);
         if !frame.reuse_photons {
             record_light_space(f, p, ct, pt, inp, l, frame)?;
         }
@@ -90,7 +89,7 @@ pub fn record_caustics(
             nearest: inp.nearest,
         };
         match (frame.hierarchy, frame.compute_splat) {
-            (Some(h), None) => h.record_splat(f, &hierarchy_inputs, pt, cmap, ct.levels, l)?,
+            (Some(h), None) => h.record_splat(f, &hierarchy_inputs(inp), pt, cmap, ct.levels, l)?,
             (Some(h), Some(cs)) => cs.record(f, &splat_inputs, pt, &h.final_list(), cmap, l)?,
             (None, Some(cs)) => cs.record(f, &splat_inputs, pt, &compute_splat::Photons::Dense, cmap, l)?,
             (None, None) => record_splat(f, p, ct, pt, inp, l, frame.copy)?,

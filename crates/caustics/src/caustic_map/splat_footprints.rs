@@ -46,7 +46,16 @@ impl SplatFootprints {
             anyhow::bail!("the hierarchy has no final list")
         };
         let count = list.count(ctx)?;
-        let out = Buffer::new(ctx, "splat footprints", count.max(1) as u64 * 32, Memory::Gpu)?;
+        let bytes = count.max(1) as u64 * 32;
+        let limit = ctx.info().max_storage_buffer_range as u64;
+        if bytes > limit {
+            return Err(crate::input_error!(
+                "--dump splats: {count} splats of light {l} need {bytes} bytes of storage buffer, more than this \
+                 device's maxStorageBufferRange ({limit}); dump fewer photons"
+            )
+            .into());
+        }
+        let out = Buffer::new(ctx, "splat footprints", bytes, Memory::Gpu)?;
         let uses = [
             Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
             Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),

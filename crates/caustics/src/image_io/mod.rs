@@ -328,14 +328,26 @@ pub fn write_png_tonemapped(path: &Path, width: u32, height: u32, rgb: &[f32], e
 ///
 /// Files are written into a staging directory beside the final one
 /// (`.<name>.partial-<pid>-<n>`); [`OutputDir::commit`] moves them in. Dropping an
-/// uncommitted `OutputDir` (error, panic unwinding) removes the staging directory.
+/// uncommitted `OutputDir` (error, panic unwinding) removes the staging directory. While it
+/// lives, it holds an exclusive lock on `.<name>.partial-<pid>-<n>.lock` beside it: a killed run
+/// cannot clean up, but the kernel drops its lock, and the next run into the same folder
+/// removes what it left (see [`remove_stale_staging`]).
 /// When the final directory does not exist yet, commit is a single atomic rename;
 /// otherwise each file is renamed in (each file atomic, overwriting same-named files).
 #[derive(Debug)]
 pub struct OutputDir {
     final_dir: PathBuf,
     staging: PathBuf,
+    /// Held locked while the run lives (removed with the staging directory).
+    lock: Option<(PathBuf, std::fs::File)>,
     committed: bool,
+}
+
+/// The lock file of staging directory `staging`.
+fn lock_path(staging: &Path) -> PathBuf {
+    let mut name = staging.file_name().unwrap_or_default().to_os_string();
+    name.push(".lock");
+    staging.with_file_name(name)
 }
 
 impl OutputDir {
@@ -355,8 +367,16 @@ impl OutputDir {
             if staging.exists() {
                 std::fs::remove_dir_all(&staging)?;
             }
+            if let Some(parent) = staging.parent().filter(|p| !p.as_os_str().is_empty()) {
+                std::fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
+            }
+            // Locked before the directory exists: a directory whose lock can be taken is stale.
+            let lock = lock_path(&staging);
+            let file = std::fs::File::create(&lock).with_context(|| format!("creating {}", lock.display()))?;
+            file.lock().with_context(|| format!("locking {}", lock.display()))?;
+            let lock = Some((lock, file));
             std::fs::create_dir_all(&staging).with_context(|| format!("creating {}", staging.display()))?;
-            Ok(OutputDir { final_dir, staging, committed: false })
+            Ok(OutputDir { final_dir, staging, lock, committed: false })
         };
         run().with_context(|| format!("creating output directory {}", final_dir.display()))
     }
@@ -418,14 +438,11 @@ pub fn check_output_dir(dir: &Path) -> Result<()> {
 }
 
 /// Removes the staging directories of `final_dir` that killed runs left behind
-/// (`.<name>.partial-<pid>-<n>`, only where that process no longer exists). A killed process
-/// cannot clean up after itself, and nothing else would. Only Linux can tell (`/proc/<pid>`);
-/// elsewhere they are left. A reused PID keeps a stale directory, which is safe.
+/// (`.<name>.partial-<pid>-<n>`): those whose lock file (`<dir>.lock`) nobody holds. A killed
+/// process cannot clean up after itself, and nothing else would; a live one, in this PID
+/// namespace or another, on this host or (where the filesystem passes locks on) another, holds
+/// its lock. A directory without a lock file is not known to be stale, and is left.
 fn remove_stale_staging(final_dir: &Path, name: &str) {
-    let proc = Path::new("/proc");
-    if !cfg!(target_os = "linux") || !proc.join("self").exists() {
-        return;
-    }
     let parent = match final_dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
@@ -434,15 +451,19 @@ fn remove_stale_staging(final_dir: &Path, name: &str) {
     let prefix = format!(".{name}.partial-");
     for entry in entries.flatten().filter(|e| e.file_type().is_ok_and(|t| t.is_dir())) {
         let file = entry.file_name();
-        let Some(pid) = file.to_str().and_then(|f| f.strip_prefix(&prefix)).and_then(staging_pid) else {
+        if file.to_str().and_then(|f| f.strip_prefix(&prefix)).and_then(staging_pid).is_none() {
             continue;
-        };
-        if pid == std::process::id() || proc.join(pid.to_string()).exists() {
+        }
+        let lock = lock_path(&entry.path());
+        let Ok(lock_file) = std::fs::OpenOptions::new().write(true).open(&lock) else { continue };
+        if lock_file.try_lock().is_err() {
             continue;
         }
         if let Err(e) = std::fs::remove_dir_all(entry.path()) {
             log::warn!("could not remove the stale staging directory {}: {e}", entry.path().display());
+            continue;
         }
+        let _ = std::fs::remove_file(&lock);
     }
 }
 
@@ -478,6 +499,10 @@ impl Drop for OutputDir {
             if let Err(e) = std::fs::remove_dir_all(&self.staging) {
                 log::warn!("could not remove staging directory {}: {e}", self.staging.display());
             }
+        }
+        // The staging directory is gone (moved in or removed): so is the need for its lock.
+        if let Some((path, _file)) = self.lock.take() {
+            let _ = std::fs::remove_file(path);
         }
     }
 }

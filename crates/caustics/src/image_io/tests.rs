@@ -301,25 +301,39 @@ fn output_dir_dropped_uncommitted_leaves_nothing() {
 
 #[test]
 #[cfg(target_os = "linux")]
-fn output_dir_removes_staging_left_by_dead_processes_only() {
+fn output_dir_removes_only_staging_whose_lock_nobody_holds() {
     let root = TempDir::new("outdir-stale");
-    // A PID above pid_max can never be alive; our own PID is.
-    let pid_max: u32 = std::fs::read_to_string("/proc/sys/kernel/pid_max").unwrap().trim().parse().unwrap();
-    let dead = root.0.join(format!(".run.partial-{}-0", pid_max + 1));
-    let ours = root.0.join(format!(".run.partial-{}-999999", std::process::id()));
-    let other_output = root.0.join(format!(".other.partial-{}-0", pid_max + 1));
-    let not_staging = root.0.join(format!(".run.partial-{}-x", pid_max + 1));
-    for d in [&dead, &ours, &other_output, &not_staging] {
+    let staging = |name: &str| root.0.join(name);
+    let lock_of = |d: &std::path::Path| d.with_file_name(format!("{}.lock", d.file_name().unwrap().to_str().unwrap()));
+    let dead = staging(".run.partial-4242-0");
+    let live = staging(".run.partial-4243-0");
+    let unlocked_other = staging(".other.partial-4242-0");
+    let no_lock = staging(".run.partial-4244-0");
+    let not_staging = staging(".run.partial-4242-x");
+    for d in [&dead, &live, &unlocked_other, &no_lock, &not_staging] {
         std::fs::create_dir_all(d).unwrap();
         std::fs::write(d.join("final.exr"), b"half").unwrap();
     }
+    for d in [&dead, &live, &unlocked_other, &not_staging] {
+        std::fs::write(lock_of(d), b"").unwrap();
+    }
+    // A live run holds its lock (here, this process through another open file description).
+    let held = std::fs::File::open(lock_of(&live)).unwrap();
+    held.lock().unwrap();
     let out = OutputDir::create(&root.0.join("run")).unwrap();
-    assert!(!dead.exists(), "a dead process's staging directory is removed");
-    assert!(ours.join("final.exr").is_file(), "a live process's staging directory is kept");
-    assert!(other_output.is_dir(), "another output's staging directory is not ours to remove");
+    assert!(!dead.exists() && !lock_of(&dead).exists(), "a killed run's staging directory and lock are removed");
+    assert!(live.join("final.exr").is_file(), "a live run's staging directory is kept");
+    assert!(unlocked_other.is_dir(), "another output's staging directory is not ours to remove");
+    assert!(no_lock.is_dir(), "without a lock file nothing says the run is gone");
     assert!(not_staging.is_dir(), "only `<pid>-<n>` names are staging directories");
+    let own_lock = lock_of(out.staging_dir());
+    assert!(own_lock.is_file(), "the new run holds a lock beside its staging directory");
+    let probe = std::fs::OpenOptions::new().write(true).open(&own_lock).unwrap();
+    assert!(probe.try_lock().is_err(), "the new run's lock is held");
+    drop(probe);
     drop(out);
-    assert!(ours.join("final.exr").is_file(), "dropping the new OutputDir removes only its own staging");
+    assert!(!own_lock.exists(), "dropping the OutputDir removes its lock file");
+    assert!(live.join("final.exr").is_file(), "dropping the new OutputDir removes only its own staging");
 }
 
 #[test]

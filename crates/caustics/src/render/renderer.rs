@@ -65,6 +65,7 @@ impl<'c> Renderer<'c> {
     pub fn new(ctx: &'c Context, shaders: &ShaderCompiler, scene: &Scene, opts: &RendererOptions) -> Result<Self> {
         let settings = &scene.caustics;
         let technique = settings.technique.as_str();
+        settings.validate_combination(&scene.path.display().to_string(), "caustics.")?;
         super::check_device(ctx, scene)?;
         if scene.lights.len() > gpu::MAX_LIGHTS {
             return Err(crate::input_error!(
@@ -285,12 +286,22 @@ impl<'c> Renderer<'c> {
     /// with several lights, each light's light-space passes are recorded again alone (the same
     /// inputs, so the same buffers) and read back. Their layers are named `light<l>.<layer>`.
     pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
+        let mut unique: Vec<&String> = vec![];
+        for n in names {
+            if !unique.contains(&n) {
+                unique.push(n);
+            }
+        }
         let light_space = |n: &str| super::LIGHT_SPACE_DUMPS.contains(&n);
         let has = |n: &str| match n {
             "hierarchy" | "hierarchy_lists" | "splats" => self.hierarchy().is_some(),
             _ => self.caustic.is_some(),
         };
-        let wanted: Vec<&str> = names.iter().map(String::as_str).filter(|n| light_space(n) && has(n)).collect();
+        let wanted: Vec<&str> = unique.iter().map(|n| n.as_str()).filter(|n| light_space(n) && has(n)).collect();
+        anyhow::ensure!(
+            wanted.is_empty() || self.pending_uniforms.is_none(),
+            "dumps: the renderer moved to a new pose after its last frame; render a frame first"
+        );
         let mut per_light: Vec<Option<ImageF32>> = vec![None; wanted.len()];
         let (mut lists, mut splats) = (vec![], vec![]);
         let lights = self.targets.shadow.lights;
@@ -322,7 +333,7 @@ impl<'c> Renderer<'c> {
             }
         }
         let mut out = vec![];
-        for name in names {
+        for name in unique {
             let img = match wanted.iter().position(|w| w == name) {
                 Some(_) if name == "hierarchy_lists" => Some(hierarchy::lists_image(&lists)),
                 Some(_) if name == "splats" => Some(splat_footprints::splats_image(&splats)),

@@ -146,6 +146,30 @@ impl CausticSettings {
         }
     }
 
+    /// Checks that the settings belong together, once they are final (a scene's `[caustics]`
+    /// may set `hcm`'s keys and leave the technique to the command line): the hierarchy's
+    /// settings mean nothing to the other techniques, so setting one there is a mistake (and
+    /// would be recorded in timings.json as if it had been applied). `origin` and `key` as for
+    /// [`CausticSettings::validate`].
+    pub fn validate_combination(&self, origin: &str, key: &str) -> anyhow::Result<()> {
+        let bad = |k: &str, msg: String| -> anyhow::Result<()> {
+            Err(crate::input_error!("{origin}: key `{key}{k}` (--{}): {msg}", k.replace('_', "-")).into())
+        };
+        let d = CausticSettings::default();
+        let hcm_only =
+            [("path", &self.path, &d.path), ("cluster", &self.cluster, &d.cluster), ("splat", &self.splat, &d.splat)];
+        for (k, v, default) in hcm_only {
+            if self.technique != "hcm" && v != default {
+                bad(k, format!("`{v}` is a setting of technique hcm, not of `{}`", self.technique))?;
+            }
+        }
+        if self.varying_radius != d.varying_radius && (self.technique != "hcm" || self.splat == "fixed") {
+            let what = "sizes varying splats (technique hcm with splat varying-single or varying-multires)";
+            bad("varying_radius", format!("`{}` {what}", self.varying_radius))?;
+        }
+        Ok(())
+    }
+
     /// Checks ranges and names; `origin` says where the values came from (a file or the command
     /// line) and `key` prefixes key names, e.g. `caustics.`.
     pub fn validate(&self, origin: &str, key: &str) -> anyhow::Result<()> {
@@ -168,25 +192,6 @@ impl CausticSettings {
         one_of("splat", &self.splat, SPLAT_MODES)?;
         one_of("varying_radius", &self.varying_radius, VARYING_RADII)?;
         one_of("splat_path", &self.splat_path, SPLAT_PATHS)?;
-        // The hierarchy's settings mean nothing to the other techniques: saying one there is a
-        // mistake (and would be recorded in timings.json as if it had been applied).
-        let d = CausticSettings::default();
-        let hcm_only =
-            [("path", &self.path, &d.path), ("cluster", &self.cluster, &d.cluster), ("splat", &self.splat, &d.splat)];
-        for (k, v, default) in hcm_only {
-            if self.technique != "hcm" && v != default {
-                bad(k, format!("`{v}` is a setting of technique hcm, not of `{}`", self.technique))?;
-            }
-        }
-        if self.varying_radius != d.varying_radius && (self.technique != "hcm" || self.splat == "fixed") {
-            bad(
-                "varying_radius",
-                format!(
-                    "`{}` sizes varying splats (hcm with splat = varying-single or varying-multires)",
-                    self.varying_radius
-                ),
-            )?;
-        }
         if let Some(i) = &self.intersect {
             one_of("intersect", i, INTERSECTS)?;
         }

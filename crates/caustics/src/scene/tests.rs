@@ -285,23 +285,28 @@ fn obj_fit_scales_and_places() {
 #[test]
 fn hierarchy_settings_belong_to_hcm() {
     let with = |caustics: &str| format!("{BASE}\n[caustics]\n{caustics}\n");
-    let cases: Vec<(String, &[&str])> = vec![
-        (with("technique = \"wd-points\"\ncluster = \"all\""), &["caustics.cluster", "hcm", "wd-points"]),
-        (with("technique = \"shah\"\npath = \"compute\""), &["caustics.path", "hcm", "shah"]),
-        (with("technique = \"wd-points\"\nsplat = \"varying-single\""), &["caustics.splat", "hcm"]),
-        (with("technique = \"hcm\"\nvarying_radius = \"beam-area\""), &["caustics.varying_radius", "varying"]),
-        (
-            with("technique = \"hcm\"\nsplat = \"varying-multires\"\nvarying_radius = \"area\""),
-            &["caustics.varying_radius", "beam-area", "max-distance"],
-        ),
+    // A scene may set hcm's keys and leave the technique to the command line: it loads, and the
+    // final settings are checked together.
+    let cases: Vec<(&str, &[&str])> = vec![
+        ("technique = \"wd-points\"\ncluster = \"all\"", &["caustics.cluster", "--cluster", "hcm", "wd-points"]),
+        ("path = \"compute\"", &["caustics.path", "hcm", "none"]),
+        ("technique = \"wd-points\"\nsplat = \"varying-single\"", &["caustics.splat", "hcm"]),
+        ("technique = \"hcm\"\nvarying_radius = \"beam-area\"", &["caustics.varying_radius", "varying"]),
     ];
     for (i, (text, needles)) in cases.iter().enumerate() {
-        expect_error(&format!("hcm_only{i}.toml"), text, needles);
+        let s = load_text(&format!("hcm_only{i}.toml"), &with(text)).expect("a scene's hcm keys load on their own");
+        let err = s.caustics.validate_combination("scene.toml", "caustics.").expect_err(text).to_string();
+        for n in *needles {
+            assert!(err.contains(n), "{text}: `{err}` does not name {n}");
+        }
+        let mut hcm = s.caustics.clone();
+        hcm.technique = "hcm".into();
+        hcm.splat = if hcm.varying_radius == "beam-area" { "varying-multires".into() } else { hcm.splat };
+        hcm.validate_combination("scene.toml", "caustics.").expect("with technique hcm they belong");
     }
-    let ok = load_text(
-        "hcm_ok.toml",
-        &with("technique = \"hcm\"\nsplat = \"varying-single\"\nvarying_radius = \"beam-area\""),
+    expect_error(
+        "bad_radius.toml",
+        &with("technique = \"hcm\"\nsplat = \"varying-multires\"\nvarying_radius = \"area\""),
+        &["caustics.varying_radius", "beam-area", "max-distance"],
     );
-    let s = ok.expect("hcm with beam-area varying splats loads");
-    assert_eq!((s.caustics.splat.as_str(), s.caustics.varying_radius.as_str()), ("varying-single", "beam-area"));
 }
