@@ -1,9 +1,13 @@
 // The `splats` dump of hcm: each entry of the traversal's final list as the splat passes
 // (photons/splat.vert, splat.comp) splat it, from the same photons/splat_photon.glsl: where it
-// lands, its radius and layer, its power. Two vec4 per entry: (centre x, centre y, radius,
-// layer) in texels of the base caustic map (the layer holds it at 1/2^layer of both), and
-// (power rgb, photons); all zero for an entry that splats nothing (off the map, or a varying
-// splat too wide for the last map level). object.info: x = entries, y = light.
+// lands, its radius and layer, its power. Three vec4 per entry:
+// - (centre x, centre y, radius, layer), centre and radius in texels of the base caustic map
+//   (the layer holds the splat at 1/2^layer of both; radius 0: all in the nearest texel);
+// - (power rgb, photons);
+// - (splatted, 0, 0, 0): 1 when drawn. An entry that is not drawn keeps what is known of it: a
+//   varying splat too wide for the last map level has the level it would need (4 or more),
+//   one centred off the map its centre; one behind the light is all zeros.
+// object.info: x = entries, y = light.
 #version 450
 #define CAUSTICS_BINDING 1
 #define HIERARCHY 1
@@ -20,10 +24,10 @@ void main() {
     vec4 pos;
     vec3 power;
     Splat s;
-    footprints[2u * i] = vec4(0.0);
-    footprints[2u * i + 1u] = vec4(0.0);
-    if (!photon_of_entry(entry, pos, power) || !splat_of(pos, power, entry, caustics.lights[object.info.y], s)) return;
+    photon_of_entry(entry, pos, power);
+    bool splatted = splat_of(pos, power, entry, caustics.lights[object.info.y], s);
     float scale = exp2(float(s.layer));
-    footprints[2u * i] = vec4(s.centre * scale, max(s.radius, 0.0) * scale, float(s.layer));
-    footprints[2u * i + 1u] = vec4(power, pos.w);
+    footprints[3u * i] = vec4(s.centre * scale, max(s.radius, 0.0) * scale, float(s.layer));
+    footprints[3u * i + 1u] = vec4(power, pos.w);
+    footprints[3u * i + 2u] = vec4(splatted ? 1.0 : 0.0, 0.0, 0.0, 0.0);
 }

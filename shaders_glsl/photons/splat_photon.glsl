@@ -60,7 +60,8 @@ struct Splat {
 };
 
 // The splat of a photon at `pos` (w: how many photons it stands for, 0 for none) with `power`
-// for light `cl`; false when it splats nothing
+// for light `cl`; false when it splats nothing (s then still holds the centre, radius and layer
+// it would have had, where it has them, for the `splats` dump)
 // (no photon, behind the light, centred off the map, or a varying splat too wide for the last
 // map level).
 // `entry` is the hierarchy entry (HIERARCHY only).
@@ -80,16 +81,22 @@ bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
         // diameter of more than 40 pixels", which its formula puts at level 3), in the single map
         // too, so that both maps hold the same photons.
         int wanted = int(floor(log2(max(1.0, 2.0 * r / MULTIRES_MAX_DIAMETER))));
-        if (wanted >= int(MULTIRES_LEVELS)) return false;
-        if (caustics.splat.w == SPLAT_VARYING_MULTIRES) {
+        if (caustics.splat.w == SPLAT_VARYING_MULTIRES || wanted >= int(MULTIRES_LEVELS)) {
             // Level i: splatSize = D / 2^i, into the layer's corner region of (M / 2^i)^2.
             s.layer = wanted;
             float f = exp2(float(wanted));
             centre /= f;
             r /= f;
         }
+        if (wanted >= int(MULTIRES_LEVELS)) {
+            s.centre = centre;
+            s.radius = r;
+            return false;
+        }
     }
 #endif
+    s.centre = centre;
+    s.radius = r;
     // A point whose centre leaves the clip volume may or may not be drawn where its sprite
     // overlaps the map (Vulkan's pointClippingBehavior is the driver's choice): drop it on every
     // path, so that the point and compute splats agree on every device. (Written so that a NaN

@@ -222,6 +222,6 @@ impl CausticArgs {
         }
         .apply(s);
         s.validate("command line", "--")?;
-        s.validate_combination(&format!("{} with the command line", scene.display()), "caustics.")
+        s.validate_combination(&format!("{} and the command line's flags", scene.display()), "caustics.")
     }
 }

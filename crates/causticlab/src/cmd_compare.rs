@@ -43,8 +43,8 @@ const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 fn check_exr(path: &Path) -> Result<()> {
     let not_exr = |what: &str| -> Result<()> {
         Err(input_error!(
-            "{}: {what}; compare reads the OpenEXR files causticlab writes (receiver.exr or final.exr of a \
-             render, receiver.exr of a reference), not final.png",
+            "{}: {what}; compare reads the receiver maps causticlab writes as OpenEXR (receiver.exr of a \
+             render with --dump receiver, or of a reference)",
             path.display()
         )
         .into())

@@ -153,10 +153,11 @@ fn projected_quad(ph: &Photons, light: &Light, x: i64, y: i64) -> Option<f64> {
     (!areas.is_empty()).then(|| (areas.iter().sum::<f64>() / areas.len() as f64).sqrt())
 }
 
-/// A splatted photon: its photon-buffer texel x, y, its radius and layer as dumped.
-type Splatted = (i64, i64, f64, f64);
+/// A photon of the final list: its photon-buffer texel x, y, its radius and layer as dumped, and
+/// whether it was splatted.
+type Splatted = (i64, i64, f64, f64, bool);
 
-/// The photon buffer, every splatted photon, and the caustic map's power.
+/// The photon buffer, every photon of the final list, and the caustic map's power.
 fn splats(ctx: &vkcore::Context, sh: &vkcore::ShaderCompiler, s: &Scene) -> (Photons, Vec<Splatted>, f64) {
     let mut r = Renderer::new(ctx, sh, s, &RendererOptions::default()).expect("renderer");
     r.frame(FrameStep::default()).expect("frame");
@@ -167,9 +168,9 @@ fn splats(ctx: &vkcore::Context, sh: &vkcore::ShaderCompiler, s: &Scene) -> (Pho
     let splat = d[2].1.layer(Some("light0")).expect("splats");
     let mut out = vec![];
     for (e, sp) in list.data.chunks_exact(5).zip(splat.data.chunks_exact(9)) {
-        if e[4] > 0.5 && sp[8] > 0.5 {
+        if e[4] > 0.5 {
             assert_eq!(e[2], 0.0, "a cluster without clustering");
-            out.push((e[0] as i64, e[1] as i64, sp[2] as f64, sp[3] as f64));
+            out.push((e[0] as i64, e[1] as i64, sp[2] as f64, sp[3] as f64, sp[8] > 0.5));
         }
     }
     let power = d[3]
@@ -195,7 +196,7 @@ fn splat_radii_and_layers_follow_the_papers_formulas() {
             assert!(got.len() > 1000, "{estimate} {splat}: {} splats: a vacuous test", got.len());
             let mut per_photon = vec![];
             let mut quad_ratios = vec![];
-            for &(x, y, radius, layer) in &got {
+            for &(x, y, radius, layer, splatted) in &got {
                 let want = match estimate {
                     "beam-area" => beam_area(&photons, &light, x, y),
                     _ => max_distance(&photons, &light, x, y),
@@ -206,9 +207,14 @@ fn splat_radii_and_layers_follow_the_papers_formulas() {
                 );
                 // photonMipLevel = trunc(log2(max(1, D / 5))), from the radius the GPU used (a
                 // radius at a level's edge may round either way between f32 and f64).
-                let level =
-                    if splat == "varying-multires" { (2.0 * radius / 5.0).max(1.0).log2().floor() } else { 0.0 };
-                assert_eq!(layer, level, "{estimate} {splat}: photon ({x}, {y}) of radius {radius}");
+                let level = (2.0 * radius / 5.0).max(1.0).log2().floor();
+                // Only splats needing level 4 or beyond are dropped, and the dump says which level.
+                assert_eq!(splatted, level < 4.0, "{estimate} {splat}: photon ({x}, {y}) of radius {radius}");
+                let layer_used = if splat == "varying-multires" || !splatted { level } else { 0.0 };
+                assert_eq!(layer, layer_used, "{estimate} {splat}: photon ({x}, {y}) of radius {radius}");
+                if !splatted {
+                    continue;
+                }
                 if estimate == "beam-area" && want > 1.5 {
                     if let Some(q) = projected_quad(&photons, &light, x, y) {
                         quad_ratios.push(want / q);
@@ -216,7 +222,11 @@ fn splat_radii_and_layers_follow_the_papers_formulas() {
                 }
                 per_photon.push(((x, y), want));
             }
-            assert!(got.iter().any(|g| g.3 >= 1.0) || splat == "varying-single", "{estimate}: no coarse level used");
+            let coarse = got.iter().any(|g| g.4 && g.3 >= 1.0);
+            assert!(coarse || splat == "varying-single", "{estimate}: no coarse level used");
+            if estimate == "max-distance" {
+                assert!(got.iter().any(|g| !g.4), "{splat}: no splat dropped at level 4: a vacuous check");
+            }
             // Only splats needing level 4 are dropped: the map keeps the fixed map's power.
             assert!((power / fixed_power - 1.0).abs() < 0.01, "{estimate} {splat}: {power} W of {fixed_power} W");
             if splat == "varying-single" {

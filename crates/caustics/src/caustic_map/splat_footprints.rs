@@ -12,11 +12,11 @@ use anyhow::Result;
 use vkcore::{Access, Bind, BindingKind as K, Buffer, Context, FrameOptions, Memory, Pipeline, ShaderCompiler, Use};
 
 /// One splat: centre x, y and radius in base caustic-map texels, layer (of the multi-resolution
-/// map), power R, G, B (W), photons (1, or a cluster's count); all 0 for an entry that splats
-/// nothing.
-pub type Footprint = [f32; 8];
+/// map), power R, G, B (W), photons (1, or a cluster's count), splatted (1 when drawn), 3 unused
+/// (see `photons/splat_footprints.comp` for what an entry that is not drawn holds).
+pub type Footprint = [f32; 12];
 
-/// Channels of a `splats` dump layer, the last one 1 where an entry was splatted.
+/// Channels of a `splats` dump layer: the first nine of a [`Footprint`].
 pub const CHANNELS: [&str; 9] = ["x", "y", "radius", "layer", "R", "G", "B", "photons", "splatted"];
 
 pub struct SplatFootprints {
@@ -46,7 +46,7 @@ impl SplatFootprints {
             anyhow::bail!("the hierarchy has no final list")
         };
         let count = list.count(ctx)?;
-        let bytes = count.max(1) as u64 * 32;
+        let bytes = count.max(1) as u64 * std::mem::size_of::<Footprint>() as u64;
         let limit = ctx.info().max_storage_buffer_range as u64;
         if bytes > limit {
             return Err(crate::input_error!(
@@ -98,7 +98,7 @@ pub fn splats_image(per_light: &[Vec<Footprint>]) -> ImageF32 {
         .iter()
         .enumerate()
         .map(|(l, splats)| {
-            let records = splats.iter().map(|s| [&s[..], &[if s[7] > 0.0 { 1.0 } else { 0.0 }]].concat()).collect();
+            let records = splats.iter().map(|s| s[..CHANNELS.len()].to_vec()).collect();
             (format!("light{l}"), records)
         })
         .collect();

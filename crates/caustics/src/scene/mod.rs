@@ -49,7 +49,7 @@ pub const CLUSTER_MODES: &[&str] = &["none", "last", "all"];
 /// Splat sizes of `hcm` (`caustics.splat`, `--splat`, Wyman 2008 Sec. 3.3): the fixed
 /// `splat_radius`, a radius from the photon's neighbours in one caustic map (the paper's slow
 /// baseline), or that radius with each splat in the layer of a multi-resolution caustic map
-/// where its diameter is at most 5 texels.
+/// i = trunc(log2(max(1, D/5))) for a diameter of D texels (drawn D/2^i wide there).
 pub const SPLAT_MODES: &[&str] = &["fixed", "varying-single", "varying-multires"];
 /// How varying splats (`caustics.varying_radius`, `--varying-radius`) find their radius from the
 /// photon's neighbours in the photon buffer (Wyman 2008 Sec. 3.3): the largest distance to its
@@ -153,7 +153,7 @@ impl CausticSettings {
     /// [`CausticSettings::validate`].
     pub fn validate_combination(&self, origin: &str, key: &str) -> anyhow::Result<()> {
         let bad = |k: &str, msg: String| -> anyhow::Result<()> {
-            Err(crate::input_error!("{origin}: key `{key}{k}` (--{}): {msg}", k.replace('_', "-")).into())
+            Err(crate::input_error!("{origin}: key `{key}{k}` (or flag --{}): {msg}", k.replace('_', "-")).into())
         };
         let d = CausticSettings::default();
         let hcm_only =
