@@ -40,8 +40,15 @@ pub struct CausticFrame<'a> {
     pub compute_splat: Option<&'a ComputeSplat>,
 }
 
-fn hierarchy_inputs<'a>(inp: &CausticInputs<'a>) -> HierarchyInputs<'a> {
-    HierarchyInputs { frame_uniforms: inp.frame_uniforms, caustic_uniforms: inp.caustic_uniforms, nearest: inp.nearest }
+impl<'a> CausticInputs<'a> {
+    /// What the hierarchy's passes (and the `splats` dump) read of these.
+    pub fn hierarchy(&self) -> HierarchyInputs<'a> {
+        HierarchyInputs {
+            frame_uniforms: self.frame_uniforms,
+            caustic_uniforms: self.caustic_uniforms,
+            nearest: self.nearest,
+        }
+    }
 }
 
 /// Light `l`'s light-space work before its splat: receiver positions, back faces, the photon
@@ -64,7 +71,7 @@ pub fn record_light_space(
         copy.record(f, pt, l)?;
     }
     if let Some(h) = frame.hierarchy {
-        h.record_traversal(f, &hierarchy_inputs(inp), pt, l)?;
+        h.record_traversal(f, &inp.hierarchy(), pt, l)?;
     }
     Ok(())
 }
@@ -89,7 +96,7 @@ pub fn record_caustics(
             nearest: inp.nearest,
         };
         match (frame.hierarchy, frame.compute_splat) {
-            (Some(h), None) => h.record_splat(f, &hierarchy_inputs(inp), pt, cmap, ct.levels, l)?,
+            (Some(h), None) => h.record_splat(f, &inp.hierarchy(), pt, cmap, ct.levels, l)?,
             (Some(h), Some(cs)) => cs.record(f, &splat_inputs, pt, &h.final_list(), cmap, l)?,
             (None, Some(cs)) => cs.record(f, &splat_inputs, pt, &compute_splat::Photons::Dense, cmap, l)?,
             (None, None) => record_splat(f, p, ct, pt, inp, l, frame.copy)?,

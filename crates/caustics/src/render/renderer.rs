@@ -37,13 +37,14 @@ struct CausticResources {
     instance_vertices: u32,
     copy: Option<PhotonCopy>,
     hierarchy: Option<Hierarchy>,
-    /// What the `splats` dump reads the hierarchy's splats with.
+    /// What the `splats` dump reads the hierarchy's splats with (built by the first such dump).
     footprints: Option<SplatFootprints>,
     compute_splat: Option<caustic_map::ComputeSplat>,
 }
 
 pub struct Renderer<'c> {
     ctx: &'c Context,
+    shaders: &'c ShaderCompiler,
     scene: Scene,
     active: bool,
     pipelines: pipelines::EyePipelines,
@@ -62,7 +63,7 @@ pub struct Renderer<'c> {
 }
 
 impl<'c> Renderer<'c> {
-    pub fn new(ctx: &'c Context, shaders: &ShaderCompiler, scene: &Scene, opts: &RendererOptions) -> Result<Self> {
+    pub fn new(ctx: &'c Context, shaders: &'c ShaderCompiler, scene: &Scene, opts: &RendererOptions) -> Result<Self> {
         let settings = &scene.caustics;
         let technique = settings.technique.as_str();
         settings.validate_combination(&scene.path.display().to_string(), "caustics.")?;
@@ -150,7 +151,7 @@ impl<'c> Renderer<'c> {
                 splat_vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
                 instance_vertices: settings.instance_vertices,
                 copy,
-                footprints: if hierarchy.is_some() { Some(SplatFootprints::new(ctx, shaders)?) } else { None },
+                footprints: None,
                 hierarchy,
                 compute_splat,
             })
@@ -159,6 +160,7 @@ impl<'c> Renderer<'c> {
         };
         Ok(Renderer {
             ctx,
+            shaders,
             scene: scene.clone(),
             active,
             pipelines,
@@ -293,15 +295,18 @@ impl<'c> Renderer<'c> {
             }
         }
         let light_space = |n: &str| super::LIGHT_SPACE_DUMPS.contains(&n);
-        let has = |n: &str| match n {
-            "hierarchy" | "hierarchy_lists" | "splats" => self.hierarchy().is_some(),
-            _ => self.caustic.is_some(),
+        let has = |n: &str| match super::HIERARCHY_DUMPS.contains(&n) {
+            true => self.hierarchy().is_some(),
+            false => self.caustic.is_some(),
         };
         let wanted: Vec<&str> = unique.iter().map(|n| n.as_str()).filter(|n| light_space(n) && has(n)).collect();
         anyhow::ensure!(
             wanted.is_empty() || self.pending_uniforms.is_none(),
             "dumps: the renderer moved to a new pose after its last frame; render a frame first"
         );
+        if let Some(c) = self.caustic.as_mut().filter(|c| c.footprints.is_none() && wanted.contains(&"splats")) {
+            c.footprints = Some(SplatFootprints::new(self.ctx, self.shaders)?);
+        }
         let mut per_light: Vec<Option<ImageF32>> = vec![None; wanted.len()];
         let (mut lists, mut splats) = (vec![], vec![]);
         let lights = self.targets.shadow.lights;
@@ -319,11 +324,7 @@ impl<'c> Renderer<'c> {
                     }
                     ("splats", Some(h)) => {
                         let footprints = c.footprints.as_ref().context("no splat footprints pipeline")?;
-                        let inputs = hierarchy::Inputs {
-                            frame_uniforms: &self.uniforms,
-                            caustic_uniforms: &self.caustic_uniforms,
-                            nearest: &self.nearest,
-                        };
+                        let inputs = self.caustic_inputs(c).hierarchy();
                         splats.push(footprints.read(self.ctx, h, &inputs, &c.photons, l)?);
                         continue;
                     }
