@@ -3,8 +3,6 @@
 //! metrics fill the table, how the table is laid out, and the paper's published values.
 //! Unknown keys are errors; every message names the file and the key.
 
-use anyhow::{Context as _, Result};
-use caustics::input_error;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -131,29 +129,13 @@ fn default_lighting() -> Vec<String> {
 #[serde(deny_unknown_fields)]
 pub struct TechniqueSpec {
     pub label: String,
-    pub technique: String,
     /// `none` (instanced fetch), `16-to-32`, `32-to-32` or `16-to-16`.
     #[serde(default = "default_copy")]
     pub photon_copy: String,
-    pub splat_radius: Option<f32>,
-    pub splat_kernel: Option<String>,
-    pub caustic_map_resolution: Option<u32>,
-    pub iterations: Option<u32>,
-    pub fresnel: Option<bool>,
-    pub back_face_iterations: Option<u32>,
-    pub intersect: Option<String>,
-    /// `hcm`: `xfb` or `compute`.
-    pub path: Option<String>,
-    /// `hcm`: `none`, `last` or `all`.
-    pub cluster: Option<String>,
-    /// `hcm`: `fixed`, `varying-single` or `varying-multires`.
-    pub splat: Option<String>,
-    /// `hcm` with varying splats: `max-distance` or `beam-area`.
-    pub varying_radius: Option<String>,
-    /// `raster` (points) or `compute` (photons/splat.comp).
-    pub splat_path: Option<String>,
-    /// Vertices per instance of the instanced photon fetch (1024, 2048, 4096 in the paper).
-    pub instance_vertices: Option<u32>,
+    /// The technique (required) and any caustic setting but `photons` (the matrix sets it),
+    /// by the names of the scene's `[caustics]` (one type: `caustics::scene::CausticOverrides`).
+    #[serde(flatten)]
+    pub settings: caustics::scene::CausticOverrides,
 }
 
 fn default_copy() -> String {
@@ -314,23 +296,6 @@ pub fn fnv1a(bytes: &[u8]) -> String {
 }
 
 impl LoadedConfig {
-    pub fn load(path: &Path) -> Result<LoadedConfig> {
-        let bytes =
-            std::fs::read(path).map_err(|e| input_error!("{}: cannot read the bench config: {e}", path.display()))?;
-        let text = String::from_utf8(bytes.clone())
-            .map_err(|_| input_error!("{}: the bench config is not UTF-8", path.display()))?;
-        // The scene parser's error mapping: unknown keys name their path (`technique[0].clustr`).
-        let config: Config = caustics::scene::parse_toml(path, &text)?;
-        let name = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .with_context(|| format!("{}: the config file has no name", path.display()))?
-            .to_string();
-        let loaded = LoadedConfig { path: path.to_path_buf(), name, hash: fnv1a(&bytes), text, config };
-        super::validate::validate(&loaded)?;
-        Ok(loaded)
-    }
-
     /// A scene path of the matrix, resolved against the config's folder.
     pub fn scene_path(&self, scene: &str) -> PathBuf {
         self.path.parent().unwrap_or(Path::new(".")).join(scene)

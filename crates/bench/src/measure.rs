@@ -2,42 +2,20 @@
 //! config's animation, an untimed frame for pipeline statistics, and (when a quality metric
 //! asks for it) a comparison of the receiver map with the exact CPU reference.
 
-use crate::config::{LoadedConfig, QuickSpec, TechniqueSpec};
+use crate::config::{LoadedConfig, QuickSpec};
 use crate::plan::Cell;
 use anyhow::{Context as _, Result};
 use caustics::animation::{scene_at, Animation};
-use caustics::caustic_map::CopyType;
 use caustics::compare::{compare, Comparison};
 use caustics::image_io::ImageF32;
 use caustics::reference::{trace_reference, ReferenceOptions};
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::{CausticSettings, Scene};
+use caustics::techniques::CopyType;
 use glam::{Mat3, Vec3};
 use std::collections::HashMap;
 use std::time::Instant;
 use vkcore::{Context, FrameReport, ShaderCompiler};
-
-/// Writes a technique entry's settings over `s` (unset keys keep `s`'s values).
-pub fn apply_technique(s: &mut CausticSettings, t: &TechniqueSpec) {
-    caustics::scene::CausticOverrides {
-        technique: Some(t.technique.clone()),
-        photons: None,
-        splat_radius: t.splat_radius,
-        splat_kernel: t.splat_kernel.clone(),
-        caustic_map_resolution: t.caustic_map_resolution,
-        iterations: t.iterations,
-        fresnel: t.fresnel,
-        back_face_iterations: t.back_face_iterations,
-        intersect: t.intersect.clone(),
-        path: t.path.clone(),
-        cluster: t.cluster.clone(),
-        splat: t.splat.clone(),
-        varying_radius: t.varying_radius.clone(),
-        splat_path: t.splat_path.clone(),
-        instance_vertices: t.instance_vertices,
-    }
-    .apply(s);
-}
 
 /// What one cell measured.
 pub struct CellRun {
@@ -88,7 +66,7 @@ impl<'a> Runner<'a> {
         let mut scene = Scene::load(&path)
             .with_context(|| format!("{}: key `matrix.scenes`: loading {}", self.config.path.display(), cell.scene))?;
         let t = &self.config.config.techniques[cell.technique];
-        apply_technique(&mut scene.caustics, t);
+        t.settings.apply(&mut scene.caustics);
         scene.caustics.photons = cell.photons;
         if let Some(q) = self.quick {
             scene.caustics.caustic_map_resolution = scene.caustics.caustic_map_resolution.min(q.caustic_map_resolution);

@@ -98,7 +98,7 @@ impl Timings {
                 timestamp_valid_bits: info.timestamp_valid_bits,
                 timestamp_period_ns: info.timestamp_period_ns,
             },
-            technique: caustics.technique.clone(),
+            technique: caustics.technique.to_string(),
             caustics: caustics.clone(),
             intersect: caustics.intersect().to_string(),
             photons_emitted,

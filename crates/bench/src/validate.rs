@@ -1,13 +1,35 @@
 //! Checks a parsed config before anything runs: ranges, names, files, and that the layout and
 //! the paper's values fit the matrix. Every message names the file and the key.
 
-use crate::config::{LoadedConfig, AXES, MAX_FRAMES, MAX_PHOTONS, MAX_RESOLUTION, METRIC_KINDS};
+use crate::config::{fnv1a, Config, LoadedConfig, AXES, MAX_FRAMES, MAX_PHOTONS, MAX_RESOLUTION, METRIC_KINDS};
 use crate::plan::Matrix;
-use anyhow::Result;
+use anyhow::{Context as _, Result};
 use caustics::animation::PATHS;
-use caustics::caustic_map::COPY_TYPES;
 use caustics::input_error;
-use caustics::scene::{CausticSettings, TECHNIQUES};
+use caustics::scene::CausticSettings;
+use caustics::techniques::wyman2008::photon_copy::COPY_TYPES;
+use caustics::techniques::SplatPath;
+use std::path::Path;
+
+impl LoadedConfig {
+    /// Reads, parses and validates the bench config at `path`.
+    pub fn load(path: &Path) -> Result<LoadedConfig> {
+        let bytes =
+            std::fs::read(path).map_err(|e| input_error!("{}: cannot read the bench config: {e}", path.display()))?;
+        let text = String::from_utf8(bytes.clone())
+            .map_err(|_| input_error!("{}: the bench config is not UTF-8", path.display()))?;
+        // The scene parser's error mapping: unknown keys name their path (`technique[0].clustr`).
+        let config: Config = caustics::scene::parse_toml(path, &text)?;
+        let name = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .with_context(|| format!("{}: the config file has no name", path.display()))?
+            .to_string();
+        let loaded = LoadedConfig { path: path.to_path_buf(), name, hash: fnv1a(&bytes), text, config };
+        validate(&loaded)?;
+        Ok(loaded)
+    }
+}
 
 pub fn validate(lc: &LoadedConfig) -> Result<()> {
     let file = lc.path.display().to_string();
@@ -62,8 +84,8 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     unique("matrix.scenes", m.scenes.iter().map(|s| crate::plan::scene_label(s)).collect())?;
     check_photons(&bad, "matrix.photons", &m.photons)?;
     for &l in &m.lights {
-        if !(1..=caustics::render::gpu::MAX_LIGHTS as u32).contains(&l) {
-            let max = caustics::render::gpu::MAX_LIGHTS;
+        if !(1..=caustics::gpu::MAX_LIGHTS as u32).contains(&l) {
+            let max = caustics::gpu::MAX_LIGHTS;
             return Err(bad("matrix.lights", format!("{l} lights: must be between 1 and {max}")));
         }
     }
@@ -86,11 +108,11 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     unique("technique.label", c.techniques.iter().map(|t| t.label.clone()).collect())?;
     for (i, t) in c.techniques.iter().enumerate() {
         let key = |k: &str| format!("technique[{i}].{k}");
-        if !TECHNIQUES.contains(&t.technique.as_str()) {
-            return Err(bad(
-                &key("technique"),
-                format!("unknown technique `{}`; expected one of {}", t.technique, TECHNIQUES.join(", ")),
-            ));
+        let Some(technique) = t.settings.technique else {
+            return Err(bad(&key("technique"), "missing; every [[technique]] names its technique".into()));
+        };
+        if t.settings.photons.is_some() {
+            return Err(bad(&key("photons"), "set by `matrix.photons`, not per technique".into()));
         }
         if !COPY_TYPES.contains(&t.photon_copy.as_str()) {
             return Err(bad(
@@ -98,13 +120,13 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                 format!("unknown copy `{}`; expected one of {}", t.photon_copy, COPY_TYPES.join(", ")),
             ));
         }
-        if t.photon_copy != "none" && !["wd-points", "shah"].contains(&t.technique.as_str()) {
+        if t.photon_copy != "none" && !technique.splats_the_photon_buffer() {
             return Err(bad(
                 &key("photon_copy"),
-                format!("copies a photon buffer, which technique `{}` does not have", t.technique),
+                format!("copies a photon buffer, which technique `{technique}` does not have"),
             ));
         }
-        if t.photon_copy != "none" && t.splat_path.as_deref() == Some("compute") {
+        if t.photon_copy != "none" && t.settings.splat_path == Some(SplatPath::Compute) {
             return Err(bad(
                 &key("photon_copy"),
                 "the copied vertex array is splatted as points; it has no compute splat (splat_path = \"compute\")"
@@ -112,7 +134,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             ));
         }
         let mut s = CausticSettings::default();
-        crate::measure::apply_technique(&mut s, t);
+        t.settings.apply(&mut s);
         s.validate(&file, &format!("technique[{i}]."))?;
         s.validate_combination(&file, &format!("technique[{i}]."))?;
     }

@@ -139,7 +139,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub out: PathBuf,
     #[command(flatten)]
-    pub caustics: CausticArgs,
+    pub caustics: caustics::scene::CausticOverrides,
     /// Intermediate buffers to write as EXR: `all` or a comma-separated list.
     #[arg(long, value_name = "all|NAME,...")]
     pub dump: Option<String>,
@@ -148,80 +148,14 @@ pub struct RenderArgs {
     pub frames: u32,
 }
 
-/// Overrides of the scene's `[caustics]` table (see scenes/README.md).
-#[derive(Debug, Args, Clone, Default)]
-pub struct CausticArgs {
-    /// Caustic technique: none, shah, shah-vertex, wd-points, hcm (default: the scene's, else none).
-    #[arg(long)]
-    pub technique: Option<String>,
-    /// Photon buffer resolution N (N x N photons per light), 64..=4096.
-    #[arg(long)]
-    pub photons: Option<u32>,
-    /// Splat radius in caustic-map texels.
-    #[arg(long)]
-    pub splat_radius: Option<f32>,
-    /// Splat kernel: gaussian or box.
-    #[arg(long)]
-    pub splat_kernel: Option<String>,
-    /// Caustic-map (and receiver-positions) resolution.
-    #[arg(long)]
-    pub caustic_map_resolution: Option<u32>,
-    /// rayGeo iterations (shah-iterative) or bisection steps (wd-depth-search).
-    #[arg(long)]
-    pub iterations: Option<u32>,
-    /// Fresnel transmittance at both interfaces (true/false).
-    #[arg(long)]
-    pub fresnel: Option<bool>,
-    /// Ray/receiver intersection: shah-iterative or wd-depth-search (default: the technique's).
-    #[arg(long)]
-    pub intersect: Option<String>,
-    /// Exit-point refinements against the light-space back faces (0 = Wyman 2005 alone).
-    #[arg(long)]
-    pub back_face_iterations: Option<u32>,
-    /// hcm: hierarchical traversal by geometry shader + transform feedback (xfb) or compute.
-    #[arg(long)]
-    pub path: Option<String>,
-    /// hcm: converging-photon clustering: none, last (last level only) or all (every level).
-    #[arg(long)]
-    pub cluster: Option<String>,
-    /// hcm: splat sizes: fixed, varying-single (one map) or varying-multires (layered map).
-    #[arg(long)]
-    pub splat: Option<String>,
-    /// hcm, varying splats: radius from the largest distance to the adjacent photons
-    /// (max-distance, the paper's approximation) or from their beam area (beam-area, Eq. 1-2).
-    #[arg(long)]
-    pub varying_radius: Option<String>,
-    /// Splat photons as points (raster, the papers') or with a compute shader (compute)
-    #[arg(long)]
-    pub splat_path: Option<String>,
-    /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4: 1024, 2048, 4096).
-    #[arg(long)]
-    pub instance_vertices: Option<u32>,
-}
-
-impl CausticArgs {
-    /// Applies the overrides to `s` (the caustic settings of the scene file `scene`) and checks
-    /// the result.
-    pub fn apply(&self, s: &mut caustics::scene::CausticSettings, scene: &std::path::Path) -> anyhow::Result<()> {
-        caustics::scene::CausticOverrides {
-            technique: self.technique.clone(),
-            photons: self.photons,
-            splat_radius: self.splat_radius,
-            splat_kernel: self.splat_kernel.clone(),
-            caustic_map_resolution: self.caustic_map_resolution,
-            iterations: self.iterations,
-            fresnel: self.fresnel,
-            back_face_iterations: self.back_face_iterations,
-            intersect: self.intersect.clone(),
-            path: self.path.clone(),
-            cluster: self.cluster.clone(),
-            splat: self.splat.clone(),
-            varying_radius: self.varying_radius.clone(),
-            splat_path: self.splat_path.clone(),
-            instance_vertices: self.instance_vertices,
-        }
-        .apply(s);
-        s.validate("command line", "--")?;
-        s.validate_combination(&format!("{} and the command line's flags", scene.display()), "caustics.")
-    }
+/// Writes the `render` flags that override the scene's `[caustics]` (`flags`) over `s`, the
+/// caustic settings of the scene file `scene`, and checks the result.
+pub fn apply_caustic_flags(
+    flags: &caustics::scene::CausticOverrides,
+    s: &mut caustics::scene::CausticSettings,
+    scene: &std::path::Path,
+) -> anyhow::Result<()> {
+    flags.apply(s);
+    s.validate("command line", "--")?;
+    s.validate_combination(&format!("{} and the command line's flags", scene.display()), "caustics.")
 }

@@ -7,48 +7,34 @@ use anyhow::{Context as _, Result};
 use bench::Timings;
 use caustics::image_io::{self, ImageF32, OutputDir};
 use caustics::input_error;
-use caustics::render::{self, RenderRequest, CAUSTIC_DUMPS, DUMP_NAMES, TECHNIQUES};
+use caustics::render::{self, RenderRequest};
 use caustics::scene::Scene;
+use caustics::techniques::wyman2008::SplatMode;
+use caustics::techniques::{SplatPath, Technique};
 use std::sync::Arc;
 use vkcore::{Context, DeviceInfo, ShaderCompiler, ValidationLog};
 
 pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<ValidationLog>>) -> Result<()> {
     let opts = crate::context_options(g)?;
-    if let Some(t) = &args.caustics.technique {
-        if !TECHNIQUES.contains(&t.as_str()) {
-            return Err(input_error!(
-                "--technique: unknown technique `{t}`; valid techniques: {}",
-                TECHNIQUES.join(", ")
-            )
-            .into());
-        }
-    }
     let mut dumps = parse_dumps(args.dump.as_deref())?;
     // The loader's messages already name the file and the key.
     let mut scene = Scene::load(&args.scene)?;
-    args.caustics.apply(&mut scene.caustics, &args.scene)?;
-    let technique = scene.caustics.technique.clone();
-    if technique != "hcm" {
-        if let Some(n) =
-            dumps.iter().find(|d| render::HIERARCHY_DUMPS.contains(&d.as_str()) && !dump_all(args.dump.as_deref()))
-        {
-            return Err(
-                input_error!("--dump: `{n}` is a buffer of the hierarchical technique; add --technique hcm").into()
-            );
-        }
-        dumps.retain(|d| !render::HIERARCHY_DUMPS.contains(&d.as_str()));
+    crate::cli::apply_caustic_flags(&args.caustics, &mut scene.caustics, &args.scene)?;
+    let technique = scene.caustics.technique;
+    // `all` means every buffer this render has; naming a buffer of another technique is a
+    // mistake worth saying.
+    let own = render::dumps_of(technique);
+    if let Some(n) = dumps.iter().find(|d| !own.contains(&d.as_str()) && !dump_all(args.dump.as_deref())) {
+        let owners: Vec<&str> =
+            Technique::ALL.iter().filter(|t| t.dumps().contains(&n.as_str())).map(|t| t.name()).collect();
+        return Err(input_error!(
+            "--dump: `{n}` is a buffer of technique {}, not of `{technique}`; add --technique {}",
+            owners.join(", "),
+            owners.join("|")
+        )
+        .into());
     }
-    if technique == "none" {
-        // `all` means every buffer this render has; naming a caustic buffer without a caustic
-        // technique is a mistake worth saying.
-        if let Some(n) = dumps.iter().find(|d| CAUSTIC_DUMPS.contains(&d.as_str()) && !dump_all(args.dump.as_deref())) {
-            return Err(input_error!(
-                "--dump: `{n}` is a buffer of the caustic techniques; add --technique shah|shah-vertex|wd-points"
-            )
-            .into());
-        }
-        dumps.retain(|d| !CAUSTIC_DUMPS.contains(&d.as_str()));
-    }
+    dumps.retain(|d| own.contains(&d.as_str()));
     // Before the device: an --out that cannot become a directory fails now, not after the render.
     let out = OutputDir::create(&args.out).context("--out")?;
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
@@ -87,7 +73,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     out.commit()?;
     // Dumps an earlier render left in the same folder would read as this run's: remove the
     // buffers this run did not write (only names causticlab writes; nothing else is touched).
-    for name in DUMP_NAMES {
+    for name in render::all_dump_names() {
         let file = format!("{name}.exr");
         if !written.contains(&file) && final_dir.join(&file).is_file() {
             std::fs::remove_file(final_dir.join(&file))
@@ -117,22 +103,23 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     Ok(())
 }
 
-/// `all` or a comma-separated list of `DUMP_NAMES`, without duplicates, in the order given.
+/// Whether `--dump` says `all`.
 fn dump_all(arg: Option<&str>) -> bool {
     arg.unwrap_or("").split(',').any(|s| s.trim() == "all")
 }
 
+/// `all` or a comma-separated list of dump names ([`render::all_dump_names`]), without
+/// duplicates, in the order given.
 fn parse_dumps(arg: Option<&str>) -> Result<Vec<String>> {
+    let all = render::all_dump_names();
     let mut dumps: Vec<String> = vec![];
     for name in arg.unwrap_or("").split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let names: Vec<&str> = if name == "all" {
-            DUMP_NAMES.to_vec()
-        } else if DUMP_NAMES.contains(&name) {
+            all.clone()
+        } else if all.contains(&name) {
             vec![name]
         } else {
-            return Err(
-                input_error!("--dump: unknown buffer `{name}`; valid names: all, {}", DUMP_NAMES.join(", ")).into()
-            );
+            return Err(input_error!("--dump: unknown buffer `{name}`; valid names: all, {}", all.join(", ")).into());
         };
         for n in names {
             if !dumps.iter().any(|d| d == n) {
@@ -153,18 +140,20 @@ fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
     }
     sizes.push(("render.shadow_map_resolution", scene.render.shadow_map_resolution));
     let c = &scene.caustics;
-    if c.technique != "none" {
+    if c.technique.has_caustics() {
         sizes.push(("caustics.caustic_map_resolution", c.caustic_map_resolution));
         sizes.push(("caustics.photons", c.photons));
-        // A splat is a point of 2 ceil(r) + 2 pixels (photons/splat_photon.glsl). Varying splats
+        // A splat is a point of 2 ceil(r) + 2 pixels (shared/splat_photon.glsl). Varying splats
         // reach r < 40 texels in one map (wider ones are discarded) and r < 5 in their layer of
         // the multi-resolution map. The compute splat draws no points.
-        let (key, what, point) = match c.splat.as_str() {
-            "varying-single" => ("caustics.splat", c.splat.clone(), 82.0),
-            "varying-multires" => ("caustics.splat", c.splat.clone(), 12.0),
-            _ => ("caustics.splat_radius", c.splat_radius.to_string(), 2.0 * c.splat_radius.ceil() + 2.0),
+        let (key, what, point) = match c.splat {
+            SplatMode::VaryingSingle => ("caustics.splat", c.splat.to_string(), 82.0),
+            SplatMode::VaryingMultires => ("caustics.splat", c.splat.to_string(), 12.0),
+            SplatMode::Fixed => {
+                ("caustics.splat_radius", c.splat_radius.to_string(), 2.0 * c.splat_radius.ceil() + 2.0)
+            }
         };
-        if c.splat_path == "raster" && point > info.point_size_range[1] {
+        if c.splat_path == SplatPath::Raster && point > info.point_size_range[1] {
             return Err(input_error!(
                 "{file}: key `{key}`: {what} needs points of {point} pixels, but `{}` draws points of at most {} \
                  (splat_path = \"compute\" draws none)",
@@ -214,7 +203,7 @@ mod tests {
     #[test]
     fn dump_lists() {
         assert_eq!(parse_dumps(None).unwrap_or_default(), Vec::<String>::new());
-        assert_eq!(parse_dumps(Some("all")).unwrap_or_default().len(), DUMP_NAMES.len());
+        assert_eq!(parse_dumps(Some("all")).unwrap_or_default().len(), render::all_dump_names().len());
         let two = parse_dumps(Some("receiver, shadow_map,receiver")).unwrap_or_default();
         assert_eq!(two, vec!["receiver".to_string(), "shadow_map".to_string()]);
         let err = parse_dumps(Some("receiver,bogus")).err().map(|e| e.to_string()).unwrap_or_default();

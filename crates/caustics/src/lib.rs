@@ -1,13 +1,17 @@
-//! causticlab's techniques, one module per paper, plus the scene description and CPU references.
+//! causticlab's techniques, one module per paper (`techniques`), the eye render that shows them
+//! (`render`), what both share on the GPU (`gpu`), the scene description and CPU references.
+
+#![forbid(unsafe_code)]
 
 pub mod animation;
 pub mod bvh;
-pub mod caustic_map;
 pub mod compare;
 pub mod error;
+pub mod gpu;
 pub mod image_io;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod techniques;
 
 pub use error::InputError;

@@ -1,4 +1,4 @@
-//! The compute splat (photons/splat.comp, `splat_path = compute`) must give the caustic map the
+//! The compute splat (shared/splat.comp, `splat_path = compute`) must give the caustic map the
 //! point splat gives: the same texels with the same weights in the same layers, so the same map
 //! up to the order of float additions. Checked texel by texel on every channel (power and
 //! photon count) and every layer, for the dense photon buffer (`wd-points` with both kernels,
@@ -18,7 +18,7 @@ use common::context;
 fn scene(file: &str, technique: &str) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes").join(file);
     let mut s = Scene::load(&p).expect("shipped scene");
-    s.caustics.technique = technique.into();
+    s.caustics.technique = technique.parse().expect("a known name");
     s.caustics.photons = 128;
     s.caustics.caustic_map_resolution = 256;
     s.camera.width = 64;
@@ -32,7 +32,7 @@ fn caustic_map(ctx: &Context, sh: &ShaderCompiler, scene: &Scene) -> Vec<f64> {
     let mut r = Renderer::new(ctx, sh, scene, &RendererOptions::default()).expect("renderer");
     let report = r.frame(FrameStep::default()).expect("frame");
     // Which path ran: only the compute splat has a resolve pass.
-    let compute = scene.caustics.splat_path == "compute";
+    let compute = scene.caustics.splat_path == caustics::techniques::SplatPath::Compute;
     assert_eq!(
         report.pass("splat.resolve.light0").is_some(),
         compute,
@@ -55,10 +55,10 @@ fn difference(a: &[f64], b: &[f64]) -> (f64, f64, f64) {
 
 /// Renders `s` with both splat paths and compares; `what` names the case in failures.
 fn assert_same_map(ctx: &Context, sh: &ShaderCompiler, mut s: Scene, what: &str) {
-    s.caustics.splat_path = "raster".into();
+    s.caustics.splat_path = "raster".parse().expect("a known name");
     let raster = caustic_map(ctx, sh, &s);
     assert!(raster.iter().sum::<f64>() > 0.0, "{what}: no caustic, the comparison would be vacuous");
-    s.caustics.splat_path = "compute".into();
+    s.caustics.splat_path = "compute".parse().expect("a known name");
     let compute = caustic_map(ctx, sh, &s);
     let (dt, dl1, dmax) = difference(&compute, &raster);
     // Float additions in another order: relative rounding of a few ulps per texel.
@@ -81,7 +81,7 @@ fn the_compute_splat_gives_the_point_splats_map_for_dense_photons() {
         ("shah-vertex", "box", 2.0),
     ] {
         let mut s = scene("sphere_on_plane.toml", technique);
-        s.caustics.splat_kernel = kernel.into();
+        s.caustics.splat_kernel = kernel.parse().expect("a known name");
         s.caustics.splat_radius = radius;
         assert_same_map(&ctx, &sh, s, &format!("{technique}, {kernel} kernel, radius {radius}"));
     }
@@ -99,14 +99,14 @@ fn the_compute_splat_gives_the_point_splats_map_for_the_hierarchys_final_list() 
             [("none", "fixed"), ("all", "fixed"), ("last", "varying-single"), ("last", "varying-multires")]
         {
             let mut s = scene("sphere_on_plane.toml", "hcm");
-            s.caustics.path = path.into();
-            s.caustics.cluster = cluster.into();
-            s.caustics.splat = splat.into();
+            s.caustics.path = path.parse().expect("a known name");
+            s.caustics.cluster = cluster.parse().expect("a known name");
+            s.caustics.splat = splat.parse().expect("a known name");
             assert_same_map(&ctx, &sh, s, &format!("hcm, path {path}, cluster {cluster}, {splat} splats"));
         }
     }
     let mut s = scene("two_lights.toml", "hcm");
-    s.caustics.splat = "varying-multires".into();
+    s.caustics.splat = "varying-multires".parse().expect("a known name");
     assert_same_map(&ctx, &sh, s, "hcm, two lights, varying multi-res");
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));

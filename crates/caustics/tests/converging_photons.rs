@@ -8,10 +8,10 @@
 //! paths and both clustering modes. Where a photon lies within 1e-3 texel of a texel edge, float
 //! rounding may decide either way: the nodes holding one are left out, and must be few.
 
-use caustics::caustic_map::gpu::caustic_uniforms;
-use caustics::caustic_map::hierarchy::{levels, TOP_SIDE};
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
+use caustics::techniques::uniforms::caustic_uniforms;
+use caustics::techniques::wyman2008::{levels, TOP_SIDE};
 use glam::{DMat4, DVec4, Mat4};
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -133,11 +133,11 @@ fn clusters_are_exactly_the_nodes_whose_photons_converge_on_both_paths() {
         let mut clusters_seen = 0;
         for path in ["xfb", "compute"] {
             let mut s = Scene::load(&p).expect("shipped scene");
-            s.caustics.technique = "hcm".into();
+            s.caustics.technique = "hcm".parse().expect("a known name");
             s.caustics.photons = n;
             s.caustics.caustic_map_resolution = 128;
-            s.caustics.cluster = cluster.into();
-            s.caustics.path = path.into();
+            s.caustics.cluster = cluster.parse().expect("a known name");
+            s.caustics.path = path.parse().expect("a known name");
             s.camera.width = 64;
             s.camera.height = 64;
             s.receiver_map = None;

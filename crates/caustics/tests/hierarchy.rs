@@ -18,10 +18,10 @@ use common::context;
 fn scene(technique: &str, photons: u32, path: &str, cluster: &str) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
     let mut s = Scene::load(&p).expect("shipped scene");
-    s.caustics.technique = technique.into();
+    s.caustics.technique = technique.parse().expect("a known name");
     s.caustics.photons = photons;
-    s.caustics.path = path.into();
-    s.caustics.cluster = cluster.into();
+    s.caustics.path = path.parse().expect("a known name");
+    s.caustics.cluster = cluster.parse().expect("a known name");
     s.caustics.caustic_map_resolution = 256;
     s.camera.width = 64;
     s.camera.height = 64;
@@ -118,7 +118,7 @@ fn both_paths_agree_and_clustering_conserves_power() {
 /// map in W, caustic-map layers).
 fn splat_totals(ctx: &Context, sh: &ShaderCompiler, splat: &str) -> (f64, f64, f64, usize) {
     let mut s = scene("hcm", 256, "compute", "last");
-    s.caustics.splat = splat.into();
+    s.caustics.splat = splat.parse().expect("a known name");
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
     s.receiver_map = Scene::load(&p).expect("scene").receiver_map;
     let spec = s.receiver_map.clone().expect("the scene has a receiver map");
@@ -174,7 +174,7 @@ fn varying_splats_conserve_power_and_the_multires_map_sums_to_the_single_map() {
 /// levels of every light (Eq. 3 sums them the same way).
 fn caustic_power(ctx: &Context, sh: &ShaderCompiler, path: &str, cluster: &str, splat: &str) -> f64 {
     let mut s = scene("hcm", 128, path, cluster);
-    s.caustics.splat = splat.into();
+    s.caustics.splat = splat.parse().expect("a known name");
     let mut r = Renderer::new(ctx, sh, &s, &RendererOptions::default()).expect("renderer");
     r.frame(FrameStep::default()).expect("frame");
     let img = r.dump("caustic_map").expect("dump").expect("a caustic map");
@@ -221,9 +221,9 @@ fn every_light_traverses_its_own_photon_buffer() {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/two_lights.toml");
     for path in ["xfb", "compute"] {
         let mut s = Scene::load(&p).expect("shipped scene");
-        s.caustics.technique = "hcm".into();
+        s.caustics.technique = "hcm".parse().expect("a known name");
         s.caustics.photons = 100;
-        s.caustics.path = path.into();
+        s.caustics.path = path.parse().expect("a known name");
         s.caustics.caustic_map_resolution = 256;
         s.camera.width = 64;
         s.camera.height = 48;

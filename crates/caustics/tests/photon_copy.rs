@@ -4,9 +4,9 @@
 //! rounding (16-bit copies). Also: static lighting (reused photon buffer) leaves the map as
 //! it was. Validation layer on; any message fails.
 
-use caustics::caustic_map::CopyType;
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
+use caustics::techniques::CopyType;
 use std::path::PathBuf;
 use vkcore::{Context, ShaderCompiler};
 
@@ -20,7 +20,7 @@ fn scene() -> Scene {
 fn scene_with(instance_vertices: u32) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
     let mut s = Scene::load(&p).expect("shipped scene");
-    s.caustics.technique = "wd-points".into();
+    s.caustics.technique = "wd-points".parse().expect("a known name");
     s.caustics.photons = 128;
     s.caustics.caustic_map_resolution = 256;
     s.camera.width = 64;

@@ -12,10 +12,10 @@
 //! in regions where photons diverge more strongly in one direction" (not slightly on the glass
 //! sphere, whose rim photons spread radially). Both keep the power.
 
-use caustics::caustic_map::gpu::{caustic_uniforms, CausticLightUniforms};
 use caustics::image_io::ImageF32;
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
+use caustics::techniques::uniforms::{caustic_uniforms, CausticLightUniforms};
 use glam::{DMat4, DVec3, DVec4, Mat4};
 use std::path::PathBuf;
 
@@ -27,13 +27,13 @@ const N: u32 = 128;
 fn scene(splat: &str, varying_radius: &str) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
     let mut s = Scene::load(&p).expect("shipped scene");
-    s.caustics.technique = "hcm".into();
+    s.caustics.technique = "hcm".parse().expect("a known name");
     s.caustics.photons = N;
     s.caustics.caustic_map_resolution = 256;
-    s.caustics.path = "compute".into();
-    s.caustics.splat = splat.into();
+    s.caustics.path = "compute".parse().expect("a known name");
+    s.caustics.splat = splat.parse().expect("a known name");
     if splat != "fixed" {
-        s.caustics.varying_radius = varying_radius.into();
+        s.caustics.varying_radius = varying_radius.parse().expect("a known name");
     }
     s.camera.width = 64;
     s.camera.height = 64;

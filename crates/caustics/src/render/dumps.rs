@@ -1,8 +1,8 @@
 //! Reads intermediate buffers back as named EXR layers (`--dump`).
 
 use super::targets::{EyeTargets, Target};
-use crate::caustic_map::{CausticTargets, PhotonTargets};
 use crate::image_io::{ImageF32, Layer};
+use crate::techniques::{CausticTargets, PhotonTargets};
 use anyhow::Result;
 use vkcore::Context;
 

@@ -1,10 +1,10 @@
 //! Records one frame of the eye render: shadow maps, diffuse background with its geometry
 //! buffer, refractor back faces, refractor/reflector front faces, composite, receiver map.
 
-use super::gpu::*;
 use super::pipelines::EyePipelines;
-use super::setup::{mesh_uses, GpuMesh};
 use super::targets::EyeTargets;
+use crate::gpu::*;
+use crate::gpu::{mesh_uses, GpuMesh};
 use anyhow::Result;
 use vkcore::{Access, Bind, Buffer, Cmd, Frame, Sampler, Targets, Use};
 
@@ -12,7 +12,7 @@ use vkcore::{Access, Bind, Buffer, Cmd, Frame, Sampler, Targets, Use};
 pub struct EyeInputs<'a> {
     pub uniforms: &'a Buffer,
     pub caustic_uniforms: &'a Buffer,
-    pub caustics: &'a crate::caustic_map::CausticTargets,
+    pub caustics: &'a crate::techniques::CausticTargets,
     pub meshes: &'a [GpuMesh],
     pub nearest: &'a Sampler,
     pub linear: &'a Sampler,

@@ -4,49 +4,46 @@
 
 mod dumps;
 mod eye;
-pub mod gpu;
 pub mod pipelines;
 mod renderer;
-pub mod setup;
 pub mod targets;
 
 pub use renderer::{FrameStep, Renderer, RendererOptions};
 
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
+use crate::techniques::{SplatPath, Technique};
 use anyhow::Result;
 use vkcore::{Context, FrameReport, ShaderCompiler};
 
-/// Every intermediate buffer `--dump` accepts (`all` = every one): those of every render, then
-/// those of the caustic techniques ([`CAUSTIC_DUMPS`]), the last of them `hcm`'s
-/// ([`HIERARCHY_DUMPS`]).
-pub const DUMP_NAMES: &[&str] = &[
-    "shadow_map",
-    "background",
-    "refractor_back_faces",
-    "refractor_front_faces",
-    "eye_gbuffer",
-    "receiver",
-    "receiver_positions",
-    "photon_back_faces",
-    "photon_buffer",
-    "caustic_map",
-    "hierarchy",
-    "hierarchy_lists",
-    "splats",
-];
+/// The intermediate buffers of every render (`--dump` names); each caustic technique adds its
+/// own ([`Technique::dumps`]).
+pub const EYE_DUMPS: &[&str] =
+    &["shadow_map", "background", "refractor_back_faces", "refractor_front_faces", "eye_gbuffer", "receiver"];
 
-/// The buffers only a caustic technique has.
-pub const CAUSTIC_DUMPS: &[&str] = DUMP_NAMES.split_at(6).1;
-/// The buffers only `hcm` has.
-pub const HIERARCHY_DUMPS: &[&str] = DUMP_NAMES.split_at(10).1;
 /// The light-space buffers that serve every light in turn (dumped light by light, layers
 /// `light<l>.<layer>`; see `Renderer::dumps`).
 pub const LIGHT_SPACE_DUMPS: &[&str] =
     &["photon_back_faces", "photon_buffer", "hierarchy", "hierarchy_lists", "splats"];
 
-/// Techniques `--technique` accepts.
-pub use crate::scene::TECHNIQUES;
+/// The buffers `technique` can dump: the eye render's, then the technique's own.
+pub fn dumps_of(technique: Technique) -> Vec<&'static str> {
+    [EYE_DUMPS.to_vec(), technique.dumps()].concat()
+}
+
+/// Every buffer some technique can dump (what `--dump` accepts), in the order of
+/// [`dumps_of`] over [`Technique::ALL`].
+pub fn all_dump_names() -> Vec<&'static str> {
+    let mut all: Vec<&'static str> = EYE_DUMPS.to_vec();
+    for t in Technique::ALL {
+        for d in t.dumps() {
+            if !all.contains(&d) {
+                all.push(d);
+            }
+        }
+    }
+    all
+}
 
 #[derive(Debug, Clone, Default)]
 pub struct RenderRequest {
@@ -67,36 +64,18 @@ pub struct Rendered {
     pub photons_emitted: u64,
 }
 
-/// The device features technique `name` needs (checked by the caller with `ctx.require`).
-pub fn required_features(name: &str) -> Option<&'static [vkcore::Feature]> {
-    match name {
-        "none" => Some(&[vkcore::Feature::ShaderOutputLayer]),
-        // Splats are points wider than one pixel.
-        "shah" | "wd-points" | "hcm" => Some(&[vkcore::Feature::ShaderOutputLayer, vkcore::Feature::LargePoints]),
-        "shah-vertex" => Some(&[
-            vkcore::Feature::ShaderOutputLayer,
-            vkcore::Feature::LargePoints,
-            vkcore::Feature::VertexPipelineStoresAndAtomics,
-        ]),
-        _ => None,
-    }
-}
-
 /// Checks that the device has every feature the scene's caustic technique (and, for `hcm`, its
-/// traversal path) needs; the error names the feature.
+/// traversal path; for the compute splat, float atomics) needs; the error names the feature.
 pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
     let c = &scene.caustics;
-    ctx.require(&format!("technique `{}`", c.technique), required_features(&c.technique).unwrap_or(&[]))?;
-    if c.technique == "hcm" {
-        if let Some(path) = crate::caustic_map::hierarchy::parse_path(&c.path) {
-            let features = crate::caustic_map::hierarchy::path_features(path);
-            ctx.require(&format!("technique `hcm` with --path {}", c.path), features)?;
-        }
+    ctx.require(&format!("technique `{}`", c.technique), c.technique.required_features())?;
+    if c.technique == Technique::Hcm {
+        ctx.require(&format!("technique `hcm` with --path {}", c.path), c.path.features())?;
     }
-    if c.technique != "none" && c.splat_path == "compute" {
+    if c.technique.has_caustics() && c.splat_path == SplatPath::Compute {
         ctx.require(
-            "splat_path `compute` (float atomics in photons/splat.comp)",
-            crate::caustic_map::compute_splat::FEATURES,
+            "splat_path `compute` (float atomics in shared/splat.comp)",
+            crate::techniques::shared::compute_splat::FEATURES,
         )?;
     }
     Ok(())
@@ -143,12 +122,19 @@ pub fn shader_root() -> std::path::PathBuf {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
     #[test]
-    fn dump_groups_start_where_their_buffers_do() {
-        assert_eq!(super::CAUSTIC_DUMPS.first(), Some(&"receiver_positions"));
-        assert_eq!(super::HIERARCHY_DUMPS, &["hierarchy", "hierarchy_lists", "splats"]);
-        for light_space in super::LIGHT_SPACE_DUMPS {
-            assert!(super::CAUSTIC_DUMPS.contains(light_space), "{light_space}");
+    fn light_space_dumps_belong_to_techniques_and_names_are_unique() {
+        let all = all_dump_names();
+        for light_space in LIGHT_SPACE_DUMPS {
+            assert!(!EYE_DUMPS.contains(light_space), "{light_space}");
+            assert!(all.contains(light_space), "{light_space}");
         }
+        let mut sorted = all.clone();
+        sorted.sort();
+        sorted.dedup();
+        assert_eq!(sorted.len(), all.len());
+        assert_eq!(dumps_of(Technique::None), EYE_DUMPS);
     }
 }

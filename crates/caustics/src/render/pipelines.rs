@@ -1,14 +1,10 @@
 //! The pipelines of the eye render (`--technique none`), built once per run.
 
 use anyhow::Result;
-use vkcore::{
-    BindingKind as K, Blend, Context, Cull, Format, GraphicsDesc, Pipeline, ShaderCompiler, Topology, VertexAttribute,
-    VertexLayout,
-};
+use vkcore::{BindingKind as K, Context, Cull, Pipeline, ShaderCompiler};
 
-pub const COLOR: Format = Format::R32G32B32A32_SFLOAT;
-pub const DISTANCE: Format = Format::R32_SFLOAT;
-pub const DEPTH: Format = Format::D32_SFLOAT;
+pub use crate::gpu::formats::{COLOR, DEPTH, DISTANCE};
+use crate::gpu::mesh_pipeline::{mesh_pipeline, MeshPass};
 
 pub struct EyePipelines {
     pub shadow_map: Pipeline,
@@ -17,44 +13,6 @@ pub struct EyePipelines {
     pub front_faces: Pipeline,
     pub composite: Pipeline,
     pub receiver_map: Pipeline,
-}
-
-pub fn mesh_layout() -> VertexLayout {
-    VertexLayout {
-        stride: 28,
-        attributes: vec![
-            VertexAttribute { location: 0, format: Format::R32G32B32_SFLOAT, offset: 0 },
-            VertexAttribute { location: 1, format: Format::R32G32B32_SFLOAT, offset: 12 },
-            VertexAttribute { location: 2, format: Format::R32_SFLOAT, offset: 24 },
-        ],
-    }
-}
-
-/// A depth-tested pass over scene meshes.
-pub(crate) struct MeshPass<'a> {
-    pub name: &'a str,
-    pub vert: &'a str,
-    /// Defines for the vertex shader.
-    pub vert_defines: &'a [(&'a str, &'a str)],
-    pub frag: &'a str,
-    pub bindings: Vec<K>,
-    pub colors: Vec<Format>,
-    pub cull: Cull,
-}
-
-pub(crate) fn mesh_pipeline(ctx: &Context, sh: &ShaderCompiler, pass: MeshPass) -> Result<Pipeline> {
-    let MeshPass { name, vert, vert_defines, frag, bindings, colors, cull } = pass;
-    let mut d = GraphicsDesc::new(name, sh.compile(vert, vert_defines)?, Some(sh.compile(frag, &[])?));
-    d.bindings = bindings;
-    d.vertex_layout = Some(mesh_layout());
-    d.topology = Topology::Triangles;
-    d.cull = cull;
-    d.color_formats = colors;
-    d.blend = Blend::Replace;
-    d.depth_format = Some(DEPTH);
-    d.depth_test = true;
-    d.depth_write = true;
-    Ok(Pipeline::graphics(ctx, &d)?)
 }
 
 impl EyePipelines {

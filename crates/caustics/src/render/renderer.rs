@@ -2,12 +2,14 @@
 //! benchmark can render many frames of an animation (uniforms and moving meshes updated per
 //! frame) and time each one.
 
-use super::{dumps, eye, gpu, pipelines, setup, targets};
-use crate::caustic_map::hierarchy::{self, Hierarchy};
-use crate::caustic_map::splat_footprints::{self, SplatFootprints};
-use crate::caustic_map::{self, CausticFrame, CopyType, PhotonCopy};
+use super::{dumps, eye, pipelines, targets};
+use crate::gpu::{self, setup};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
+use crate::techniques::shah2007::VertexPhotons;
+use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
+use crate::techniques::wyman2008::{self, Hierarchy};
+use crate::techniques::{self as caustic_map, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
 use anyhow::{Context as _, Result};
 use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler, Use};
 
@@ -36,6 +38,7 @@ struct CausticResources {
     /// Vertices per instance of the instanced photon fetch (`splat_vertices` holds 0..this).
     instance_vertices: u32,
     copy: Option<PhotonCopy>,
+    vertex_photons: Option<VertexPhotons>,
     hierarchy: Option<Hierarchy>,
     /// What the `splats` dump reads the hierarchy's splats with (built by the first such dump).
     footprints: Option<SplatFootprints>,
@@ -52,7 +55,7 @@ pub struct Renderer<'c> {
     uniforms: Buffer,
     caustic_uniforms: Buffer,
     /// New uniform contents to write at the start of the next frame.
-    pending_uniforms: Option<(gpu::FrameUniforms, caustic_map::gpu::CausticUniforms)>,
+    pending_uniforms: Option<(gpu::FrameUniforms, caustic_map::uniforms::CausticUniforms)>,
     targets: targets::EyeTargets,
     caustic_targets: caustic_map::CausticTargets,
     nearest: Sampler,
@@ -65,7 +68,7 @@ pub struct Renderer<'c> {
 impl<'c> Renderer<'c> {
     pub fn new(ctx: &'c Context, shaders: &'c ShaderCompiler, scene: &Scene, opts: &RendererOptions) -> Result<Self> {
         let settings = &scene.caustics;
-        let technique = settings.technique.as_str();
+        let technique = settings.technique;
         settings.validate_combination(&scene.path.display().to_string(), "caustics.")?;
         super::check_device(ctx, scene)?;
         if scene.lights.len() > gpu::MAX_LIGHTS {
@@ -77,21 +80,21 @@ impl<'c> Renderer<'c> {
             )
             .into());
         }
-        if opts.photon_copy.is_some() && technique != "wd-points" && technique != "shah" {
+        if opts.photon_copy.is_some() && !technique.splats_the_photon_buffer() {
             return Err(crate::input_error!(
                 "photon_copy: copying the photon buffer into a vertex array needs a photon-buffer technique \
                  (wd-points or shah), not `{technique}`"
             )
             .into());
         }
-        if opts.photon_copy.is_some() && settings.splat_path == "compute" {
+        if opts.photon_copy.is_some() && settings.splat_path == SplatPath::Compute {
             return Err(crate::input_error!(
                 "photon_copy: the copied vertex array is splatted as points; it has no compute splat \
                  (splat_path = \"compute\")"
             )
             .into());
         }
-        let active = technique != "none" && caustic_map::gpu::specular_bounds(scene).is_some();
+        let active = technique.has_caustics() && caustic_map::uniforms::specular_bounds(scene).is_some();
         let pipelines = pipelines::EyePipelines::new(ctx, shaders)?;
         let meshes = setup::upload_meshes(ctx, scene)?;
         let (fu, cu) = uniforms_of(scene, active)?;
@@ -109,7 +112,7 @@ impl<'c> Renderer<'c> {
                 bytemuck::cast_slice(&spot[l as usize * n..(l as usize + 1) * n]),
             )?;
         }
-        let vertex_photons = technique == "shah-vertex";
+        let vertex_photons = technique == Technique::ShahVertex;
         let specular_vertices: u32 = meshes
             .iter()
             .filter(|m| m.kind() != gpu::MATERIAL_DIFFUSE)
@@ -125,27 +128,25 @@ impl<'c> Renderer<'c> {
             };
             let ids: Vec<u32> = (0..settings.instance_vertices).collect();
             let copy = match opts.photon_copy {
-                Some(ty) => Some(PhotonCopy::new(ctx, ty, photon_side)?),
+                Some(ty) => Some(PhotonCopy::new(ctx, shaders, ty, photon_side)?),
                 None => None,
             };
-            let hierarchy = if technique == "hcm" {
-                let bad = |what: &str, v: &str| crate::input_error!("caustics.{what}: unknown value `{v}`");
-                let path = hierarchy::parse_path(&settings.path).ok_or_else(|| bad("path", &settings.path))?;
-                let cluster =
-                    hierarchy::Cluster::parse(&settings.cluster).ok_or_else(|| bad("cluster", &settings.cluster))?;
-                Some(Hierarchy::new(ctx, shaders, photon_side, scene.lights.len() as u32, path, cluster)?)
+            let hierarchy = if technique == Technique::Hcm {
+                let lights = scene.lights.len() as u32;
+                Some(Hierarchy::new(ctx, shaders, photon_side, lights, settings.path, settings.cluster)?)
             } else {
                 None
             };
-            let compute_splat = if settings.splat_path == "compute" {
+            let compute_splat = if settings.splat_path == SplatPath::Compute {
                 let (side, layers) = (settings.caustic_map_resolution, settings.caustic_levels());
-                let list = hierarchy.as_ref().map(|h| h.path);
+                let list = hierarchy.as_ref().map(|h| (h.path, wyman2008::ENTRY_BYTES));
                 Some(caustic_map::ComputeSplat::new(ctx, shaders, side, layers, list)?)
             } else {
                 None
             };
             Some(CausticResources {
-                pipelines: caustic_map::CausticPipelines::new(ctx, shaders, technique, opts.photon_copy)?,
+                pipelines: caustic_map::CausticPipelines::new(ctx, shaders)?,
+                vertex_photons: if vertex_photons { Some(VertexPhotons::new(ctx, shaders)?) } else { None },
                 photons: caustic_map::PhotonTargets::new(ctx, settings.photons, photon_side)?,
                 vertex_areas,
                 splat_vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
@@ -272,6 +273,7 @@ impl<'c> Renderer<'c> {
         CausticFrame {
             reuse_photons: false,
             copy: c.copy.as_ref(),
+            vertex_photons: c.vertex_photons.as_ref(),
             hierarchy: c.hierarchy.as_ref(),
             compute_splat: c.compute_splat.as_ref(),
         }
@@ -295,7 +297,7 @@ impl<'c> Renderer<'c> {
             }
         }
         let light_space = |n: &str| super::LIGHT_SPACE_DUMPS.contains(&n);
-        let has = |n: &str| match super::HIERARCHY_DUMPS.contains(&n) {
+        let has = |n: &str| match wyman2008::DUMPS.contains(&n) {
             true => self.hierarchy().is_some(),
             false => self.caustic.is_some(),
         };
@@ -336,7 +338,7 @@ impl<'c> Renderer<'c> {
         let mut out = vec![];
         for name in unique {
             let img = match wanted.iter().position(|w| w == name) {
-                Some(_) if name == "hierarchy_lists" => Some(hierarchy::lists_image(&lists)),
+                Some(_) if name == "hierarchy_lists" => Some(wyman2008::lists_image(&lists)),
                 Some(_) if name == "splats" => Some(splat_footprints::splats_image(&splats)),
                 Some(i) => per_light[i].take(),
                 None if light_space(name) => None,
@@ -369,7 +371,8 @@ impl<'c> Renderer<'c> {
         if !self.active {
             return 0;
         }
-        caustic_map::photons_per_light(&self.scene.caustics, self.specular_vertices) * self.targets.shadow.lights as u64
+        let c = &self.scene.caustics;
+        c.technique.photons_per_light(c, self.specular_vertices) * self.targets.shadow.lights as u64
     }
 
     /// The hierarchy of `hcm` (None for the other techniques).
@@ -406,8 +409,8 @@ impl<'c> Renderer<'c> {
 }
 
 /// Frame and caustic uniforms of `scene`; the caustic pass is switched off when not `active`.
-fn uniforms_of(scene: &Scene, active: bool) -> Result<(gpu::FrameUniforms, caustic_map::gpu::CausticUniforms)> {
-    let mut cu = caustic_map::gpu::caustic_uniforms(scene, &scene.caustics)?;
+fn uniforms_of(scene: &Scene, active: bool) -> Result<(gpu::FrameUniforms, caustic_map::uniforms::CausticUniforms)> {
+    let mut cu = caustic_map::uniforms::caustic_uniforms(scene, &scene.caustics)?;
     if !active {
         cu.settings[0] = 0;
     }

@@ -1,36 +1,11 @@
 //! Images of the eye render and the views passes use.
 
-use super::pipelines::{COLOR, DEPTH, DISTANCE};
-use super::setup::SPOT_TEXTURE_SIZE;
+use crate::gpu::formats::{COLOR, DEPTH, DISTANCE};
+use crate::gpu::setup::SPOT_TEXTURE_SIZE;
+pub use crate::gpu::Target;
 use crate::scene::Scene;
 use anyhow::Result;
 use vkcore::{Context, Image, ImageDesc, ImageView, ViewKind};
-
-/// An image with its full view.
-pub struct Target {
-    pub image: Image,
-    pub view: ImageView,
-}
-
-impl Target {
-    pub fn new(ctx: &Context, desc: ImageDesc) -> Result<Target> {
-        let image = Image::new(ctx, desc)?;
-        let view = image.full_view()?;
-        Ok(Target { image, view })
-    }
-    /// A 2D-array view even for one layer (for `sampler2DArray` bindings).
-    pub fn array(ctx: &Context, desc: ImageDesc) -> Result<Target> {
-        let image = Image::new(ctx, desc)?;
-        let view = image.view(ViewKind::D2Array, 0..1, 0..image.desc.array_layers)?;
-        Ok(Target { image, view })
-    }
-    fn color(ctx: &Context, name: &str, w: u32, h: u32) -> Result<Target> {
-        Target::new(ctx, ImageDesc::new_2d(name, COLOR, w, h))
-    }
-    fn depth(ctx: &Context, name: &str, w: u32, h: u32) -> Result<Target> {
-        Target::new(ctx, ImageDesc::new_2d(name, DEPTH, w, h))
-    }
-}
 
 /// Shadow maps of every light: distances in layers 6l..6l+6, plus per-light layer views.
 pub struct ShadowMaps {
@@ -61,7 +36,7 @@ pub struct EyeTargets {
 impl EyeTargets {
     pub fn new(ctx: &Context, scene: &Scene) -> Result<EyeTargets> {
         let (w, h) = (scene.camera.width, scene.camera.height);
-        let lights = scene.lights.len().clamp(1, super::gpu::MAX_LIGHTS) as u32;
+        let lights = scene.lights.len().clamp(1, crate::gpu::MAX_LIGHTS) as u32;
         let res = scene.render.shadow_map_resolution;
         let distance = Target::array(ctx, ImageDesc::new_2d("shadow_map", DISTANCE, res, res).layers(6 * lights))?;
         let depth = Image::new(ctx, ImageDesc::new_2d("shadow_map depth", DEPTH, res, res).layers(6 * lights))?;

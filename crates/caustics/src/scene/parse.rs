@@ -33,9 +33,14 @@ pub fn parse_toml<T: DeserializeOwned>(path: &Path, text: &str) -> anyhow::Resul
         }
     };
     toml::from_str::<T>(text).map_err(|e| {
-        let span = e.span();
-        let key = span.as_ref().and_then(|s| key_at(doc.as_table(), s.start, ""));
+        let mut span = e.span();
         let msg = e.message().trim_end().replace('\n', "; ");
+        // An error raised inside a flattened table (a bench `[[technique]]`) spans the whole
+        // table: find the key it is about there, by its name or by its value.
+        if let Some((_, start)) = span.clone().and_then(|s| named_in(doc.as_table(), &s, "", &msg)) {
+            span = Some(start..start + 1);
+        }
+        let key = span.as_ref().and_then(|s| key_at(doc.as_table(), s.start, ""));
         let err = match (key, span) {
             (Some(key), Some(s)) => {
                 let (line, _) = line_col(s.start);
@@ -49,6 +54,59 @@ pub fn parse_toml<T: DeserializeOwned>(path: &Path, text: &str) -> anyhow::Resul
         };
         anyhow::Error::new(err)
     })
+}
+
+/// The key inside `span` that `msg` names: ``unknown field `X` `` names key X, ``unknown variant
+/// `V` `` the key whose value is the string V. (key path, start of the key) of the first.
+fn named_in(
+    table: &dyn toml_edit::TableLike,
+    span: &std::ops::Range<usize>,
+    prefix: &str,
+    msg: &str,
+) -> Option<(String, usize)> {
+    let quoted = |lead: &str| msg.strip_prefix(lead).and_then(|r| r.split('`').next()).map(str::to_string);
+    let (field, variant) = (quoted("unknown field `"), quoted("unknown variant `"));
+    if field.is_none() && variant.is_none() {
+        return None;
+    }
+    let mut found = None;
+    visit(table, prefix, &mut |path, key, value| {
+        let Some(start) = key.span().map(|s| s.start) else { return };
+        if found.is_some() || !span.contains(&start) {
+            return;
+        }
+        let by_name = field.as_deref() == Some(key.get());
+        let by_value = variant.is_some() && value.and_then(|v| v.as_str()) == variant.as_deref();
+        if by_name || by_value {
+            found = Some((path.to_string(), start));
+        }
+    });
+    found
+}
+
+/// Calls `f(path, key, value)` for every key of `table` and of the tables below it.
+fn visit(
+    table: &dyn toml_edit::TableLike,
+    prefix: &str,
+    f: &mut dyn FnMut(&str, &toml_edit::Key, Option<&toml_edit::Value>),
+) {
+    use toml_edit::Item;
+    for (k, item) in table.iter() {
+        let path = join(prefix, k);
+        if let Some((key, _)) = table.get_key_value(k) {
+            f(&path, key, item.as_value());
+        }
+        match item {
+            Item::Table(t) => visit(t, &path, f),
+            Item::ArrayOfTables(a) => {
+                for (i, t) in a.iter().enumerate() {
+                    visit(t, &format!("{path}[{i}]"), f);
+                }
+            }
+            Item::Value(toml_edit::Value::InlineTable(t)) => visit(t, &path, f),
+            _ => {}
+        }
+    }
 }
 
 fn contains(span: Option<std::ops::Range<usize>>, offset: usize) -> bool {

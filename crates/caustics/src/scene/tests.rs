@@ -300,8 +300,10 @@ fn hierarchy_settings_belong_to_hcm() {
             assert!(err.contains(n), "{text}: `{err}` does not name {n}");
         }
         let mut hcm = s.caustics.clone();
-        hcm.technique = "hcm".into();
-        hcm.splat = if hcm.varying_radius == "beam-area" { "varying-multires".into() } else { hcm.splat };
+        hcm.technique = crate::techniques::Technique::Hcm;
+        if hcm.varying_radius == crate::techniques::wyman2008::VaryingRadius::BeamArea {
+            hcm.splat = crate::techniques::wyman2008::SplatMode::VaryingMultires;
+        }
         hcm.validate_combination("scene.toml", "caustics.").expect("with technique hcm they belong");
     }
     expect_error(

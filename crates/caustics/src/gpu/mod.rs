@@ -1,0 +1,13 @@
+//! What every pass shares on the GPU, below both the eye render (`crate::render`) and the
+//! caustic techniques (`crate::techniques`): the scene's meshes and uniforms (twins of
+//! `shaders_glsl/common/`), render targets, their formats, and pipelines over meshes.
+
+pub mod formats;
+pub mod mesh_pipeline;
+pub mod setup;
+pub mod structs;
+pub mod target;
+
+pub use setup::{mesh_uses, GpuMesh};
+pub use structs::*;
+pub use target::Target;

@@ -1,0 +1,87 @@
+//! Records the caustic passes of one frame, light after light: the light-space work (receiver
+//! positions, the refractors' back faces, the photon buffer or vertex photons, and the copy or
+//! the hierarchy that read it), then the splat into the light's caustic-map layer, by the
+//! technique's path (points, the hierarchy's list, or the compute splat).
+
+use super::shah2007::VertexPhotons;
+use super::shared::compute_splat::{self, ComputeSplat};
+use super::shared::{photon_buffer, splat, CausticPipelines, CausticTargets, PhotonTargets};
+use super::wyman2008::photon_copy::PhotonCopy;
+use super::wyman2008::Hierarchy;
+use anyhow::Result;
+use vkcore::Frame;
+
+pub use super::shared::splat::record_cleared;
+pub use super::shared::CausticInputs;
+
+/// What one frame records beyond the splat.
+#[derive(Clone, Copy, Default)]
+pub struct CausticFrame<'a> {
+    /// Render the receiver positions, back faces and photon buffer again. False reuses the
+    /// previous frame's photons: static lighting in Wyman & Davis 2006 Table 1, where "the
+    /// photon buffer does not need rerendering" and only the splat and eye passes run.
+    pub reuse_photons: bool,
+    /// Copy the photon buffer into a vertex array and splat from it (Wyman 2008 Table 1).
+    pub copy: Option<&'a PhotonCopy>,
+    /// Trace a photon per vertex instead of the photon buffer (Shah's first pass).
+    pub vertex_photons: Option<&'a VertexPhotons>,
+    /// Traverse the photon hierarchy and splat its final list (Wyman 2008 Sec. 3.1-3.2).
+    pub hierarchy: Option<&'a Hierarchy>,
+    /// Splat with a compute shader instead of points (`splat_path = compute`).
+    pub compute_splat: Option<&'a ComputeSplat>,
+}
+
+/// Light `l`'s light-space work before its splat: receiver positions, back faces, the photon
+/// buffer, and the copy or the hierarchy's build and traversal that read it. One set of these
+/// buffers serves every light, light after light; `Renderer::dumps` records this alone to read a
+/// light's back.
+pub fn record_light_space(
+    f: &mut Frame,
+    p: &CausticPipelines,
+    ct: &CausticTargets,
+    pt: &PhotonTargets,
+    inp: &CausticInputs,
+    l: u32,
+    frame: CausticFrame,
+) -> Result<()> {
+    photon_buffer::record_light_views(f, p, ct, pt, inp, l)?;
+    match frame.vertex_photons {
+        Some(vp) => vp.record(f, ct, pt, inp, l)?,
+        None => photon_buffer::record_photon_buffer(f, p, ct, pt, inp, l)?,
+    }
+    // The copied vertex arrays and the traversal's list stay valid as long as the photon
+    // buffer does.
+    if let Some(copy) = frame.copy {
+        copy.record(f, pt, l)?;
+    }
+    if let Some(h) = frame.hierarchy {
+        h.record_traversal(f, &inp.hierarchy(), pt, l)?;
+    }
+    Ok(())
+}
+
+pub fn record_caustics(
+    f: &mut Frame,
+    p: &CausticPipelines,
+    ct: &CausticTargets,
+    pt: &PhotonTargets,
+    inp: &CausticInputs,
+    lights: u32,
+    frame: CausticFrame,
+) -> Result<()> {
+    for l in 0..lights {
+        if !frame.reuse_photons {
+            record_light_space(f, p, ct, pt, inp, l, frame)?;
+        }
+        let cmap = &ct.per_light[l as usize].0;
+        let passes = inp.hierarchy();
+        match (frame.hierarchy, frame.compute_splat, frame.copy) {
+            (Some(h), None, _) => h.record_splat(f, &passes, pt, cmap, ct.levels, l)?,
+            (Some(h), Some(cs), _) => cs.record(f, &passes, pt, &h.final_list(), cmap, l)?,
+            (None, Some(cs), _) => cs.record(f, &passes, pt, &compute_splat::Photons::Dense, cmap, l)?,
+            (None, None, Some(copy)) => copy.record_splat(f, inp, cmap, l)?,
+            (None, None, None) => splat::record_splat(f, p, ct, pt, inp, l)?,
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,184 @@
+//! `[caustics]`: which technique renders caustics and with what parameters. Every setting is
+//! declared once, in the `caustic_settings!` table below, which makes from it:
+//! - [`CausticSettings`], the settings in effect (with their defaults);
+//! - [`CausticOverrides`], the same fields as options: the scene's `[caustics]` table, a bench
+//!   config's `[[technique]]` entry and the `render` command's flags (clap) are all this type;
+//! - [`CausticSettings::validate_combination`]: a setting that belongs to some techniques only
+//!   (`only Hcm`) is refused, with its key, for the others.
+
+use super::shared::{Intersect, SplatKernel, SplatPath};
+use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
+use super::Technique;
+use serde::{Deserialize, Serialize};
+
+macro_rules! caustic_settings {
+    ($(
+        $(#[doc = $doc:literal])*
+        $field:ident: $ty:ty = $default:expr $(, only $($owner:ident)|+)?;
+    )+) => {
+        /// `[caustics]`: the settings in effect (see each field; `scenes/README.md`).
+        #[derive(Debug, Clone, PartialEq, Serialize)]
+        pub struct CausticSettings {
+            $( $(#[doc = $doc])* pub $field: $ty, )+
+        }
+
+        impl Default for CausticSettings {
+            fn default() -> Self {
+                CausticSettings { $( $field: $default, )+ }
+            }
+        }
+
+        /// Each `Some` replaces the setting of the same name (see [`CausticSettings`]). The
+        /// scene's `[caustics]`, a bench `[[technique]]` and the `render` flags.
+        #[derive(Debug, Clone, Default, Deserialize, Serialize, clap::Args)]
+        #[serde(deny_unknown_fields)]
+        #[command(next_help_heading = "Technique (overrides the scene's [caustics])")]
+        pub struct CausticOverrides {
+            $( $(#[doc = $doc])* #[arg(long)]
+                #[serde(default, skip_serializing_if = "Option::is_none")]
+                pub $field: Option<$ty>, )+
+        }
+
+        impl CausticOverrides {
+            /// Writes every set override over `s` (not checked: see [`CausticSettings::validate`]).
+            pub fn apply(&self, s: &mut CausticSettings) {
+                $( if let Some(v) = &self.$field { s.$field = v.clone(); } )+
+            }
+
+            /// The keys that are set, in declaration order.
+            pub fn keys_set(&self) -> Vec<&'static str> {
+                let mut keys = vec![];
+                $( if self.$field.is_some() { keys.push(stringify!($field)); } )+
+                keys
+            }
+        }
+
+        impl CausticSettings {
+            /// Every setting that belongs to some techniques only, with them.
+            pub const OWNED: &'static [(&'static str, &'static [Technique])] = &[
+                $( $( (stringify!($field), &[$(Technique::$owner),+]), )? )+
+            ];
+
+            /// The settings that differ from their defaults but do not belong to `technique`.
+            fn foreign_settings(&self) -> Vec<(&'static str, String)> {
+                let d = CausticSettings::default();
+                let mut out = vec![];
+                $( $(
+                    if self.$field != d.$field && ![$(Technique::$owner),+].contains(&self.technique) {
+                        out.push((stringify!($field), self.$field.to_string()));
+                    }
+                )? )+
+                out
+            }
+        }
+    };
+}
+
+caustic_settings! {
+    /// The caustic technique (default `none`).
+    technique: Technique = Technique::None;
+    /// Photon buffer resolution N (N x N photons per light), 64..=4096; default 512.
+    photons: u32 = 512;
+    /// Splat radius in caustic-map texels, (0, 32]; default 1.5.
+    splat_radius: f32 = 1.5;
+    /// The splat kernel; default gaussian.
+    splat_kernel: SplatKernel = SplatKernel::Gaussian;
+    /// Caustic map (and receiver positions) resolution, 16..=8192; default 1024.
+    caustic_map_resolution: u32 = 1024;
+    /// rayGeo iterations (Shah) or bisection refinements (Wyman & Davis), 1..=64; default 4.
+    iterations: u32 = 4;
+    /// Fresnel transmittance at both interfaces (true/false); default true.
+    fresnel: bool = true;
+    /// Refinements of the photon's exit point against the light-space back faces, 0..=16; 0 is
+    /// Wyman 2005's estimate alone (the papers); default 4.
+    back_face_iterations: u32 = 4;
+    /// Ray/receiver intersection; unset: the technique's own (wd-depth-search for wd-points and
+    /// hcm, shah-iterative otherwise).
+    intersect: Option<Intersect> = None;
+    /// hcm: the hierarchy's traversal path (Wyman 2008 Sec. 3.1); default xfb.
+    path: TraversalPath = TraversalPath::Xfb, only Hcm;
+    /// hcm: converging-photon clustering (Wyman 2008 Sec. 3.2); default none.
+    cluster: Cluster = Cluster::None, only Hcm;
+    /// hcm: splat sizes (Wyman 2008 Sec. 3.3); default fixed.
+    splat: SplatMode = SplatMode::Fixed, only Hcm;
+    /// hcm with varying splats: the radius estimator (Wyman 2008 Sec. 3.3); default max-distance.
+    varying_radius: VaryingRadius = VaryingRadius::MaxDistance, only Hcm;
+    /// How photons are splatted: points (raster, the papers') or a compute shader with float
+    /// atomics (compute); both give the same map. Default raster.
+    splat_path: SplatPath = SplatPath::Raster;
+    /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4: 1024, 2048, 4096);
+    /// a power of two, 64..=65536; default 1024.
+    instance_vertices: u32 = 1024;
+}
+
+impl CausticSettings {
+    /// Caustic-map layers per light: 4 for the multi-resolution map (levels 0-3, Wyman 2008
+    /// Sec. 3.3), else 1.
+    pub fn caustic_levels(&self) -> u32 {
+        if self.technique == Technique::Hcm && self.splat == SplatMode::VaryingMultires {
+            4
+        } else {
+            1
+        }
+    }
+
+    /// The ray/receiver intersection in effect: the one asked for, else the technique's own.
+    pub fn intersect(&self) -> Intersect {
+        self.intersect.unwrap_or(self.technique.default_intersect())
+    }
+
+    /// Checks that the settings belong together, once they are final (a scene's `[caustics]`
+    /// may set `hcm`'s keys and leave the technique to the command line): a setting of another
+    /// technique means nothing here, so setting one is a mistake (and would be recorded in
+    /// timings.json as if it had been applied). `origin` and `key` as for [`Self::validate`].
+    pub fn validate_combination(&self, origin: &str, key: &str) -> anyhow::Result<()> {
+        let bad = |k: &str, msg: String| -> anyhow::Result<()> {
+            Err(crate::input_error!("{origin}: key `{key}{k}` (or flag --{}): {msg}", k.replace('_', "-")).into())
+        };
+        if let Some((k, value)) = self.foreign_settings().first() {
+            let owners: Vec<&str> = Self::OWNED
+                .iter()
+                .find(|(name, _)| name == k)
+                .map(|(_, t)| t.iter().map(|t| t.name()).collect())
+                .unwrap_or_default();
+            bad(k, format!("`{value}` is a setting of technique {}, not of `{}`", owners.join(", "), self.technique))?;
+        }
+        if self.varying_radius != VaryingRadius::MaxDistance && self.splat == SplatMode::Fixed {
+            let what = "sizes varying splats (technique hcm with splat varying-single or varying-multires)";
+            bad("varying_radius", format!("`{}` {what}", self.varying_radius))?;
+        }
+        Ok(())
+    }
+
+    /// Checks ranges; `origin` says where the values came from (a file or the command line) and
+    /// `key` prefixes key names, e.g. `caustics.`. (Names are checked when they are read.)
+    pub fn validate(&self, origin: &str, key: &str) -> anyhow::Result<()> {
+        let bad = |k: &str, msg: String| -> anyhow::Result<()> {
+            // On the command line the key is a flag: `--splat-radius`, not `--splat_radius`.
+            let k = if key == "--" { k.replace('_', "-") } else { k.to_string() };
+            Err(crate::input_error!("{origin}: key `{key}{k}`: {msg}").into())
+        };
+        if !(64..=4096).contains(&self.photons) {
+            bad("photons", format!("must be between 64 and 4096 (photons per side), got {}", self.photons))?;
+        }
+        if !(self.splat_radius > 0.0 && self.splat_radius <= 32.0) {
+            bad("splat_radius", format!("must be in (0, 32] caustic-map texels, got {}", self.splat_radius))?;
+        }
+        if !(16..=8192).contains(&self.caustic_map_resolution) {
+            bad("caustic_map_resolution", format!("must be between 16 and 8192, got {}", self.caustic_map_resolution))?;
+        }
+        if self.back_face_iterations > 16 {
+            bad("back_face_iterations", format!("must be between 0 and 16, got {}", self.back_face_iterations))?;
+        }
+        if !(64..=65536).contains(&self.instance_vertices) || !self.instance_vertices.is_power_of_two() {
+            bad(
+                "instance_vertices",
+                format!("must be a power of two between 64 and 65536, got {}", self.instance_vertices),
+            )?;
+        }
+        if !(1..=64).contains(&self.iterations) {
+            bad("iterations", format!("must be between 1 and 64, got {}", self.iterations))?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,96 @@
+//! Shah, Konttinen & Pattanaik, "Caustics mapping: an image-space technique for real-time
+//! caustics" (IEEE TVCG 2007; the tutorial in `shared/papers`): techniques `shah` and
+//! `shah-vertex`.
+//!
+//! - `shah`: a photon per light-space texel of the specular objects (the refractive vertex grid
+//!   rendered as the photon buffer, `techniques::shared::photon_buffer`), whose refracted ray
+//!   meets the receivers by the tutorial's iterative image-space intersection rayGeo
+//!   (`shaders_glsl/shah2007/ray_geo.glsl`, `iterations` steps), splatted as Gaussian points.
+//! - `shah-vertex`: Shah's original first pass, a photon per vertex of the specular meshes
+//!   (here, [`record_vertex_photons`]), each with a third of its triangles' area.
+
+use super::shared::photon_buffer::{trace_binds, trace_uses};
+use super::shared::CausticInputs;
+use super::shared::{CausticTargets, PhotonTargets};
+use crate::gpu::mesh_pipeline::mesh_layout;
+use crate::gpu::MATERIAL_DIFFUSE;
+use anyhow::Result;
+use vkcore::{
+    Access, Bind, BindingKind as K, Context, Feature, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology,
+    Use,
+};
+
+/// The paper, as tables and `--help` cite it.
+pub const PAPER: &str = "Shah, Konttinen & Pattanaik 2007, caustics mapping";
+
+/// What the vertex-photon pass needs: it writes the photon buffer from the vertex stage.
+pub const VERTEX_PHOTON_FEATURES: &[Feature] =
+    &[Feature::ShaderOutputLayer, Feature::LargePoints, Feature::VertexPipelineStoresAndAtomics];
+
+/// Shah's first pass: a photon per vertex of the specular meshes.
+pub struct VertexPhotons {
+    pipeline: Pipeline,
+}
+
+impl VertexPhotons {
+    /// The vertex-photon pipeline: a point per vertex, rasterization discarded, each photon
+    /// stored into the photon buffer's images.
+    pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<VertexPhotons> {
+        let trace = [K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
+        let mut d = GraphicsDesc::new("vertex_photons", sh.compile("shah2007/vertex_photons.vert", &[])?, None);
+        let mut b = trace.to_vec();
+        b.extend([K::StorageImage, K::StorageImage, K::StorageImage, K::StorageBuffer]);
+        d.bindings = b;
+        d.vertex_layout = Some(mesh_layout());
+        d.topology = Topology::Points;
+        d.rasterizer_discard = true;
+        Ok(VertexPhotons { pipeline: Pipeline::graphics(ctx, &d)? })
+    }
+
+    /// Light `l`'s photons: clears the photon buffer, then traces a photon per vertex of every
+    /// specular mesh into it (`shaders_glsl/shah2007/vertex_photons.vert`).
+    pub fn record(
+        &self,
+        f: &mut Frame,
+        ct: &CausticTargets,
+        pt: &PhotonTargets,
+        inp: &CausticInputs,
+        l: u32,
+    ) -> Result<()> {
+        let vp = &self.pipeline;
+        let mut uses = trace_uses(ct, pt, inp);
+        let photons = [&pt.position, &pt.direction, &pt.power];
+        let clear: Vec<Use> = photons.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)).collect();
+        f.pass(&format!("vertex_photons.clear.light{l}"), &clear, |cmd| {
+            for t in photons {
+                cmd.clear_color(&t.view, [0.0; 4]);
+            }
+            Ok(())
+        })?;
+        uses.extend(photons.iter().map(|t| Use::view(&t.view, Access::GRAPHICS_READ_WRITE)));
+        uses.extend(inp.vertex_areas.iter().flatten().map(|b| Use::buffer(b, Access::STORAGE_READ)));
+        f.pass(&format!("vertex_photons.light{l}"), &uses, |cmd| {
+            cmd.begin_rendering(&Targets::none())?;
+            cmd.bind_pipeline(vp);
+            let mut first = 0u32;
+            for (m, areas) in inp.meshes.iter().zip(inp.vertex_areas) {
+                let (true, Some(areas)) = (m.kind() != MATERIAL_DIFFUSE, areas) else { continue };
+                let mut binds = trace_binds(ct, pt, inp);
+                binds.extend(photons.map(|t| Bind::Storage(&t.view)));
+                binds.push(Bind::Buffer(areas));
+                cmd.bind(&binds)?;
+                let mut c = m.constants;
+                c.info[1] = l;
+                c.info[3] = first;
+                cmd.push(&c)?;
+                cmd.bind_vertex_buffer(&m.vertices, 0);
+                let vertices = (m.vertices.size() / 28) as u32;
+                cmd.draw(vertices, 1, 0, 0);
+                first += vertices;
+            }
+            cmd.end_rendering();
+            Ok(())
+        })?;
+        Ok(())
+    }
+}

@@ -1,0 +1,253 @@
+//! The compute splat (`splat_path = compute`): the modern path beside the papers' point splats.
+//! One invocation per photon adds its kernel to a float buffer with atomics
+//! (`shaders_glsl/shared/splat.comp`), and a second pass stores the buffer in the light's
+//! caustic-map layers. Texels, weights and multi-resolution layers come from the same GLSL as the
+//! point splat's (`shared/splat_photon.glsl`), so both give the same caustic map up to the order
+//! of the float additions (`tests/compute_splat.rs`).
+//!
+//! Passes per light, all named `splat.*` so that the tables' Gather columns count them:
+//! `splat.clear` (zero the buffer), `splat.arguments` (hcm on the xfb path: the dispatch over
+//! the traversal's final list, from its byte count, nothing read back), `splat` and
+//! `splat.resolve`.
+
+use super::targets::PhotonTargets;
+use crate::gpu::ObjectConstants;
+use anyhow::Result;
+use vkcore::{
+    Access, Bind, BindingKind as K, Buffer, CompactStream, CompactionPath, Context, Feature, Frame, ImageView, Memory,
+    Pipeline, ShaderCompiler, Use,
+};
+
+/// Features the compute splat needs.
+pub const FEATURES: &[Feature] = &[Feature::BufferFloat32AtomicAdd];
+
+/// Invocations per work group of splat.comp.
+const GROUP: u32 = 64;
+
+/// What the compute splat reads its photons from.
+pub enum Photons<'a> {
+    /// Every texel of the photon texture (invalid photons add nothing).
+    Dense,
+    /// The hierarchical traversal's final list (Wyman 2008 Sec. 3.1-3.2): photons and clusters.
+    List {
+        /// The photon hierarchy, every level: (power sum, count) and (position sum, 0).
+        power: &'a ImageView,
+        position: &'a ImageView,
+        list: &'a CompactStream,
+    },
+}
+
+pub use super::PassInputs as Inputs;
+
+/// Where the dispatch over the traversal's final list finds its work groups.
+enum ListDispatch {
+    /// The compute traversal's append counter holds them (vkcore/compact_finalize.comp).
+    AppendCounter,
+    /// The xfb traversal's counter holds bytes: photons/splat_args.comp turns them into work
+    /// groups in this buffer.
+    ByteCount(Box<(Pipeline, Buffer)>),
+}
+
+pub struct ComputeSplat {
+    /// One light's caustic-map layers as (power rgb, photon count) floats, layer by layer.
+    accumulated: Buffer,
+    /// hcm: what the dispatch over the traversal's final list reads its work groups from.
+    list: Option<ListDispatch>,
+    splat: Pipeline,
+    resolve: Pipeline,
+    side: u32,
+    layers: u32,
+}
+
+impl ComputeSplat {
+    /// A splat into `layers` caustic-map layers of `side`² texels; `list` is the traversal path
+    /// whose final list it splats and the bytes of one entry there (hcm), None for the dense
+    /// photon texture.
+    pub fn new(
+        ctx: &Context,
+        sh: &ShaderCompiler,
+        side: u32,
+        layers: u32,
+        list: Option<(CompactionPath, u64)>,
+    ) -> Result<ComputeSplat> {
+        ctx.require("splat_path `compute` (float atomics in shared/splat.comp)", FEATURES)?;
+        let bytes = side as u64 * side as u64 * layers as u64 * 16;
+        let limit = ctx.info().max_storage_buffer_range as u64;
+        if bytes > limit {
+            return Err(crate::input_error!(
+                "caustics.caustic_map_resolution: the compute splat accumulates {layers} layer(s) of {side}² texels in \
+                 one storage buffer of {bytes} bytes, more than this device's maxStorageBufferRange ({limit}); use a \
+                 smaller caustic map or splat_path = \"raster\""
+            )
+            .into());
+        }
+        let accumulated = Buffer::new(ctx, "compute splat accumulation", bytes, Memory::Gpu)?;
+        let entry_bytes = list.map_or(4, |(_, bytes)| bytes).to_string();
+        let mut defines = vec![("ENTRY_BYTES", entry_bytes.as_str())];
+        let mut bindings = vec![K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
+        let list = match list {
+            // Binding 4: the accumulation buffer.
+            None => {
+                bindings.push(K::StorageBuffer);
+                None
+            }
+            // Bindings 4-8: the hierarchy, the accumulation buffer, the list and its counter.
+            Some((path, _)) => {
+                defines.push(("HIERARCHY", "1"));
+                bindings.extend([
+                    K::SampledImage,
+                    K::SampledImage,
+                    K::StorageBuffer,
+                    K::StorageBuffer,
+                    K::StorageBuffer,
+                ]);
+                Some(match path {
+                    CompactionPath::Compute => ListDispatch::AppendCounter,
+                    CompactionPath::TransformFeedback => {
+                        defines.push(("XFB", "1"));
+                        let args = Pipeline::compute(
+                            ctx,
+                            "splat.arguments",
+                            &sh.compile("shared/splat_args.comp", &defines)?,
+                            &[K::StorageBuffer, K::StorageBuffer],
+                        )?;
+                        ListDispatch::ByteCount(Box::new((
+                            args,
+                            Buffer::new(ctx, "compute splat arguments", 16, Memory::Gpu)?,
+                        )))
+                    }
+                })
+            }
+        };
+        let splat = Pipeline::compute(ctx, "splat.compute", &sh.compile("shared/splat.comp", &defines)?, &bindings)?;
+        let resolve = Pipeline::compute(
+            ctx,
+            "splat.resolve",
+            &sh.compile("shared/splat_resolve.comp", &[])?,
+            &[K::StorageImage, K::StorageBuffer],
+        )?;
+        Ok(ComputeSplat { accumulated, list, splat, resolve, side, layers })
+    }
+
+    /// Splats light `l`'s photons into `cmap`, the light's caustic-map layers.
+    pub fn record(
+        &self,
+        f: &mut Frame,
+        inp: &Inputs,
+        pt: &PhotonTargets,
+        photons: &Photons,
+        cmap: &ImageView,
+        l: u32,
+    ) -> Result<()> {
+        let texels = pt.width * pt.width;
+        // Check before recording anything.
+        match (photons, &self.list) {
+            (Photons::Dense, None) | (Photons::List { .. }, Some(_)) => {}
+            (Photons::Dense, Some(_)) => anyhow::bail!("compute splat: built for a hierarchy's list, given photons"),
+            (Photons::List { .. }, None) => anyhow::bail!("compute splat: built for the photon texture, given a list"),
+        }
+        f.pass(&format!("splat.clear.light{l}"), &[Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)], |cmd| {
+            cmd.fill_buffer(&self.accumulated, 0);
+            Ok(())
+        })?;
+        let mut uses = vec![
+            Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
+            Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
+            Use::view(&pt.position.view, Access::SHADER_READ),
+            Use::view(&pt.power.view, Access::SHADER_READ),
+            Use::buffer(&self.accumulated, Access::COMPUTE_READ_WRITE),
+        ];
+        let mut binds = vec![
+            Bind::Uniform(inp.frame_uniforms),
+            Bind::Uniform(inp.caustic_uniforms),
+            Bind::Sampled(&pt.position.view, inp.nearest),
+            Bind::Sampled(&pt.power.view, inp.nearest),
+        ];
+        // The indirect dispatch's arguments (buffer, byte offset); None: a grid over the texels.
+        let mut indirect = None;
+        match photons {
+            Photons::Dense => binds.push(Bind::Buffer(&self.accumulated)),
+            Photons::List { power, position, list } => {
+                match &self.list {
+                    Some(ListDispatch::ByteCount(b)) => {
+                        let (pipeline, args) = &**b;
+                        let counter = [
+                            Use::buffer(&list.counter, Access::STORAGE_READ),
+                            Use::buffer(args, Access::COMPUTE_READ_WRITE),
+                        ];
+                        f.pass(&format!("splat.arguments.light{l}"), &counter, |cmd| {
+                            cmd.bind_pipeline(pipeline);
+                            cmd.bind(&[Bind::Buffer(&list.counter), Bind::Buffer(args)])?;
+                            cmd.dispatch(1, 1, 1);
+                            Ok(())
+                        })?;
+                        uses.push(Use::buffer(args, Access::INDIRECT));
+                        indirect = Some((args, 0));
+                    }
+                    // The dispatch arguments of compact_counter.glsl start at byte 16.
+                    _ => {
+                        uses.push(Use::buffer(&list.counter, Access::INDIRECT));
+                        indirect = Some((&list.counter, 16));
+                    }
+                }
+                uses.extend([
+                    Use::view(power, Access::SHADER_READ),
+                    Use::view(position, Access::SHADER_READ),
+                    Use::buffer(&list.data, Access::STORAGE_READ),
+                    Use::buffer(&list.counter, Access::STORAGE_READ),
+                ]);
+                binds.extend([
+                    Bind::Sampled(power, inp.nearest),
+                    Bind::Sampled(position, inp.nearest),
+                    Bind::Buffer(&self.accumulated),
+                    Bind::Buffer(&list.data),
+                    Bind::Buffer(&list.counter),
+                ]);
+            }
+        }
+        f.pass(&format!("splat.light{l}"), &uses, |cmd| {
+            cmd.bind_pipeline(&self.splat);
+            cmd.bind(&binds)?;
+            cmd.push(&ObjectConstants { info: [texels, l, 0, 0], ..Default::default() })?;
+            match indirect {
+                Some((args, offset)) => cmd.dispatch_indirect(args, offset),
+                None => {
+                    let (x, y) = groups(texels);
+                    cmd.dispatch(x, y, 1);
+                }
+            }
+            Ok(())
+        })?;
+        let uses = [Use::buffer(&self.accumulated, Access::STORAGE_READ), Use::view(cmap, Access::COMPUTE_READ_WRITE)];
+        f.pass(&format!("splat.resolve.light{l}"), &uses, |cmd| {
+            cmd.bind_pipeline(&self.resolve);
+            cmd.bind(&[Bind::Storage(cmap), Bind::Buffer(&self.accumulated)])?;
+            cmd.dispatch(self.side.div_ceil(8), self.side.div_ceil(8), self.layers);
+            Ok(())
+        })?;
+        Ok(())
+    }
+}
+
+/// (x, y) work groups of [`GROUP`] invocations covering `n`, with x within the 65535 every
+/// device allows (splat.comp flattens the grid row by row).
+pub(crate) fn groups(n: u32) -> (u32, u32) {
+    let groups = n.div_ceil(GROUP).max(1);
+    let x = groups.min(65535);
+    (x, groups.div_ceil(x))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_grid_covers_every_photon_within_the_group_count_limit() {
+        for n in [1u32, 63, 64, 65, 4096 * 4096, 65535 * 64 + 1, u32::MAX / 2] {
+            let (x, y) = groups(n);
+            assert!(x <= 65535 && y <= 65535, "{n}: {x} x {y}");
+            assert!(x as u64 * y as u64 * GROUP as u64 >= n as u64, "{n}: {x} x {y} groups miss photons");
+            assert!((x as u64 * (y as u64 - 1)) * (GROUP as u64) < n as u64, "{n}: a whole row of groups is idle");
+        }
+    }
+}

@@ -1,0 +1,107 @@
+//! Stages several papers share: photon emission into the photon buffer ([`photon_buffer`]), the
+//! point splat ([`splat`]) and the compute splat beside it ([`compute_splat`]), the caustic-map
+//! and photon-buffer images ([`targets`]). The caustic-map lookup of the final render is
+//! `shaders_glsl/common/caustic_lookup.glsl`. Shaders: `shaders_glsl/shared/`.
+
+pub mod compute_splat;
+pub mod photon_buffer;
+pub mod pipelines;
+pub mod splat;
+pub mod targets;
+
+pub use compute_splat::ComputeSplat;
+pub use pipelines::CausticPipelines;
+pub use targets::{CausticTargets, PhotonTargets};
+
+use super::value_enum::value_enum;
+use crate::gpu::GpuMesh;
+use vkcore::{Buffer, Sampler};
+
+/// What the light-space passes read besides their own buffers: the frame and caustic uniforms
+/// and the nearest sampler.
+pub struct PassInputs<'a> {
+    pub frame_uniforms: &'a Buffer,
+    pub caustic_uniforms: &'a Buffer,
+    pub nearest: &'a Sampler,
+}
+use crate::image_io::{ImageF32, Layer};
+
+/// The buffers every caustic technique has (`--dump` names).
+pub const DUMPS: &[&str] = &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map"];
+
+/// What the caustic passes read besides their own targets.
+pub struct CausticInputs<'a> {
+    pub frame_uniforms: &'a Buffer,
+    pub caustic_uniforms: &'a Buffer,
+    pub meshes: &'a [GpuMesh],
+    /// Per mesh: a third of each vertex's triangle areas (vertex photons only).
+    pub vertex_areas: &'a [Option<Buffer>],
+    /// 0..instance_vertices, for instanced photon fetch.
+    pub splat_vertices: &'a Buffer,
+    /// Vertices per instance of the instanced fetch (Wyman 2008 Sec. 4).
+    pub instance_vertices: u32,
+    pub nearest: &'a Sampler,
+}
+
+impl<'a> CausticInputs<'a> {
+    /// What the hierarchy's passes, the compute splat (and the `splats` dump) read of these.
+    pub fn hierarchy(&self) -> PassInputs<'a> {
+        PassInputs {
+            frame_uniforms: self.frame_uniforms,
+            caustic_uniforms: self.caustic_uniforms,
+            nearest: self.nearest,
+        }
+    }
+}
+
+value_enum! {
+    /// The splat kernel (`caustics.splat_kernel`, `--splat-kernel`).
+    pub enum SplatKernel {
+        /// A Gaussian falling to its tail at the splat radius (Shah et al., Wyman & Davis 2006).
+        Gaussian = "gaussian",
+        /// Constant over the splat's disc.
+        Box = "box",
+    }
+}
+
+value_enum! {
+    /// How photons are splatted into the caustic map (`caustics.splat_path`, `--splat-path`).
+    pub enum SplatPath {
+        /// Points drawn by the graphics pipeline with additive blending (the papers').
+        Raster = "raster",
+        /// A compute shader adding each splat with float atomics (`shared/splat.comp`).
+        Compute = "compute",
+    }
+}
+
+value_enum! {
+    /// Where a refracted photon meets the receivers (`caustics.intersect`, `--intersect`).
+    pub enum Intersect {
+        /// Shah et al.'s iterative image-space estimate, rayGeo (`shah2007/ray_geo.glsl`).
+        ShahIterative = "shah-iterative",
+        /// Wyman & Davis 2006: a march through the light's depth, refined by bisection
+        /// (`wyman_davis2006/depth_search.glsl`).
+        WdDepthSearch = "wd-depth-search",
+    }
+}
+
+/// Lists of records as one image for the dumps: a record (of `channels.len()` values) per pixel
+/// in row-major order, zeros after the list's end, in an image just large enough for the
+/// longest list; one layer per (name, list).
+pub(crate) fn records_image(lists: Vec<(String, Vec<Vec<f32>>)>, channels: &[&str]) -> ImageF32 {
+    let longest = lists.iter().map(|(_, l)| l.len()).max().unwrap_or(0).max(1);
+    let w = (longest as f64).sqrt().ceil() as usize;
+    let h = longest.div_ceil(w);
+    let nc = channels.len();
+    let layers = lists
+        .into_iter()
+        .map(|(name, records)| {
+            let mut data = vec![0.0f32; w * h * nc];
+            for (i, r) in records.iter().enumerate() {
+                data[i * nc..(i + 1) * nc].copy_from_slice(r);
+            }
+            Layer::new(Some(&name), channels, data)
+        })
+        .collect();
+    ImageF32 { width: w as u32, height: h as u32, layers }
+}

@@ -1,0 +1,117 @@
+//! Photon emission, shared by every photon-buffer technique (Wyman & Davis 2006 Sec. 3.1; Shah
+//! et al.'s refractive vertex grid): the light's render of the first diffuse surface (receiver
+//! positions, Shah step 1), the refractors' back faces from the light (Wyman 2005's exit
+//! estimate), and the photon buffer, one photon per light-space texel of the specular objects,
+//! each traced through the refractor (`shaders_glsl/shared/trace.glsl`). Shah's vertex photons
+//! replace the last pass (see `shah2007`).
+
+use super::targets::{CausticTargets, PhotonTargets};
+use super::CausticPipelines;
+use crate::gpu::{mesh_uses, MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
+use crate::techniques::shared::CausticInputs;
+use anyhow::Result;
+use vkcore::{Access, Bind, Frame, Targets, Use};
+
+pub(crate) fn ubo_uses<'a>(inp: &CausticInputs<'a>) -> [Use<'a>; 2] {
+    [Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ), Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ)]
+}
+
+/// The light's views before photons are traced, for light `l`: the receiver positions (its
+/// render of the diffuse surfaces) and the refractors' back faces.
+pub(crate) fn record_light_views(
+    f: &mut Frame,
+    p: &CausticPipelines,
+    ct: &CausticTargets,
+    pt: &PhotonTargets,
+    inp: &CausticInputs,
+    l: u32,
+) -> Result<()> {
+    let ubos = || ubo_uses(inp);
+    let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
+    {
+        let (_, rpos, rdepth) = &ct.per_light[l as usize];
+        let mut uses = Vec::from(ubos());
+        uses.extend([Use::view(rpos, Access::COLOR_ATTACHMENT), Use::view(rdepth, Access::DEPTH_ATTACHMENT)]);
+        uses.extend(mesh_uses(inp.meshes));
+        f.pass(&format!("receiver_positions.light{l}"), &uses, |cmd| {
+            cmd.begin_rendering(&Targets::color(rpos, Some([0.0; 4])).with_depth(rdepth, Some(1.0)))?;
+            cmd.bind_pipeline(&p.receiver_positions);
+            cmd.bind(&ubo_binds())?;
+            for m in inp.meshes.iter().filter(|m| m.kind() == MATERIAL_DIFFUSE) {
+                m.draw(cmd, 1, l)?;
+            }
+            cmd.end_rendering();
+            Ok(())
+        })?;
+
+        let mut uses = Vec::from(ubos());
+        uses.extend([
+            Use::view(&pt.back_faces.view, Access::COLOR_ATTACHMENT),
+            Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT),
+        ]);
+        uses.extend(mesh_uses(inp.meshes));
+        f.pass(&format!("photon_back_faces.light{l}"), &uses, |cmd| {
+            cmd.begin_rendering(
+                &Targets::color(&pt.back_faces.view, Some([0.0; 4])).with_depth(&pt.depth.view, Some(1.0)),
+            )?;
+            cmd.bind_pipeline(&p.back_faces);
+            cmd.bind(&ubo_binds())?;
+            for m in inp.meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE) {
+                m.draw(cmd, 1, l)?;
+            }
+            cmd.end_rendering();
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
+/// What tracing a photon reads (`shared/trace.glsl`, bindings 0-3), in binding order.
+pub(crate) fn trace_binds<'a>(ct: &'a CausticTargets, pt: &'a PhotonTargets, inp: &CausticInputs<'a>) -> Vec<Bind<'a>> {
+    vec![
+        Bind::Uniform(inp.frame_uniforms),
+        Bind::Uniform(inp.caustic_uniforms),
+        Bind::Sampled(&pt.back_faces.view, inp.nearest),
+        Bind::Sampled(&ct.receiver_positions.view, inp.nearest),
+    ]
+}
+
+/// The accesses of a pass that traces photons through the meshes: [`trace_binds`] and the
+/// meshes' buffers.
+pub(crate) fn trace_uses<'a>(ct: &'a CausticTargets, pt: &'a PhotonTargets, inp: &CausticInputs<'a>) -> Vec<Use<'a>> {
+    let mut uses = Vec::from(ubo_uses(inp));
+    uses.extend([
+        Use::view(&pt.back_faces.view, Access::SHADER_READ),
+        Use::view(&ct.receiver_positions.view, Access::SHADER_READ),
+    ]);
+    uses.extend(mesh_uses(inp.meshes));
+    uses
+}
+
+/// The photon buffer of light `l` (Wyman & Davis 2006 Sec. 3.1): the specular meshes rendered
+/// from the light, each fragment a photon traced through them (position, direction, power).
+pub(crate) fn record_photon_buffer(
+    f: &mut Frame,
+    p: &CausticPipelines,
+    ct: &CausticTargets,
+    pt: &PhotonTargets,
+    inp: &CausticInputs,
+    l: u32,
+) -> Result<()> {
+    let photons = [&pt.position, &pt.direction, &pt.power];
+    let mut uses = trace_uses(ct, pt, inp);
+    uses.extend(photons.iter().map(|t| Use::view(&t.view, Access::COLOR_ATTACHMENT)));
+    uses.push(Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT));
+    f.pass(&format!("photon_buffer.light{l}"), &uses, |cmd| {
+        let targets = Targets::colors(photons.iter().map(|t| (&t.view, Some([0.0; 4]))).collect());
+        cmd.begin_rendering(&targets.with_depth(&pt.depth.view, Some(1.0)))?;
+        cmd.bind_pipeline(&p.photon_buffer);
+        cmd.bind(&trace_binds(ct, pt, inp))?;
+        for m in inp.meshes.iter().filter(|m| m.kind() != MATERIAL_DIFFUSE) {
+            m.draw(cmd, 1, l)?;
+        }
+        cmd.end_rendering();
+        Ok(())
+    })?;
+    Ok(())
+}

@@ -1,0 +1,64 @@
+//! The point splat (Wyman & Davis 2006 Sec. 3.2; Shah et al.'s Gaussian point splats): every
+//! photon of light `l` drawn as a point into its caustic-map layer with additive blending,
+//! fetched instanced from the photon buffer (Wyman 2008 Sec. 4). The copy path of Wyman 2008
+//! Table 1 splats from a vertex array instead (`wyman2008::photon_copy`).
+
+use super::photon_buffer::ubo_uses;
+use super::targets::{CausticTargets, PhotonTargets};
+use super::CausticPipelines;
+use crate::techniques::shared::CausticInputs;
+use anyhow::Result;
+use vkcore::{Access, Bind, Frame, Targets, Use};
+
+/// Splats light `l`'s photons into its caustic-map layer, fetched instanced from the photon
+/// texture (Wyman 2008 Sec. 4).
+pub(crate) fn record_splat(
+    f: &mut Frame,
+    p: &CausticPipelines,
+    ct: &CausticTargets,
+    pt: &PhotonTargets,
+    inp: &CausticInputs,
+    l: u32,
+) -> Result<()> {
+    let (cmap, _, _) = &ct.per_light[l as usize];
+    let mut uses = Vec::from(ubo_uses(inp));
+    uses.push(Use::view(cmap, Access::COLOR_ATTACHMENT));
+    uses.extend([Use::view(&pt.position.view, Access::SHADER_READ), Use::view(&pt.power.view, Access::SHADER_READ)]);
+    uses.push(Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT));
+    {
+        f.pass(&format!("splat.light{l}"), &uses, |cmd| {
+            cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
+            cmd.bind_pipeline(&p.splat);
+            cmd.bind(&[
+                Bind::Uniform(inp.frame_uniforms),
+                Bind::Uniform(inp.caustic_uniforms),
+                Bind::Sampled(&pt.position.view, inp.nearest),
+                Bind::Sampled(&pt.power.view, inp.nearest),
+            ])?;
+            let c = crate::gpu::ObjectConstants { info: [0, l, inp.instance_vertices, 0], ..Default::default() };
+            cmd.push(&c)?;
+            cmd.bind_vertex_buffer(inp.splat_vertices, 0);
+            let total = pt.width * pt.width;
+            // Wyman 2008 Sec. 4: one small vertex buffer drawn instanced; the vertex shader
+            // finds its photon from gl_InstanceIndex and the vertex's index.
+            cmd.draw(inp.instance_vertices, total.div_ceil(inp.instance_vertices), 0, 0);
+            cmd.end_rendering();
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
+/// With technique `none`: clears the (1x1) caustic map and receiver positions the eye passes bind.
+pub fn record_cleared(f: &mut Frame, ct: &CausticTargets) -> Result<()> {
+    let uses = [
+        Use::view(&ct.caustic_map.view, Access::TRANSFER_WRITE),
+        Use::view(&ct.receiver_positions.view, Access::TRANSFER_WRITE),
+    ];
+    f.pass("caustics.clear", &uses, |cmd| {
+        cmd.clear_color(&ct.caustic_map.view, [0.0; 4]);
+        cmd.clear_color(&ct.receiver_positions.view, [0.0; 4]);
+        Ok(())
+    })?;
+    Ok(())
+}

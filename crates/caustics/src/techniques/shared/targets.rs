@@ -1,0 +1,72 @@
+//! Images of the caustic techniques: per-light receiver positions and caustic map layers, and the
+//! photon buffer (reused light after light).
+
+pub use crate::gpu::formats::{COLOR, DEPTH};
+use crate::gpu::{Target, MAX_LIGHTS};
+use crate::scene::Scene;
+use anyhow::Result;
+use vkcore::{Context, Image, ImageDesc, ImageView, ViewKind};
+
+/// What the eye passes read: always present (1x1 when the technique is `none`).
+pub struct CausticTargets {
+    /// Power (W) per texel, rgb, and photon count in a; one layer per light.
+    pub caustic_map: Target,
+    /// World position (xyz, w = 1 if a receiver) of the first diffuse surface per texel.
+    pub receiver_positions: Target,
+    pub receiver_depth: Image,
+    /// Caustic-map layers per light (4 for the multi-resolution map, else 1).
+    pub levels: u32,
+    /// Per light: (caustic-map layers view, receiver-positions layer view, depth layer view).
+    pub per_light: Vec<(ImageView, ImageView, ImageView)>,
+}
+
+impl CausticTargets {
+    pub fn new(ctx: &Context, scene: &Scene, active: bool) -> Result<CausticTargets> {
+        let m = if active { scene.caustics.caustic_map_resolution } else { 1 };
+        let lights = scene.lights.len().clamp(1, MAX_LIGHTS) as u32;
+        // One layer per light, or per light and level of the multi-resolution map.
+        let levels = if active { scene.caustics.caustic_levels() } else { 1 };
+        let caustic_map = Target::array(ctx, ImageDesc::new_2d("caustic_map", COLOR, m, m).layers(lights * levels))?;
+        let receiver_positions =
+            Target::array(ctx, ImageDesc::new_2d("receiver_positions", COLOR, m, m).layers(lights))?;
+        let receiver_depth = Image::new(ctx, ImageDesc::new_2d("receiver depth", DEPTH, m, m).layers(lights))?;
+        let per_light = (0..lights)
+            .map(|l| {
+                Ok((
+                    caustic_map.image.view(ViewKind::D2Array, 0..1, l * levels..(l + 1) * levels)?,
+                    receiver_positions.image.view(ViewKind::D2, 0..1, l..l + 1)?,
+                    receiver_depth.view(ViewKind::D2, 0..1, l..l + 1)?,
+                ))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(CausticTargets { caustic_map, receiver_positions, receiver_depth, levels, per_light })
+    }
+}
+
+/// The photon buffer (Wyman & Davis 2006 Fig. 1 and 3): where each photon lands, its incident
+/// direction and its power; plus the refractors' back faces seen from the light.
+pub struct PhotonTargets {
+    pub position: Target,
+    pub direction: Target,
+    pub power: Target,
+    pub back_faces: Target,
+    pub depth: Target,
+    pub width: u32,
+}
+
+impl PhotonTargets {
+    /// `n` x `n` light-space photons; `photon_texels` is the photon texture's side (N for the
+    /// photon buffer, ceil(sqrt(vertices)) for vertex photons).
+    pub fn new(ctx: &Context, n: u32, photon_texels: u32) -> Result<PhotonTargets> {
+        let w = photon_texels.max(1);
+        let c = |name: &str, s: u32| Target::new(ctx, ImageDesc::new_2d(name, COLOR, s, s));
+        Ok(PhotonTargets {
+            position: c("photon position", w)?,
+            direction: c("photon direction", w)?,
+            power: c("photon power", w)?,
+            back_faces: c("light-space back faces", n)?,
+            depth: Target::new(ctx, ImageDesc::new_2d("light-space depth", DEPTH, n, n))?,
+            width: w,
+        })
+    }
+}

@@ -1,0 +1,184 @@
+//! The caustic techniques' uniforms (twin of `shaders_glsl/common/caustics.glsl`) and the two
+//! light-space frusta per light: the photon buffer's, tight around the specular objects, and
+//! the caustic map's, wide enough to hold where the photons land.
+
+use super::shared::{Intersect, SplatKernel};
+use crate::gpu::setup::perspective;
+use crate::gpu::MAX_LIGHTS;
+use crate::scene::{MaterialKind, Scene};
+use crate::techniques::wyman2008::settings::{SplatMode, VaryingRadius};
+use crate::techniques::{CausticSettings, Technique};
+use anyhow::Result;
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable, Debug)]
+pub struct CausticLightUniforms {
+    pub photon_view_proj: [f32; 16],
+    pub caustic_view_proj: [f32; 16],
+    pub photon_plane: [f32; 4],
+    pub caustic_plane: [f32; 4],
+    pub axis: [f32; 4],
+    pub position: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable, Debug)]
+pub struct CausticUniforms {
+    pub settings: [u32; 4],
+    pub splat: [f32; 4],
+    pub lights: [CausticLightUniforms; MAX_LIGHTS],
+}
+
+pub const FLAG_FRESNEL: u32 = 1;
+pub const FLAG_WD_DEPTH_SEARCH: u32 = 2;
+pub const FLAG_BEAM_AREA: u32 = 4;
+
+const _: () = assert!(std::mem::size_of::<CausticLightUniforms>() == 2 * 64 + 4 * 16);
+const _: () = assert!(std::mem::size_of::<CausticUniforms>() == 32 + MAX_LIGHTS * 192);
+
+/// Bounding sphere of every refractive or reflective object (None if there are none).
+pub fn specular_bounds(scene: &Scene) -> Option<(Vec3, f32)> {
+    let specular: Vec<_> =
+        scene.objects.iter().filter(|o| !matches!(scene.material_of(o).kind, MaterialKind::Diffuse { .. })).collect();
+    if specular.is_empty() {
+        return None;
+    }
+    let (lo, hi) = specular
+        .iter()
+        .map(|o| o.mesh.bounds())
+        .fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(a, b), (l, h)| (a.min(l), b.max(h)));
+    let centre = 0.5 * (lo + hi);
+    let radius =
+        specular.iter().flat_map(|o| o.mesh.positions.iter()).map(|p| p.distance(centre)).fold(0.0f32, f32::max);
+    Some((centre, radius.max(1e-4)))
+}
+
+/// Half-angle (radians) a frustum along `axis` from `light` needs to contain `p`.
+fn angle_to(light: Vec3, axis: Vec3, p: Vec3) -> f32 {
+    (p - light).normalize_or_zero().dot(axis).clamp(-1.0, 1.0).acos()
+}
+
+/// Uniforms for `settings` on `scene`. With technique `none`, zero lights have caustics.
+pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<CausticUniforms> {
+    let mut u =
+        CausticUniforms { settings: [0; 4], splat: [0.0; 4], lights: [CausticLightUniforms::zeroed(); MAX_LIGHTS] };
+    let flags = if settings.fresnel { FLAG_FRESNEL } else { 0 }
+        | if settings.intersect() == Intersect::WdDepthSearch { FLAG_WD_DEPTH_SEARCH } else { 0 }
+        | if settings.varying_radius == VaryingRadius::BeamArea { FLAG_BEAM_AREA } else { 0 };
+    u.settings = [0, settings.photons, settings.iterations, flags];
+    u.splat = [
+        settings.splat_radius,
+        if settings.splat_kernel == SplatKernel::Box { 1.0 } else { 0.0 },
+        settings.back_face_iterations as f32,
+        // Splat sizes of hcm (Wyman 2008 Sec. 3.3): 0 fixed, 1 varying in one map, 2 varying
+        // in the multi-resolution map (caustics.glsl SPLAT_*).
+        match (settings.technique, settings.splat) {
+            (Technique::Hcm, SplatMode::VaryingSingle) => 1.0,
+            (Technique::Hcm, SplatMode::VaryingMultires) => 2.0,
+            _ => 0.0,
+        },
+    ];
+    let Some((centre, radius)) = specular_bounds(scene) else { return Ok(u) };
+    if !settings.technique.has_caustics() {
+        return Ok(u);
+    }
+    let (lo, hi) = scene.bounds();
+    let diag = (hi - lo).length();
+    for (l, light) in scene.lights.iter().take(MAX_LIGHTS).enumerate() {
+        let d = light.position.distance(centre);
+        if d <= radius * 1.01 {
+            return Err(crate::input_error!(
+                "{}: light {l} at {:?} is inside the bounding sphere of the specular objects (centre {centre:?}, radius {radius}); the light-space caustic techniques need the light outside it",
+                scene.path.display(),
+                light.position
+            )
+            .into());
+        }
+        let axis = (centre - light.position) / d;
+        let photon_half = ((radius / d).asin() * 1.02).min(1.5);
+        // The caustic map holds wherever photons may land: the receiver map if there is one,
+        // else three times the photon cone, capped at 80 degrees.
+        let mut caustic_half = photon_half * 1.2;
+        match &scene.receiver_map {
+            Some(r) => {
+                for x in r.x_range {
+                    for z in r.z_range {
+                        caustic_half =
+                            caustic_half.max(angle_to(light.position, axis, Vec3::new(x, r.plane_y, z)) * 1.05);
+                    }
+                }
+            }
+            None => caustic_half = caustic_half.max(3.0 * photon_half),
+        }
+        let caustic_half = caustic_half.min(80f32.to_radians());
+        let up = if axis.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+        let view = Mat4::look_at_rh(light.position, centre, up);
+        let far = d + diag;
+        let photon_near = (d - radius) * 0.5;
+        let caustic_near = (far * 1e-4).max(1e-3);
+        let photon_proj = perspective(2.0 * photon_half, 1.0, photon_near, far);
+        let caustic_proj = perspective(2.0 * caustic_half, 1.0, caustic_near, far);
+        let n = settings.photons as f32;
+        let m = settings.caustic_map_resolution as f32;
+        let (tp, tc) = (photon_half.tan(), caustic_half.tan());
+        u.lights[l] = CausticLightUniforms {
+            photon_view_proj: (photon_proj * view).to_cols_array(),
+            caustic_view_proj: (caustic_proj * view).to_cols_array(),
+            photon_plane: [tp, n, (2.0 * tp / n).powi(2), 0.0],
+            caustic_plane: [tc, m, (2.0 * tc / m).powi(2), 0.0],
+            axis: axis.extend(0.0).to_array(),
+            position: light.position.extend(1.0).to_array(),
+        };
+    }
+    u.settings[0] = scene.lights.len().min(MAX_LIGHTS) as u32;
+    Ok(u)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The solid angles of all texels of a square frustum add up to the frustum's solid angle
+    /// (4 asin(sin^2 a) for a square pyramid of half-angle a): the texel formula the shaders use
+    /// (cos^3 law) must integrate exactly.
+    #[test]
+    fn texel_solid_angles_sum_to_the_frustum() {
+        for (half_deg, n) in [(10.0f64, 64usize), (45.0, 128), (70.0, 256)] {
+            let t = half_deg.to_radians().tan();
+            let s = 2.0 * t / n as f64;
+            let mut sum = 0.0;
+            for j in 0..n {
+                for i in 0..n {
+                    let x = (-1.0 + (i as f64 + 0.5) * 2.0 / n as f64) * t;
+                    let y = (-1.0 + (j as f64 + 0.5) * 2.0 / n as f64) * t;
+                    sum += s * s / (1.0 + x * x + y * y).powf(1.5);
+                }
+            }
+            // Solid angle of a rectangular pyramid with half-extents (t, t) at unit distance.
+            let exact = 4.0 * (t * t / (1.0 + 2.0 * t * t).sqrt()).atan();
+            assert!((sum - exact).abs() / exact < 2e-3, "half {half_deg}: {sum} vs {exact}");
+        }
+    }
+
+    #[test]
+    fn glsl_mirror_agrees() {
+        let src =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/caustics.glsl"))
+                .unwrap();
+        let names: Vec<&str> =
+            ["photon_view_proj", "caustic_view_proj", "photon_plane", "caustic_plane", "axis", "position"].to_vec();
+        let body = &src[src.find("struct CausticLight {").unwrap()..];
+        let body = &body[..body.find('}').unwrap()];
+        let found: Vec<&str> = body
+            .lines()
+            .filter_map(|l| l.split("//").next()?.trim().strip_suffix(';'))
+            .map(|l| l.split_whitespace().nth(1).unwrap())
+            .collect();
+        assert_eq!(found, names);
+        assert!(src.contains(&format!("#define CAUSTIC_FRESNEL {FLAG_FRESNEL}u")));
+        assert!(src.contains(&format!("#define CAUSTIC_WD_DEPTH_SEARCH {FLAG_WD_DEPTH_SEARCH}u")));
+        assert!(src.contains(&format!("#define CAUSTIC_BEAM_AREA {FLAG_BEAM_AREA}u")));
+    }
+}

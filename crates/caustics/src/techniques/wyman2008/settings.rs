@@ -1,0 +1,102 @@
+//! The settings only `hcm` has (Wyman 2008 Sec. 3.1-3.3), as the scene's `[caustics]`, the
+//! bench configs and the command line name them.
+
+use super::super::value_enum::value_enum;
+use vkcore::{CompactionPath, Feature};
+
+value_enum! {
+    /// How the hierarchy is traversed (Sec. 3.1; `caustics.path`, `--path`).
+    pub enum TraversalPath {
+        /// A geometry shader per level writes transform-feedback buffers (the paper's path).
+        Xfb = "xfb",
+        /// A compute kernel per level appends with an atomic counter.
+        Compute = "compute",
+    }
+}
+
+impl TraversalPath {
+    /// The stream-compaction path of `vkcore` that implements it.
+    pub fn compaction(self) -> CompactionPath {
+        match self {
+            TraversalPath::Xfb => CompactionPath::TransformFeedback,
+            TraversalPath::Compute => CompactionPath::Compute,
+        }
+    }
+
+    /// The device features the path needs.
+    pub fn features(self) -> &'static [Feature] {
+        match self {
+            TraversalPath::Xfb => {
+                &[Feature::GeometryShader, Feature::TransformFeedback, Feature::TransformFeedbackDraw]
+            }
+            TraversalPath::Compute => &[],
+        }
+    }
+}
+
+value_enum! {
+    /// Converging-photon clustering (Sec. 3.2; `caustics.cluster`, `--cluster`).
+    pub enum Cluster {
+        /// Never: every valid photon is splatted.
+        None = "none",
+        /// Convergence tested only at the last level above the photon buffer.
+        Last = "last",
+        /// Convergence tested at every level.
+        All = "all",
+    }
+}
+
+impl Cluster {
+    /// Whether the traversal step at hierarchy level `level` tests for convergence.
+    pub fn tests(self, level: u32) -> bool {
+        match self {
+            Cluster::None => false,
+            Cluster::Last => level == 1,
+            Cluster::All => true,
+        }
+    }
+}
+
+value_enum! {
+    /// Splat sizes (Sec. 3.3; `caustics.splat`, `--splat`).
+    pub enum SplatMode {
+        /// Every splat `splat_radius` wide.
+        Fixed = "fixed",
+        /// A radius from the photon's neighbours, in one caustic map (the paper's slow baseline).
+        VaryingSingle = "varying-single",
+        /// That radius, each splat in layer i = trunc(log2(max(1, D/5))) of a multi-resolution map.
+        VaryingMultires = "varying-multires",
+    }
+}
+
+value_enum! {
+    /// How varying splats find their radius from the neighbouring photons (Sec. 3.3;
+    /// `caustics.varying_radius`, `--varying-radius`).
+    pub enum VaryingRadius {
+        /// The largest distance to the four adjacent photons (the paper's approximation).
+        MaxDistance = "max-distance",
+        /// Eq. 1-2: the quadrilaterals' area over the unoccluded beam's.
+        BeamArea = "beam-area",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clustering_levels() {
+        assert!(!Cluster::None.tests(1));
+        assert!(Cluster::Last.tests(1) && !Cluster::Last.tests(2));
+        assert!(Cluster::All.tests(1) && Cluster::All.tests(5));
+    }
+
+    #[test]
+    fn names_round_trip() {
+        for p in TraversalPath::ALL {
+            assert_eq!(TraversalPath::parse(p.name()), Some(*p));
+        }
+        assert_eq!("varying-multires".parse::<SplatMode>(), Ok(SplatMode::VaryingMultires));
+        assert!("lsat".parse::<Cluster>().unwrap_err().contains("none, last, all"));
+    }
+}

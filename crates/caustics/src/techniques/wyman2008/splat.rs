@@ -1,0 +1,72 @@
+//! Splatting the traversal's final list (Wyman 2008 Sec. 3.1-3.3): each entry, a photon or a
+//! cluster of converging photons, becomes a point splat; with varying splats its size comes
+//! from its neighbours (Sec. 3.3, `shaders_glsl/wyman2008/varying_splat.glsl`) and, in the
+//! multi-resolution map, it picks its layer with gl_Layer.
+
+use super::entry::ENTRY_BYTES;
+use super::{Hierarchy, Inputs};
+use crate::gpu::ObjectConstants;
+use crate::techniques::shared::targets::PhotonTargets;
+use anyhow::Result;
+use vkcore::{Access, Bind, CompactionPath, Frame, ImageView, Targets, Use};
+
+impl Hierarchy {
+    /// Splats the traversal's final list (photons and clusters) into `cmap`: one layer, or the
+    /// `layers` levels of the multi-resolution map, each splat picking its layer (gl_Layer).
+    pub fn record_splat(
+        &self,
+        f: &mut Frame,
+        inp: &Inputs,
+        pt: &PhotonTargets,
+        cmap: &ImageView,
+        layers: u32,
+        l: u32,
+    ) -> Result<()> {
+        let py = &self.pyramid;
+        let list = &self.lists[0];
+        let uses = [
+            Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
+            Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
+            Use::view(&pt.position.view, Access::SHADER_READ),
+            Use::view(&pt.power.view, Access::SHADER_READ),
+            Use::view(&py.all[0], Access::SHADER_READ),
+            Use::view(&py.all[1], Access::SHADER_READ),
+            Use::buffer(&list.data, Access::VERTEX_INPUT),
+            Use::buffer(&list.counter, Access::INDIRECT),
+            Use::view(cmap, Access::COLOR_ATTACHMENT),
+        ];
+        f.pass(&format!("splat.light{l}"), &uses, |cmd| {
+            cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])).layered(layers))?;
+            cmd.bind_pipeline(&self.splat);
+            cmd.bind(&[
+                Bind::Uniform(inp.frame_uniforms),
+                Bind::Uniform(inp.caustic_uniforms),
+                Bind::Sampled(&pt.position.view, inp.nearest),
+                Bind::Sampled(&pt.power.view, inp.nearest),
+                Bind::Sampled(&py.all[0], inp.nearest),
+                Bind::Sampled(&py.all[1], inp.nearest),
+            ])?;
+            cmd.push(&ObjectConstants { info: [0, l, 0, self.n], ..Default::default() })?;
+            cmd.bind_vertex_buffer(&list.data, 0);
+            match self.path {
+                CompactionPath::TransformFeedback => {
+                    cmd.draw_indirect_byte_count(1, &list.counter, ENTRY_BYTES as u32)?
+                }
+                // The draw arguments of compact_counter.glsl start at byte 32.
+                CompactionPath::Compute => cmd.draw_indirect(&list.counter, 32),
+            }
+            cmd.end_rendering();
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// What the compute splat reads: the hierarchy and the traversal's final list.
+    pub fn final_list(&self) -> crate::techniques::shared::compute_splat::Photons<'_> {
+        crate::techniques::shared::compute_splat::Photons::List {
+            power: &self.pyramid.all[0],
+            position: &self.pyramid.all[1],
+            list: &self.lists[0],
+        }
+    }
+}

@@ -1,0 +1,106 @@
+//! The `splats` dump of `hcm`: every entry of the traversal's final list as the splat passes
+//! splat it (`shaders_glsl/wyman2008/splat_footprints.comp`, from the same
+//! `shared/splat_photon.glsl`): centre, radius and layer of the caustic map, power and photons.
+//! This is where varying splat sizes (Wyman 2008 Sec. 3.3) can be read, photon by photon.
+
+use super::{Hierarchy, Inputs};
+use crate::gpu::ObjectConstants;
+use crate::image_io::ImageF32;
+use crate::techniques::shared::compute_splat::{groups, Photons};
+use crate::techniques::shared::targets::PhotonTargets;
+use anyhow::Result;
+use vkcore::{Access, Bind, BindingKind as K, Buffer, Context, FrameOptions, Memory, Pipeline, ShaderCompiler, Use};
+
+/// One splat: centre x, y and radius in base caustic-map texels, layer (of the multi-resolution
+/// map), power R, G, B (W), photons (1, or a cluster's count), splatted (1 when drawn), 3 unused
+/// (see `wyman2008/splat_footprints.comp` for what an entry that is not drawn holds).
+pub type Footprint = [f32; 12];
+
+/// Channels of a `splats` dump layer: the first nine of a [`Footprint`].
+pub const CHANNELS: [&str; 9] = ["x", "y", "radius", "layer", "R", "G", "B", "photons", "splatted"];
+
+pub struct SplatFootprints {
+    pipeline: Pipeline,
+}
+
+impl SplatFootprints {
+    pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<SplatFootprints> {
+        let mut bindings = vec![K::UniformBuffer, K::UniformBuffer];
+        bindings.extend([K::SampledImage; 4]);
+        bindings.extend([K::StorageBuffer; 2]);
+        let shader = sh.compile("wyman2008/splat_footprints.comp", &[])?;
+        Ok(SplatFootprints { pipeline: Pipeline::compute(ctx, "splat_footprints", &shader, &bindings)? })
+    }
+
+    /// The splats of light `l`'s final list, as the hierarchy and photon buffer hold it now
+    /// (in the list's order); records, submits and waits for its own frame.
+    pub fn read(
+        &self,
+        ctx: &Context,
+        h: &Hierarchy,
+        inp: &Inputs,
+        pt: &PhotonTargets,
+        l: u32,
+    ) -> Result<Vec<Footprint>> {
+        let Photons::List { power, position, list } = h.final_list() else {
+            anyhow::bail!("the hierarchy has no final list")
+        };
+        let count = list.count(ctx)?;
+        let bytes = count.max(1) as u64 * std::mem::size_of::<Footprint>() as u64;
+        let limit = ctx.info().max_storage_buffer_range as u64;
+        if bytes > limit {
+            return Err(crate::input_error!(
+                "--dump splats: {count} splats of light {l} need {bytes} bytes of storage buffer, more than this \
+                 device's maxStorageBufferRange ({limit}); dump fewer photons"
+            )
+            .into());
+        }
+        let out = Buffer::new(ctx, "splat footprints", bytes, Memory::Gpu)?;
+        let uses = [
+            Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
+            Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
+            Use::view(&pt.position.view, Access::SHADER_READ),
+            Use::view(&pt.power.view, Access::SHADER_READ),
+            Use::view(power, Access::SHADER_READ),
+            Use::view(position, Access::SHADER_READ),
+            Use::buffer(&list.data, Access::STORAGE_READ),
+            Use::buffer(&out, Access::COMPUTE_READ_WRITE),
+        ];
+        let mut f = ctx.frame(FrameOptions { timestamps: false, pipeline_statistics: false })?;
+        f.pass(&format!("splat_footprints.light{l}"), &uses, |cmd| {
+            cmd.bind_pipeline(&self.pipeline);
+            cmd.bind(&[
+                Bind::Uniform(inp.frame_uniforms),
+                Bind::Uniform(inp.caustic_uniforms),
+                Bind::Sampled(&pt.position.view, inp.nearest),
+                Bind::Sampled(&pt.power.view, inp.nearest),
+                Bind::Sampled(power, inp.nearest),
+                Bind::Sampled(position, inp.nearest),
+                Bind::Buffer(&list.data),
+                Bind::Buffer(&out),
+            ])?;
+            cmd.push(&ObjectConstants { info: [count, l, 0, 0], ..Default::default() })?;
+            let (x, y) = groups(count);
+            cmd.dispatch(x, y, 1);
+            Ok(())
+        })?;
+        f.submit()?;
+        let mut all: Vec<Footprint> = ctx.read_buffer_as(&out)?;
+        all.truncate(count as usize);
+        Ok(all)
+    }
+}
+
+/// `splats.exr` from each light's footprints: layer `light<l>`, an entry per pixel in row-major
+/// order (the order of `light<l>.list0` in `hierarchy_lists.exr`), channels [`CHANNELS`].
+pub fn splats_image(per_light: &[Vec<Footprint>]) -> ImageF32 {
+    let lists = per_light
+        .iter()
+        .enumerate()
+        .map(|(l, splats)| {
+            let records = splats.iter().map(|s| s[..CHANNELS.len()].to_vec()).collect();
+            (format!("light{l}"), records)
+        })
+        .collect();
+    crate::techniques::shared::records_image(lists, &CHANNELS)
+}

@@ -1,0 +1,186 @@
+//! The breadth-first traversal of the photon hierarchy (Wyman 2008 Sec. 3.1), from its 16²
+//! level down to the photon buffer, discarding empty subtrees and, with clustering, stopping at
+//! nodes whose photons converge into one caustic-map texel (Sec. 3.2). Two paths give the same
+//! entries: a geometry shader per level writing transform-feedback buffers, the next level drawn
+//! with vkCmdDrawIndirectByteCountEXT (the paper's), or a compute kernel appending with an atomic
+//! counter and dispatching the next level indirectly. Nothing is read back between levels.
+
+use super::entry::{unpack_entry, ENTRY_BYTES};
+use super::{Hierarchy, Inputs};
+use crate::gpu::ObjectConstants;
+use crate::image_io::ImageF32;
+use crate::techniques::shared::targets::PhotonTargets;
+use anyhow::Result;
+use vkcore::{Access, Bind, CompactStream, CompactionPath, Context, Frame, Targets, Use};
+
+impl Hierarchy {
+    /// Builds the hierarchy over light `l`'s photon buffer and traverses it (Sec. 3.1-3.2).
+    pub fn record_traversal(&self, f: &mut Frame, inp: &Inputs, pt: &PhotonTargets, l: u32) -> Result<()> {
+        self.record_build(f, inp, pt, l)?;
+        let py = &self.pyramid;
+        let ubos = || {
+            [
+                Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
+                Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
+            ]
+        };
+        let push = |level: u32, cluster: bool| ObjectConstants {
+            info: [level, l, cluster as u32, self.n],
+            ..Default::default()
+        };
+        // The paper zeroes its counters before every traversal; so do we (both paths).
+        let counters: Vec<Use> = self.lists.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_WRITE)).collect();
+        f.pass(&format!("hierarchy.reset.light{l}"), &counters, |cmd| {
+            for s in &self.lists {
+                match self.path {
+                    CompactionPath::TransformFeedback => cmd.fill_buffer(&s.counter, 0),
+                    CompactionPath::Compute => {
+                        let header: Vec<u8> = [0u32, s.capacity, 0, 0].iter().flat_map(|x| x.to_le_bytes()).collect();
+                        cmd.update_buffer(&s.counter, 0, &header)?;
+                    }
+                }
+            }
+            Ok(())
+        })?;
+        let textures = || {
+            [
+                Use::view(&pt.position.view, Access::SHADER_READ),
+                Use::view(&py.all[0], Access::SHADER_READ),
+                Use::view(&py.all[2], Access::SHADER_READ),
+            ]
+        };
+        for k in (1..=self.levels).rev() {
+            let input = if k == self.levels { &self.seed } else { &self.lists[k as usize] };
+            let out = &self.lists[k as usize - 1];
+            let mut uses = Vec::from(ubos());
+            uses.extend(textures());
+            let binds = || {
+                vec![
+                    Bind::Uniform(inp.frame_uniforms),
+                    Bind::Uniform(inp.caustic_uniforms),
+                    Bind::Sampled(&pt.position.view, inp.nearest),
+                    Bind::Sampled(&py.all[0], inp.nearest),
+                    Bind::Sampled(&py.all[2], inp.nearest),
+                ]
+            };
+            let name = format!("hierarchy.traverse.level{k}.light{l}");
+            let cluster = self.cluster.tests(k);
+            match self.path {
+                CompactionPath::TransformFeedback => {
+                    uses.push(Use::buffer(&input.data, Access::VERTEX_INPUT));
+                    if k != self.levels {
+                        uses.push(Use::buffer(&input.counter, Access::INDIRECT));
+                    }
+                    uses.push(Use::buffer(&out.data, Access::XFB_WRITE));
+                    uses.push(Use::buffer(&out.counter, Access::XFB_COUNTER));
+                    f.pass(&name, &uses, |cmd| {
+                        cmd.begin_rendering(&Targets::none())?;
+                        cmd.bind_pipeline(&self.traverse);
+                        cmd.bind(&binds())?;
+                        cmd.push(&push(k, cluster))?;
+                        cmd.bind_vertex_buffer(&input.data, 0);
+                        cmd.bind_xfb_buffers(&[&out.data])?;
+                        // No counter buffers at begin: capture starts at offset 0.
+                        cmd.begin_xfb(&[], false)?;
+                        if k == self.levels {
+                            cmd.draw(self.seed.capacity, 1, 0, 0);
+                        } else {
+                            cmd.draw_indirect_byte_count(1, &input.counter, ENTRY_BYTES as u32)?;
+                        }
+                        cmd.end_xfb(&[&out.counter])?;
+                        cmd.end_rendering();
+                        Ok(())
+                    })?;
+                }
+                CompactionPath::Compute => {
+                    uses.push(Use::buffer(&input.data, Access::STORAGE_READ));
+                    uses.push(Use::buffer(&input.counter, Access::INDIRECT));
+                    uses.push(Use::buffer(&input.counter, Access::STORAGE_READ));
+                    uses.push(Use::buffer(&out.data, Access::COMPUTE_READ_WRITE));
+                    uses.push(Use::buffer(&out.counter, Access::COMPUTE_READ_WRITE));
+                    f.pass(&name, &uses, |cmd| {
+                        cmd.bind_pipeline(&self.traverse);
+                        let mut b = binds();
+                        b.extend([
+                            Bind::Buffer(&input.data),
+                            Bind::Buffer(&input.counter),
+                            Bind::Buffer(&out.data),
+                            Bind::Buffer(&out.counter),
+                        ]);
+                        cmd.bind(&b)?;
+                        cmd.push(&push(k, cluster))?;
+                        cmd.dispatch_indirect(&input.counter, 16);
+                        Ok(())
+                    })?;
+                    let finalize = self.finalize.as_ref().ok_or_else(|| anyhow::anyhow!("no finalize pipeline"))?;
+                    let uses = [Use::buffer(&out.counter, Access::COMPUTE_READ_WRITE)];
+                    f.pass(&format!("hierarchy.finalize.level{k}.light{l}"), &uses, |cmd| {
+                        cmd.bind_pipeline(finalize);
+                        cmd.bind(&[Bind::Buffer(&out.counter)])?;
+                        cmd.dispatch(1, 1, 1);
+                        Ok(())
+                    })?;
+                }
+            }
+        }
+        // Keep this light's list sizes for the photon-count tables (read after the frame).
+        let mut uses: Vec<Use> = self.lists.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_READ)).collect();
+        uses.push(Use::buffer(&self.counts, Access::TRANSFER_WRITE));
+        f.pass(&format!("hierarchy.counts.light{l}"), &uses, |cmd| {
+            for (k, s) in self.lists.iter().enumerate() {
+                let slot = (l.min(self.lights.max(1) - 1) * self.levels + k as u32) as u64 * 4;
+                cmd.copy_buffer_region(&s.counter, 0, &self.counts, slot, 4);
+            }
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// Per light: the size of each list from level L (the seed) down to 0 (the splatted
+    /// photons and clusters) after the last traversal.
+    pub fn list_sizes(&self, ctx: &Context) -> Result<Vec<Vec<u64>>> {
+        let raw: Vec<u32> = ctx.read_buffer_as(&self.counts)?;
+        let per = self.levels as usize;
+        Ok((0..self.lights.max(1) as usize)
+            .map(|l| {
+                let mut v = vec![self.seed.capacity as u64];
+                for k in (0..per).rev() {
+                    let c = raw.get(l * per + k).copied().unwrap_or(0) as u64;
+                    v.push(match self.path {
+                        CompactionPath::TransformFeedback => c / ENTRY_BYTES,
+                        CompactionPath::Compute => c.min(self.lists[k].capacity as u64),
+                    });
+                }
+                v
+            })
+            .collect())
+    }
+
+    /// The final list of the last traversal (photons at level 0, clusters flagged final).
+    pub fn final_entries(&self, ctx: &Context) -> Result<Vec<[u32; 4]>> {
+        Ok(self.lists[0].read_as::<u32>(ctx)?.into_iter().map(unpack_entry).collect())
+    }
+
+    /// The traversal's lists of the light traversed last: `[k]` is the list the step at level
+    /// k+1 wrote (level-k nodes and the clusters finished above), `[0]` what was splatted.
+    pub fn read_lists(&self, ctx: &Context) -> Result<Vec<Vec<[u32; 4]>>> {
+        let read = |s: &CompactStream| -> vkcore::Result<Vec<[u32; 4]>> {
+            Ok(s.read_as::<u32>(ctx)?.into_iter().map(unpack_entry).collect())
+        };
+        Ok(self.lists.iter().map(read).collect::<vkcore::Result<_>>()?)
+    }
+}
+
+/// `hierarchy_lists.exr` from each light's [`Hierarchy::read_lists`]: layer `light<l>.list<k>`
+/// holds light l's list k, an entry per pixel in row-major order: x, y, level, final (1 = a
+/// cluster of converging photons), valid (1 = an entry; the rest of the image is padding).
+pub fn lists_image(per_light: &[Vec<Vec<[u32; 4]>>]) -> ImageF32 {
+    let mut lists = vec![];
+    for (l, light) in per_light.iter().enumerate() {
+        for (k, list) in light.iter().enumerate() {
+            let records = list.iter().map(|e| vec![e[0] as f32, e[1] as f32, e[2] as f32, e[3] as f32, 1.0]).collect();
+            lists.push((format!("light{l}.list{k}"), records));
+        }
+    }
+    crate::techniques::shared::records_image(lists, &["x", "y", "level", "final", "valid"])
+}

@@ -1,0 +1,63 @@
+// Compute splat: the modern path beside the point splat (photons/splat.vert + splat.frag). One
+// invocation per photon (a photon-buffer texel, or an entry of the hierarchical traversal's
+// final list with HIERARCHY) adds its kernel, weighted as the point splat's fragments are, to
+// a float buffer with atomics; photons/splat_resolve.comp then stores the buffer in the caustic
+// map. The texels, weights and layers are those of the point splat (shared/splat_photon.glsl),
+// so both give the same caustic map up to the order of the float additions.
+#version 450
+#extension GL_EXT_shader_atomic_float : require
+#define CAUSTICS_BINDING 1
+#include "common/caustics.glsl"
+#include "shared/splat_photon.glsl"
+layout(local_size_x = 64) in;
+// Layers x M x M texels of (power rgb, photon count), zeroed before the dispatch.
+#ifdef HIERARCHY
+layout(std430, binding = 6) buffer Accumulated { float texels[]; };
+layout(std430, binding = 7) readonly buffer Entries { uint entries[]; };   // packed (hierarchy/entry.glsl)
+// The list's counter: transform feedback's byte count (XFB) or vkcore's append counter.
+#ifdef XFB
+layout(std430, binding = 8) readonly buffer Counter { uint bytes; };
+uint entry_count() { return bytes / ENTRY_BYTES; }
+#else
+#include "vkcore/compact_counter.glsl"
+layout(std430, binding = 8) readonly buffer Counter { CompactCounter counter; };
+uint entry_count() { return min(counter.count, counter.capacity); }
+#endif
+#else
+layout(std430, binding = 4) buffer Accumulated { float texels[]; };
+#endif
+
+void deposit(int layer, ivec2 t, int m, vec4 v) {
+    uint i = 4u * (uint(layer * m + t.y) * uint(m) + uint(t.x));
+    atomicAdd(texels[i], v.x);
+    atomicAdd(texels[i + 1u], v.y);
+    atomicAdd(texels[i + 2u], v.z);
+    atomicAdd(texels[i + 3u], v.w);
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x;
+    CausticLight cl = caustics.lights[object.info.y];
+    vec4 pos;
+    vec3 power;
+#ifdef HIERARCHY
+    if (i >= entry_count()) return;
+    uvec4 entry = unpack_entry(entries[i]);
+    if (!photon_of_entry(entry, pos, power)) return;
+#else
+    uvec4 entry = uvec4(0u);
+    if (i >= object.info.x || !photon_of_texel(i, pos, power)) return;   // info.x: photon texels
+#endif
+    Splat s;
+    if (!splat_of(pos, power, entry, cl, s)) return;
+    int m = int(cl.caustic_plane.y);
+    // The point sprite's texels (splat_of dropped splats centred off the map), clipped to it: those whose centres lie within half its size of the centre.
+    ivec2 lo = max(ivec2(ceil(s.centre - 0.5 * s.size - 0.5)), ivec2(0));
+    ivec2 hi = min(ivec2(floor(s.centre + 0.5 * s.size - 0.5)), ivec2(m - 1));
+    for (int y = lo.y; y <= hi.y; ++y) {
+        for (int x = lo.x; x <= hi.x; ++x) {
+            float w = splat_weight(s.centre, s.radius, vec2(x, y) + 0.5);
+            if (w != 0.0) deposit(s.layer, ivec2(x, y), m, s.power * w);
+        }
+    }
+}

@@ -1,0 +1,71 @@
+// Photon splatting (Shah et al.'s point splats; Wyman & Davis 2006 "points"): every photon is a
+// point drawn into the light-space caustic map, covering its kernel (shared/splat_photon.glsl).
+// Where the photons come from:
+// - default: fetched from the photon texture by gl_InstanceIndex and the index in a small
+//   vertex buffer (Wyman 2008 Sec. 4): no copy of the photon buffer into a vertex array;
+// - PHOTON_VERTEX_ARRAY: the faithful Wyman & Davis 2006 path (Wyman 2008 Table 1 "copy to
+//   vertex array"): the photon buffer was copied into a vertex array (positions) and a buffer
+//   (power), one vertex per photon;
+// - HIERARCHY: one vertex per entry of the hierarchical traversal's final list (Wyman 2008
+//   Sec. 3.1-3.2), each picking its layer of the multi-resolution map (Sec. 3.3) with gl_Layer.
+// shared/splat.comp deposits the same splats from a compute shader.
+#version 450
+#ifdef HIERARCHY
+#extension GL_ARB_shader_viewport_layer_array : require
+#endif
+#define CAUSTICS_BINDING 1
+#include "common/caustics.glsl"
+#include "shared/splat_photon.glsl"
+#if defined(PHOTON_VERTEX_ARRAY)
+layout(location = 0) in vec4 a_position;
+#ifdef PHOTON_HALF
+layout(std430, binding = 2) readonly buffer PhotonPower { uvec2 powers[]; };   // RGBA16F texels
+vec3 photon_power_of(uint id) { uvec2 h = powers[id]; return vec3(unpackHalf2x16(h.x), unpackHalf2x16(h.y).x); }
+#else
+layout(std430, binding = 2) readonly buffer PhotonPower { vec4 powers[]; };
+vec3 photon_power_of(uint id) { return powers[id].rgb; }
+#endif
+bool fetch_photon(out vec4 pos, out vec3 power) {
+    pos = a_position;
+    power = photon_power_of(gl_VertexIndex);
+    return true;
+}
+uvec4 entry() { return uvec4(0u); }
+#elif defined(HIERARCHY)
+layout(location = 0) in uint a_entry;                       // packed (x, y, level, final)
+bool fetch_photon(out vec4 pos, out vec3 power) { return photon_of_entry(unpack_entry(a_entry), pos, power); }
+uvec4 entry() { return unpack_entry(a_entry); }
+#else
+layout(location = 0) in uint a_vertex;
+// Wyman 2008 Sec. 4: a small vertex buffer drawn instanced; info.z: vertices per instance.
+// With as many vertices as the photon buffer is wide this is the paper's s = gl_VertexID,
+// t = gl_InstanceID; other sizes index the buffer row by row.
+bool fetch_photon(out vec4 pos, out vec3 power) {
+    return photon_of_texel(gl_InstanceIndex * object.info.z + a_vertex, pos, power);
+}
+uvec4 entry() { return uvec4(0u); }
+#endif
+layout(location = 0) flat out vec4 v_power;     // (power, photons) / (sum of kernel weights)
+layout(location = 1) flat out vec2 v_centre;    // photon position in caustic-map pixels
+layout(location = 2) flat out float v_radius;
+
+void main() {
+    CausticLight cl = caustics.lights[object.info.y];
+    gl_PointSize = 1.0;
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);     // culled unless it is a live photon
+    v_power = vec4(0.0);
+    v_centre = vec2(0.0);
+    v_radius = 0.0;
+    vec4 pos;
+    vec3 power;
+    Splat s;
+    if (!fetch_photon(pos, power) || !splat_of(pos, power, entry(), cl, s)) return;
+#ifdef HIERARCHY
+    gl_Layer = s.layer;
+#endif
+    v_power = s.power;
+    v_centre = s.centre;
+    v_radius = s.radius;
+    gl_Position = vec4(s.centre / cl.caustic_plane.y * 2.0 - 1.0, 0.5, 1.0);
+    gl_PointSize = s.size;
+}
