@@ -13,11 +13,27 @@ bin=target/release/causticlab
 "$bin" devices
 
 failed=()
+skipped=()
+log="$(mktemp)"
+trap 'rm -f "$log"' EXIT
 for scene in scenes/*.toml; do
     stem="$(basename "$scene" .toml)"
     echo
     echo "=== $scene -> out/$stem/"
-    if ! "$bin" render --scene "$scene" --out "out/$stem" --validate --dump all --technique shah --photons 1024; then
+    status=0
+    "$bin" render --scene "$scene" --out "out/$stem" --validate --dump all --technique shah --photons 1024 \
+        2>"$log" || status=$?
+    cat "$log" >&2
+    if [ "$status" -eq 0 ]; then
+        continue
+    fi
+    # A scene whose model is not on the model search path (../shared/models, $CAUSTICLAB_MODELS)
+    # is skipped with one line naming the model and where the search looked; any other failure
+    # fails the demo.
+    if missing="$(grep -m1 'not found; searched:' "$log")"; then
+        echo "demo: skipped $stem: ${missing#error: }"
+        skipped+=("$stem")
+    else
         failed+=("$stem")
     fi
 done
@@ -37,4 +53,7 @@ if [ "${#failed[@]}" -ne 0 ]; then
     echo "demo: failed scenes: ${failed[*]}" >&2
     exit 1
 fi
-echo "demo: every scene rendered into out/; quick table in out/results/"
+if [ "${#skipped[@]}" -ne 0 ]; then
+    echo "demo: skipped ${#skipped[@]} scene(s) whose models are missing: ${skipped[*]}"
+fi
+echo "demo: every scene that could run rendered into out/; quick table in out/results/"

@@ -21,14 +21,14 @@ pub struct Cli {
 #[derive(Debug, Args, Clone, Default)]
 pub struct GlobalOpts {
     /// Device to use: an index from `causticlab devices` or a case-insensitive name substring.
-    #[arg(long, global = true, value_name = "INDEX|NAME")]
+    #[arg(long, global = true, value_name = "INDEX|NAME", help_heading = "Device")]
     pub device: Option<String>,
     /// Enable Khronos validation with synchronization validation, print every message and exit
     /// with code 3 if any warning or error was reported.
-    #[arg(long, global = true)]
+    #[arg(long, global = true, help_heading = "Device")]
     pub validate: bool,
     /// Pretend the device lacks this feature (repeatable); names as in `causticlab devices`.
-    #[arg(long = "without-feature", global = true, value_name = "NAME")]
+    #[arg(long = "without-feature", global = true, value_name = "NAME", help_heading = "Device")]
     pub without_feature: Vec<String>,
 }
 
@@ -133,18 +133,18 @@ pub struct CompareArgs {
 #[derive(Debug, Args)]
 pub struct RenderArgs {
     /// Scene file (TOML, see scenes/README.md).
-    #[arg(long)]
+    #[arg(long, help_heading = "Scene")]
     pub scene: PathBuf,
-    /// Output directory; files appear only when the whole run succeeded.
-    #[arg(long)]
-    pub out: PathBuf,
     #[command(flatten)]
     pub caustics: caustics::scene::CausticOverrides,
-    /// Intermediate buffers to write as EXR: `all` or a comma-separated list.
-    #[arg(long, value_name = "all|NAME,...")]
+    /// Output directory; files appear only when the whole run succeeded.
+    #[arg(long, help_heading = "Output")]
+    pub out: PathBuf,
+    /// Intermediate buffers to write as EXR (see docs/dumps.md): `all` or a comma-separated list.
+    #[arg(long, value_name = "all|NAME,...", help_heading = "Output")]
     pub dump: Option<String>,
     /// Frames to render (timings are kept for each; the image is the last frame's).
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=100_000), help_heading = "Output")]
     pub frames: u32,
 }
 

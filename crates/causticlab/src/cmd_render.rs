@@ -47,15 +47,24 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let rendered = render::render(&ctx, &shaders, &scene, &req)
         .with_context(|| format!("rendering {} with technique `{technique}`", args.scene.display()))?;
 
+    // What made these images, in each EXR header (tev and `exrheader` show it).
+    let header = [
+        ("causticlab:technique", technique.to_string()),
+        ("causticlab:photons", format!("{}", rendered.photons_emitted)),
+        ("causticlab:photon_buffer", format!("{0}x{0}", scene.caustics.photons)),
+        ("causticlab:commit", bench::meta::commit()),
+        ("causticlab:device", format!("{} ({})", ctx.info().name, ctx.info().driver_info)),
+        ("causticlab:scene", args.scene.display().to_string()),
+    ];
     let mut written = vec![];
-    image_io::write_exr(&out.path("final.exr"), &rendered.final_image)?;
+    image_io::write_exr_with(&out.path("final.exr"), &rendered.final_image, &header)?;
     written.push("final.exr".to_string());
     let (w, h, rgb) = main_rgb(&rendered.final_image)?;
     image_io::write_png_tonemapped(&out.path("final.png"), w, h, &rgb, scene.render.exposure)?;
     written.push("final.png".to_string());
     for (name, image) in &rendered.dumps {
         let file = format!("{name}.exr");
-        image_io::write_exr(&out.path(&file), image)?;
+        image_io::write_exr_with(&out.path(&file), image, &header)?;
         written.push(file);
     }
     let timings = Timings::new(

@@ -1,4 +1,5 @@
-//! `causticlab`: list Vulkan devices, render scenes, compare with references, run benchmarks. Errors are printed as `error: <chain>` and
+//! `causticlab`: list Vulkan devices, render scenes, compare with references, run benchmarks.
+//! Errors are printed as `error: <chain>` and
 //! mapped to exit codes (see `exit.rs`); with `--validate`, any validation message turns a
 //! successful run into exit code 3.
 
@@ -18,6 +19,9 @@ use std::sync::Arc;
 use vkcore::{ContextOptions, Feature, ValidationLog};
 
 fn main() -> ExitCode {
+    // `log` warnings (gpu-allocator's leak report among them) go to stderr; RUST_LOG sets the
+    // level (e.g. RUST_LOG=info, RUST_LOG=gpu_allocator=trace).
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).format_timestamp(None).init();
     let cli = Cli::parse();
     let mut validation: Option<Arc<ValidationLog>> = None;
     let result = match &cli.command {

@@ -243,6 +243,14 @@ fn every_intermediate_buffer_is_dumped_with_named_channels() {
         // The hierarchy's buffers belong to `hcm` (hierarchical_caustic_maps_dump_every_level...).
         assert_eq!(out.join(format!("{name}.exr")).is_file(), wd.contains(&name), "{name}.exr");
     }
+    // Every EXR says what made it.
+    for file in ["final.exr", "photon_buffer.exr", "shadow_map.exr"] {
+        let header = caustics::image_io::exr_text_attributes(&out.join(file)).expect(file);
+        assert_eq!(header.get("causticlab:technique").map(String::as_str), Some("wd-points"), "{file}: {header:?}");
+        assert_eq!(header.get("causticlab:photon_buffer").map(String::as_str), Some("128x128"), "{file}: {header:?}");
+        assert_eq!(header.get("causticlab:photons").map(String::as_str), Some("16384"), "{file}: {header:?}");
+        assert!(header.get("causticlab:commit").is_some_and(|c| !c.is_empty()), "{file}: {header:?}");
+    }
     let expect = [
         (
             "photon_buffer.exr",

@@ -505,3 +505,33 @@ fn compare_names_a_missing_or_non_exr_input() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn render_help_lists_every_enumerated_value_under_its_group() {
+    let run = causticlab(&["render", "--help"]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    for heading in ["Scene:", "Technique (overrides the scene's [caustics]):", "Output:", "Device:"] {
+        assert!(run.stdout.contains(heading), "no `{heading}` group in\n{}", run.stdout);
+    }
+    // Each enumerated flag with the names the enum accepts (read from the enums, not copied).
+    use caustics::techniques::{wyman2008, Intersect, SplatKernel, SplatPath, Technique};
+    let flags: [(&str, &[&str]); 8] = [
+        ("--technique", Technique::NAMES),
+        ("--splat-kernel", SplatKernel::NAMES),
+        ("--intersect", Intersect::NAMES),
+        ("--path", wyman2008::TraversalPath::NAMES),
+        ("--cluster", wyman2008::Cluster::NAMES),
+        ("--splat", wyman2008::SplatMode::NAMES),
+        ("--varying-radius", wyman2008::VaryingRadius::NAMES),
+        ("--splat-path", SplatPath::NAMES),
+    ];
+    for (flag, names) in flags {
+        let at = run.stdout.find(&format!("{flag} ")).unwrap_or_else(|| panic!("{flag} missing"));
+        let section = &run.stdout[at..];
+        let section = &section[..section[2..].find("\n      --").map_or(section.len(), |i| i + 2)];
+        assert!(section.contains("Possible values"), "{flag}: {section}");
+        for n in names {
+            assert!(section.contains(&format!("- {n}:")), "{flag} does not list `{n}`: {section}");
+        }
+    }
+}

@@ -134,6 +134,27 @@ fn validate(image: &ImageF32) -> Result<Vec<String>> {
 /// Writes all layers as f32 channels into one EXR file (one part, channels named
 /// `layer.channel`), atomically. Size mismatches and bad names are errors.
 pub fn write_exr(path: &Path, image: &ImageF32) -> Result<()> {
+    write_exr_with(path, image, &[])
+}
+
+/// The text attributes of an EXR file's first header (what [`write_exr_with`] wrote there).
+pub fn exr_text_attributes(path: &Path) -> Result<std::collections::BTreeMap<String, String>> {
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .map_err(|e| crate::input_error!("{}: not a readable OpenEXR file: {e}", path.display()))?;
+    let mut out = std::collections::BTreeMap::new();
+    if let Some(header) = meta.headers.first() {
+        for (k, v) in &header.own_attributes.other {
+            if let exr::meta::attribute::AttributeValue::Text(t) = v {
+                out.insert(k.to_string(), t.to_string());
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// [`write_exr`] with extra string attributes in the header (`causticlab render` records what
+/// made the image there: technique, photons, commit, device), readable with any OpenEXR tool.
+pub fn write_exr_with(path: &Path, image: &ImageF32, header: &[(&str, String)]) -> Result<()> {
     use exr::prelude::{
         AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, LayerAttributes, Text, WritableImage,
     };
@@ -154,6 +175,9 @@ pub fn write_exr(path: &Path, image: &ImageF32) -> Result<()> {
         Text::from(CHANNEL_ORDER_ATTRIBUTE),
         AttributeValue::TextVector(full_names.iter().map(|n| Text::from(n.as_str())).collect()),
     );
+    for (key, value) in header {
+        attributes.other.insert(Text::from(*key), AttributeValue::Text(Text::from(value.as_str())));
+    }
     let layer = exr::prelude::Layer::new(
         (image.width as usize, image.height as usize),
         attributes,

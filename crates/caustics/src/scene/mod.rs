@@ -13,7 +13,7 @@ pub mod procedural;
 pub mod schema;
 pub mod search_path;
 
-pub use crate::techniques::{CausticOverrides, CausticSettings};
+pub use crate::techniques::settings::{CausticOverrides, CausticSettings};
 pub use glam::Vec3;
 pub use load::{MAX_RESOLUTION, MAX_SUBDIVISIONS};
 pub use mesh::Mesh;

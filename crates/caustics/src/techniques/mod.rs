@@ -17,6 +17,7 @@ pub mod record;
 pub mod settings;
 pub mod shah2007;
 pub mod shared;
+mod technique;
 pub mod uniforms;
 mod value_enum;
 pub mod wyman2008;
@@ -25,100 +26,5 @@ pub mod wyman_davis2006;
 pub use record::{record_caustics, record_cleared, record_light_space, CausticFrame, CausticInputs};
 pub use settings::{CausticOverrides, CausticSettings};
 pub use shared::{CausticPipelines, CausticTargets, ComputeSplat, Intersect, PhotonTargets, SplatKernel, SplatPath};
+pub use technique::Technique;
 pub use wyman2008::photon_copy::{CopyType, PhotonCopy};
-
-use vkcore::Feature;
-
-value_enum::value_enum! {
-    /// The caustic techniques (`caustics.technique`, `--technique`, a bench `[[technique]]`'s
-    /// `technique`).
-    pub enum Technique {
-        /// No caustics: the eye render alone.
-        None = "none",
-        /// Shah et al.'s caustics mapping: a photon per light-space texel, rayGeo, point splats.
-        Shah = "shah",
-        /// Shah et al.'s original first pass: a photon per vertex of the specular meshes.
-        ShahVertex = "shah-vertex",
-        /// Wyman & Davis 2006: the photon buffer splatted as points.
-        WdPoints = "wd-points",
-        /// Wyman 2008: hierarchical caustic maps over the photon buffer.
-        Hcm = "hcm",
-    }
-}
-
-impl Technique {
-    /// The paper (and its sections) the technique reproduces.
-    pub fn paper(self) -> &'static str {
-        match self {
-            Technique::None => "Wyman 2005 image-space refraction (no caustics)",
-            Technique::Shah | Technique::ShahVertex => shah2007::PAPER,
-            Technique::WdPoints => wyman_davis2006::PAPER,
-            Technique::Hcm => wyman2008::PAPER,
-        }
-    }
-
-    /// Whether the technique renders caustics at all.
-    pub fn has_caustics(self) -> bool {
-        self != Technique::None
-    }
-
-    /// The ray/receiver intersection the technique's paper uses.
-    pub fn default_intersect(self) -> Intersect {
-        match self {
-            Technique::WdPoints | Technique::Hcm => Intersect::WdDepthSearch,
-            Technique::None | Technique::Shah | Technique::ShahVertex => Intersect::ShahIterative,
-        }
-    }
-
-    /// Whether its photons come from the photon buffer (one per light-space texel), which the
-    /// Wyman 2008 Table 1 copy path can copy into a vertex array.
-    pub fn splats_the_photon_buffer(self) -> bool {
-        matches!(self, Technique::Shah | Technique::WdPoints)
-    }
-
-    /// The device features the technique needs (its settings may need more: see
-    /// `crate::render::check_device`).
-    pub fn required_features(self) -> &'static [Feature] {
-        match self {
-            Technique::None => &[Feature::ShaderOutputLayer],
-            // Splats are points wider than one pixel.
-            Technique::Shah | Technique::WdPoints | Technique::Hcm => {
-                &[Feature::ShaderOutputLayer, Feature::LargePoints]
-            }
-            Technique::ShahVertex => shah2007::VERTEX_PHOTON_FEATURES,
-        }
-    }
-
-    /// The intermediate buffers the technique adds to the eye render's (`--dump` names).
-    pub fn dumps(self) -> Vec<&'static str> {
-        match self {
-            Technique::None => vec![],
-            Technique::Shah | Technique::ShahVertex | Technique::WdPoints => shared::DUMPS.to_vec(),
-            Technique::Hcm => [shared::DUMPS, wyman2008::DUMPS].concat(),
-        }
-    }
-
-    /// Photons the technique emits per light (for tables; hardware independent).
-    pub fn photons_per_light(self, settings: &CausticSettings, specular_vertices: u32) -> u64 {
-        match self {
-            Technique::None => 0,
-            Technique::ShahVertex => specular_vertices as u64,
-            Technique::Shah | Technique::WdPoints | Technique::Hcm => settings.photons as u64 * settings.photons as u64,
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_technique_has_a_name_a_paper_and_features() {
-        for t in Technique::ALL {
-            assert_eq!(Technique::parse(t.name()), Some(*t));
-            assert!(!t.paper().is_empty());
-            assert!(t.required_features().contains(&Feature::ShaderOutputLayer));
-            assert_eq!(t.has_caustics(), !t.dumps().is_empty(), "{t}");
-        }
-    }
-}

@@ -6,9 +6,9 @@
 //! - [`CausticSettings::validate_combination`]: a setting that belongs to some techniques only
 //!   (`only Hcm`) is refused, with its key, for the others.
 
-use super::shared::{Intersect, SplatKernel, SplatPath};
+use super::shared::settings::{Intersect, SplatKernel, SplatPath};
+use super::technique::Technique;
 use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
-use super::Technique;
 use serde::{Deserialize, Serialize};
 
 macro_rules! caustic_settings {

@@ -9,6 +9,9 @@
 //! - `shah-vertex`: Shah's original first pass, a photon per vertex of the specular meshes
 //!   (here, [`record_vertex_photons`]), each with a third of its triangles' area.
 
+pub mod settings;
+pub use settings::{PAPER, VERTEX_PHOTON_FEATURES};
+
 use super::shared::photon_buffer::{trace_binds, trace_uses};
 use super::shared::CausticInputs;
 use super::shared::{CausticTargets, PhotonTargets};
@@ -16,16 +19,8 @@ use crate::gpu::mesh_pipeline::mesh_layout;
 use crate::gpu::MATERIAL_DIFFUSE;
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, BindingKind as K, Context, Feature, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology,
-    Use,
+    Access, Bind, BindingKind as K, Context, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology, Use,
 };
-
-/// The paper, as tables and `--help` cite it.
-pub const PAPER: &str = "Shah, Konttinen & Pattanaik 2007, caustics mapping";
-
-/// What the vertex-photon pass needs: it writes the photon buffer from the vertex stage.
-pub const VERTEX_PHOTON_FEATURES: &[Feature] =
-    &[Feature::ShaderOutputLayer, Feature::LargePoints, Feature::VertexPipelineStoresAndAtomics];
 
 /// Shah's first pass: a photon per vertex of the specular meshes.
 pub struct VertexPhotons {

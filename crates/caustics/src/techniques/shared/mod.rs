@@ -6,14 +6,15 @@
 pub mod compute_splat;
 pub mod photon_buffer;
 pub mod pipelines;
+pub mod settings;
 pub mod splat;
 pub mod targets;
 
 pub use compute_splat::ComputeSplat;
 pub use pipelines::CausticPipelines;
+pub use settings::{Intersect, SplatKernel, SplatPath, DUMPS};
 pub use targets::{CausticTargets, PhotonTargets};
 
-use super::value_enum::value_enum;
 use crate::gpu::GpuMesh;
 use vkcore::{Buffer, Sampler};
 
@@ -25,9 +26,6 @@ pub struct PassInputs<'a> {
     pub nearest: &'a Sampler,
 }
 use crate::image_io::{ImageF32, Layer};
-
-/// The buffers every caustic technique has (`--dump` names).
-pub const DUMPS: &[&str] = &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map"];
 
 /// What the caustic passes read besides their own targets.
 pub struct CausticInputs<'a> {
@@ -51,37 +49,6 @@ impl<'a> CausticInputs<'a> {
             caustic_uniforms: self.caustic_uniforms,
             nearest: self.nearest,
         }
-    }
-}
-
-value_enum! {
-    /// The splat kernel (`caustics.splat_kernel`, `--splat-kernel`).
-    pub enum SplatKernel {
-        /// A Gaussian falling to its tail at the splat radius (Shah et al., Wyman & Davis 2006).
-        Gaussian = "gaussian",
-        /// Constant over the splat's disc.
-        Box = "box",
-    }
-}
-
-value_enum! {
-    /// How photons are splatted into the caustic map (`caustics.splat_path`, `--splat-path`).
-    pub enum SplatPath {
-        /// Points drawn by the graphics pipeline with additive blending (the papers').
-        Raster = "raster",
-        /// A compute shader adding each splat with float atomics (`shared/splat.comp`).
-        Compute = "compute",
-    }
-}
-
-value_enum! {
-    /// Where a refracted photon meets the receivers (`caustics.intersect`, `--intersect`).
-    pub enum Intersect {
-        /// Shah et al.'s iterative image-space estimate, rayGeo (`shah2007/ray_geo.glsl`).
-        ShahIterative = "shah-iterative",
-        /// Wyman & Davis 2006: a march through the light's depth, refined by bisection
-        /// (`wyman_davis2006/depth_search.glsl`).
-        WdDepthSearch = "wd-depth-search",
     }
 }
 

@@ -19,7 +19,7 @@ mod traversal;
 
 pub use entry::{pack_entry, unpack_entry, ENTRY_BYTES, MAX_SIDE};
 pub use pyramid::levels;
-pub use settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
+pub use settings::{Cluster, SplatMode, TraversalPath, VaryingRadius, DUMPS, PAPER};
 pub use traversal::lists_image;
 
 use crate::gpu::Target;
@@ -30,12 +30,6 @@ use vkcore::{
     BindingKind as K, Blend, Buffer, CompactStream, CompactionPath, Context, Format, GraphicsDesc, Image, ImageDesc,
     Memory, Pipeline, ShaderCompiler, Topology, VertexAttribute, VertexLayout, ViewKind,
 };
-
-/// The paper, as tables and `--help` cite it.
-pub const PAPER: &str = "Wyman 2008, hierarchical caustic maps";
-
-/// The buffers only `hcm` has (`--dump` names).
-pub const DUMPS: &[&str] = &["hierarchy", "hierarchy_lists", "splats"];
 
 /// The traversal starts at a 16² level (Sec. 3.1: "to avoid processing mipmaps containing only
 /// a handful of photons").

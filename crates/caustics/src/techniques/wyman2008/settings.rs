@@ -1,8 +1,15 @@
 //! The settings only `hcm` has (Wyman 2008 Sec. 3.1-3.3), as the scene's `[caustics]`, the
-//! bench configs and the command line name them.
+//! bench configs and the command line name them, and the technique's dumps (a leaf module: the
+//! scene description reads it).
 
 use super::super::value_enum::value_enum;
 use vkcore::{CompactionPath, Feature};
+
+/// The paper, as tables and `--help` cite it.
+pub const PAPER: &str = "Wyman 2008, hierarchical caustic maps";
+
+/// The buffers only `hcm` has (`--dump` names).
+pub const DUMPS: &[&str] = &["hierarchy", "hierarchy_lists", "splats"];
 
 value_enum! {
     /// How the hierarchy is traversed (Sec. 3.1; `caustics.path`, `--path`).

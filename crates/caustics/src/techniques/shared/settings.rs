@@ -1,0 +1,38 @@
+//! The shared stages' settings and dumps, as the scene's `[caustics]`, the bench configs and the
+//! command line name them (a leaf module: the scene description reads it).
+
+use super::super::value_enum::value_enum;
+
+/// The buffers every caustic technique has (`--dump` names).
+pub const DUMPS: &[&str] = &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map"];
+
+value_enum! {
+    /// The splat kernel (`caustics.splat_kernel`, `--splat-kernel`).
+    pub enum SplatKernel {
+        /// A Gaussian falling to its tail at the splat radius (Shah et al., Wyman & Davis 2006).
+        Gaussian = "gaussian",
+        /// Constant over the splat's disc.
+        Box = "box",
+    }
+}
+
+value_enum! {
+    /// How photons are splatted into the caustic map (`caustics.splat_path`, `--splat-path`).
+    pub enum SplatPath {
+        /// Points drawn by the graphics pipeline with additive blending (the papers').
+        Raster = "raster",
+        /// A compute shader adding each splat with float atomics (`shared/splat.comp`).
+        Compute = "compute",
+    }
+}
+
+value_enum! {
+    /// Where a refracted photon meets the receivers (`caustics.intersect`, `--intersect`).
+    pub enum Intersect {
+        /// Shah et al.'s iterative image-space estimate, rayGeo (`shah2007/ray_geo.glsl`).
+        ShahIterative = "shah-iterative",
+        /// Wyman & Davis 2006: a march through the light's depth, refined by bisection
+        /// (`wyman_davis2006/depth_search.glsl`).
+        WdDepthSearch = "wd-depth-search",
+    }
+}

@@ -1,0 +1,122 @@
+//! The conformance suite: every variant of [`Technique`] (so a technique is covered the moment
+//! it is added, and `stated` below will not compile until it states its accuracy), on both
+//! sphere scenes, validation layer on:
+//! - renders with no validation message;
+//! - conserves caustic power: the caustic map holds the power of the photons that landed (read
+//!   from the photon buffer dump), within the technique's stated tolerance;
+//! - stays within its stated error of the exact CPU photon reference (relative RMSE and caustic
+//!   flux ratio of the receiver map, `caustics::compare`);
+//! - writes every dump it declares (`render::dumps_of`) and no other.
+//!
+//! Settings: 256² photons, Fresnel off (the image-space model the reference can match exactly),
+//! a 512² caustic map, the technique's own defaults otherwise. The reference traces 2M photons
+//! (its own noise is about 0.02 relative RMSE).
+
+use caustics::compare::compare;
+use caustics::image_io::ImageF32;
+use caustics::reference::{trace_reference, ReferenceOptions};
+use caustics::render::{all_dump_names, dumps_of, FrameStep, Renderer, RendererOptions};
+use caustics::scene::Scene;
+use caustics::techniques::Technique;
+use std::path::PathBuf;
+
+mod common;
+use common::context;
+
+/// What a technique promises on the sphere scenes at the settings above.
+struct Stated {
+    /// Largest |caustic-map power / landed photon power - 1|.
+    power: f64,
+    /// Largest relative RMSE of the receiver map against the reference.
+    rel_rmse: f64,
+    /// Range of the caustic flux ratio against the reference.
+    flux: std::ops::RangeInclusive<f64>,
+}
+
+/// Each technique's stated accuracy: the values measured on lavapipe (printed by this test,
+/// worst of the two scenes, in the comments) with a margin of about 20% on the error, so a lost
+/// splat normalisation, a projection to the wrong place or a few per cent of lost power fails.
+fn stated(t: Technique) -> Option<Stated> {
+    match t {
+        Technique::None => None,
+        // Shah's rayGeo can land a photon beyond the caustic map's frustum, where its splat is
+        // dropped: measured drift -2.3e-3 (oblique), RMSE 0.110, flux 0.964-1.007.
+        Technique::Shah => Some(Stated { power: 5e-3, rel_rmse: 0.13, flux: 0.95..=1.02 }),
+        // The same with a photon per vertex: drift -2.3e-3, RMSE 0.131, flux 0.961-1.007.
+        Technique::ShahVertex => Some(Stated { power: 5e-3, rel_rmse: 0.16, flux: 0.95..=1.02 }),
+        // Wyman & Davis' depth search lands every photon on the map: drift < 1e-7, RMSE 0.108,
+        // flux 0.962-0.991; hcm splats the same photons (no clustering by default).
+        Technique::WdPoints | Technique::Hcm => Some(Stated { power: 1e-4, rel_rmse: 0.13, flux: 0.95..=1.01 }),
+    }
+}
+
+const SCENES: [&str; 2] = ["sphere_on_plane", "sphere_oblique"];
+
+fn load(name: &str, technique: Technique) -> Scene {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{name}.toml"));
+    let mut s = Scene::load(&p).expect("shipped scene");
+    s.caustics.technique = technique;
+    s.caustics.photons = 256;
+    s.caustics.fresnel = false;
+    s.caustics.caustic_map_resolution = 512;
+    s.camera.width = 128;
+    s.camera.height = 128;
+    s
+}
+
+/// Sum over texels of the mean of channels R, G, B of `layer` (where `valid`, if given, is
+/// over 0.5).
+fn power(img: &ImageF32, layer: &str, valid: Option<&str>) -> f64 {
+    let l = img.layer(Some(layer)).unwrap_or_else(|| panic!("no layer {layer}"));
+    let v = valid.map(|v| img.layer(Some(v)).unwrap_or_else(|| panic!("no layer {v}")));
+    let nc = l.channels.len();
+    (0..(img.width * img.height) as usize)
+        .filter(|&i| v.is_none_or(|v| v.data[i * v.channels.len() + 3] > 0.5))
+        .map(|i| (l.data[i * nc] as f64 + l.data[i * nc + 1] as f64 + l.data[i * nc + 2] as f64) / 3.0)
+        .sum()
+}
+
+#[test]
+fn every_technique_renders_clean_conserves_power_and_meets_its_stated_error() {
+    let (ctx, sh) = context();
+    let mut failures = vec![];
+    for scene_name in SCENES {
+        let reference_scene = load(scene_name, Technique::None);
+        let opts = ReferenceOptions { photons: 2_000_000, fresnel: false, ..Default::default() };
+        let reference = trace_reference(&reference_scene, &opts).expect("reference").image;
+        for &t in Technique::ALL {
+            let scene = load(scene_name, t);
+            let mut r = Renderer::new(&ctx, &sh, &scene, &RendererOptions::default()).expect("renderer");
+            r.frame(FrameStep::default()).expect("frame");
+            let all: Vec<String> = all_dump_names().iter().map(|s| s.to_string()).collect();
+            let dumps = r.dumps(&all).expect("dumps");
+            let names: Vec<&str> = dumps.iter().map(|(n, _)| n.as_str()).collect();
+            assert_eq!(names, dumps_of(t), "{t} on {scene_name}: dumps written vs declared");
+            let log = ctx.validation_log();
+            assert_eq!(log.count(), 0, "{t} on {scene_name}: validation messages:\n{}", log.messages().join("\n"));
+
+            let receiver = &dumps.iter().find(|(n, _)| n == "receiver").expect("a receiver map").1;
+            let (c, _) = compare(receiver, &reference).expect("compare");
+            let Some(want) = stated(t) else {
+                // No caustics: the receiver map is the direct light alone, flux ratio 0.
+                assert_eq!(c.caustic_flux_ratio, 0.0, "{t} on {scene_name}: {c:?}");
+                continue;
+            };
+            let get = |name: &str| &dumps.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("{name}")).1;
+            let landed = power(get("photon_buffer"), "light0.power", Some("light0.position"));
+            let map = power(get("caustic_map"), "light0", None);
+            let drift = map / landed - 1.0;
+            println!(
+                "{scene_name:16} {t:12} power drift {drift:+.2e}  rel. RMSE {:.4}  flux ratio {:.4}",
+                c.rel_rmse, c.caustic_flux_ratio
+            );
+            if drift.abs() > want.power {
+                failures.push(format!("{t} on {scene_name}: caustic map {map} W, landed {landed} W"));
+            }
+            if c.rel_rmse > want.rel_rmse || !want.flux.contains(&c.caustic_flux_ratio) {
+                failures.push(format!("{t} on {scene_name}: {c:?} outside its stated error"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
