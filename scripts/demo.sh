@@ -23,17 +23,16 @@ for scene in scenes/*.toml; do
     status=0
     "$bin" render --scene "$scene" --out "out/$stem" --validate --dump all --technique shah --photons 1024 \
         2>"$log" || status=$?
-    cat "$log" >&2
-    if [ "$status" -eq 0 ]; then
-        continue
-    fi
     # A scene whose model is not on the model search path (../shared/models, $CAUSTICLAB_MODELS)
     # is skipped with one line naming the model and where the search looked; any other failure
     # fails the demo.
-    if missing="$(grep -m1 'not found; searched:' "$log")"; then
+    if [ "$status" -ne 0 ] && missing="$(grep -m1 'not found; searched:' "$log")"; then
         echo "demo: skipped $stem: ${missing#error: }"
         skipped+=("$stem")
-    else
+        continue
+    fi
+    cat "$log" >&2
+    if [ "$status" -ne 0 ]; then
         failed+=("$stem")
     fi
 done

@@ -28,7 +28,8 @@ pub struct GlobalOpts {
     #[arg(long, global = true, help_heading = "Device")]
     pub validate: bool,
     /// Pretend the device lacks this feature (repeatable); names as in `causticlab devices`.
-    #[arg(long = "without-feature", global = true, value_name = "NAME", help_heading = "Device")]
+    #[arg(long = "without-feature", global = true, value_name = "NAME", help_heading = "Device",
+          value_parser = clap::builder::PossibleValuesParser::new(vkcore::Feature::ALL.iter().map(|f| f.name())))]
     pub without_feature: Vec<String>,
 }
 
