@@ -5,13 +5,14 @@
 //! anything back on the CPU between steps. The [`Compactor`]'s elements are 16-byte `uvec4`s; a
 //! [`CompactStream`] of other users may hold elements of any size.
 
+use crate::bind::Bind;
 use crate::buffer::{Buffer, Memory};
 use crate::context::Context;
 use crate::error::Result;
 use crate::frame::{Frame, Use};
 use crate::pipeline::{BindingKind, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout};
 use crate::query::QueryPool;
-use crate::recorder::{Bind, Targets};
+use crate::recorder::Targets;
 use crate::shader::ShaderCompiler;
 use crate::tracker::Access;
 use crate::Feature;
@@ -194,10 +195,8 @@ impl Compactor {
             if let Some(c) = input_counter {
                 uses.push(Use::buffer(c, Access::INDIRECT));
             }
-            return frame.pass(name, &uses, |cmd| {
+            return frame.pass(name).bind(p, []).uses(uses).record(|cmd| {
                 cmd.begin_rendering(&Targets::none())?;
-                cmd.bind_pipeline(p);
-                cmd.bind(&[])?;
                 cmd.bind_vertex_buffer(input, 0);
                 cmd.bind_xfb_buffers(&[&out.data])?;
                 if let Some((pool, i)) = query {
@@ -221,32 +220,23 @@ impl Compactor {
             return Err(crate::VkError::Invalid("compactor has no pipelines".into()));
         };
         let header: Vec<u8> = [0u32, out.capacity, 0, 0].iter().flat_map(|x| x.to_le_bytes()).collect();
-        frame.pass(&format!("{name}.reset"), &[Use::buffer(&out.counter, Access::TRANSFER_WRITE)], |cmd| {
-            cmd.update_buffer(&out.counter, 0, &header)
-        })?;
+        frame
+            .pass(&format!("{name}.reset"))
+            .uses([Use::buffer(&out.counter, Access::TRANSFER_WRITE)])
+            .record(|cmd| cmd.update_buffer(&out.counter, 0, &header))?;
         let (input, in_counter, n, indirect) = match &src {
             Source::Array(b, n) => (*b, dummy, *n, false),
             Source::Stream(s) => (&s.data, &s.counter, 0, true),
         };
-        let mut uses = vec![
-            Use::buffer(input, Access::STORAGE_READ),
-            Use::buffer(&out.data, Access::COMPUTE_READ_WRITE),
-            Use::buffer(&out.counter, Access::COMPUTE_READ_WRITE),
+        let binds = [
+            Bind::BufferRead(input),
+            Bind::BufferRead(in_counter),
+            Bind::Buffer(&out.data),
+            Bind::Buffer(&out.counter),
         ];
-        if indirect {
-            uses.push(Use::buffer(in_counter, Access::INDIRECT));
-            uses.push(Use::buffer(in_counter, Access::STORAGE_READ));
-        } else {
-            uses.push(Use::buffer(in_counter, Access::STORAGE_READ));
-        }
-        frame.pass(name, &uses, |cmd| {
-            cmd.bind_pipeline(append);
-            cmd.bind(&[
-                Bind::Buffer(input),
-                Bind::Buffer(in_counter),
-                Bind::Buffer(&out.data),
-                Bind::Buffer(&out.counter),
-            ])?;
+        // The step's count is read as dispatch arguments too.
+        let arguments = indirect.then(|| Use::buffer(in_counter, Access::INDIRECT));
+        frame.pass(name).bind(append, binds).uses(arguments).record(|cmd| {
             cmd.push(&[n, indirect as u32, out.capacity, 0u32])?;
             if indirect {
                 cmd.dispatch_indirect(in_counter, 16);
@@ -257,9 +247,7 @@ impl Compactor {
             }
             Ok(())
         })?;
-        frame.pass(&format!("{name}.finalize"), &[Use::buffer(&out.counter, Access::COMPUTE_READ_WRITE)], |cmd| {
-            cmd.bind_pipeline(finalize);
-            cmd.bind(&[Bind::Buffer(&out.counter)])?;
+        frame.pass(&format!("{name}.finalize")).bind(finalize, [Bind::Buffer(&out.counter)]).record(|cmd| {
             cmd.dispatch(1, 1, 1);
             Ok(())
         })

@@ -1,19 +1,21 @@
-//! A frame: one command buffer of passes, submitted and waited for. Each pass declares what it
-//! reads and writes (`Use`), and the frame emits the synchronization2 barriers (with mip/layer
-//! ranges), a debug label and a timestamp pair around it, plus an optional pipeline-statistics
-//! query. Headless: `submit` waits for the GPU and returns per-pass timings.
+//! A frame: one command buffer of passes, submitted and waited for. Each pass (see `pass.rs`)
+//! says what it reads and writes, through its descriptors (`Bind`) and its other accesses
+//! (`Use`), and the frame emits the synchronization2 barriers (with mip/layer ranges), a debug
+//! label and a timestamp pair around it, plus an optional pipeline-statistics query. Headless:
+//! `submit` waits for the GPU and returns per-pass timings.
 
 use crate::buffer::Buffer;
 use crate::context::Context;
 use crate::error::{Result, VkError, VkResultExt};
 use crate::image::{aspect, Image, ImageView};
+use crate::pass::Pass;
 use crate::profiler::{FrameReport, PassTiming, PipelineStats, QueryPools};
 use crate::recorder::Cmd;
 use crate::tracker::{Access, Transition};
 use ash::vk;
 use std::ops::Range;
 
-/// One resource a pass touches and how.
+/// One resource a pass touches and how, other than through a descriptor.
 pub enum Use<'a> {
     Buffer(&'a Buffer, Access),
     Image {
@@ -41,6 +43,14 @@ impl<'a> Use<'a> {
             mips: v.mips.clone(),
             layers: v.layers.clone(),
             access,
+        }
+    }
+    /// The resource's id and the access, to check pushed descriptors against what a pass
+    /// declared.
+    pub(crate) fn key(&self) -> (u64, Access) {
+        match self {
+            Use::Buffer(b, access) => (b.id, *access),
+            Use::Image { image_id, access, .. } => (*image_id, *access),
         }
     }
     /// Some mips and layers of an image, without a view.
@@ -180,9 +190,14 @@ impl Context {
 }
 
 impl Frame {
+    /// Starts describing a pass named `name` (see [`Pass`]).
+    pub fn pass<'a>(&mut self, name: &str) -> Pass<'_, 'a> {
+        Pass::new(self, name)
+    }
+
     /// Records one pass: barriers for `uses`, then a label, timestamps and statistics around
-    /// whatever `record` does.
-    pub fn pass<F>(&mut self, name: &str, uses: &[Use], record: F) -> Result<()>
+    /// whatever `record` does. Descriptors pushed in it must be among `uses`.
+    pub(crate) fn record_pass<F>(&mut self, name: &str, uses: &[Use], record: F) -> Result<()>
     where
         F: FnOnce(&mut Cmd) -> Result<()>,
     {
@@ -190,7 +205,7 @@ impl Frame {
         let index = self.passes.len() as u32;
         self.passes.push(name.to_string());
         self.queries.begin(&self.ctx, self.cb, index)?;
-        let mut cmd = Cmd::new(&self.ctx, self.cb);
+        let mut cmd = Cmd::new(&self.ctx, self.cb, uses.iter().map(Use::key).collect());
         cmd.begin_label(name);
         let result = record(&mut cmd);
         cmd.end_label();

@@ -3,6 +3,7 @@
 //! uses, gpu-allocator buffers and images, runtime GLSL, pipelines, frames of passes with
 //! automatic barriers and timestamps, transform feedback and compute stream compaction.
 
+mod bind;
 mod buffer;
 pub mod compaction;
 mod context;
@@ -12,6 +13,7 @@ mod features;
 mod frame;
 mod image;
 mod instance;
+mod pass;
 mod pipeline;
 mod profiler;
 mod query;
@@ -21,6 +23,7 @@ mod tracker;
 mod transfer;
 
 pub use ash::vk::Format;
+pub use bind::Bind;
 pub use buffer::{Buffer, Memory};
 pub use compaction::{CompactStream, CompactionPath, Compactor, Source};
 
@@ -31,11 +34,12 @@ pub use features::{DeviceInfo, Feature};
 pub use frame::{Frame, FrameOptions, Use};
 pub use image::{texel_size, Filter, Image, ImageDesc, ImageView, Sampler, ViewKind};
 pub use instance::{Instance, ValidationLog};
+pub use pass::Pass;
 pub use pipeline::{
     BindingKind, Blend, Cull, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout, PUSH_CONSTANT_BYTES,
 };
 pub use profiler::{FrameReport, PassSummary, PassTiming, PipelineStats, Profiler};
 pub use query::QueryPool;
-pub use recorder::{Bind, Cmd, Targets};
+pub use recorder::{Cmd, Targets};
 pub use shader::{ShaderCompiler, Spirv, Stage};
 pub use tracker::Access;

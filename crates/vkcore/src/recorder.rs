@@ -1,23 +1,16 @@
 //! `Cmd`: the commands a pass may record. Safe signatures over raw ash calls; resources are
 //! borrowed, and frames are waited for before anything they used can be dropped.
 
+use crate::bind::{check_binds, Bind};
 use crate::buffer::Buffer;
 use crate::context::Context;
 use crate::error::{Result, VkError};
 use crate::frame::{sync, Use};
-use crate::image::{aspect, Image, ImageView, Sampler};
+use crate::image::{aspect, Image, ImageView};
 use crate::pipeline::{BindingKind, Pipeline, PUSH_CONSTANT_BYTES};
 use crate::query::QueryPool;
+use crate::tracker::Access;
 use ash::vk;
-
-/// One descriptor to push, in binding order.
-pub enum Bind<'a> {
-    Sampled(&'a ImageView, &'a Sampler),
-    Storage(&'a ImageView),
-    Buffer(&'a Buffer),
-    BufferRange(&'a Buffer, u64, u64),
-    Uniform(&'a Buffer),
-}
 
 /// Colour and depth targets of a rendering scope. All views must have the same extent.
 pub struct Targets<'a> {
@@ -66,13 +59,23 @@ impl<'a> Targets<'a> {
 pub struct Cmd<'f> {
     ctx: &'f Context,
     cb: vk::CommandBuffer,
-    bound: Option<(vk::PipelineBindPoint, vk::PipelineLayout, Vec<BindingKind>)>,
+    bound: Option<Bound>,
     rendering: bool,
+    /// (resource id, access) of everything the pass declared: what its descriptors may name.
+    declared: Vec<(u64, Access)>,
+}
+
+/// The bound pipeline, as `bind` and `push` need it.
+struct Bound {
+    name: String,
+    point: vk::PipelineBindPoint,
+    layout: vk::PipelineLayout,
+    kinds: Vec<BindingKind>,
 }
 
 impl<'f> Cmd<'f> {
-    pub(crate) fn new(ctx: &'f Context, cb: vk::CommandBuffer) -> Self {
-        Cmd { ctx, cb, bound: None, rendering: false }
+    pub(crate) fn new(ctx: &'f Context, cb: vk::CommandBuffer, declared: Vec<(u64, Access)>) -> Self {
+        Cmd { ctx, cb, bound: None, rendering: false, declared }
     }
 
     fn d(&self) -> &ash::Device {
@@ -175,17 +178,25 @@ impl<'f> Cmd<'f> {
         }
     }
 
+    /// Binds `p`. A pass built with `Pass::bind` has its pipeline bound already; this is for
+    /// passes that push their descriptors themselves (`Pass::declare`) or switch pipelines.
     pub fn bind_pipeline(&mut self, p: &Pipeline) {
         unsafe { self.d().cmd_bind_pipeline(self.cb, p.bind_point, p.raw) };
-        self.bound = Some((p.bind_point, p.layout, p.bindings.clone()));
+        self.bound =
+            Some(Bound { name: p.name.clone(), point: p.bind_point, layout: p.layout, kinds: p.bindings.clone() });
     }
 
-    /// Pushes descriptors for the bound pipeline: `binds[i]` goes to binding i.
+    /// Pushes descriptors for the bound pipeline: `binds[i]` goes to binding i. Each must have
+    /// been declared by the pass (`Pass::bind` or `Pass::declare`), or its barrier is missing.
     pub fn bind(&mut self, binds: &[Bind]) -> Result<()> {
-        let (point, layout, kinds) =
+        let Bound { name, point, layout, kinds } =
             self.bound.as_ref().ok_or_else(|| VkError::Invalid("bind() before bind_pipeline()".into()))?;
-        if binds.len() != kinds.len() {
-            return Err(VkError::Invalid(format!("pipeline declares {} bindings, {} given", kinds.len(), binds.len())));
+        check_binds(kinds, binds)?;
+        if let Some(i) = binds.iter().position(|b| !self.declared.contains(&b.to_use(*point).key())) {
+            return Err(VkError::Invalid(format!(
+                "binding {i} of pipeline `{name}`: its resource was not declared by the pass (Pass::bind or \
+                 Pass::declare)"
+            )));
         }
         if binds.is_empty() {
             return Ok(());
@@ -202,7 +213,7 @@ impl<'f> Cmd<'f> {
                 ),
                 Bind::Storage(v) => image_infos
                     .push(vk::DescriptorImageInfo::default().image_view(v.raw).image_layout(vk::ImageLayout::GENERAL)),
-                Bind::Buffer(buf) | Bind::Uniform(buf) => buffer_infos
+                Bind::Buffer(buf) | Bind::BufferRead(buf) | Bind::Uniform(buf) => buffer_infos
                     .push(vk::DescriptorBufferInfo::default().buffer(buf.raw).offset(0).range(vk::WHOLE_SIZE)),
                 Bind::BufferRange(buf, o, s) => {
                     buffer_infos.push(vk::DescriptorBufferInfo::default().buffer(buf.raw).offset(*o).range(*s))
@@ -218,18 +229,6 @@ impl<'f> Cmd<'f> {
                 BindingKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
                 BindingKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
             });
-            let ok = matches!(
-                (b, kind),
-                (Bind::Sampled(..), BindingKind::SampledImage)
-                    | (Bind::Storage(..), BindingKind::StorageImage)
-                    | (Bind::Buffer(..) | Bind::BufferRange(..), BindingKind::StorageBuffer)
-                    | (Bind::Uniform(..), BindingKind::UniformBuffer)
-            );
-            if !ok {
-                return Err(VkError::Invalid(format!(
-                    "binding {i}: descriptor does not match the pipeline's {kind:?}"
-                )));
-            }
             match b {
                 Bind::Sampled(..) | Bind::Storage(..) => {
                     writes.push(w.image_info(std::slice::from_ref(&image_infos[ii])));
@@ -254,13 +253,16 @@ impl<'f> Cmd<'f> {
                 bytes.len()
             )));
         }
-        let (_, layout, _) =
-            self.bound.as_ref().ok_or_else(|| VkError::Invalid("push() before bind_pipeline()".into()))?;
+        let layout = self
+            .bound
+            .as_ref()
+            .map(|b| b.layout)
+            .ok_or_else(|| VkError::Invalid("push() before bind_pipeline()".into()))?;
         let mut stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT | vk::ShaderStageFlags::COMPUTE;
         if self.ctx.info().has(crate::Feature::GeometryShader) {
             stages |= vk::ShaderStageFlags::GEOMETRY;
         }
-        unsafe { self.d().cmd_push_constants(self.cb, *layout, stages, 0, bytes) };
+        unsafe { self.d().cmd_push_constants(self.cb, layout, stages, 0, bytes) };
         Ok(())
     }
 

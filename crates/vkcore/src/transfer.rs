@@ -32,14 +32,12 @@ impl Context {
         let mut staging = Buffer::new(self, "staging upload", data.len() as u64, Memory::Upload)?;
         staging.write_mapped(0, data)?;
         let mut f = self.frame(FrameOptions::default())?;
-        f.pass(
-            "upload",
-            &[Use::buffer(&staging, Access::TRANSFER_READ), Use::buffer(dst, Access::TRANSFER_WRITE)],
-            |c| {
+        f.pass("upload")
+            .uses([Use::buffer(&staging, Access::TRANSFER_READ), Use::buffer(dst, Access::TRANSFER_WRITE)])
+            .record(|c| {
                 c.copy_buffer(&staging, dst, data.len() as u64);
                 Ok(())
-            },
-        )?;
+            })?;
         f.submit()?;
         Ok(())
     }
@@ -48,14 +46,12 @@ impl Context {
     pub fn read_buffer(&self, src: &Buffer) -> Result<Vec<u8>> {
         let staging = Buffer::new(self, "staging readback", src.size(), Memory::Readback)?;
         let mut f = self.frame(FrameOptions::default())?;
-        f.pass(
-            "readback",
-            &[Use::buffer(src, Access::TRANSFER_READ), Use::buffer(&staging, Access::TRANSFER_WRITE)],
-            |c| {
+        f.pass("readback")
+            .uses([Use::buffer(src, Access::TRANSFER_READ), Use::buffer(&staging, Access::TRANSFER_WRITE)])
+            .record(|c| {
                 c.copy_buffer(src, &staging, src.size());
                 Ok(())
-            },
-        )?;
+            })?;
         f.submit()?;
         let bytes = staging.mapped().ok_or_else(|| VkError::Invalid("readback buffer is not mapped".into()))?;
         Ok(bytes[..src.size() as usize].to_vec())
@@ -95,17 +91,15 @@ impl Context {
         let mut staging = Buffer::new(self, "staging image upload", bytes, Memory::Upload)?;
         staging.write_mapped(0, data)?;
         let mut f = self.frame(FrameOptions::default())?;
-        f.pass(
-            "upload image",
-            &[
+        f.pass("upload image")
+            .uses([
                 Use::buffer(&staging, Access::TRANSFER_READ),
                 Use::image(image, mip..mip + 1, layer..layer + 1, Access::TRANSFER_WRITE),
-            ],
-            |c| {
+            ])
+            .record(|c| {
                 c.copy_buffer_to_image(&staging, image, mip, layer);
                 Ok(())
-            },
-        )?;
+            })?;
         f.submit()?;
         Ok(())
     }
@@ -115,18 +109,16 @@ impl Context {
         let bytes = Self::image_bytes(image, mip, layer)?;
         let staging = Buffer::new(self, "staging image readback", bytes, Memory::Readback)?;
         let mut f = self.frame(FrameOptions::default())?;
-        f.pass(
-            "readback image",
-            &[
+        f.pass("readback image")
+            .uses([
                 Use::image(image, mip..mip + 1, layer..layer + 1, Access::TRANSFER_READ),
                 Use::buffer(&staging, Access::TRANSFER_WRITE),
-            ],
-            |c| {
+            ])
+            .record(|c| {
                 c.copy_image_to_buffer(image, mip, layer, &staging);
                 Ok(())
-            },
-        )?;
-        f.pass("readback.host", &[Use::buffer(&staging, Access::HOST_READ)], |_| Ok(()))?;
+            })?;
+        f.pass("readback.host").uses([Use::buffer(&staging, Access::HOST_READ)]).record(|_| Ok(()))?;
         f.submit()?;
         let m = staging.mapped().ok_or_else(|| VkError::Invalid("readback buffer is not mapped".into()))?;
         Ok(m[..bytes as usize].to_vec())

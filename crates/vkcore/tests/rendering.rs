@@ -35,21 +35,25 @@ fn layered(vert: &str, geom: Option<&str>, multiview: bool) {
     desc.view_mask = if multiview { (1 << LAYERS) - 1 } else { 0 };
     let pipeline = Pipeline::graphics(&ctx, &desc).unwrap();
     let mut f = ctx.frame(FrameOptions { timestamps: true, pipeline_statistics: true }).unwrap();
-    f.pass("clear", &[Use::view(&all, Access::TRANSFER_WRITE)], |c| {
-        c.clear_color(&all, [-1.0, 0.0, 0.0, 0.0]);
-        Ok(())
-    })
-    .unwrap();
-    f.pass("layered draw", &[Use::view(&mip1, Access::COLOR_ATTACHMENT)], |c| {
-        let t = Targets::color(&mip1, None);
-        let t = if multiview { t.multiview((1 << LAYERS) - 1) } else { t.layered(LAYERS) };
-        c.begin_rendering(&t)?;
-        c.bind_pipeline(&pipeline);
-        c.draw(3, if multiview { 1 } else { LAYERS }, 0, 0);
-        c.end_rendering();
-        Ok(())
-    })
-    .unwrap();
+    f.pass("clear")
+        .uses([Use::view(&all, Access::TRANSFER_WRITE)])
+        .record(|c| {
+            c.clear_color(&all, [-1.0, 0.0, 0.0, 0.0]);
+            Ok(())
+        })
+        .unwrap();
+    f.pass("layered draw")
+        .bind(&pipeline, [])
+        .uses([Use::view(&mip1, Access::COLOR_ATTACHMENT)])
+        .record(|c| {
+            let t = Targets::color(&mip1, None);
+            let t = if multiview { t.multiview((1 << LAYERS) - 1) } else { t.layered(LAYERS) };
+            c.begin_rendering(&t)?;
+            c.draw(3, if multiview { 1 } else { LAYERS }, 0, 0);
+            c.end_rendering();
+            Ok(())
+        })
+        .unwrap();
     let report = f.submit().unwrap();
     assert!(report.pass("layered draw").unwrap().gpu_ms.is_some(), "timestamps recorded");
     for mip in 0..3 {
@@ -163,25 +167,18 @@ fn instanced_fetch(n: u32, width: u32, verts: u32) {
     });
     let p = Pipeline::graphics(&ctx, &desc).unwrap();
     let mut f = ctx.frame(FrameOptions::default()).unwrap();
-    f.pass(
-        "splat",
-        &[
-            Use::view(&photon_view, Access::SHADER_READ),
-            Use::buffer(&vb, Access::VERTEX_INPUT),
-            Use::view(&tv, Access::COLOR_ATTACHMENT),
-        ],
-        |c| {
+    f.pass("splat")
+        .bind(&p, [Bind::Sampled(&photon_view, &sampler)])
+        .uses([Use::buffer(&vb, Access::VERTEX_INPUT), Use::view(&tv, Access::COLOR_ATTACHMENT)])
+        .record(|c| {
             c.begin_rendering(&Targets::color(&tv, Some([0.0; 4])))?;
-            c.bind_pipeline(&p);
-            c.bind(&[Bind::Sampled(&photon_view, &sampler)])?;
             c.push(&[n, width, verts, size])?;
             c.bind_vertex_buffer(&vb, 0);
             c.draw(verts, n.div_ceil(verts), 0, 0);
             c.end_rendering();
             Ok(())
-        },
-    )
-    .unwrap();
+        })
+        .unwrap();
     f.submit().unwrap();
     let got: Vec<f32> = ctx.read_image_f32(&target, 0, 0).unwrap().chunks(4).map(|t| t[0]).collect();
     assert_eq!(got, want, "n = {n}, verts per instance = {verts}");
@@ -213,14 +210,16 @@ fn validation_messages_are_counted() {
     let image = Image::new(&ctx, ImageDesc::new_2d("t", Format::R32_SFLOAT, 4, 4)).unwrap();
     let v = image.full_view().unwrap();
     let mut f = ctx.frame(FrameOptions::default()).unwrap();
-    f.pass("invalid", &[Use::view(&v, Access::COLOR_ATTACHMENT)], |c| {
-        c.begin_rendering(&Targets::color(&v, Some([0.0; 4])))?;
-        c.bind_pipeline(&p);
-        c.draw(3, 1, 0, 0);
-        c.end_rendering();
-        Ok(())
-    })
-    .unwrap();
+    f.pass("invalid")
+        .bind(&p, [])
+        .uses([Use::view(&v, Access::COLOR_ATTACHMENT)])
+        .record(|c| {
+            c.begin_rendering(&Targets::color(&v, Some([0.0; 4])))?;
+            c.draw(3, 1, 0, 0);
+            c.end_rendering();
+            Ok(())
+        })
+        .unwrap();
     f.submit().unwrap();
     // Reading a mip-1 view of a 1-mip image is refused by vkcore itself.
     assert!(image.view(ViewKind::D2, 1..2, 0..1).is_err());

@@ -213,7 +213,7 @@ impl<'c> Renderer<'c> {
                 Use::buffer(&self.uniforms, Access::TRANSFER_WRITE),
                 Use::buffer(&self.caustic_uniforms, Access::TRANSFER_WRITE),
             ];
-            f.pass("uniforms", &uses, |cmd| {
+            f.pass("uniforms").uses(uses).record(|cmd| {
                 cmd.update_buffer(&self.uniforms, 0, bytemuck::bytes_of(&fu))?;
                 cmd.update_buffer(&self.caustic_uniforms, 0, bytemuck::bytes_of(&cu))?;
                 Ok(())

@@ -12,11 +12,11 @@
 pub mod settings;
 pub use settings::{PAPER, VERTEX_PHOTON_FEATURES};
 
-use super::shared::photon_buffer::{trace_binds, trace_uses};
+use super::shared::photon_buffer::trace_binds;
 use super::shared::CausticInputs;
 use super::shared::{CausticTargets, PhotonTargets};
 use crate::gpu::mesh_pipeline::mesh_layout;
-use crate::gpu::MATERIAL_DIFFUSE;
+use crate::gpu::{mesh_uses, MATERIAL_DIFFUSE};
 use anyhow::Result;
 use vkcore::{
     Access, Bind, BindingKind as K, Context, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology, Use,
@@ -53,27 +53,41 @@ impl VertexPhotons {
         l: u32,
     ) -> Result<()> {
         let vp = &self.pipeline;
-        let mut uses = trace_uses(ct, pt, inp);
         let photons = [&pt.position, &pt.direction, &pt.power];
         let clear: Vec<Use> = photons.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)).collect();
-        f.pass(&format!("vertex_photons.clear.light{l}"), &clear, |cmd| {
+        f.pass(&format!("vertex_photons.clear.light{l}")).uses(clear).record(|cmd| {
             for t in photons {
                 cmd.clear_color(&t.view, [0.0; 4]);
             }
             Ok(())
         })?;
-        uses.extend(photons.iter().map(|t| Use::view(&t.view, Access::GRAPHICS_READ_WRITE)));
-        uses.extend(inp.vertex_areas.iter().flatten().map(|b| Use::buffer(b, Access::STORAGE_READ)));
-        f.pass(&format!("vertex_photons.light{l}"), &uses, |cmd| {
+        // One descriptor set per specular mesh: the tracing inputs, the photon buffer's images
+        // and the mesh's vertex areas.
+        let specular: Vec<_> = inp
+            .meshes
+            .iter()
+            .zip(inp.vertex_areas)
+            .filter_map(|(m, areas)| Some((m, areas.as_ref()?)).filter(|(m, _)| m.kind() != MATERIAL_DIFFUSE))
+            .collect();
+        let sets: Vec<_> = specular
+            .iter()
+            .map(|(_, areas)| {
+                let mut binds = trace_binds(ct, pt, inp);
+                binds.extend(photons.map(|t| Bind::Storage(&t.view)));
+                binds.push(Bind::BufferRead(areas));
+                binds
+            })
+            .collect();
+        let mut pass = f.pass(&format!("vertex_photons.light{l}")).uses(mesh_uses(inp.meshes));
+        for binds in &sets {
+            pass = pass.declare(vp, binds);
+        }
+        pass.record(|cmd| {
             cmd.begin_rendering(&Targets::none())?;
             cmd.bind_pipeline(vp);
             let mut first = 0u32;
-            for (m, areas) in inp.meshes.iter().zip(inp.vertex_areas) {
-                let (true, Some(areas)) = (m.kind() != MATERIAL_DIFFUSE, areas) else { continue };
-                let mut binds = trace_binds(ct, pt, inp);
-                binds.extend(photons.map(|t| Bind::Storage(&t.view)));
-                binds.push(Bind::Buffer(areas));
-                cmd.bind(&binds)?;
+            for ((m, _), binds) in specular.iter().zip(&sets) {
+                cmd.bind(binds)?;
                 let mut c = m.constants;
                 c.info[1] = l;
                 c.info[3] = first;

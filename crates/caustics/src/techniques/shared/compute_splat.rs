@@ -146,17 +146,12 @@ impl ComputeSplat {
             (Photons::Dense, Some(_)) => anyhow::bail!("compute splat: built for a hierarchy's list, given photons"),
             (Photons::List { .. }, None) => anyhow::bail!("compute splat: built for the photon texture, given a list"),
         }
-        f.pass(&format!("splat.clear.light{l}"), &[Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)], |cmd| {
-            cmd.fill_buffer(&self.accumulated, 0);
-            Ok(())
-        })?;
-        let mut uses = vec![
-            Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
-            Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
-            Use::view(&pt.position.view, Access::SHADER_READ),
-            Use::view(&pt.power.view, Access::SHADER_READ),
-            Use::buffer(&self.accumulated, Access::COMPUTE_READ_WRITE),
-        ];
+        f.pass(&format!("splat.clear.light{l}"))
+            .uses([Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)])
+            .record(|cmd| {
+                cmd.fill_buffer(&self.accumulated, 0);
+                Ok(())
+            })?;
         let mut binds = vec![
             Bind::Uniform(inp.frame_uniforms),
             Bind::Uniform(inp.caustic_uniforms),
@@ -171,43 +166,28 @@ impl ComputeSplat {
                 match &self.list {
                     Some(ListDispatch::ByteCount(b)) => {
                         let (pipeline, args) = &**b;
-                        let counter = [
-                            Use::buffer(&list.counter, Access::STORAGE_READ),
-                            Use::buffer(args, Access::COMPUTE_READ_WRITE),
-                        ];
-                        f.pass(&format!("splat.arguments.light{l}"), &counter, |cmd| {
-                            cmd.bind_pipeline(pipeline);
-                            cmd.bind(&[Bind::Buffer(&list.counter), Bind::Buffer(args)])?;
-                            cmd.dispatch(1, 1, 1);
-                            Ok(())
-                        })?;
-                        uses.push(Use::buffer(args, Access::INDIRECT));
+                        f.pass(&format!("splat.arguments.light{l}"))
+                            .bind(pipeline, [Bind::BufferRead(&list.counter), Bind::Buffer(args)])
+                            .record(|cmd| {
+                                cmd.dispatch(1, 1, 1);
+                                Ok(())
+                            })?;
                         indirect = Some((args, 0));
                     }
                     // The dispatch arguments of compact_counter.glsl start at byte 16.
-                    _ => {
-                        uses.push(Use::buffer(&list.counter, Access::INDIRECT));
-                        indirect = Some((&list.counter, 16));
-                    }
+                    _ => indirect = Some((&list.counter, 16)),
                 }
-                uses.extend([
-                    Use::view(power, Access::SHADER_READ),
-                    Use::view(position, Access::SHADER_READ),
-                    Use::buffer(&list.data, Access::STORAGE_READ),
-                    Use::buffer(&list.counter, Access::STORAGE_READ),
-                ]);
                 binds.extend([
                     Bind::Sampled(power, inp.nearest),
                     Bind::Sampled(position, inp.nearest),
                     Bind::Buffer(&self.accumulated),
-                    Bind::Buffer(&list.data),
-                    Bind::Buffer(&list.counter),
+                    Bind::BufferRead(&list.data),
+                    Bind::BufferRead(&list.counter),
                 ]);
             }
         }
-        f.pass(&format!("splat.light{l}"), &uses, |cmd| {
-            cmd.bind_pipeline(&self.splat);
-            cmd.bind(&binds)?;
+        let arguments = indirect.map(|(args, _)| Use::buffer(args, Access::INDIRECT));
+        f.pass(&format!("splat.light{l}")).bind(&self.splat, binds).uses(arguments).record(|cmd| {
             cmd.push(&ObjectConstants { info: [texels, l, 0, 0], ..Default::default() })?;
             match indirect {
                 Some((args, offset)) => cmd.dispatch_indirect(args, offset),
@@ -218,10 +198,8 @@ impl ComputeSplat {
             }
             Ok(())
         })?;
-        let uses = [Use::buffer(&self.accumulated, Access::STORAGE_READ), Use::view(cmap, Access::COMPUTE_READ_WRITE)];
-        f.pass(&format!("splat.resolve.light{l}"), &uses, |cmd| {
-            cmd.bind_pipeline(&self.resolve);
-            cmd.bind(&[Bind::Storage(cmap), Bind::Buffer(&self.accumulated)])?;
+        let resolve = [Bind::Storage(cmap), Bind::BufferRead(&self.accumulated)];
+        f.pass(&format!("splat.resolve.light{l}")).bind(&self.resolve, resolve).record(|cmd| {
             cmd.dispatch(self.side.div_ceil(8), self.side.div_ceil(8), self.layers);
             Ok(())
         })?;

@@ -12,10 +12,6 @@ use crate::techniques::shared::CausticInputs;
 use anyhow::Result;
 use vkcore::{Access, Bind, Frame, Targets, Use};
 
-pub(crate) fn ubo_uses<'a>(inp: &CausticInputs<'a>) -> [Use<'a>; 2] {
-    [Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ), Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ)]
-}
-
 /// The light's views before photons are traced, for light `l`: the receiver positions (its
 /// render of the diffuse surfaces) and the refractors' back faces.
 pub(crate) fn record_light_views(
@@ -26,17 +22,14 @@ pub(crate) fn record_light_views(
     inp: &CausticInputs,
     l: u32,
 ) -> Result<()> {
-    let ubos = || ubo_uses(inp);
     let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
-    {
-        let (_, rpos, rdepth) = &ct.per_light[l as usize];
-        let mut uses = Vec::from(ubos());
-        uses.extend([Use::view(rpos, Access::COLOR_ATTACHMENT), Use::view(rdepth, Access::DEPTH_ATTACHMENT)]);
-        uses.extend(mesh_uses(inp.meshes));
-        f.pass(&format!("receiver_positions.light{l}"), &uses, |cmd| {
+    let (_, rpos, rdepth) = &ct.per_light[l as usize];
+    f.pass(&format!("receiver_positions.light{l}"))
+        .bind(&p.receiver_positions, ubo_binds())
+        .uses([Use::view(rpos, Access::COLOR_ATTACHMENT), Use::view(rdepth, Access::DEPTH_ATTACHMENT)])
+        .uses(mesh_uses(inp.meshes))
+        .record(|cmd| {
             cmd.begin_rendering(&Targets::color(rpos, Some([0.0; 4])).with_depth(rdepth, Some(1.0)))?;
-            cmd.bind_pipeline(&p.receiver_positions);
-            cmd.bind(&ubo_binds())?;
             for m in inp.meshes.iter().filter(|m| m.kind() == MATERIAL_DIFFUSE) {
                 m.draw(cmd, 1, l)?;
             }
@@ -44,25 +37,23 @@ pub(crate) fn record_light_views(
             Ok(())
         })?;
 
-        let mut uses = Vec::from(ubos());
-        uses.extend([
+    f.pass(&format!("photon_back_faces.light{l}"))
+        .bind(&p.back_faces, ubo_binds())
+        .uses([
             Use::view(&pt.back_faces.view, Access::COLOR_ATTACHMENT),
             Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT),
-        ]);
-        uses.extend(mesh_uses(inp.meshes));
-        f.pass(&format!("photon_back_faces.light{l}"), &uses, |cmd| {
+        ])
+        .uses(mesh_uses(inp.meshes))
+        .record(|cmd| {
             cmd.begin_rendering(
                 &Targets::color(&pt.back_faces.view, Some([0.0; 4])).with_depth(&pt.depth.view, Some(1.0)),
             )?;
-            cmd.bind_pipeline(&p.back_faces);
-            cmd.bind(&ubo_binds())?;
             for m in inp.meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE) {
                 m.draw(cmd, 1, l)?;
             }
             cmd.end_rendering();
             Ok(())
         })?;
-    }
     Ok(())
 }
 
@@ -76,18 +67,6 @@ pub(crate) fn trace_binds<'a>(ct: &'a CausticTargets, pt: &'a PhotonTargets, inp
     ]
 }
 
-/// The accesses of a pass that traces photons through the meshes: [`trace_binds`] and the
-/// meshes' buffers.
-pub(crate) fn trace_uses<'a>(ct: &'a CausticTargets, pt: &'a PhotonTargets, inp: &CausticInputs<'a>) -> Vec<Use<'a>> {
-    let mut uses = Vec::from(ubo_uses(inp));
-    uses.extend([
-        Use::view(&pt.back_faces.view, Access::SHADER_READ),
-        Use::view(&ct.receiver_positions.view, Access::SHADER_READ),
-    ]);
-    uses.extend(mesh_uses(inp.meshes));
-    uses
-}
-
 /// The photon buffer of light `l` (Wyman & Davis 2006 Sec. 3.1): the specular meshes rendered
 /// from the light, each fragment a photon traced through them (position, direction, power).
 pub(crate) fn record_photon_buffer(
@@ -99,19 +78,19 @@ pub(crate) fn record_photon_buffer(
     l: u32,
 ) -> Result<()> {
     let photons = [&pt.position, &pt.direction, &pt.power];
-    let mut uses = trace_uses(ct, pt, inp);
-    uses.extend(photons.iter().map(|t| Use::view(&t.view, Access::COLOR_ATTACHMENT)));
-    uses.push(Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT));
-    f.pass(&format!("photon_buffer.light{l}"), &uses, |cmd| {
-        let targets = Targets::colors(photons.iter().map(|t| (&t.view, Some([0.0; 4]))).collect());
-        cmd.begin_rendering(&targets.with_depth(&pt.depth.view, Some(1.0)))?;
-        cmd.bind_pipeline(&p.photon_buffer);
-        cmd.bind(&trace_binds(ct, pt, inp))?;
-        for m in inp.meshes.iter().filter(|m| m.kind() != MATERIAL_DIFFUSE) {
-            m.draw(cmd, 1, l)?;
-        }
-        cmd.end_rendering();
-        Ok(())
-    })?;
+    f.pass(&format!("photon_buffer.light{l}"))
+        .bind(&p.photon_buffer, trace_binds(ct, pt, inp))
+        .uses(mesh_uses(inp.meshes))
+        .uses(photons.map(|t| Use::view(&t.view, Access::COLOR_ATTACHMENT)))
+        .uses([Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT)])
+        .record(|cmd| {
+            let targets = Targets::colors(photons.iter().map(|t| (&t.view, Some([0.0; 4]))).collect());
+            cmd.begin_rendering(&targets.with_depth(&pt.depth.view, Some(1.0)))?;
+            for m in inp.meshes.iter().filter(|m| m.kind() != MATERIAL_DIFFUSE) {
+                m.draw(cmd, 1, l)?;
+            }
+            cmd.end_rendering();
+            Ok(())
+        })?;
     Ok(())
 }

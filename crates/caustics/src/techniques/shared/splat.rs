@@ -3,7 +3,6 @@
 //! fetched instanced from the photon buffer (Wyman 2008 Sec. 4). The copy path of Wyman 2008
 //! Table 1 splats from a vertex array instead (`wyman2008::photon_copy`).
 
-use super::photon_buffer::ubo_uses;
 use super::targets::{CausticTargets, PhotonTargets};
 use super::CausticPipelines;
 use crate::techniques::shared::CausticInputs;
@@ -21,20 +20,17 @@ pub(crate) fn record_splat(
     l: u32,
 ) -> Result<()> {
     let (cmap, _, _) = &ct.per_light[l as usize];
-    let mut uses = Vec::from(ubo_uses(inp));
-    uses.push(Use::view(cmap, Access::COLOR_ATTACHMENT));
-    uses.extend([Use::view(&pt.position.view, Access::SHADER_READ), Use::view(&pt.power.view, Access::SHADER_READ)]);
-    uses.push(Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT));
-    {
-        f.pass(&format!("splat.light{l}"), &uses, |cmd| {
+    let binds = [
+        Bind::Uniform(inp.frame_uniforms),
+        Bind::Uniform(inp.caustic_uniforms),
+        Bind::Sampled(&pt.position.view, inp.nearest),
+        Bind::Sampled(&pt.power.view, inp.nearest),
+    ];
+    f.pass(&format!("splat.light{l}"))
+        .bind(&p.splat, binds)
+        .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT)])
+        .record(|cmd| {
             cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
-            cmd.bind_pipeline(&p.splat);
-            cmd.bind(&[
-                Bind::Uniform(inp.frame_uniforms),
-                Bind::Uniform(inp.caustic_uniforms),
-                Bind::Sampled(&pt.position.view, inp.nearest),
-                Bind::Sampled(&pt.power.view, inp.nearest),
-            ])?;
             let c = crate::gpu::ObjectConstants { info: [0, l, inp.instance_vertices, 0], ..Default::default() };
             cmd.push(&c)?;
             cmd.bind_vertex_buffer(inp.splat_vertices, 0);
@@ -45,7 +41,6 @@ pub(crate) fn record_splat(
             cmd.end_rendering();
             Ok(())
         })?;
-    }
     Ok(())
 }
 
@@ -55,7 +50,7 @@ pub fn record_cleared(f: &mut Frame, ct: &CausticTargets) -> Result<()> {
         Use::view(&ct.caustic_map.view, Access::TRANSFER_WRITE),
         Use::view(&ct.receiver_positions.view, Access::TRANSFER_WRITE),
     ];
-    f.pass("caustics.clear", &uses, |cmd| {
+    f.pass("caustics.clear").uses(uses).record(|cmd| {
         cmd.clear_color(&ct.caustic_map.view, [0.0; 4]);
         cmd.clear_color(&ct.receiver_positions.view, [0.0; 4]);
         Ok(())

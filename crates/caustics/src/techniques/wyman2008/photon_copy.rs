@@ -11,7 +11,6 @@
 //! converting blit into a 32-bit image followed by the copy.
 
 use crate::gpu::{ObjectConstants, Target};
-use crate::techniques::shared::photon_buffer::ubo_uses;
 use crate::techniques::shared::pipelines::point_splat_desc;
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::CausticInputs;
@@ -122,24 +121,19 @@ impl PhotonCopy {
 
     /// Splats light `l`'s copied photons into `cmap`, one point per vertex of the array.
     pub fn record_splat(&self, f: &mut Frame, inp: &CausticInputs, cmap: &ImageView, l: u32) -> Result<()> {
-        let mut uses = Vec::from(ubo_uses(inp));
-        uses.push(Use::view(cmap, Access::COLOR_ATTACHMENT));
-        uses.push(Use::buffer(&self.positions, Access::VERTEX_INPUT));
-        uses.push(Use::buffer(&self.powers, Access::STORAGE_READ));
-        f.pass(&format!("splat.light{l}"), &uses, |cmd| {
-            cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
-            cmd.bind_pipeline(&self.splat);
-            cmd.bind(&[
-                Bind::Uniform(inp.frame_uniforms),
-                Bind::Uniform(inp.caustic_uniforms),
-                Bind::Buffer(&self.powers),
-            ])?;
-            cmd.push(&ObjectConstants { info: [0, l, 0, 0], ..Default::default() })?;
-            cmd.bind_vertex_buffer(&self.positions, 0);
-            cmd.draw(self.vertices(), 1, 0, 0);
-            cmd.end_rendering();
-            Ok(())
-        })?;
+        let binds =
+            [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms), Bind::BufferRead(&self.powers)];
+        f.pass(&format!("splat.light{l}"))
+            .bind(&self.splat, binds)
+            .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(&self.positions, Access::VERTEX_INPUT)])
+            .record(|cmd| {
+                cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
+                cmd.push(&ObjectConstants { info: [0, l, 0, 0], ..Default::default() })?;
+                cmd.bind_vertex_buffer(&self.positions, 0);
+                cmd.draw(self.vertices(), 1, 0, 0);
+                cmd.end_rendering();
+                Ok(())
+            })?;
         Ok(())
     }
 
@@ -154,7 +148,7 @@ impl PhotonCopy {
         if let Some(half) = &self.half {
             let mut uses: Vec<Use> = src32.iter().map(|t| Use::view(&t.view, Access::TRANSFER_READ)).collect();
             uses.extend(half.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)));
-            f.pass(&format!("photon_buffer.to_16bit.light{l}"), &uses, |cmd| {
+            f.pass(&format!("photon_buffer.to_16bit.light{l}")).uses(uses).record(|cmd| {
                 for (s, d) in src32.iter().zip(half) {
                     cmd.blit_converting(&s.image, &d.image);
                 }
@@ -167,7 +161,7 @@ impl PhotonCopy {
             (Some(half), Some(wide)) => {
                 uses.extend(half.iter().map(|t| Use::view(&t.view, Access::TRANSFER_READ)));
                 uses.extend(wide.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)));
-                f.pass(&format!("photon_copy.light{l}"), &uses, |cmd| {
+                f.pass(&format!("photon_copy.light{l}")).uses(uses).record(|cmd| {
                     for (s, w) in half.iter().zip(wide) {
                         cmd.blit_converting(&s.image, &w.image);
                     }
@@ -185,7 +179,7 @@ impl PhotonCopy {
                     None => src32.to_vec(),
                 };
                 uses.extend(src.iter().map(|t| Use::view(&t.view, Access::TRANSFER_READ)));
-                f.pass(&format!("photon_copy.light{l}"), &uses, |cmd| {
+                f.pass(&format!("photon_copy.light{l}")).uses(uses).record(|cmd| {
                     for (s, b) in src.iter().zip(dst) {
                         cmd.copy_image_to_buffer(&s.image, 0, 0, b);
                     }

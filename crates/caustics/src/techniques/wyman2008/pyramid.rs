@@ -8,7 +8,7 @@ use crate::gpu::ObjectConstants;
 use crate::image_io::{ImageF32, Layer};
 use crate::techniques::shared::targets::PhotonTargets;
 use anyhow::Result;
-use vkcore::{Access, Bind, Context, Frame, Image, ImageView, Use};
+use vkcore::{Bind, Context, Frame, Image, ImageView};
 
 /// (P, L): the photon buffer side N padded to a power of two P ≥ 32 (padding texels hold no
 /// photon), and the number of levels above it, the top one TOP_SIDE².
@@ -38,12 +38,6 @@ impl Hierarchy {
     /// photon buffer).
     pub(super) fn record_build(&self, f: &mut Frame, inp: &Inputs, pt: &PhotonTargets, l: u32) -> Result<()> {
         let py = &self.pyramid;
-        let ubos = || {
-            [
-                Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
-                Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
-            ]
-        };
         let push = |level: u32, cluster: bool| ObjectConstants {
             info: [level, l, cluster as u32, self.n],
             ..Default::default()
@@ -56,31 +50,19 @@ impl Hierarchy {
                 let c = &py.mips[k as usize - 2];
                 [&c[0], &c[1], &c[2]]
             };
-            let mut uses = Vec::from(ubos());
-            uses.extend([
-                Use::view(&pt.position.view, Access::SHADER_READ),
-                Use::view(&pt.power.view, Access::SHADER_READ),
-            ]);
-            if k == 1 {
-                uses.push(Use::view(&self.dummy.view, Access::SHADER_READ));
-            } else {
-                uses.extend(children.iter().map(|v| Use::view(v, Access::SHADER_READ)));
-            }
-            uses.extend(out.iter().map(|v| Use::view(v, Access::COMPUTE_READ_WRITE)));
-            f.pass(&format!("hierarchy.build.level{k}.light{l}"), &uses, |cmd| {
-                cmd.bind_pipeline(&self.build);
-                cmd.bind(&[
-                    Bind::Uniform(inp.frame_uniforms),
-                    Bind::Uniform(inp.caustic_uniforms),
-                    Bind::Sampled(&pt.position.view, inp.nearest),
-                    Bind::Sampled(&pt.power.view, inp.nearest),
-                    Bind::Sampled(children[0], inp.nearest),
-                    Bind::Sampled(children[1], inp.nearest),
-                    Bind::Sampled(children[2], inp.nearest),
-                    Bind::Storage(&out[0]),
-                    Bind::Storage(&out[1]),
-                    Bind::Storage(&out[2]),
-                ])?;
+            let binds = [
+                Bind::Uniform(inp.frame_uniforms),
+                Bind::Uniform(inp.caustic_uniforms),
+                Bind::Sampled(&pt.position.view, inp.nearest),
+                Bind::Sampled(&pt.power.view, inp.nearest),
+                Bind::Sampled(children[0], inp.nearest),
+                Bind::Sampled(children[1], inp.nearest),
+                Bind::Sampled(children[2], inp.nearest),
+                Bind::Storage(&out[0]),
+                Bind::Storage(&out[1]),
+                Bind::Storage(&out[2]),
+            ];
+            f.pass(&format!("hierarchy.build.level{k}.light{l}")).bind(&self.build, binds).record(|cmd| {
                 cmd.push(&push(k, false))?;
                 let side = self.padded >> k;
                 cmd.dispatch(side.div_ceil(8), side.div_ceil(8), 1);

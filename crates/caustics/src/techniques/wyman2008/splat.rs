@@ -24,28 +24,21 @@ impl Hierarchy {
     ) -> Result<()> {
         let py = &self.pyramid;
         let list = &self.lists[0];
+        let binds = [
+            Bind::Uniform(inp.frame_uniforms),
+            Bind::Uniform(inp.caustic_uniforms),
+            Bind::Sampled(&pt.position.view, inp.nearest),
+            Bind::Sampled(&pt.power.view, inp.nearest),
+            Bind::Sampled(&py.all[0], inp.nearest),
+            Bind::Sampled(&py.all[1], inp.nearest),
+        ];
         let uses = [
-            Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
-            Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
-            Use::view(&pt.position.view, Access::SHADER_READ),
-            Use::view(&pt.power.view, Access::SHADER_READ),
-            Use::view(&py.all[0], Access::SHADER_READ),
-            Use::view(&py.all[1], Access::SHADER_READ),
             Use::buffer(&list.data, Access::VERTEX_INPUT),
             Use::buffer(&list.counter, Access::INDIRECT),
             Use::view(cmap, Access::COLOR_ATTACHMENT),
         ];
-        f.pass(&format!("splat.light{l}"), &uses, |cmd| {
+        f.pass(&format!("splat.light{l}")).bind(&self.splat, binds).uses(uses).record(|cmd| {
             cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])).layered(layers))?;
-            cmd.bind_pipeline(&self.splat);
-            cmd.bind(&[
-                Bind::Uniform(inp.frame_uniforms),
-                Bind::Uniform(inp.caustic_uniforms),
-                Bind::Sampled(&pt.position.view, inp.nearest),
-                Bind::Sampled(&pt.power.view, inp.nearest),
-                Bind::Sampled(&py.all[0], inp.nearest),
-                Bind::Sampled(&py.all[1], inp.nearest),
-            ])?;
             cmd.push(&ObjectConstants { info: [0, l, 0, self.n], ..Default::default() })?;
             cmd.bind_vertex_buffer(&list.data, 0);
             match self.path {

@@ -9,7 +9,7 @@ use crate::image_io::ImageF32;
 use crate::techniques::shared::compute_splat::{groups, Photons};
 use crate::techniques::shared::targets::PhotonTargets;
 use anyhow::Result;
-use vkcore::{Access, Bind, BindingKind as K, Buffer, Context, FrameOptions, Memory, Pipeline, ShaderCompiler, Use};
+use vkcore::{Bind, BindingKind as K, Buffer, Context, FrameOptions, Memory, Pipeline, ShaderCompiler};
 
 /// One splat: centre x, y and radius in base caustic-map texels, layer (of the multi-resolution
 /// map), power R, G, B (W), photons (1, or a cluster's count), splatted (1 when drawn), 3 unused
@@ -56,29 +56,18 @@ impl SplatFootprints {
             .into());
         }
         let out = Buffer::new(ctx, "splat footprints", bytes, Memory::Gpu)?;
-        let uses = [
-            Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
-            Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
-            Use::view(&pt.position.view, Access::SHADER_READ),
-            Use::view(&pt.power.view, Access::SHADER_READ),
-            Use::view(power, Access::SHADER_READ),
-            Use::view(position, Access::SHADER_READ),
-            Use::buffer(&list.data, Access::STORAGE_READ),
-            Use::buffer(&out, Access::COMPUTE_READ_WRITE),
+        let binds = [
+            Bind::Uniform(inp.frame_uniforms),
+            Bind::Uniform(inp.caustic_uniforms),
+            Bind::Sampled(&pt.position.view, inp.nearest),
+            Bind::Sampled(&pt.power.view, inp.nearest),
+            Bind::Sampled(power, inp.nearest),
+            Bind::Sampled(position, inp.nearest),
+            Bind::BufferRead(&list.data),
+            Bind::Buffer(&out),
         ];
         let mut f = ctx.frame(FrameOptions { timestamps: false, pipeline_statistics: false })?;
-        f.pass(&format!("splat_footprints.light{l}"), &uses, |cmd| {
-            cmd.bind_pipeline(&self.pipeline);
-            cmd.bind(&[
-                Bind::Uniform(inp.frame_uniforms),
-                Bind::Uniform(inp.caustic_uniforms),
-                Bind::Sampled(&pt.position.view, inp.nearest),
-                Bind::Sampled(&pt.power.view, inp.nearest),
-                Bind::Sampled(power, inp.nearest),
-                Bind::Sampled(position, inp.nearest),
-                Bind::Buffer(&list.data),
-                Bind::Buffer(&out),
-            ])?;
+        f.pass(&format!("splat_footprints.light{l}")).bind(&self.pipeline, binds).record(|cmd| {
             cmd.push(&ObjectConstants { info: [count, l, 0, 0], ..Default::default() })?;
             let (x, y) = groups(count);
             cmd.dispatch(x, y, 1);

@@ -18,19 +18,13 @@ impl Hierarchy {
     pub fn record_traversal(&self, f: &mut Frame, inp: &Inputs, pt: &PhotonTargets, l: u32) -> Result<()> {
         self.record_build(f, inp, pt, l)?;
         let py = &self.pyramid;
-        let ubos = || {
-            [
-                Use::buffer(inp.frame_uniforms, Access::UNIFORM_READ),
-                Use::buffer(inp.caustic_uniforms, Access::UNIFORM_READ),
-            ]
-        };
         let push = |level: u32, cluster: bool| ObjectConstants {
             info: [level, l, cluster as u32, self.n],
             ..Default::default()
         };
         // The paper zeroes its counters before every traversal; so do we (both paths).
         let counters: Vec<Use> = self.lists.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_WRITE)).collect();
-        f.pass(&format!("hierarchy.reset.light{l}"), &counters, |cmd| {
+        f.pass(&format!("hierarchy.reset.light{l}")).uses(counters).record(|cmd| {
             for s in &self.lists {
                 match self.path {
                     CompactionPath::TransformFeedback => cmd.fill_buffer(&s.counter, 0),
@@ -42,41 +36,28 @@ impl Hierarchy {
             }
             Ok(())
         })?;
-        let textures = || {
-            [
-                Use::view(&pt.position.view, Access::SHADER_READ),
-                Use::view(&py.all[0], Access::SHADER_READ),
-                Use::view(&py.all[2], Access::SHADER_READ),
-            ]
-        };
         for k in (1..=self.levels).rev() {
             let input = if k == self.levels { &self.seed } else { &self.lists[k as usize] };
             let out = &self.lists[k as usize - 1];
-            let mut uses = Vec::from(ubos());
-            uses.extend(textures());
-            let binds = || {
-                vec![
-                    Bind::Uniform(inp.frame_uniforms),
-                    Bind::Uniform(inp.caustic_uniforms),
-                    Bind::Sampled(&pt.position.view, inp.nearest),
-                    Bind::Sampled(&py.all[0], inp.nearest),
-                    Bind::Sampled(&py.all[2], inp.nearest),
-                ]
-            };
+            let mut binds = vec![
+                Bind::Uniform(inp.frame_uniforms),
+                Bind::Uniform(inp.caustic_uniforms),
+                Bind::Sampled(&pt.position.view, inp.nearest),
+                Bind::Sampled(&py.all[0], inp.nearest),
+                Bind::Sampled(&py.all[2], inp.nearest),
+            ];
             let name = format!("hierarchy.traverse.level{k}.light{l}");
             let cluster = self.cluster.tests(k);
             match self.path {
                 CompactionPath::TransformFeedback => {
-                    uses.push(Use::buffer(&input.data, Access::VERTEX_INPUT));
+                    let mut uses = vec![Use::buffer(&input.data, Access::VERTEX_INPUT)];
                     if k != self.levels {
                         uses.push(Use::buffer(&input.counter, Access::INDIRECT));
                     }
                     uses.push(Use::buffer(&out.data, Access::XFB_WRITE));
                     uses.push(Use::buffer(&out.counter, Access::XFB_COUNTER));
-                    f.pass(&name, &uses, |cmd| {
+                    f.pass(&name).bind(&self.traverse, binds).uses(uses).record(|cmd| {
                         cmd.begin_rendering(&Targets::none())?;
-                        cmd.bind_pipeline(&self.traverse);
-                        cmd.bind(&binds())?;
                         cmd.push(&push(k, cluster))?;
                         cmd.bind_vertex_buffer(&input.data, 0);
                         cmd.bind_xfb_buffers(&[&out.data])?;
@@ -93,40 +74,33 @@ impl Hierarchy {
                     })?;
                 }
                 CompactionPath::Compute => {
-                    uses.push(Use::buffer(&input.data, Access::STORAGE_READ));
-                    uses.push(Use::buffer(&input.counter, Access::INDIRECT));
-                    uses.push(Use::buffer(&input.counter, Access::STORAGE_READ));
-                    uses.push(Use::buffer(&out.data, Access::COMPUTE_READ_WRITE));
-                    uses.push(Use::buffer(&out.counter, Access::COMPUTE_READ_WRITE));
-                    f.pass(&name, &uses, |cmd| {
-                        cmd.bind_pipeline(&self.traverse);
-                        let mut b = binds();
-                        b.extend([
-                            Bind::Buffer(&input.data),
-                            Bind::Buffer(&input.counter),
-                            Bind::Buffer(&out.data),
-                            Bind::Buffer(&out.counter),
-                        ]);
-                        cmd.bind(&b)?;
+                    binds.extend([
+                        Bind::BufferRead(&input.data),
+                        Bind::BufferRead(&input.counter),
+                        Bind::Buffer(&out.data),
+                        Bind::Buffer(&out.counter),
+                    ]);
+                    // The input's count is read as dispatch arguments too.
+                    let arguments = [Use::buffer(&input.counter, Access::INDIRECT)];
+                    f.pass(&name).bind(&self.traverse, binds).uses(arguments).record(|cmd| {
                         cmd.push(&push(k, cluster))?;
                         cmd.dispatch_indirect(&input.counter, 16);
                         Ok(())
                     })?;
                     let finalize = self.finalize.as_ref().ok_or_else(|| anyhow::anyhow!("no finalize pipeline"))?;
-                    let uses = [Use::buffer(&out.counter, Access::COMPUTE_READ_WRITE)];
-                    f.pass(&format!("hierarchy.finalize.level{k}.light{l}"), &uses, |cmd| {
-                        cmd.bind_pipeline(finalize);
-                        cmd.bind(&[Bind::Buffer(&out.counter)])?;
-                        cmd.dispatch(1, 1, 1);
-                        Ok(())
-                    })?;
+                    f.pass(&format!("hierarchy.finalize.level{k}.light{l}"))
+                        .bind(finalize, [Bind::Buffer(&out.counter)])
+                        .record(|cmd| {
+                            cmd.dispatch(1, 1, 1);
+                            Ok(())
+                        })?;
                 }
             }
         }
         // Keep this light's list sizes for the photon-count tables (read after the frame).
         let mut uses: Vec<Use> = self.lists.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_READ)).collect();
         uses.push(Use::buffer(&self.counts, Access::TRANSFER_WRITE));
-        f.pass(&format!("hierarchy.counts.light{l}"), &uses, |cmd| {
+        f.pass(&format!("hierarchy.counts.light{l}")).uses(uses).record(|cmd| {
             for (k, s) in self.lists.iter().enumerate() {
                 let slot = (l.min(self.lights.max(1) - 1) * self.levels + k as u32) as u64 * 4;
                 cmd.copy_buffer_region(&s.counter, 0, &self.counts, slot, 4);
