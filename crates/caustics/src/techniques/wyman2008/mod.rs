@@ -23,12 +23,13 @@ pub use settings::{Cluster, SplatMode, TraversalPath, VaryingRadius, DUMPS, PAPE
 pub use traversal::lists_image;
 
 use crate::gpu::Target;
+use crate::techniques::shared::pipelines::point_splat_desc;
 use crate::techniques::shared::targets::COLOR;
 use anyhow::Result;
 use pyramid::Pyramid;
 use vkcore::{
-    BindingKind as K, Blend, Buffer, CompactStream, CompactionPath, Context, Format, GraphicsDesc, Image, ImageDesc,
-    Memory, Pipeline, ShaderCompiler, Topology, VertexAttribute, VertexLayout, ViewKind,
+    BindingKind as K, Buffer, CompactStream, CompactionPath, Context, Format, GraphicsDesc, Image, ImageDesc, Memory,
+    Pipeline, ShaderCompiler, Topology, VertexAttribute, VertexLayout, ViewKind,
 };
 
 /// The traversal starts at a 16² level (Sec. 3.1: "to avoid processing mipmaps containing only
@@ -158,23 +159,12 @@ impl Hierarchy {
                 (traverse, Some(finalize))
             }
         };
-        let mut splat = GraphicsDesc::new(
-            "splat_hierarchy",
-            sh.compile("shared/splat.vert", &[("HIERARCHY", "1")])?,
-            Some(sh.compile("shared/splat.frag", &[])?),
-        );
-        splat.bindings = vec![
-            K::UniformBuffer,
-            K::UniformBuffer,
-            K::SampledImage,
-            K::SampledImage,
-            K::SampledImage,
-            K::SampledImage,
-        ];
+        // The point splat, fed the final list's entries instead of photon indices.
+        let mut splat = point_splat_desc(sh)?;
+        splat.name = "splat_hierarchy".into();
+        splat.vertex = sh.compile("shared/splat.vert", &[("HIERARCHY", "1")])?;
+        splat.bindings.extend([K::SampledImage, K::SampledImage]);
         splat.vertex_layout = Some(entries);
-        splat.topology = Topology::Points;
-        splat.blend = Blend::Additive;
-        splat.color_formats = vec![COLOR];
         Ok(Hierarchy {
             path,
             cluster,
