@@ -29,12 +29,27 @@ pub enum VkError {
     /// gpu-allocator failed (out of memory, no suitable memory type).
     #[error("allocating `{name}` ({bytes} bytes): {message}")]
     Alloc { name: String, bytes: u64, message: String },
+    /// A submitted frame did not finish: its fence wait timed out or the device was lost. The
+    /// crash marker says which passes had finished.
+    #[error("{}", frame_failed(*.result, .last_finished, .next, .passes))]
+    FrameFailed { result: vk::Result, last_finished: Option<String>, next: Option<String>, passes: Vec<String> },
     /// A request that can never work (zero-sized image, size above the device limit, ...).
     #[error("{0}")]
     Invalid(String),
 }
 
 pub type Result<T> = std::result::Result<T, VkError>;
+
+fn frame_failed(result: vk::Result, last: &Option<String>, next: &Option<String>, passes: &[String]) -> String {
+    let what = if result == vk::Result::TIMEOUT { "the frame timed out" } else { "the frame failed" };
+    let at = match (last, next) {
+        (Some(l), Some(n)) => format!("the last pass that finished was `{l}`; the one after it, `{n}`, had not"),
+        (None, Some(n)) => format!("no pass had finished, not even the first, `{n}`"),
+        (Some(l), None) => format!("every pass had finished, the last `{l}`"),
+        (None, None) => "the frame had no passes".into(),
+    };
+    format!("vkWaitForFences: {result:?}: {what}; {at} (the frame held: {})", passes.join(", "))
+}
 
 /// Maps an `ash` result into a `VkError` naming the call.
 pub(crate) trait VkResultExt<T> {

@@ -8,12 +8,14 @@ use crate::buffer::Buffer;
 use crate::context::Context;
 use crate::error::{Result, VkError, VkResultExt};
 use crate::image::{aspect, Image, ImageView};
+use crate::marker::{progress, CrashMarker};
 use crate::pass::Pass;
 use crate::profiler::{FrameReport, PassTiming, PipelineStats, QueryPools};
 use crate::recorder::Cmd;
 use crate::tracker::{Access, Transition};
 use ash::vk;
 use std::ops::Range;
+use std::time::Duration;
 
 /// One resource a pass touches and how, other than through a descriptor.
 pub enum Use<'a> {
@@ -154,12 +156,20 @@ pub struct FrameOptions {
     pub timestamps: bool,
     /// A pipeline-statistics query around every pass.
     pub pipeline_statistics: bool,
+    /// How long `submit` waits for the GPU before it gives up with an error naming the last
+    /// pass that finished; None: ten minutes.
+    pub fence_timeout: Option<Duration>,
 }
+
+/// Ten minutes: lavapipe at 4096^2 photons is slow, but a hang must not block CI forever.
+const FENCE_TIMEOUT: Duration = Duration::from_secs(600);
 
 pub struct Frame {
     ctx: Context,
     cb: vk::CommandBuffer,
     queries: QueryPools,
+    marker: CrashMarker,
+    fence_timeout: Duration,
     passes: Vec<String>,
     finished: bool,
 }
@@ -176,16 +186,32 @@ impl Context {
         let cb = unsafe { self.shared.raw().allocate_command_buffers(&info) }.call("vkAllocateCommandBuffers")?[0];
         let timestamps = opts.timestamps && self.info().has(crate::Feature::Timestamps);
         let stats = opts.pipeline_statistics && self.info().has(crate::Feature::PipelineStatisticsQuery);
-        let queries = match QueryPools::new(self, timestamps, stats) {
+        let free = || unsafe { self.shared.raw().free_command_buffers(pool, &[cb]) };
+        let mut queries = match QueryPools::new(self, timestamps, stats) {
             Ok(q) => q,
             Err(e) => {
-                unsafe { self.shared.raw().free_command_buffers(pool, &[cb]) };
+                free();
                 return Err(e);
             }
         };
+        let marker = match CrashMarker::new(self) {
+            Ok(m) => m,
+            Err(e) => {
+                queries.destroy(self);
+                free();
+                return Err(e);
+            }
+        };
+        let fence_timeout = opts.fence_timeout.unwrap_or(FENCE_TIMEOUT);
+        // From here on the frame owns (and its Drop frees) the command buffer and queries.
+        let mut frame =
+            Frame { ctx: self.clone(), cb, queries, marker, fence_timeout, passes: vec![], finished: false };
         let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
-        unsafe { self.shared.raw().begin_command_buffer(cb, &begin) }.call("vkBeginCommandBuffer")?;
-        Ok(Frame { ctx: self.clone(), cb, queries, passes: vec![], finished: false })
+        if let Err(e) = unsafe { self.shared.raw().begin_command_buffer(cb, &begin) } {
+            frame.finished = true;
+            return Err(VkError::Call { call: "vkBeginCommandBuffer", result: e });
+        }
+        Ok(frame)
     }
 }
 
@@ -208,9 +234,12 @@ impl Frame {
         let mut cmd = Cmd::new(&self.ctx, self.cb, uses.iter().map(Use::key).collect());
         cmd.begin_label(name);
         let result = record(&mut cmd);
+        cmd.end_rendering();
         cmd.end_label();
+        drop(cmd);
         result?;
         self.queries.end(&self.ctx, self.cb, index);
+        self.marker.record(&self.ctx, self.cb, index + 1);
         Ok(())
     }
 
@@ -222,13 +251,19 @@ impl Frame {
         let fence = unsafe { d.create_fence(&vk::FenceCreateInfo::default(), None) }.call("vkCreateFence")?;
         let cbs = [vk::CommandBufferSubmitInfo::default().command_buffer(self.cb)];
         let submit = vk::SubmitInfo2::default().command_buffer_infos(&cbs);
+        let timeout = self.fence_timeout.as_nanos().min(u64::MAX as u128) as u64;
         let result = unsafe { d.queue_submit2(self.ctx.shared.device.queue, &[submit], fence) }
-            .call("vkQueueSubmit2")
+            .map_err(|e| {
+                VkError::Invalid(format!(
+                    "vkQueueSubmit2 failed: {e:?}; the frame held passes: {}",
+                    self.passes.join(", ")
+                ))
+            })
             .and_then(|_| {
-                // Ten minutes: lavapipe at 4096^2 photons is slow, but a hang must not block CI forever.
-                unsafe { d.wait_for_fences(&[fence], true, 600_000_000_000) }.map_err(|e| VkError::Call {
-                    call: "vkWaitForFences (passes in this frame: see error context)",
-                    result: e,
+                unsafe { d.wait_for_fences(&[fence], true, timeout) }.map_err(|result| {
+                    // Read the marker now: waiting below lets the GPU finish (or fail) the rest.
+                    let (last_finished, next) = progress(&self.passes, self.marker.read());
+                    VkError::FrameFailed { result, last_finished, next, passes: self.passes.clone() }
                 })
             });
         if result.is_err() {
@@ -237,9 +272,7 @@ impl Frame {
             let _ = unsafe { d.device_wait_idle() };
         }
         unsafe { d.destroy_fence(fence, None) };
-        if let Err(e) = result {
-            return Err(VkError::Invalid(format!("{e}; the frame held passes: {}", self.passes.join(", "))));
-        }
+        result?;
         let (times, stats) = self.queries.read(&self.ctx, self.passes.len())?;
         let passes = self
             .passes

@@ -13,6 +13,7 @@ mod features;
 mod frame;
 mod image;
 mod instance;
+mod marker;
 mod pass;
 mod pipeline;
 mod profiler;

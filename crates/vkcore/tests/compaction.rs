@@ -29,7 +29,7 @@ fn run(path: CompactionPath, n: u32) -> Outcome {
     let s1 = CompactStream::new(&ctx, "step1", path, n.max(1)).unwrap();
     let s2 = CompactStream::new(&ctx, "step2", path, n.max(1)).unwrap();
     let pool = (path == CompactionPath::TransformFeedback).then(|| QueryPool::transform_feedback(&ctx, 1).unwrap());
-    let mut f = ctx.frame(FrameOptions { timestamps: true, pipeline_statistics: true }).unwrap();
+    let mut f = ctx.frame(FrameOptions { timestamps: true, pipeline_statistics: true, ..Default::default() }).unwrap();
     c1.record(&mut f, "compact.step1", Source::Array(&in_buf, n), &s1, pool.as_ref().map(|p| (p, 0))).unwrap();
     c2.record(&mut f, "compact.step2", Source::Stream(&s1), &s2, None).unwrap();
     let report = f.submit().unwrap();

@@ -90,3 +90,58 @@ fn declared_sets_may_be_pushed_inside_and_others_are_refused() {
     drop((f, p, a, b, c));
     assert_no_validation_messages(&ctx);
 }
+
+/// Work groups of spin.comp: enough that llvmpipe, which caps each invocation's loops, would
+/// take seconds over them if they were never released (about 10 s on two cores).
+const SPINNERS: u32 = 256;
+
+#[test]
+fn a_frame_that_times_out_names_the_last_pass_that_finished() {
+    let (ctx, _) = context();
+    let shader = test_shaders().compile("spin.comp", &[]).unwrap();
+    let spin = Pipeline::compute(&ctx, "spin", &shader, &[BindingKind::StorageBuffer]).unwrap();
+    let mut release = Buffer::new(&ctx, "release", 16, Memory::Upload).unwrap();
+    release.write_mapped(0, &[0u8; 16]).unwrap();
+    let scratch = Buffer::new(&ctx, "scratch", 16, Memory::Gpu).unwrap();
+    let timeout = std::time::Duration::from_millis(300);
+    let mut f = ctx.frame(FrameOptions { fence_timeout: Some(timeout), ..Default::default() }).unwrap();
+    f.pass("quick")
+        .uses([Use::buffer(&scratch, Access::TRANSFER_WRITE)])
+        .record(|cmd| {
+            cmd.fill_buffer(&scratch, 7);
+            Ok(())
+        })
+        .unwrap();
+    f.pass("slow")
+        .bind(&spin, [Bind::Buffer(&release)])
+        .record(|cmd| {
+            cmd.dispatch(SPINNERS, 1, 1);
+            Ok(())
+        })
+        .unwrap();
+    // The slow pass spins until released, well after the fence wait gave up (submit waits for
+    // the GPU to finish before it returns the error).
+    let releaser = std::thread::spawn(move || {
+        std::thread::sleep(timeout * 6);
+        release.write_mapped(0, &0x8000_0000u32.to_le_bytes()).unwrap();
+        release
+    });
+    let started = std::time::Instant::now();
+    let result = f.submit();
+    let release = releaser.join().unwrap();
+    let err = result.unwrap_err();
+    match &err {
+        VkError::FrameFailed { last_finished, next, .. } => {
+            assert_eq!(last_finished.as_deref(), Some("quick"), "{err}");
+            assert_eq!(next.as_deref(), Some("slow"), "{err}");
+        }
+        other => panic!("expected a failed frame, got: {other}"),
+    }
+    let text = err.to_string();
+    assert!(text.contains("TIMEOUT") && text.contains("`quick`") && text.contains("`slow`"), "{text}");
+    assert!(started.elapsed() >= timeout, "the wait gave up too early");
+    // The context is still usable after the GPU finished the frame.
+    assert_eq!(ctx.read_buffer_as::<u32>(&scratch).unwrap(), vec![7; 4]);
+    drop((spin, release, scratch));
+    assert_no_validation_messages(&ctx);
+}

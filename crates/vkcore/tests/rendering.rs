@@ -34,7 +34,7 @@ fn layered(vert: &str, geom: Option<&str>, multiview: bool) {
     desc.color_formats = vec![Format::R32G32B32A32_SFLOAT];
     desc.view_mask = if multiview { (1 << LAYERS) - 1 } else { 0 };
     let pipeline = Pipeline::graphics(&ctx, &desc).unwrap();
-    let mut f = ctx.frame(FrameOptions { timestamps: true, pipeline_statistics: true }).unwrap();
+    let mut f = ctx.frame(FrameOptions { timestamps: true, pipeline_statistics: true, ..Default::default() }).unwrap();
     f.pass("clear")
         .uses([Use::view(&all, Access::TRANSFER_WRITE)])
         .record(|c| {

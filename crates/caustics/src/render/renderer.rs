@@ -207,7 +207,11 @@ impl<'c> Renderer<'c> {
 
     /// Records, submits and waits for one frame; returns its per-pass timings.
     pub fn frame(&mut self, step: FrameStep) -> Result<FrameReport> {
-        let mut f = self.ctx.frame(FrameOptions { timestamps: true, pipeline_statistics: step.pipeline_statistics })?;
+        let mut f = self.ctx.frame(FrameOptions {
+            timestamps: true,
+            pipeline_statistics: step.pipeline_statistics,
+            ..Default::default()
+        })?;
         if let Some((fu, cu)) = self.pending_uniforms.take() {
             let uses = [
                 Use::buffer(&self.uniforms, Access::TRANSFER_WRITE),
@@ -358,7 +362,7 @@ impl<'c> Renderer<'c> {
     /// the last frame recorded them, and waits for them.
     fn record_light_space_alone(&mut self, l: u32) -> Result<()> {
         let Some(c) = &self.caustic else { return Ok(()) };
-        let mut f = self.ctx.frame(FrameOptions { timestamps: false, pipeline_statistics: false })?;
+        let mut f = self.ctx.frame(FrameOptions::default())?;
         let inputs = self.caustic_inputs(c);
         let frame = self.caustic_frame(c);
         caustic_map::record_light_space(&mut f, &c.pipelines, &self.caustic_targets, &c.photons, &inputs, l, frame)?;

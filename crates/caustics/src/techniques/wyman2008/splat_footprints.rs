@@ -66,7 +66,7 @@ impl SplatFootprints {
             Bind::BufferRead(&list.data),
             Bind::Buffer(&out),
         ];
-        let mut f = ctx.frame(FrameOptions { timestamps: false, pipeline_statistics: false })?;
+        let mut f = ctx.frame(FrameOptions::default())?;
         f.pass(&format!("splat_footprints.light{l}")).bind(&self.pipeline, binds).record(|cmd| {
             cmd.push(&ObjectConstants { info: [count, l, 0, 0], ..Default::default() })?;
             let (x, y) = groups(count);
