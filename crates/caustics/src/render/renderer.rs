@@ -9,7 +9,7 @@ use crate::scene::Scene;
 use crate::techniques::shah2007::VertexPhotons;
 use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
 use crate::techniques::wyman2008::{self, Hierarchy};
-use crate::techniques::{self as caustic_map, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
+use crate::techniques::{self, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
 use anyhow::{Context as _, Result};
 use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler, Use};
 
@@ -31,8 +31,8 @@ pub struct FrameStep {
 }
 
 struct CausticResources {
-    pipelines: caustic_map::CausticPipelines,
-    photons: caustic_map::PhotonTargets,
+    pipelines: techniques::CausticPipelines,
+    photons: techniques::PhotonTargets,
     vertex_areas: Vec<Option<Buffer>>,
     splat_vertices: Buffer,
     /// Vertices per instance of the instanced photon fetch (`splat_vertices` holds 0..this).
@@ -42,7 +42,7 @@ struct CausticResources {
     hierarchy: Option<Hierarchy>,
     /// What the `splats` dump reads the hierarchy's splats with (built by the first such dump).
     footprints: Option<SplatFootprints>,
-    compute_splat: Option<caustic_map::ComputeSplat>,
+    compute_splat: Option<techniques::ComputeSplat>,
 }
 
 pub struct Renderer<'c> {
@@ -55,9 +55,9 @@ pub struct Renderer<'c> {
     uniforms: Buffer,
     caustic_uniforms: Buffer,
     /// New uniform contents to write at the start of the next frame.
-    pending_uniforms: Option<(gpu::FrameUniforms, caustic_map::uniforms::CausticUniforms)>,
+    pending_uniforms: Option<(gpu::FrameUniforms, techniques::uniforms::CausticUniforms)>,
     targets: targets::EyeTargets,
-    caustic_targets: caustic_map::CausticTargets,
+    caustic_targets: techniques::CausticTargets,
     nearest: Sampler,
     linear: Sampler,
     caustic: Option<CausticResources>,
@@ -94,14 +94,14 @@ impl<'c> Renderer<'c> {
             )
             .into());
         }
-        let active = technique.has_caustics() && caustic_map::uniforms::specular_bounds(scene).is_some();
+        let active = technique.has_caustics() && techniques::uniforms::specular_bounds(scene).is_some();
         let pipelines = pipelines::EyePipelines::new(ctx, shaders)?;
         let meshes = setup::upload_meshes(ctx, scene)?;
         let (fu, cu) = uniforms_of(scene, active)?;
         let uniforms = ctx.buffer_with_data("frame uniforms", bytemuck::bytes_of(&fu))?;
         let caustic_uniforms = ctx.buffer_with_data("caustic uniforms", bytemuck::bytes_of(&cu))?;
         let targets = targets::EyeTargets::new(ctx, scene)?;
-        let caustic_targets = caustic_map::CausticTargets::new(ctx, scene, active)?;
+        let caustic_targets = techniques::CausticTargets::new(ctx, scene, active)?;
         let spot = setup::spot_texture_layers(scene)?;
         for l in 0..targets.shadow.lights {
             let n = (setup::SPOT_TEXTURE_SIZE * setup::SPOT_TEXTURE_SIZE * 4) as usize;
@@ -140,14 +140,14 @@ impl<'c> Renderer<'c> {
             let compute_splat = if settings.splat_path == SplatPath::Compute {
                 let (side, layers) = (settings.caustic_map_resolution, settings.caustic_levels());
                 let list = hierarchy.as_ref().map(|h| (h.path, wyman2008::ENTRY_BYTES));
-                Some(caustic_map::ComputeSplat::new(ctx, shaders, side, layers, list)?)
+                Some(techniques::ComputeSplat::new(ctx, shaders, side, layers, list)?)
             } else {
                 None
             };
             Some(CausticResources {
-                pipelines: caustic_map::CausticPipelines::new(ctx, shaders)?,
+                pipelines: techniques::CausticPipelines::new(ctx, shaders)?,
                 vertex_photons: if vertex_photons { Some(VertexPhotons::new(ctx, shaders)?) } else { None },
-                photons: caustic_map::PhotonTargets::new(ctx, settings.photons, photon_side)?,
+                photons: techniques::PhotonTargets::new(ctx, settings.photons, photon_side)?,
                 vertex_areas,
                 splat_vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
                 instance_vertices: settings.instance_vertices,
@@ -230,7 +230,7 @@ impl<'c> Renderer<'c> {
                     reuse_photons: step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1,
                     ..self.caustic_frame(c)
                 };
-                caustic_map::record_caustics(
+                techniques::record_caustics(
                     &mut f,
                     &c.pipelines,
                     &self.caustic_targets,
@@ -240,7 +240,7 @@ impl<'c> Renderer<'c> {
                     frame,
                 )?;
             }
-            None => caustic_map::record_cleared(&mut f, &self.caustic_targets)?,
+            None => techniques::record_cleared(&mut f, &self.caustic_targets)?,
         }
         let eye_inputs = eye::EyeInputs {
             uniforms: &self.uniforms,
@@ -261,8 +261,8 @@ impl<'c> Renderer<'c> {
         dumps::final_image(self.ctx, &self.targets)
     }
 
-    fn caustic_inputs<'a>(&'a self, c: &'a CausticResources) -> caustic_map::CausticInputs<'a> {
-        caustic_map::CausticInputs {
+    fn caustic_inputs<'a>(&'a self, c: &'a CausticResources) -> techniques::CausticInputs<'a> {
+        techniques::CausticInputs {
             frame_uniforms: &self.uniforms,
             caustic_uniforms: &self.caustic_uniforms,
             meshes: &self.meshes,
@@ -358,14 +358,14 @@ impl<'c> Renderer<'c> {
         Ok(out)
     }
 
-    /// Records light `l`'s light-space passes (`caustic_map::record_light_space`) alone, as
+    /// Records light `l`'s light-space passes (`techniques::record_light_space`) alone, as
     /// the last frame recorded them, and waits for them.
     fn record_light_space_alone(&mut self, l: u32) -> Result<()> {
         let Some(c) = &self.caustic else { return Ok(()) };
         let mut f = self.ctx.frame(FrameOptions::default())?;
         let inputs = self.caustic_inputs(c);
         let frame = self.caustic_frame(c);
-        caustic_map::record_light_space(&mut f, &c.pipelines, &self.caustic_targets, &c.photons, &inputs, l, frame)?;
+        techniques::record_light_space(&mut f, &c.pipelines, &self.caustic_targets, &c.photons, &inputs, l, frame)?;
         f.submit()?;
         Ok(())
     }
@@ -413,8 +413,8 @@ impl<'c> Renderer<'c> {
 }
 
 /// Frame and caustic uniforms of `scene`; the caustic pass is switched off when not `active`.
-fn uniforms_of(scene: &Scene, active: bool) -> Result<(gpu::FrameUniforms, caustic_map::uniforms::CausticUniforms)> {
-    let mut cu = caustic_map::uniforms::caustic_uniforms(scene, &scene.caustics)?;
+fn uniforms_of(scene: &Scene, active: bool) -> Result<(gpu::FrameUniforms, techniques::uniforms::CausticUniforms)> {
+    let mut cu = techniques::uniforms::caustic_uniforms(scene, &scene.caustics)?;
     if !active {
         cu.settings[0] = 0;
     }
