@@ -1,5 +1,5 @@
 // Light-space frusta of the caustic techniques, mirrored by `CausticUniforms` in
-// crates/caustics/src/caustic_map/gpu.rs (std140, vec4/uvec4/mat4 members only).
+// crates/caustics/src/techniques/uniforms.rs (std140, vec4/uvec4/mat4 members only).
 #ifndef CAUSTICS_GLSL
 #define CAUSTICS_GLSL
 #include "common/frame.glsl"

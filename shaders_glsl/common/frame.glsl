@@ -1,13 +1,9 @@
 // The per-frame uniform block, shared by every pass. Mirrored by `FrameUniforms` in
-// crates/caustics/src/render/gpu.rs (std140, built only from vec4/uvec4/mat4 members).
+// crates/caustics/src/gpu/structs.rs (std140, built only from vec4/uvec4/mat4 members).
 #ifndef FRAME_GLSL
 #define FRAME_GLSL
 
 #define MAX_LIGHTS 4
-
-#define MATERIAL_DIFFUSE 0u
-#define MATERIAL_REFRACTIVE 1u
-#define MATERIAL_REFLECTIVE 2u
 
 struct Light {
     vec4 position;        // xyz world position; w: 1 = spot light, 0 = point light
@@ -30,12 +26,5 @@ layout(std140, binding = 0) uniform Frame {
     vec4 receiver_range;  // x0, x1, z0, z1
     Light lights[MAX_LIGHTS];
 } frame;
-
-// Per-draw constants (push constants), mirrored by `ObjectConstants`.
-layout(push_constant) uniform Object {
-    vec4 colour;          // diffuse albedo / transmission colour / specular colour
-    vec4 ior;             // rgb index of refraction (refractive)
-    uvec4 info;           // x: material kind, y: light index (shadow pass)
-} object;
 
 #endif

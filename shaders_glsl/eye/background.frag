@@ -9,6 +9,7 @@
 #define RECEIVER_POSITIONS_BINDING 5
 #include "common/lighting.glsl"
 #include "common/caustic_lookup.glsl"
+#include "common/mesh_constants.glsl"
 layout(location = 0) in vec3 v_world;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in float v_thickness;
@@ -22,7 +23,7 @@ void main() {
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
     vec3 e = direct_irradiance(v_world, n) + caustic_irradiance(v_world, n);
-    o_radiance = vec4(object.colour.rgb / PI * e, 1.0);
+    o_radiance = vec4(mesh.colour.rgb / PI * e, 1.0);
     o_position = vec4(v_world, 1.0);
     o_normal = vec4(n, 0.0);
 }

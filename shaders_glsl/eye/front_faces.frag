@@ -9,6 +9,7 @@
 // Reflective: one reflection lookup, tinted by the specular colour.
 #version 450
 #include "common/frame.glsl"
+#include "common/mesh_constants.glsl"
 layout(binding = 1) uniform sampler2D background_radiance;
 layout(binding = 2) uniform sampler2D background_position;
 layout(binding = 3) uniform sampler2D back_faces;
@@ -89,23 +90,23 @@ void main() {
     vec3 v = normalize(v_world - frame.eye.xyz);
     if (dot(n, v) > 0.0) n = -n;
     vec3 colour;
-    if (object.info.x == MATERIAL_REFLECTIVE) {
-        colour = object.colour.rgb * background_lookup(v_world, reflect(v, n));
+    if (mesh.material == MATERIAL_REFLECTIVE) {
+        colour = mesh.colour.rgb * background_lookup(v_world, reflect(v, n));
     } else {
         vec3 reflected = background_lookup(v_world, reflect(v, n));
         vec3 through;
         float f1;
-        if (object.ior.r == object.ior.g && object.ior.g == object.ior.b) {
-            through = refract_through(v_world, v, n, object.ior.r, f1);
-            colour = (1.0 - f1) * through * object.colour.rgb + f1 * reflected;
+        if (mesh.ior.r == mesh.ior.g && mesh.ior.g == mesh.ior.b) {
+            through = refract_through(v_world, v, n, mesh.ior.r, f1);
+            colour = (1.0 - f1) * through * mesh.colour.rgb + f1 * reflected;
         } else {
             // Dispersion: one path per channel.
             float fr, fg, fb;
-            vec3 r = refract_through(v_world, v, n, object.ior.r, fr);
-            vec3 g = refract_through(v_world, v, n, object.ior.g, fg);
-            vec3 b = refract_through(v_world, v, n, object.ior.b, fb);
+            vec3 r = refract_through(v_world, v, n, mesh.ior.r, fr);
+            vec3 g = refract_through(v_world, v, n, mesh.ior.g, fg);
+            vec3 b = refract_through(v_world, v, n, mesh.ior.b, fb);
             vec3 f = vec3(fr, fg, fb);
-            colour = (1.0 - f) * vec3(r.r, g.g, b.b) * object.colour.rgb + f * reflected;
+            colour = (1.0 - f) * vec3(r.r, g.g, b.b) * mesh.colour.rgb + f * reflected;
         }
     }
     o_radiance = vec4(colour, 1.0);

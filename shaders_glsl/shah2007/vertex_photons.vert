@@ -11,10 +11,10 @@ layout(binding = 5, rgba32f) uniform writeonly image2D photon_direction;
 layout(binding = 6, rgba32f) uniform writeonly image2D photon_power;
 
 void main() {
-    uint l = object.info.y;
+    uint l = mesh.light;
     CausticLight cl = caustics.lights[l];
     int width = imageSize(photon_position).x;
-    int id = gl_VertexIndex + int(object.info.w);   // info.w: this object's first photon
+    int id = gl_VertexIndex + int(mesh.first_photon);
     ivec2 texel = ivec2(id % width, id / width);
     float a_area = areas[gl_VertexIndex];
     vec3 to_p = a_position - cl.position.xyz;

@@ -3,12 +3,13 @@
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
 #include "common/mesh_vertex.glsl"
+#include "common/mesh_constants.glsl"
 layout(location = 0) out vec3 v_world;
 layout(location = 1) out vec3 v_normal;
 layout(location = 2) out float v_thickness;
 
 void main() {
-    CausticLight cl = caustics.lights[object.info.y];
+    CausticLight cl = caustics.lights[mesh.light];
 #ifdef PHOTON_VIEW
     gl_Position = cl.photon_view_proj * vec4(a_position, 1.0);
 #else

@@ -11,7 +11,7 @@ layout(location = 1) out vec4 o_direction;
 layout(location = 2) out vec4 o_power;
 
 void main() {
-    uint l = object.info.y;
+    uint l = mesh.light;
     CausticLight cl = caustics.lights[l];
     vec2 ndc = gl_FragCoord.xy / cl.photon_plane.y * 2.0 - 1.0;
     Photon ph = trace_photon(l, v_world, normalize(v_normal), v_thickness, texel_solid_angle(ndc, cl.photon_plane));

@@ -10,6 +10,11 @@
 #include "common/caustics.glsl"
 #include "shared/splat_photon.glsl"
 layout(local_size_x = 64) in;
+// Mirrored by `ComputeSplatConstants` in crates/caustics/src/gpu/push.rs.
+layout(push_constant) uniform ComputeSplatConstants {
+    uint photon_texels;   // without HIERARCHY: the photon-buffer texels, one invocation each
+    uint light;
+} constants;
 // Layers x M x M texels of (power rgb, photon count), zeroed before the dispatch.
 #ifdef HIERARCHY
 layout(std430, binding = 6) buffer Accumulated { float texels[]; };
@@ -37,7 +42,7 @@ void deposit(int layer, ivec2 t, int m, vec4 v) {
 
 void main() {
     uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x;
-    CausticLight cl = caustics.lights[object.info.y];
+    CausticLight cl = caustics.lights[constants.light];
     vec4 pos;
     vec3 power;
 #ifdef HIERARCHY
@@ -46,7 +51,7 @@ void main() {
     if (!photon_of_entry(entry, pos, power)) return;
 #else
     uvec4 entry = uvec4(0u);
-    if (i >= object.info.x || !photon_of_texel(i, pos, power)) return;   // info.x: photon texels
+    if (i >= constants.photon_texels || !photon_of_texel(i, pos, power)) return;
 #endif
     Splat s;
     if (!splat_of(pos, power, entry, cl, s)) return;

@@ -16,6 +16,11 @@
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
 #include "shared/splat_photon.glsl"
+// Mirrored by `SplatConstants` in crates/caustics/src/gpu/push.rs.
+layout(push_constant) uniform SplatConstants {
+    uint light;
+    uint vertices_per_instance;   // the instanced fetch (default path): vertices per instance
+} constants;
 #if defined(PHOTON_VERTEX_ARRAY)
 layout(location = 0) in vec4 a_position;
 #ifdef PHOTON_HALF
@@ -37,11 +42,11 @@ bool fetch_photon(out vec4 pos, out vec3 power) { return photon_of_entry(unpack_
 uvec4 entry() { return unpack_entry(a_entry); }
 #else
 layout(location = 0) in uint a_vertex;
-// Wyman 2008 Sec. 4: a small vertex buffer drawn instanced; info.z: vertices per instance.
+// Wyman 2008 Sec. 4: a small vertex buffer drawn instanced.
 // With as many vertices as the photon buffer is wide this is the paper's s = gl_VertexID,
 // t = gl_InstanceID; other sizes index the buffer row by row.
 bool fetch_photon(out vec4 pos, out vec3 power) {
-    return photon_of_texel(gl_InstanceIndex * object.info.z + a_vertex, pos, power);
+    return photon_of_texel(gl_InstanceIndex * constants.vertices_per_instance + a_vertex, pos, power);
 }
 uvec4 entry() { return uvec4(0u); }
 #endif
@@ -50,7 +55,7 @@ layout(location = 1) flat out vec2 v_centre;    // photon position in caustic-ma
 layout(location = 2) flat out float v_radius;
 
 void main() {
-    CausticLight cl = caustics.lights[object.info.y];
+    CausticLight cl = caustics.lights[constants.light];
     gl_PointSize = 1.0;
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);     // culled unless it is a live photon
     v_power = vec4(0.0);

@@ -6,6 +6,7 @@
 #define TRACE_GLSL
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
+#include "common/mesh_constants.glsl"
 layout(binding = 2) uniform sampler2D light_back_faces;
 layout(binding = 3) uniform sampler2DArray receiver_positions;
 
@@ -62,12 +63,12 @@ Photon trace_photon(uint l, vec3 p1, vec3 n1, float d_n, float omega) {
     // photons, as in the CPU reference).
     if (frame.lights[l].position.w > 0.5 && dot(v, frame.lights[l].spot.xyz) < frame.lights[l].spot.w) power = vec3(0.0);
     vec3 o, d;
-    if (object.info.x == MATERIAL_REFLECTIVE) {
+    if (mesh.material == MATERIAL_REFLECTIVE) {
         o = p1;
         d = reflect(v, n1);
-        power *= object.colour.rgb;
+        power *= mesh.colour.rgb;
     } else {
-        float ior = dot(object.ior.rgb, vec3(1.0 / 3.0));
+        float ior = dot(mesh.ior.rgb, vec3(1.0 / 3.0));
         float cos_i = dot(-v, n1);
         vec3 t1 = refract(v, n1, 1.0 / ior);
         bool inside;
@@ -103,7 +104,7 @@ Photon trace_photon(uint l, vec3 p1, vec3 n1, float d_n, float omega) {
         if ((caustics.settings.w & CAUSTIC_FRESNEL) != 0u) {
             power *= (1.0 - dielectric_fresnel(cos_i, 1.0 / ior)) * (1.0 - dielectric_fresnel(dot(-t1, -n2), ior));
         }
-        power *= object.colour.rgb;
+        power *= mesh.colour.rgb;
         o = p2;
         d = normalize(t2);
     }

@@ -10,7 +10,8 @@ layout(std430, binding = 1) readonly buffer InputCounter { CompactCounter in_cou
 layout(std430, binding = 2) writeonly buffer Output { uvec4 out_values[]; };
 layout(std430, binding = 3) buffer OutputCounter { CompactCounter out_counter; };
 
-layout(push_constant) uniform Push {
+// Mirrored by `CompactConstants` in crates/vkcore/src/compaction.rs.
+layout(push_constant) uniform CompactConstants {
     uint n;             // element count when use_in_count == 0
     uint use_in_count;  // 1: read the count from in_counter
     uint capacity;      // out_values' length

@@ -5,11 +5,16 @@
 // caustic-map texels they project to (hierarchy_texels). The count drives the traversal's
 // discard of empty subtrees; the box is the convergence test of Sec. 3.2 (all photons in one
 // caustic-map texel); power and position make a converged cluster one photon.
-// object.info: x = level k (>= 1), y = light, w = photon buffer side N.
 #version 450
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
+// Mirrored by `BuildConstants` in crates/caustics/src/gpu/push.rs.
+layout(push_constant) uniform BuildConstants {
+    uint level;         // k >= 1
+    uint light;
+    uint photon_side;   // the photon buffer side N
+} constants;
 layout(binding = 2) uniform sampler2D photon_position;
 layout(binding = 3) uniform sampler2D photon_power;
 layout(binding = 4) uniform sampler2D child_power;      // level k-1 (k >= 2), one mip
@@ -31,9 +36,9 @@ vec2 caustic_texel(vec3 p, uint l) {
 void main() {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(t, imageSize(out_power)))) return;
-    uint k = object.info.x;
-    uint l = object.info.y;
-    int n = int(object.info.w);
+    uint k = constants.level;
+    uint l = constants.light;
+    int n = int(constants.photon_side);
     vec4 power = vec4(0.0);
     vec3 position = vec3(0.0);
     vec4 box = vec4(3.0e38, 3.0e38, -3.0e38, -3.0e38);

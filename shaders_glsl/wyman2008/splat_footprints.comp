@@ -7,25 +7,29 @@
 // - (splatted, 0, 0, 0): 1 when drawn. An entry that is not drawn keeps what is known of it: a
 //   varying splat too wide for the last map level has the level it would need (4 or more),
 //   one centred off the map its centre; one behind the light is all zeros.
-// object.info: x = entries, y = light.
 #version 450
 #define CAUSTICS_BINDING 1
 #define HIERARCHY 1
 #include "common/caustics.glsl"
 #include "shared/splat_photon.glsl"
 layout(local_size_x = 64) in;
+// Mirrored by `FootprintConstants` in crates/caustics/src/gpu/push.rs.
+layout(push_constant) uniform FootprintConstants {
+    uint entries;   // in the final list
+    uint light;
+} constants;
 layout(std430, binding = 6) readonly buffer Entries { uint entries[]; };   // packed (hierarchy/entry.glsl)
 layout(std430, binding = 7) writeonly buffer Footprints { vec4 footprints[]; };
 
 void main() {
     uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x;
-    if (i >= object.info.x) return;
+    if (i >= constants.entries) return;
     uvec4 entry = unpack_entry(entries[i]);
     vec4 pos;
     vec3 power;
     Splat s;
     photon_of_entry(entry, pos, power);
-    bool splatted = splat_of(pos, power, entry, caustics.lights[object.info.y], s);
+    bool splatted = splat_of(pos, power, entry, caustics.lights[constants.light], s);
     float scale = exp2(float(s.layer));
     footprints[3u * i] = vec4(s.centre * scale, max(s.radius, 0.0) * scale, float(s.layer));
     footprints[3u * i + 1u] = vec4(power, pos.w);

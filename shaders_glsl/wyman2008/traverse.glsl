@@ -6,8 +6,6 @@
 // caustic map: Sec. 3.2, when clustering is tested at this level) and becomes final, or emits
 // those of its four children at level k-1 that hold at least one valid photon; children of a
 // level-1 entry are photons of the photon buffer.
-// object.info: x = level k, y = light, z = 1 when convergence is tested at this level,
-// w = photon buffer side N.
 #ifndef TRAVERSE_GLSL
 #define TRAVERSE_GLSL
 #define CAUSTICS_BINDING 1
@@ -16,10 +14,16 @@
 layout(binding = 2) uniform sampler2D photon_position;
 layout(binding = 3) uniform sampler2D hierarchy_power;    // level k at mip k-1: (power, count)
 layout(binding = 4) uniform sampler2D hierarchy_texels;   // caustic-map texel bounding box
+// Mirrored by `TraverseConstants` in crates/caustics/src/gpu/push.rs.
+layout(push_constant) uniform TraverseConstants {
+    uint light;
+    uint cluster;       // 1 when convergence is tested at this level
+    uint photon_side;   // the photon buffer side N
+} constants;
 
 bool has_photons(uvec2 t, uint level) {
     if (level == 0u) {
-        uint n = object.info.w;
+        uint n = constants.photon_side;
         return t.x < n && t.y < n && texelFetch(photon_position, ivec2(t), 0).w > 0.5;
     }
     return texelFetch(hierarchy_power, ivec2(t), int(level) - 1).w > 0.0;
@@ -30,7 +34,7 @@ bool has_photons(uvec2 t, uint level) {
 // splatted nowhere and converge nowhere: their mean could land on the map.
 bool converges(uvec2 t, uint level) {
     vec4 box = texelFetch(hierarchy_texels, ivec2(t), int(level) - 1);
-    float m = caustics.lights[object.info.y].caustic_plane.y;
+    float m = caustics.lights[constants.light].caustic_plane.y;
     bool on_map = all(greaterThanEqual(box.xy, vec2(0.0))) && all(lessThan(box.zw, vec2(m)));
     return texelFetch(hierarchy_power, ivec2(t), int(level) - 1).w >= 2.0 && on_map && box.xy == box.zw;
 }
@@ -46,7 +50,7 @@ uint expand(uvec4 e, out uvec4 outs[4]) {
         outs[0] = e;
         return 1u;
     }
-    if (object.info.z != 0u && converges(e.xy, level)) {
+    if (constants.cluster != 0u && converges(e.xy, level)) {
         outs[0] = uvec4(e.xy, level, 1u);
         return 1u;
     }

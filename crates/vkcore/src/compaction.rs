@@ -18,6 +18,18 @@ use crate::tracker::Access;
 use crate::Feature;
 use ash::vk;
 
+crate::push_constants! {
+    /// The compute path's push constants (`shaders_glsl/vkcore/compact_append.comp`).
+    pub struct CompactConstants {
+        /// Elements in the input when `use_in_count` is 0.
+        pub n: u32,
+        /// 1: the input's count is the previous step's counter, on the GPU.
+        pub use_in_count: u32,
+        /// Elements the output holds.
+        pub capacity: u32,
+    }
+}
+
 /// Bytes per element of the [`Compactor`]'s streams.
 pub const ELEMENT_BYTES: u64 = 16;
 /// Bytes of the compute path's counter (see `shaders_glsl/vkcore/compact_counter.glsl`).
@@ -237,7 +249,7 @@ impl Compactor {
         // The step's count is read as dispatch arguments too.
         let arguments = indirect.then(|| Use::buffer(in_counter, Access::INDIRECT));
         frame.pass(name).bind(append, binds).uses(arguments).record(|cmd| {
-            cmd.push(&[n, indirect as u32, out.capacity, 0u32])?;
+            cmd.push(&CompactConstants { n, use_in_count: indirect as u32, capacity: out.capacity })?;
             if indirect {
                 cmd.dispatch_indirect(in_counter, 16);
             } else {
@@ -251,5 +263,21 @@ impl Compactor {
             cmd.dispatch(1, 1, 1);
             Ok(())
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::CompactConstants;
+    use crate::shader::ShaderCompiler;
+
+    #[test]
+    fn compact_constants_match_their_glsl_twin() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders_glsl");
+        let spirv = ShaderCompiler::new(&root)
+            .unwrap()
+            .compile("vkcore/compact_append.comp", &[("KEEP_EXPR", "true")])
+            .unwrap();
+        crate::check_push_constants::<CompactConstants>(&spirv).unwrap();
     }
 }

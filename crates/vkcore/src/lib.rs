@@ -17,8 +17,10 @@ mod marker;
 mod pass;
 mod pipeline;
 mod profiler;
+mod push;
 mod query;
 mod recorder;
+mod reflect;
 mod shader;
 mod tracker;
 mod transfer;
@@ -26,7 +28,7 @@ mod transfer;
 pub use ash::vk::Format;
 pub use bind::Bind;
 pub use buffer::{Buffer, Memory};
-pub use compaction::{CompactStream, CompactionPath, Compactor, Source};
+pub use compaction::{CompactConstants, CompactStream, CompactionPath, Compactor, Source};
 
 pub use context::{Context, ContextOptions};
 pub use device::{choose_device, enumerate_devices};
@@ -40,6 +42,7 @@ pub use pipeline::{
     BindingKind, Blend, Cull, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout, PUSH_CONSTANT_BYTES,
 };
 pub use profiler::{FrameReport, PassSummary, PassTiming, PipelineStats, Profiler};
+pub use push::{check_push_constants, PushConstants};
 pub use query::QueryPool;
 pub use recorder::{Cmd, Targets};
 pub use shader::{ShaderCompiler, Spirv, Stage};

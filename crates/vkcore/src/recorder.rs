@@ -8,6 +8,7 @@ use crate::error::{Result, VkError};
 use crate::frame::{sync, Use};
 use crate::image::{aspect, Image, ImageView};
 use crate::pipeline::{BindingKind, Pipeline, PUSH_CONSTANT_BYTES};
+use crate::push::PushConstants;
 use crate::query::QueryPool;
 use crate::tracker::Access;
 use ash::vk;
@@ -244,8 +245,9 @@ impl<'f> Cmd<'f> {
         Ok(())
     }
 
-    /// Push constants (at most 128 bytes) for every stage.
-    pub fn push<T: bytemuck::Pod>(&mut self, data: &T) -> Result<()> {
+    /// Push constants (at most 128 bytes) for every stage: a struct declared with
+    /// `push_constants!`, twin of the shaders' `layout(push_constant)` block.
+    pub fn push<T: PushConstants>(&mut self, data: &T) -> Result<()> {
         let bytes = bytemuck::bytes_of(data);
         if bytes.len() as u32 > PUSH_CONSTANT_BYTES {
             return Err(VkError::Invalid(format!(

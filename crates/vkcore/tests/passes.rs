@@ -13,6 +13,19 @@ fn test_shaders() -> ShaderCompiler {
 
 const N: u32 = 1000;
 
+vkcore::push_constants! {
+    /// add.comp's push constants.
+    struct AddConstants {
+        count: u32,
+        add: u32,
+    }
+}
+
+#[test]
+fn add_constants_match_their_glsl_twin() {
+    check_push_constants::<AddConstants>(&test_shaders().compile("add.comp", &[]).unwrap()).unwrap();
+}
+
 fn add_pipeline(ctx: &Context) -> Pipeline {
     let shader = test_shaders().compile("add.comp", &[]).unwrap();
     Pipeline::compute(ctx, "add", &shader, &[BindingKind::StorageBuffer, BindingKind::StorageBuffer]).unwrap()
@@ -33,7 +46,7 @@ fn bound_descriptors_get_their_barriers() {
         f.pass(name)
             .bind(&p, [Bind::BufferRead(src), Bind::Buffer(dst)])
             .record(|cmd| {
-                cmd.push(&[N, add])?;
+                cmd.push(&AddConstants { count: N, add })?;
                 cmd.dispatch(N.div_ceil(64), 1, 1);
                 Ok(())
             })
@@ -65,7 +78,7 @@ fn declared_sets_may_be_pushed_inside_and_others_are_refused() {
         cmd.bind_pipeline(&p);
         for (set, add) in sets.iter().zip([1u32, 2]) {
             cmd.bind(set)?;
-            cmd.push(&[N, add])?;
+            cmd.push(&AddConstants { count: N, add })?;
             cmd.dispatch(N.div_ceil(64), 1, 1);
         }
         Ok(())

@@ -124,6 +124,21 @@ fn upload_and_readback_any_mip_and_layer() {
     assert_no_validation_messages(&ctx);
 }
 
+vkcore::push_constants! {
+    /// instanced_fetch.vert's push constants.
+    struct FetchConstants {
+        count: u32,
+        width: u32,
+        verts_per_instance: u32,
+        target_size: u32,
+    }
+}
+
+#[test]
+fn fetch_constants_match_their_glsl_twin() {
+    check_push_constants::<FetchConstants>(&test_shaders().compile("instanced_fetch.vert", &[]).unwrap()).unwrap();
+}
+
 /// Instanced fetch: N photons in a W-wide texture, drawn as `verts` vertices x ceil(N/verts)
 /// instances, each landing on a target texel; the target must hold the CPU histogram.
 fn instanced_fetch(n: u32, width: u32, verts: u32) {
@@ -172,7 +187,7 @@ fn instanced_fetch(n: u32, width: u32, verts: u32) {
         .uses([Use::buffer(&vb, Access::VERTEX_INPUT), Use::view(&tv, Access::COLOR_ATTACHMENT)])
         .record(|c| {
             c.begin_rendering(&Targets::color(&tv, Some([0.0; 4])))?;
-            c.push(&[n, width, verts, size])?;
+            c.push(&FetchConstants { count: n, width, verts_per_instance: verts, target_size: size })?;
             c.bind_vertex_buffer(&vb, 0);
             c.draw(verts, n.div_ceil(verts), 0, 0);
             c.end_rendering();

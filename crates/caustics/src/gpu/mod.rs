@@ -4,10 +4,12 @@
 
 pub mod formats;
 pub mod mesh_pipeline;
+pub mod push;
 pub mod setup;
 pub mod structs;
 pub mod target;
 
+pub use push::*;
 pub use setup::{mesh_uses, GpuMesh};
 pub use structs::*;
 pub use target::Target;

@@ -1,6 +1,7 @@
 //! Scene data on the GPU: meshes (with Wyman 2005 per-vertex thickness for refractors), camera
 //! and light matrices, and the frame uniforms.
 
+use super::push::MeshConstants;
 use super::structs::*;
 use crate::bvh::vertex_thickness;
 use crate::scene::{LightKind, MaterialKind, Scene};
@@ -14,7 +15,7 @@ pub struct GpuMesh {
     pub vertices: Buffer,
     pub indices: Buffer,
     pub index_count: u32,
-    pub constants: ObjectConstants,
+    pub constants: MeshConstants,
     /// Wyman 2005 thickness per vertex (unchanged by rigid motion, kept for re-uploads).
     pub thickness: Vec<f32>,
 }
@@ -32,14 +33,12 @@ pub fn mesh_vertices(m: &crate::scene::Mesh, thickness: &[f32]) -> Vec<MeshVerte
 
 impl GpuMesh {
     pub fn kind(&self) -> u32 {
-        self.constants.info[0]
+        self.constants.material
     }
 
-    /// Records an indexed draw of this mesh with its constants, `light` in `info.y`.
+    /// Records an indexed draw of this mesh with its constants for `light`.
     pub fn draw(&self, cmd: &mut Cmd, instances: u32, light: u32) -> vkcore::Result<()> {
-        let mut c = self.constants;
-        c.info[1] = light;
-        cmd.push(&c)?;
+        cmd.push(&MeshConstants { light, ..self.constants })?;
         cmd.bind_vertex_buffer(&self.vertices, 0);
         cmd.bind_index_buffer(&self.indices);
         cmd.draw_indexed(self.index_count, instances, 0);
@@ -82,10 +81,11 @@ pub fn upload_meshes(ctx: &Context, scene: &Scene) -> Result<Vec<GpuMesh>> {
             vertices: vb,
             indices: ib,
             index_count: m.indices.len() as u32,
-            constants: ObjectConstants {
+            constants: MeshConstants {
                 colour: colour.extend(1.0).to_array(),
                 ior: ior.extend(1.0).to_array(),
-                info: [kind, 0, 0, 0],
+                material: kind,
+                ..Default::default()
             },
         });
     }

@@ -1,6 +1,7 @@
 //! Structs shared with the GPU: one definition each, `#[repr(C)]`, 16-byte members only, sizes
 //! checked at compile time. Their GLSL twins live in `shaders_glsl/common/frame.glsl` and
-//! `common/mesh_vertex.glsl`; `tests::glsl_mirrors_agree` compares the member lists.
+//! `common/mesh_vertex.glsl`; `tests::glsl_mirrors_agree` compares the member lists. Push
+//! constants are in `push.rs`.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -32,15 +33,6 @@ pub struct FrameUniforms {
     pub lights: [LightUniforms; MAX_LIGHTS],
 }
 
-/// Push constants of every mesh draw.
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable, Debug, Default)]
-pub struct ObjectConstants {
-    pub colour: [f32; 4],
-    pub ior: [f32; 4],
-    pub info: [u32; 4],
-}
-
 /// One mesh vertex: world position, outward normal, Wyman 2005 thickness d_N.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable, Debug, Default)]
@@ -56,7 +48,6 @@ pub const MATERIAL_REFLECTIVE: u32 = 2;
 
 const _: () = assert!(std::mem::size_of::<LightUniforms>() == 6 * 16 + 6 * 64);
 const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 2 * 64 + 6 * 16 + MAX_LIGHTS * 480);
-const _: () = assert!(std::mem::size_of::<ObjectConstants>() == 48);
 const _: () = assert!(std::mem::size_of::<MeshVertex>() == 28);
 
 #[cfg(test)]
@@ -104,19 +95,17 @@ mod tests {
         ];
         assert_eq!(frame, want_frame.map(|(a, b)| (a.to_string(), b.to_string())).to_vec());
         assert!(src.contains(&format!("#define MAX_LIGHTS {}", super::MAX_LIGHTS)));
-        let object = glsl_members(&src, "uniform Object {");
-        assert_eq!(
-            object,
-            [("vec4", "colour"), ("vec4", "ior"), ("uvec4", "info")]
-                .map(|(a, b)| (a.to_string(), b.to_string()))
-                .to_vec()
-        );
+        let mesh = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../shaders_glsl/common/mesh_constants.glsl"
+        ))
+        .unwrap();
         for (name, value) in [
             ("MATERIAL_DIFFUSE", super::MATERIAL_DIFFUSE),
             ("MATERIAL_REFRACTIVE", super::MATERIAL_REFRACTIVE),
             ("MATERIAL_REFLECTIVE", super::MATERIAL_REFLECTIVE),
         ] {
-            assert!(src.contains(&format!("#define {name} {value}u")), "{name}");
+            assert!(mesh.contains(&format!("#define {name} {value}u")), "{name}");
         }
         // Field sizes on the Rust side, in the same order (each vec4 = 16 bytes, mat4 = 64).
         let light_rust = std::mem::size_of::<super::LightUniforms>();

@@ -3,7 +3,7 @@
 // of VERTS_PER_INSTANCE vertices is drawn instanced; each vertex finds its photon from
 // gl_InstanceIndex and gl_VertexIndex and fetches it from the photon texture.
 layout(binding = 0) uniform sampler2D photons;
-layout(push_constant) uniform Push { uint count; uint width; uint verts_per_instance; uint target_size; };
+layout(push_constant) uniform FetchConstants { uint count; uint width; uint verts_per_instance; uint target_size; };
 layout(location = 0) in uint a_vertex;   // the small vertex buffer holds 0..VERTS-1
 void main() {
     uint id = gl_InstanceIndex * verts_per_instance + a_vertex;

@@ -16,7 +16,7 @@ use super::shared::photon_buffer::trace_binds;
 use super::shared::CausticInputs;
 use super::shared::{CausticTargets, PhotonTargets};
 use crate::gpu::mesh_pipeline::mesh_layout;
-use crate::gpu::{mesh_uses, MATERIAL_DIFFUSE};
+use crate::gpu::{mesh_uses, MeshConstants, MATERIAL_DIFFUSE};
 use anyhow::Result;
 use vkcore::{
     Access, Bind, BindingKind as K, Context, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology, Use,
@@ -88,10 +88,7 @@ impl VertexPhotons {
             let mut first = 0u32;
             for ((m, _), binds) in specular.iter().zip(&sets) {
                 cmd.bind(binds)?;
-                let mut c = m.constants;
-                c.info[1] = l;
-                c.info[3] = first;
-                cmd.push(&c)?;
+                cmd.push(&MeshConstants { light: l, first_photon: first, ..m.constants })?;
                 cmd.bind_vertex_buffer(&m.vertices, 0);
                 let vertices = (m.vertices.size() / 28) as u32;
                 cmd.draw(vertices, 1, 0, 0);

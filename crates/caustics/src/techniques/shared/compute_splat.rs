@@ -11,7 +11,7 @@
 //! `splat.resolve`.
 
 use super::targets::PhotonTargets;
-use crate::gpu::ObjectConstants;
+use crate::gpu::ComputeSplatConstants;
 use anyhow::Result;
 use vkcore::{
     Access, Bind, BindingKind as K, Buffer, CompactStream, CompactionPath, Context, Feature, Frame, ImageView, Memory,
@@ -188,7 +188,7 @@ impl ComputeSplat {
         }
         let arguments = indirect.map(|(args, _)| Use::buffer(args, Access::INDIRECT));
         f.pass(&format!("splat.light{l}")).bind(&self.splat, binds).uses(arguments).record(|cmd| {
-            cmd.push(&ObjectConstants { info: [texels, l, 0, 0], ..Default::default() })?;
+            cmd.push(&ComputeSplatConstants { photon_texels: texels, light: l })?;
             match indirect {
                 Some((args, offset)) => cmd.dispatch_indirect(args, offset),
                 None => {

@@ -5,6 +5,7 @@
 
 use super::targets::{CausticTargets, PhotonTargets};
 use super::CausticPipelines;
+use crate::gpu::SplatConstants;
 use crate::techniques::shared::CausticInputs;
 use anyhow::Result;
 use vkcore::{Access, Bind, Frame, Targets, Use};
@@ -31,8 +32,7 @@ pub(crate) fn record_splat(
         .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT)])
         .record(|cmd| {
             cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
-            let c = crate::gpu::ObjectConstants { info: [0, l, inp.instance_vertices, 0], ..Default::default() };
-            cmd.push(&c)?;
+            cmd.push(&SplatConstants { light: l, vertices_per_instance: inp.instance_vertices })?;
             cmd.bind_vertex_buffer(inp.splat_vertices, 0);
             let total = pt.width * pt.width;
             // Wyman 2008 Sec. 4: one small vertex buffer drawn instanced; the vertex shader

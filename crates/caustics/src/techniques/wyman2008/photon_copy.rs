@@ -10,7 +10,7 @@
 //! driver would: a plain copy when both sides have the same type, and for 16-bit to 32-bit a
 //! converting blit into a 32-bit image followed by the copy.
 
-use crate::gpu::{ObjectConstants, Target};
+use crate::gpu::{SplatConstants, Target};
 use crate::techniques::shared::pipelines::point_splat_desc;
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::CausticInputs;
@@ -128,7 +128,7 @@ impl PhotonCopy {
             .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(&self.positions, Access::VERTEX_INPUT)])
             .record(|cmd| {
                 cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
-                cmd.push(&ObjectConstants { info: [0, l, 0, 0], ..Default::default() })?;
+                cmd.push(&SplatConstants { light: l, vertices_per_instance: 0 })?;
                 cmd.bind_vertex_buffer(&self.positions, 0);
                 cmd.draw(self.vertices(), 1, 0, 0);
                 cmd.end_rendering();

@@ -4,7 +4,7 @@
 //! compute pass per level (`shaders_glsl/wyman2008/build.comp`).
 
 use super::{Hierarchy, Inputs, TOP_SIDE};
-use crate::gpu::ObjectConstants;
+use crate::gpu::BuildConstants;
 use crate::image_io::{ImageF32, Layer};
 use crate::techniques::shared::targets::PhotonTargets;
 use anyhow::Result;
@@ -38,10 +38,6 @@ impl Hierarchy {
     /// photon buffer).
     pub(super) fn record_build(&self, f: &mut Frame, inp: &Inputs, pt: &PhotonTargets, l: u32) -> Result<()> {
         let py = &self.pyramid;
-        let push = |level: u32, cluster: bool| ObjectConstants {
-            info: [level, l, cluster as u32, self.n],
-            ..Default::default()
-        };
         for k in 1..=self.levels {
             let out = &py.mips[k as usize - 1];
             let children: [&ImageView; 3] = if k == 1 {
@@ -63,7 +59,7 @@ impl Hierarchy {
                 Bind::Storage(&out[2]),
             ];
             f.pass(&format!("hierarchy.build.level{k}.light{l}")).bind(&self.build, binds).record(|cmd| {
-                cmd.push(&push(k, false))?;
+                cmd.push(&BuildConstants { level: k, light: l, photon_side: self.n })?;
                 let side = self.padded >> k;
                 cmd.dispatch(side.div_ceil(8), side.div_ceil(8), 1);
                 Ok(())

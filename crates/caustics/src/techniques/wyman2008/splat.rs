@@ -5,7 +5,7 @@
 
 use super::entry::ENTRY_BYTES;
 use super::{Hierarchy, Inputs};
-use crate::gpu::ObjectConstants;
+use crate::gpu::SplatConstants;
 use crate::techniques::shared::targets::PhotonTargets;
 use anyhow::Result;
 use vkcore::{Access, Bind, CompactionPath, Frame, ImageView, Targets, Use};
@@ -39,7 +39,7 @@ impl Hierarchy {
         ];
         f.pass(&format!("splat.light{l}")).bind(&self.splat, binds).uses(uses).record(|cmd| {
             cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])).layered(layers))?;
-            cmd.push(&ObjectConstants { info: [0, l, 0, self.n], ..Default::default() })?;
+            cmd.push(&SplatConstants { light: l, vertices_per_instance: 0 })?;
             cmd.bind_vertex_buffer(&list.data, 0);
             match self.path {
                 CompactionPath::TransformFeedback => {

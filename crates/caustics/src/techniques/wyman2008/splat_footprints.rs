@@ -4,7 +4,7 @@
 //! This is where varying splat sizes (Wyman 2008 Sec. 3.3) can be read, photon by photon.
 
 use super::{Hierarchy, Inputs};
-use crate::gpu::ObjectConstants;
+use crate::gpu::FootprintConstants;
 use crate::image_io::ImageF32;
 use crate::techniques::shared::compute_splat::{groups, Photons};
 use crate::techniques::shared::targets::PhotonTargets;
@@ -68,7 +68,7 @@ impl SplatFootprints {
         ];
         let mut f = ctx.frame(FrameOptions::default())?;
         f.pass(&format!("splat_footprints.light{l}")).bind(&self.pipeline, binds).record(|cmd| {
-            cmd.push(&ObjectConstants { info: [count, l, 0, 0], ..Default::default() })?;
+            cmd.push(&FootprintConstants { entries: count, light: l })?;
             let (x, y) = groups(count);
             cmd.dispatch(x, y, 1);
             Ok(())

@@ -7,7 +7,7 @@
 
 use super::entry::{unpack_entry, ENTRY_BYTES};
 use super::{Hierarchy, Inputs};
-use crate::gpu::ObjectConstants;
+use crate::gpu::TraverseConstants;
 use crate::image_io::ImageF32;
 use crate::techniques::shared::targets::PhotonTargets;
 use anyhow::Result;
@@ -18,10 +18,7 @@ impl Hierarchy {
     pub fn record_traversal(&self, f: &mut Frame, inp: &Inputs, pt: &PhotonTargets, l: u32) -> Result<()> {
         self.record_build(f, inp, pt, l)?;
         let py = &self.pyramid;
-        let push = |level: u32, cluster: bool| ObjectConstants {
-            info: [level, l, cluster as u32, self.n],
-            ..Default::default()
-        };
+        let push = |cluster: bool| TraverseConstants { light: l, cluster: cluster as u32, photon_side: self.n };
         // The paper zeroes its counters before every traversal; so do we (both paths).
         let counters: Vec<Use> = self.lists.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_WRITE)).collect();
         f.pass(&format!("hierarchy.reset.light{l}")).uses(counters).record(|cmd| {
@@ -58,7 +55,7 @@ impl Hierarchy {
                     uses.push(Use::buffer(&out.counter, Access::XFB_COUNTER));
                     f.pass(&name).bind(&self.traverse, binds).uses(uses).record(|cmd| {
                         cmd.begin_rendering(&Targets::none())?;
-                        cmd.push(&push(k, cluster))?;
+                        cmd.push(&push(cluster))?;
                         cmd.bind_vertex_buffer(&input.data, 0);
                         cmd.bind_xfb_buffers(&[&out.data])?;
                         // No counter buffers at begin: capture starts at offset 0.
@@ -83,7 +80,7 @@ impl Hierarchy {
                     // The input's count is read as dispatch arguments too.
                     let arguments = [Use::buffer(&input.counter, Access::INDIRECT)];
                     f.pass(&name).bind(&self.traverse, binds).uses(arguments).record(|cmd| {
-                        cmd.push(&push(k, cluster))?;
+                        cmd.push(&push(cluster))?;
                         cmd.dispatch_indirect(&input.counter, 16);
                         Ok(())
                     })?;

@@ -1,0 +1,158 @@
+//! Push constants: one struct per kind of pass, each the twin of a GLSL
+//! `layout(push_constant)` block of the same name and members (`tests` compares them through
+//! the SPIR-V of every shader that declares one).
+
+use vkcore::push_constants;
+
+push_constants! {
+    /// Every mesh draw (`shaders_glsl/common/mesh_constants.glsl`).
+    pub struct MeshConstants {
+        /// Diffuse albedo, transmission colour or specular colour.
+        pub colour: [f32; 4],
+        /// RGB index of refraction (refractive).
+        pub ior: [f32; 4],
+        /// `MATERIAL_*`.
+        pub material: u32,
+        /// The light a pass from a light (or the shadow map) renders for.
+        pub light: u32,
+        /// Vertex photons: the mesh's first photon.
+        pub first_photon: u32,
+    }
+}
+
+push_constants! {
+    /// The point splat (`shared/splat.vert`).
+    pub struct SplatConstants {
+        pub light: u32,
+        /// The instanced fetch from the photon texture: vertices per instance.
+        pub vertices_per_instance: u32,
+    }
+}
+
+push_constants! {
+    /// The compute splat (`shared/splat.comp`).
+    pub struct ComputeSplatConstants {
+        /// From the photon texture: its texels, one invocation each.
+        pub photon_texels: u32,
+        pub light: u32,
+    }
+}
+
+push_constants! {
+    /// Building one level of the photon hierarchy (`wyman2008/build.comp`).
+    pub struct BuildConstants {
+        /// k >= 1.
+        pub level: u32,
+        pub light: u32,
+        /// The photon buffer side N.
+        pub photon_side: u32,
+    }
+}
+
+push_constants! {
+    /// One step of the hierarchical traversal (`wyman2008/traverse.glsl`).
+    pub struct TraverseConstants {
+        pub light: u32,
+        /// 1 when convergence is tested at this level.
+        pub cluster: u32,
+        /// The photon buffer side N.
+        pub photon_side: u32,
+    }
+}
+
+push_constants! {
+    /// The `splats` dump (`wyman2008/splat_footprints.comp`).
+    pub struct FootprintConstants {
+        /// Entries in the traversal's final list.
+        pub entries: u32,
+        pub light: u32,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vkcore::{check_push_constants, PushConstants, ShaderCompiler};
+
+    /// Checks `T` against every (shader, defines) variant that declares its block.
+    fn check<T: PushConstants>(variants: &[(&str, &[(&str, &str)])]) {
+        let sh = ShaderCompiler::new(&crate::render::shader_root()).unwrap();
+        for (file, defines) in variants {
+            let spirv = sh.compile(file, defines).unwrap();
+            if let Err(e) = check_push_constants::<T>(&spirv) {
+                panic!("{file} {defines:?}: {e}");
+            }
+        }
+    }
+
+    #[test]
+    fn mesh_constants() {
+        let photon_view: &[(&str, &str)] = &[("PHOTON_VIEW", "1")];
+        check::<MeshConstants>(&[
+            ("shadow/shadow_map.vert", &[]),
+            ("shadow/shadow_map.frag", &[]),
+            ("eye/background.frag", &[]),
+            ("eye/front_faces.frag", &[]),
+            ("shared/light_mesh.vert", &[]),
+            ("shared/light_mesh.vert", photon_view),
+            ("shared/back_faces.frag", &[]),
+            ("shared/photon_buffer.frag", &[]),
+            ("shah2007/vertex_photons.vert", &[]),
+        ]);
+    }
+
+    #[test]
+    fn splat_constants() {
+        check::<SplatConstants>(&[
+            ("shared/splat.vert", &[]),
+            ("shared/splat.vert", &[("PHOTON_VERTEX_ARRAY", "1")]),
+            ("shared/splat.vert", &[("PHOTON_VERTEX_ARRAY", "1"), ("PHOTON_HALF", "1")]),
+            ("shared/splat.vert", &[("HIERARCHY", "1")]),
+        ]);
+    }
+
+    #[test]
+    fn compute_splat_constants() {
+        check::<ComputeSplatConstants>(&[
+            ("shared/splat.comp", &[("ENTRY_BYTES", "4")]),
+            ("shared/splat.comp", &[("ENTRY_BYTES", "4"), ("HIERARCHY", "1")]),
+            ("shared/splat.comp", &[("ENTRY_BYTES", "4"), ("HIERARCHY", "1"), ("XFB", "1")]),
+        ]);
+    }
+
+    #[test]
+    fn build_constants() {
+        check::<BuildConstants>(&[("wyman2008/build.comp", &[])]);
+    }
+
+    #[test]
+    fn traverse_constants() {
+        check::<TraverseConstants>(&[("wyman2008/traverse.geom", &[]), ("wyman2008/traverse.comp", &[])]);
+    }
+
+    #[test]
+    fn footprint_constants() {
+        check::<FootprintConstants>(&[("wyman2008/splat_footprints.comp", &[])]);
+    }
+
+    /// The reflection the checks rely on tells a renamed or reordered member apart.
+    #[test]
+    fn a_renamed_or_reordered_member_fails() {
+        mod renamed {
+            vkcore::push_constants! {
+                pub struct FootprintConstants { pub entries: u32, pub lamp: u32 }
+            }
+        }
+        mod reordered {
+            vkcore::push_constants! {
+                pub struct FootprintConstants { pub light: u32, pub entries: u32 }
+            }
+        }
+        let sh = ShaderCompiler::new(&crate::render::shader_root()).unwrap();
+        let spirv = sh.compile("wyman2008/splat_footprints.comp", &[]).unwrap();
+        assert!(check_push_constants::<FootprintConstants>(&spirv).is_ok());
+        let renamed = check_push_constants::<renamed::FootprintConstants>(&spirv).unwrap_err();
+        assert!(renamed.contains("lamp"), "{renamed}");
+        assert!(check_push_constants::<reordered::FootprintConstants>(&spirv).is_err());
+    }
+}

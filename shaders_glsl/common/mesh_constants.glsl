@@ -1,0 +1,19 @@
+// The push constants of every mesh draw, mirrored by `MeshConstants` in
+// crates/caustics/src/gpu/push.rs. Only mesh shaders include this; other passes declare their
+// own push-constant block.
+#ifndef MESH_CONSTANTS_GLSL
+#define MESH_CONSTANTS_GLSL
+
+#define MATERIAL_DIFFUSE 0u
+#define MATERIAL_REFRACTIVE 1u
+#define MATERIAL_REFLECTIVE 2u
+
+layout(push_constant) uniform MeshConstants {
+    vec4 colour;          // diffuse albedo / transmission colour / specular colour
+    vec4 ior;             // rgb index of refraction (refractive)
+    uint material;        // MATERIAL_*
+    uint light;           // the light a pass from a light (or the shadow map) renders for
+    uint first_photon;    // vertex photons: this mesh's first photon
+} mesh;
+
+#endif
