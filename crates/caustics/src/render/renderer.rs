@@ -230,15 +230,9 @@ impl<'c> Renderer<'c> {
                     reuse_photons: step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1,
                     ..self.caustic_frame(c)
                 };
-                techniques::record_caustics(
-                    &mut f,
-                    &c.pipelines,
-                    &self.caustic_targets,
-                    &c.photons,
-                    &self.caustic_inputs(c),
-                    self.targets.shadow.lights,
-                    frame,
-                )?;
+                let inputs = self.caustic_inputs(c);
+                let passes = self.caustic_passes(c, &inputs);
+                techniques::record_caustics(&mut f, &passes, self.targets.shadow.lights, frame)?;
             }
             None => techniques::record_cleared(&mut f, &self.caustic_targets)?,
         }
@@ -259,6 +253,19 @@ impl<'c> Renderer<'c> {
     /// The last frame's linear radiance.
     pub fn final_image(&self) -> Result<ImageF32> {
         dumps::final_image(self.ctx, &self.targets)
+    }
+
+    fn caustic_passes<'a>(
+        &'a self,
+        c: &'a CausticResources,
+        inputs: &'a techniques::CausticInputs<'a>,
+    ) -> techniques::CausticPasses<'a> {
+        techniques::CausticPasses {
+            pipelines: &c.pipelines,
+            targets: &self.caustic_targets,
+            photons: &c.photons,
+            inputs,
+        }
     }
 
     fn caustic_inputs<'a>(&'a self, c: &'a CausticResources) -> techniques::CausticInputs<'a> {
@@ -330,7 +337,7 @@ impl<'c> Renderer<'c> {
                     }
                     ("splats", Some(h)) => {
                         let footprints = c.footprints.as_ref().context("no splat footprints pipeline")?;
-                        let inputs = self.caustic_inputs(c).hierarchy();
+                        let inputs = self.caustic_inputs(c).pass_inputs();
                         splats.push(footprints.read(self.ctx, h, &inputs, &c.photons, l)?);
                         continue;
                     }
@@ -365,7 +372,7 @@ impl<'c> Renderer<'c> {
         let mut f = self.ctx.frame(FrameOptions::default())?;
         let inputs = self.caustic_inputs(c);
         let frame = self.caustic_frame(c);
-        techniques::record_light_space(&mut f, &c.pipelines, &self.caustic_targets, &c.photons, &inputs, l, frame)?;
+        techniques::record_light_space(&mut f, &self.caustic_passes(c, &inputs), l, frame)?;
         f.submit()?;
         Ok(())
     }

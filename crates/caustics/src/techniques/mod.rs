@@ -23,7 +23,7 @@ mod value_enum;
 pub mod wyman2008;
 pub mod wyman_davis2006;
 
-pub use record::{record_caustics, record_cleared, record_light_space, CausticFrame, CausticInputs};
+pub use record::{record_caustics, record_cleared, record_light_space, CausticFrame, CausticInputs, CausticPasses};
 pub use settings::{CausticOverrides, CausticSettings};
 pub use shared::{CausticPipelines, CausticTargets, ComputeSplat, Intersect, PhotonTargets, SplatKernel, SplatPath};
 pub use technique::Technique;

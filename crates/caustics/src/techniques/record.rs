@@ -5,14 +5,14 @@
 
 use super::shah2007::VertexPhotons;
 use super::shared::compute_splat::{self, ComputeSplat};
-use super::shared::{photon_buffer, splat, CausticPipelines, CausticTargets, PhotonTargets};
+use super::shared::{photon_buffer, splat};
 use super::wyman2008::photon_copy::PhotonCopy;
 use super::wyman2008::Hierarchy;
 use anyhow::Result;
 use vkcore::Frame;
 
 pub use super::shared::splat::record_cleared;
-pub use super::shared::CausticInputs;
+pub use super::shared::{CausticInputs, CausticPasses};
 
 /// What one frame records beyond the splat.
 #[derive(Clone, Copy, Default)]
@@ -35,19 +35,12 @@ pub struct CausticFrame<'a> {
 /// buffer, and the copy or the hierarchy's build and traversal that read it. One set of these
 /// buffers serves every light, light after light; `Renderer::dumps` records this alone to read a
 /// light's back.
-pub fn record_light_space(
-    f: &mut Frame,
-    p: &CausticPipelines,
-    ct: &CausticTargets,
-    pt: &PhotonTargets,
-    inp: &CausticInputs,
-    l: u32,
-    frame: CausticFrame,
-) -> Result<()> {
-    photon_buffer::record_light_views(f, p, ct, pt, inp, l)?;
+pub fn record_light_space(f: &mut Frame, c: &CausticPasses, l: u32, frame: CausticFrame) -> Result<()> {
+    let (pt, inp) = (c.photons, c.inputs);
+    photon_buffer::record_light_views(f, c, l)?;
     match frame.vertex_photons {
-        Some(vp) => vp.record(f, ct, pt, inp, l)?,
-        None => photon_buffer::record_photon_buffer(f, p, ct, pt, inp, l)?,
+        Some(vp) => vp.record(f, c, l)?,
+        None => photon_buffer::record_photon_buffer(f, c, l)?,
     }
     // The copied vertex arrays and the traversal's list stay valid as long as the photon
     // buffer does.
@@ -55,32 +48,25 @@ pub fn record_light_space(
         copy.record(f, pt, l)?;
     }
     if let Some(h) = frame.hierarchy {
-        h.record_traversal(f, &inp.hierarchy(), pt, l)?;
+        h.record_traversal(f, &inp.pass_inputs(), pt, l)?;
     }
     Ok(())
 }
 
-pub fn record_caustics(
-    f: &mut Frame,
-    p: &CausticPipelines,
-    ct: &CausticTargets,
-    pt: &PhotonTargets,
-    inp: &CausticInputs,
-    lights: u32,
-    frame: CausticFrame,
-) -> Result<()> {
+pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: CausticFrame) -> Result<()> {
+    let (ct, pt, inp) = (c.targets, c.photons, c.inputs);
     for l in 0..lights {
         if !frame.reuse_photons {
-            record_light_space(f, p, ct, pt, inp, l, frame)?;
+            record_light_space(f, c, l, frame)?;
         }
         let cmap = &ct.per_light[l as usize].0;
-        let passes = inp.hierarchy();
+        let passes = inp.pass_inputs();
         match (frame.hierarchy, frame.compute_splat, frame.copy) {
             (Some(h), None, _) => h.record_splat(f, &passes, pt, cmap, ct.levels, l)?,
             (Some(h), Some(cs), _) => cs.record(f, &passes, pt, &h.final_list(), cmap, l)?,
             (None, Some(cs), _) => cs.record(f, &passes, pt, &compute_splat::Photons::Dense, cmap, l)?,
             (None, None, Some(copy)) => copy.record_splat(f, inp, cmap, l)?,
-            (None, None, None) => splat::record_splat(f, p, ct, pt, inp, l)?,
+            (None, None, None) => splat::record_splat(f, c, l)?,
         }
     }
     Ok(())

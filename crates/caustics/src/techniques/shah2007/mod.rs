@@ -13,8 +13,7 @@ pub mod settings;
 pub use settings::{PAPER, VERTEX_PHOTON_FEATURES};
 
 use super::shared::photon_buffer::trace_binds;
-use super::shared::CausticInputs;
-use super::shared::{CausticTargets, PhotonTargets};
+use super::shared::CausticPasses;
 use crate::gpu::mesh_pipeline::mesh_layout;
 use crate::gpu::{mesh_uses, MeshConstants, MATERIAL_DIFFUSE};
 use anyhow::Result;
@@ -44,14 +43,8 @@ impl VertexPhotons {
 
     /// Light `l`'s photons: clears the photon buffer, then traces a photon per vertex of every
     /// specular mesh into it (`shaders_glsl/shah2007/vertex_photons.vert`).
-    pub fn record(
-        &self,
-        f: &mut Frame,
-        ct: &CausticTargets,
-        pt: &PhotonTargets,
-        inp: &CausticInputs,
-        l: u32,
-    ) -> Result<()> {
+    pub fn record(&self, f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+        let (pt, inp) = (c.photons, c.inputs);
         let vp = &self.pipeline;
         let photons = [&pt.position, &pt.direction, &pt.power];
         let clear: Vec<Use> = photons.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)).collect();
@@ -72,7 +65,7 @@ impl VertexPhotons {
         let sets: Vec<_> = specular
             .iter()
             .map(|(_, areas)| {
-                let mut binds = trace_binds(ct, pt, inp);
+                let mut binds = trace_binds(c);
                 binds.extend(photons.map(|t| Bind::Storage(&t.view)));
                 binds.push(Bind::BufferRead(areas));
                 binds

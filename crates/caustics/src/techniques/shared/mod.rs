@@ -41,9 +41,19 @@ pub struct CausticInputs<'a> {
     pub nearest: &'a Sampler,
 }
 
+/// What every caustic pass of a light records with: the technique's pipelines, the caustic-map
+/// and photon-buffer targets, and the inputs.
+#[derive(Clone, Copy)]
+pub struct CausticPasses<'a> {
+    pub pipelines: &'a CausticPipelines,
+    pub targets: &'a CausticTargets,
+    pub photons: &'a PhotonTargets,
+    pub inputs: &'a CausticInputs<'a>,
+}
+
 impl<'a> CausticInputs<'a> {
     /// What the hierarchy's passes, the compute splat (and the `splats` dump) read of these.
-    pub fn hierarchy(&self) -> PassInputs<'a> {
+    pub fn pass_inputs(&self) -> PassInputs<'a> {
         PassInputs {
             frame_uniforms: self.frame_uniforms,
             caustic_uniforms: self.caustic_uniforms,

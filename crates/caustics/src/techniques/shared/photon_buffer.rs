@@ -5,23 +5,15 @@
 //! each traced through the refractor (`shaders_glsl/shared/trace.glsl`). Shah's vertex photons
 //! replace the last pass (see `shah2007`).
 
-use super::targets::{CausticTargets, PhotonTargets};
-use super::CausticPipelines;
+use super::CausticPasses;
 use crate::gpu::{mesh_uses, MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
-use crate::techniques::shared::CausticInputs;
 use anyhow::Result;
 use vkcore::{Access, Bind, Frame, Targets, Use};
 
 /// The light's views before photons are traced, for light `l`: the receiver positions (its
 /// render of the diffuse surfaces) and the refractors' back faces.
-pub(crate) fn record_light_views(
-    f: &mut Frame,
-    p: &CausticPipelines,
-    ct: &CausticTargets,
-    pt: &PhotonTargets,
-    inp: &CausticInputs,
-    l: u32,
-) -> Result<()> {
+pub(crate) fn record_light_views(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+    let (p, ct, pt, inp) = (c.pipelines, c.targets, c.photons, c.inputs);
     let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
     let (_, rpos, rdepth) = &ct.per_light[l as usize];
     f.pass(&format!("receiver_positions.light{l}"))
@@ -58,7 +50,8 @@ pub(crate) fn record_light_views(
 }
 
 /// What tracing a photon reads (`shared/trace.glsl`, bindings 0-3), in binding order.
-pub(crate) fn trace_binds<'a>(ct: &'a CausticTargets, pt: &'a PhotonTargets, inp: &CausticInputs<'a>) -> Vec<Bind<'a>> {
+pub(crate) fn trace_binds<'a>(c: &CausticPasses<'a>) -> Vec<Bind<'a>> {
+    let (ct, pt, inp) = (c.targets, c.photons, c.inputs);
     vec![
         Bind::Uniform(inp.frame_uniforms),
         Bind::Uniform(inp.caustic_uniforms),
@@ -69,17 +62,11 @@ pub(crate) fn trace_binds<'a>(ct: &'a CausticTargets, pt: &'a PhotonTargets, inp
 
 /// The photon buffer of light `l` (Wyman & Davis 2006 Sec. 3.1): the specular meshes rendered
 /// from the light, each fragment a photon traced through them (position, direction, power).
-pub(crate) fn record_photon_buffer(
-    f: &mut Frame,
-    p: &CausticPipelines,
-    ct: &CausticTargets,
-    pt: &PhotonTargets,
-    inp: &CausticInputs,
-    l: u32,
-) -> Result<()> {
+pub(crate) fn record_photon_buffer(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+    let (p, pt, inp) = (c.pipelines, c.photons, c.inputs);
     let photons = [&pt.position, &pt.direction, &pt.power];
     f.pass(&format!("photon_buffer.light{l}"))
-        .bind(&p.photon_buffer, trace_binds(ct, pt, inp))
+        .bind(&p.photon_buffer, trace_binds(c))
         .uses(mesh_uses(inp.meshes))
         .uses(photons.map(|t| Use::view(&t.view, Access::COLOR_ATTACHMENT)))
         .uses([Use::view(&pt.depth.view, Access::DEPTH_ATTACHMENT)])

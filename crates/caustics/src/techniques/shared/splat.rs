@@ -3,23 +3,16 @@
 //! fetched instanced from the photon buffer (Wyman 2008 Sec. 4). The copy path of Wyman 2008
 //! Table 1 splats from a vertex array instead (`wyman2008::photon_copy`).
 
-use super::targets::{CausticTargets, PhotonTargets};
-use super::CausticPipelines;
+use super::targets::CausticTargets;
+use super::CausticPasses;
 use crate::gpu::SplatConstants;
-use crate::techniques::shared::CausticInputs;
 use anyhow::Result;
 use vkcore::{Access, Bind, Frame, Targets, Use};
 
 /// Splats light `l`'s photons into its caustic-map layer, fetched instanced from the photon
 /// texture (Wyman 2008 Sec. 4).
-pub(crate) fn record_splat(
-    f: &mut Frame,
-    p: &CausticPipelines,
-    ct: &CausticTargets,
-    pt: &PhotonTargets,
-    inp: &CausticInputs,
-    l: u32,
-) -> Result<()> {
+pub(crate) fn record_splat(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+    let (p, ct, pt, inp) = (c.pipelines, c.targets, c.photons, c.inputs);
     let (cmap, _, _) = &ct.per_light[l as usize];
     let binds = [
         Bind::Uniform(inp.frame_uniforms),
