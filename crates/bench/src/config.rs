@@ -151,6 +151,8 @@ pub const METRIC_KINDS: &[&str] = &[
     "photons_emitted",
     "splats_drawn",
     "photons_processed",
+    "valid_photons",
+    "valid_fraction",
     "rel_rmse",
     "flux_ratio",
 ];

@@ -29,6 +29,11 @@ pub struct CellRun {
     /// `hcm`: per light, the traversal's list sizes from the 16² level down to the splatted list.
     pub hierarchy_sizes: Option<Vec<Vec<u64>>>,
     pub quality: Option<Comparison>,
+    /// Photons of the last frame that met a specular object and a receiver (read back from the
+    /// photon buffer, untimed); `None` without a photon buffer.
+    pub valid_photons: Option<u64>,
+    /// Lights with caustics in the cell.
+    pub lights: u64,
     /// The caustic settings in effect (after the technique entry and `--quick`).
     pub caustics: CausticSettings,
     pub triangles: usize,
@@ -58,6 +63,10 @@ impl<'a> Runner<'a> {
 
     fn needs_quality(&self) -> bool {
         self.config.config.metrics.iter().any(|m| m.kind == "rel_rmse" || m.kind == "flux_ratio")
+    }
+
+    fn needs_valid_photons(&self) -> bool {
+        self.config.config.metrics.iter().any(|m| m.kind == "valid_photons" || m.kind == "valid_fraction")
     }
 
     /// The scene of `cell`: technique settings, photons, lights and output size applied.
@@ -152,6 +161,7 @@ impl<'a> Runner<'a> {
         } else {
             None
         };
+        let valid_photons = if self.needs_valid_photons() { renderer.valid_photons()? } else { None };
         let quality = if self.needs_quality() { Some(self.quality(&mut renderer, &scene)?) } else { None };
         Ok(CellRun {
             frames,
@@ -161,6 +171,8 @@ impl<'a> Runner<'a> {
             splats_drawn: renderer.splats_drawn()?,
             hierarchy_sizes: renderer.hierarchy().map(|h| h.list_sizes(self.ctx)).transpose()?,
             quality,
+            valid_photons,
+            lights: scene.lights.len() as u64,
             caustics: scene.caustics.clone(),
             triangles: scene.triangle_count(),
             cpu_steal,

@@ -102,6 +102,12 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
             "photons_emitted" => exact(k, Some(run.photons_emitted as f64)),
             "splats_drawn" => exact(k, Some(run.splats_drawn as f64)),
             "photons_processed" => exact(k, Some(photons_processed(run) as f64)),
+            "valid_photons" => exact(k, run.valid_photons.map(|v| v as f64)),
+            // Valid photons per photon-buffer texel (N^2 per light).
+            "valid_fraction" => exact(
+                k,
+                run.valid_photons.map(|v| v as f64 / (run.caustics.photons as f64).powi(2) / run.lights.max(1) as f64),
+            ),
             "rel_rmse" => exact(k, run.quality.as_ref().map(|q| q.rel_rmse)),
             "flux_ratio" => exact(k, run.quality.as_ref().map(|q| q.caustic_flux_ratio)),
             _ => exact(k, None),

@@ -386,6 +386,23 @@ impl<'c> Renderer<'c> {
         c.technique.photons_per_light(c, self.specular_vertices) * self.targets.shadow.lights as u64
     }
 
+    /// Photons of the last frame that met a specular object and found a receiver (the photon
+    /// buffer's texels with `valid` set, over all lights), read back from the GPU; `None` where
+    /// the technique has no photon buffer. Against [`Self::photons_emitted`] this is the share
+    /// of the light's view that the photon view spends on photons (Wyman & Nichols 2009 Table 1).
+    pub fn valid_photons(&mut self) -> Result<Option<u64>> {
+        if !self.active || !self.scene.caustics.technique.has_photon_buffer() {
+            return Ok(None);
+        }
+        let Some(img) = self.dump("photon_buffer")? else { return Ok(None) };
+        let mut valid = 0u64;
+        for layer in img.layers.iter().filter(|l| l.name.as_deref().is_some_and(|n| n.ends_with("position"))) {
+            let c = layer.channels.iter().position(|c| c == "valid").context("photon buffer without `valid`")?;
+            valid += layer.data.chunks_exact(layer.channels.len()).filter(|p| p[c] > 0.5).count() as u64;
+        }
+        Ok(Some(valid))
+    }
+
     /// The hierarchy of `hcm` (None for the other techniques).
     pub fn hierarchy(&self) -> Option<&Hierarchy> {
         self.caustic.as_ref().and_then(|c| c.hierarchy.as_ref())

@@ -25,6 +25,8 @@ pub mod wyman_davis2006;
 
 pub use record::{record_caustics, record_cleared, record_light_space, CausticFrame, CausticInputs, CausticPasses};
 pub use settings::{CausticOverrides, CausticSettings};
-pub use shared::{CausticPipelines, CausticTargets, ComputeSplat, Intersect, PhotonTargets, SplatKernel, SplatPath};
+pub use shared::{
+    CausticPipelines, CausticTargets, ComputeSplat, Intersect, PhotonTargets, PhotonView, SplatKernel, SplatPath,
+};
 pub use technique::Technique;
 pub use wyman2008::photon_copy::{CopyType, PhotonCopy};

@@ -6,7 +6,7 @@
 //! - [`CausticSettings::validate_combination`]: a setting that belongs to some techniques only
 //!   (`only Hcm`) is refused, with its key, for the others.
 
-use super::shared::settings::{Intersect, SplatKernel, SplatPath};
+use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath};
 use super::technique::Technique;
 use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
 use serde::{Deserialize, Serialize};
@@ -92,6 +92,13 @@ caustic_settings! {
     /// Refinements of the photon's exit point against the light-space back faces, 0..=16; 0 is
     /// Wyman 2005's estimate alone (the papers); default 4.
     back_face_iterations: u32 = 4;
+    /// The light's view the photon buffer is rendered in: fitted to the specular objects
+    /// (default), a fixed field of view about the light's direction (the papers'), or the
+    /// shadow map's face.
+    photon_view: PhotonView = PhotonView::Fitted;
+    /// Full field of view in degrees of `photon_view = "fixed-fov"`, [1, 160]; default 90
+    /// (Wyman & Davis 2006 Table 1).
+    photon_fov: f32 = 90.0;
     /// Ray/receiver intersection; unset: the technique's own (wd-depth-search for wd-points and
     /// hcm, shah-iterative otherwise).
     intersect: Option<Intersect> = None;
@@ -143,6 +150,12 @@ impl CausticSettings {
                 .unwrap_or_default();
             bad(k, format!("`{value}` is a setting of technique {}, not of `{}`", owners.join(", "), self.technique))?;
         }
+        if self.photon_fov != CausticSettings::default().photon_fov && self.photon_view != PhotonView::FixedFov {
+            bad(
+                "photon_fov",
+                format!("sets the field of view of photon_view `fixed-fov`, not of `{}`", self.photon_view),
+            )?;
+        }
         if self.varying_radius != VaryingRadius::MaxDistance && self.splat == SplatMode::Fixed {
             let what = "sizes varying splats (technique hcm with splat varying-single or varying-multires)";
             bad("varying_radius", format!("`{}` {what}", self.varying_radius))?;
@@ -175,6 +188,9 @@ impl CausticSettings {
                 "instance_vertices",
                 format!("must be a power of two between 64 and 65536, got {}", self.instance_vertices),
             )?;
+        }
+        if !(self.photon_fov >= 1.0 && self.photon_fov <= 160.0) {
+            bad("photon_fov", format!("must be between 1 and 160 degrees, got {}", self.photon_fov))?;
         }
         if !(1..=64).contains(&self.iterations) {
             bad("iterations", format!("must be between 1 and 64, got {}", self.iterations))?;

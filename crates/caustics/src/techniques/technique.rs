@@ -40,6 +40,15 @@ impl Technique {
         self != Technique::None
     }
 
+    /// Whether its photons are the texels of a light-space photon buffer (rendered in the
+    /// `photon_view`), as opposed to the specular meshes' vertices or no photons at all.
+    pub fn has_photon_buffer(self) -> bool {
+        match self {
+            Technique::Shah | Technique::WdPoints | Technique::Hcm => true,
+            Technique::None | Technique::ShahVertex => false,
+        }
+    }
+
     /// The ray/receiver intersection the technique's paper uses.
     pub fn default_intersect(self) -> Intersect {
         match self {

@@ -2,10 +2,10 @@
 //! light-space frusta per light: the photon buffer's, tight around the specular objects, and
 //! the caustic map's, wide enough to hold where the photons land.
 
-use super::shared::{Intersect, SplatKernel};
+use super::shared::{Intersect, PhotonView, SplatKernel};
 use crate::gpu::setup::perspective;
 use crate::gpu::MAX_LIGHTS;
-use crate::scene::{MaterialKind, Scene};
+use crate::scene::{Light, LightKind, MaterialKind, Scene};
 use crate::techniques::wyman2008::settings::{SplatMode, VaryingRadius};
 use crate::techniques::{CausticSettings, Technique};
 use anyhow::Result;
@@ -60,6 +60,33 @@ fn angle_to(light: Vec3, axis: Vec3, p: Vec3) -> f32 {
     (p - light).normalize_or_zero().dot(axis).clamp(-1.0, 1.0).acos()
 }
 
+/// The photon buffer's axis and half field of view (radians) for `light`, by
+/// `settings.photon_view` (see [`PhotonView`]), with the specular objects' bounding sphere.
+pub fn photon_view(settings: &CausticSettings, light: &Light, centre: Vec3, radius: f32) -> (Vec3, f32) {
+    let to_centre = (centre - light.position).normalize_or(Vec3::NEG_Y);
+    match settings.photon_view {
+        PhotonView::Fitted => {
+            let d = light.position.distance(centre);
+            (to_centre, ((radius / d).asin() * 1.02).min(1.5))
+        }
+        PhotonView::FixedFov => {
+            let axis = match &light.kind {
+                LightKind::Spot { direction, .. } => *direction,
+                LightKind::Point => to_centre,
+            };
+            (axis, 0.5 * settings.photon_fov.to_radians())
+        }
+        PhotonView::ShadowMap => {
+            // The cube face whose direction is nearest the direction to the objects.
+            let face = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z]
+                .into_iter()
+                .max_by(|a, b| a.dot(to_centre).total_cmp(&b.dot(to_centre)))
+                .unwrap_or(Vec3::NEG_Y);
+            (face, std::f32::consts::FRAC_PI_4)
+        }
+    }
+}
+
 /// Uniforms for `settings` on `scene`. With technique `none`, zero lights have caustics.
 pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<CausticUniforms> {
     let mut u =
@@ -96,8 +123,7 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
             )
             .into());
         }
-        let axis = (centre - light.position) / d;
-        let photon_half = ((radius / d).asin() * 1.02).min(1.5);
+        let (axis, photon_half) = photon_view(settings, light, centre, radius);
         // The caustic map holds wherever photons may land: the receiver map if there is one,
         // else three times the photon cone, capped at 80 degrees.
         let mut caustic_half = photon_half * 1.2;
@@ -114,9 +140,10 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
         }
         let caustic_half = caustic_half.min(80f32.to_radians());
         let up = if axis.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
-        let view = Mat4::look_at_rh(light.position, centre, up);
+        let view = Mat4::look_at_rh(light.position, light.position + axis, up);
         let far = d + diag;
-        let photon_near = (d - radius) * 0.5;
+        // The specular objects' nearest depth along the axis, halved (any view holds them in front).
+        let photon_near = ((centre - light.position).dot(axis) - radius).max(far * 1e-3) * 0.5;
         let caustic_near = (far * 1e-4).max(1e-3);
         let photon_proj = perspective(2.0 * photon_half, 1.0, photon_near, far);
         let caustic_proj = perspective(2.0 * caustic_half, 1.0, caustic_near, far);
@@ -160,6 +187,40 @@ mod tests {
             let exact = 4.0 * (t * t / (1.0 + 2.0 * t * t).sqrt()).atan();
             assert!((sum - exact).abs() / exact < 2e-3, "half {half_deg}: {sum} vs {exact}");
         }
+    }
+
+    fn light(position: Vec3, kind: LightKind) -> Light {
+        Light { position, intensity: Vec3::ONE, kind }
+    }
+
+    /// The axis and half-angle of each photon view, against what each view promises.
+    #[test]
+    fn photon_views() {
+        let (centre, radius) = (Vec3::new(2.0, 1.0, 0.0), 0.5);
+        let point = light(Vec3::new(0.0, 5.0, 0.0), LightKind::Point);
+        let spot_dir = Vec3::new(0.0, -1.0, 0.2).normalize();
+        let spot = light(
+            Vec3::new(0.0, 5.0, 0.0),
+            LightKind::Spot { direction: spot_dir, cone_angle_deg: 40.0, texture: None },
+        );
+        let mut s = CausticSettings::default();
+        let to_centre = (centre - point.position).normalize();
+        // Fitted: along the direction to the objects, just wider than their bounding sphere.
+        let (axis, half) = photon_view(&s, &point, centre, radius);
+        let subtended = (radius / centre.distance(point.position)).asin();
+        assert!(axis.distance(to_centre) < 1e-6 && half > subtended && half < subtended * 1.05);
+        // Fixed field of view: half the angle, about the spot's axis or towards the objects.
+        s.photon_view = PhotonView::FixedFov;
+        s.photon_fov = 60.0;
+        let (axis, half) = photon_view(&s, &spot, centre, radius);
+        assert!(axis.distance(spot_dir) < 1e-6 && (half - 30f32.to_radians()).abs() < 1e-6);
+        let (axis, _) = photon_view(&s, &point, centre, radius);
+        assert!(axis.distance(to_centre) < 1e-6);
+        // Shadow-map face: (2, -4, 0) from the light leans most to -Y; from the side, +X.
+        s.photon_view = PhotonView::ShadowMap;
+        assert_eq!(photon_view(&s, &point, centre, radius), (Vec3::NEG_Y, std::f32::consts::FRAC_PI_4));
+        let side = light(Vec3::new(-6.0, 1.5, 0.5), LightKind::Point);
+        assert_eq!(photon_view(&s, &side, centre, radius).0, Vec3::X);
     }
 
     #[test]

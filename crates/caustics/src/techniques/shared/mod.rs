@@ -12,7 +12,7 @@ pub mod targets;
 
 pub use compute_splat::ComputeSplat;
 pub use pipelines::CausticPipelines;
-pub use settings::{Intersect, SplatKernel, SplatPath, DUMPS};
+pub use settings::{Intersect, PhotonView, SplatKernel, SplatPath, DUMPS};
 pub use targets::{CausticTargets, PhotonTargets};
 
 use crate::gpu::GpuMesh;

@@ -36,3 +36,20 @@ value_enum! {
         WdDepthSearch = "wd-depth-search",
     }
 }
+
+value_enum! {
+    /// The light's view of the specular objects that the photon buffer is rendered in
+    /// (`caustics.photon_view`, `--photon-view`).
+    pub enum PhotonView {
+        /// A frustum fitted to the specular objects' bounding sphere: most texels are photons.
+        Fitted = "fitted",
+        /// A square frustum of `photon_fov` degrees about the light's direction (a spot's axis; a
+        /// point light's direction to the specular objects): Wyman & Davis 2006 Table 1 emits
+        /// "in a 90 degree field-of-view", and Wyman 2008 Sec. 3.1 does not fit the view to the
+        /// object ("tight bounds are not desirable"), so most texels miss it.
+        FixedFov = "fixed-fov",
+        /// The face of the light's cube shadow map (90 degrees, axis-aligned) that the direction
+        /// to the specular objects passes through; parts of an object in other faces get no photons.
+        ShadowMap = "shadow-map",
+    }
+}
