@@ -21,6 +21,11 @@ pub struct Config {
     #[serde(default)]
     pub run: RunSpec,
     pub matrix: MatrixSpec,
+    /// Caustic settings for every technique entry, applied before each entry's own (which win):
+    /// the paper's setup, e.g. `photon_view = "fixed-fov"` and `back_face_iterations = 0`.
+    /// Neither `technique`, `photons` nor a setting of some techniques only may be set here.
+    #[serde(default)]
+    pub caustics: caustics::scene::CausticOverrides,
     #[serde(rename = "technique")]
     pub techniques: Vec<TechniqueSpec>,
     #[serde(rename = "metric")]
@@ -165,6 +170,11 @@ pub struct MetricSpec {
     /// For `pass_ms`: pass names summed per frame; `*` matches any run of characters.
     #[serde(default)]
     pub passes: Vec<String>,
+    /// For `frame_ms` and `fps`: passes whose GPU time is taken off each frame's wall time, for
+    /// work our pipeline does that the paper's did not (e.g. `photon_buffer.to_16bit*`, the
+    /// stand-in for a 16-bit photon buffer). `*` as in `passes`.
+    #[serde(default)]
+    pub exclude: Vec<String>,
 }
 
 /// The matrix axes a table can lay out.

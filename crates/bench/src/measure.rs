@@ -75,6 +75,7 @@ impl<'a> Runner<'a> {
         let mut scene = Scene::load(&path)
             .with_context(|| format!("{}: key `matrix.scenes`: loading {}", self.config.path.display(), cell.scene))?;
         let t = &self.config.config.techniques[cell.technique];
+        self.config.config.caustics.apply(&mut scene.caustics);
         t.settings.apply(&mut scene.caustics);
         scene.caustics.photons = cell.photons;
         if let Some(q) = self.quick {

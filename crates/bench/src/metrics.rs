@@ -74,6 +74,19 @@ fn pass_samples(run: &CellRun, patterns: &[String]) -> Vec<f64> {
         .collect()
 }
 
+/// Per measured frame: its host wall time less the GPU time of the passes matching `exclude`.
+fn wall_ms(run: &CellRun, exclude: &[String]) -> Vec<f64> {
+    run.frames
+        .iter()
+        .zip(&run.wall_ms)
+        .map(|(f, wall)| {
+            let excluded: f64 =
+                f.passes.iter().filter(|p| exclude.iter().any(|pat| glob(pat, &p.name))).filter_map(|p| p.gpu_ms).sum();
+            wall - excluded
+        })
+        .collect()
+}
+
 /// Photons (points) a frame pushes through the pipeline after the photon buffer: every texel
 /// for the dense techniques; for `hcm` every entry each traversal level reads plus the splatted
 /// list (Wyman & Nichols 2009 Table 1 counts the splatted ones: `splats_drawn`).
@@ -91,10 +104,11 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
         let v = match k {
             "pass_ms" => of_samples(k, pass_samples(run, &m.passes)),
             "gpu_frame_ms" => of_samples(k, pass_samples(run, &["*".to_string()])),
-            "frame_ms" => of_samples(k, run.wall_ms.clone()),
+            "frame_ms" => of_samples(k, wall_ms(run, &m.exclude)),
             "fps" => {
-                let mean = run.wall_ms.iter().sum::<f64>() / run.wall_ms.len().max(1) as f64;
-                let fps: Vec<f64> = run.wall_ms.iter().map(|ms| 1000.0 / ms).collect();
+                let wall = wall_ms(run, &m.exclude);
+                let mean = wall.iter().sum::<f64>() / wall.len().max(1) as f64;
+                let fps: Vec<f64> = wall.iter().map(|ms| 1000.0 / ms).collect();
                 let mut v = of_samples(k, fps);
                 v.value = (mean > 0.0).then(|| 1000.0 / mean);
                 v

@@ -102,6 +102,19 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     }
     unique("matrix.lighting", m.lighting.clone())?;
 
+    for k in c.caustics.keys_set() {
+        if k == "technique" || k == "photons" {
+            return Err(bad(&format!("caustics.{k}"), "set per [[technique]] entry and by `matrix.photons`".into()));
+        }
+        if let Some((_, owners)) = CausticSettings::OWNED.iter().find(|(name, _)| *name == k) {
+            let owners: Vec<&str> = owners.iter().map(|t| t.name()).collect();
+            return Err(bad(
+                &format!("caustics.{k}"),
+                format!("a setting of technique {} only: set it in those [[technique]] entries", owners.join(", ")),
+            ));
+        }
+    }
+
     if c.techniques.is_empty() {
         return Err(bad("technique", "no [[technique]] entries".into()));
     }
@@ -134,6 +147,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             ));
         }
         let mut s = CausticSettings::default();
+        c.caustics.apply(&mut s);
         t.settings.apply(&mut s);
         s.validate(&file, &format!("technique[{i}]."))?;
         s.validate_combination(&file, &format!("technique[{i}]."))?;
@@ -154,6 +168,9 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             let msg =
                 if mt.passes.is_empty() { "kind pass_ms needs `passes`" } else { "only kind pass_ms takes `passes`" };
             return Err(bad(&format!("metric[{i}].passes"), msg.into()));
+        }
+        if !mt.exclude.is_empty() && mt.kind != "fps" && mt.kind != "frame_ms" {
+            return Err(bad(&format!("metric[{i}].exclude"), "only kinds fps and frame_ms take `exclude`".into()));
         }
     }
 

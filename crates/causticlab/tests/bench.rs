@@ -390,6 +390,21 @@ fn config_errors_name_the_file_and_key() {
             "paper[0].values",
         ),
         (
+            "caustics_photons.toml",
+            SMALL.replacen("[[technique]]", "[caustics]\nphotons = 256\n\n[[technique]]", 1),
+            "caustics.photons",
+        ),
+        (
+            "caustics_owned.toml",
+            SMALL.replacen("[[technique]]", "[caustics]\ncluster = \"last\"\n\n[[technique]]", 1),
+            "caustics.cluster",
+        ),
+        (
+            "caustics_bad_fov.toml",
+            SMALL.replacen("[[technique]]", "[caustics]\nphoton_view = \"fixed-fov\"\nphoton_fov = 200.0\n\n[[technique]]", 1),
+            "photon_fov",
+        ),
+        (
             "bad_radius.toml",
             SMALL.replace("technique = \"shah\"", "technique = \"shah\"\nsplat_radius = 500.0"),
             "splat_radius",
