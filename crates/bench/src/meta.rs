@@ -7,7 +7,7 @@ pub fn meta(info: &DeviceInfo) -> Meta {
     Meta {
         device: info.name.clone(),
         device_type: info.device_type.clone(),
-        device_slug: info.slug(),
+        device_slug: results_slug(info),
         driver_name: info.driver_name.clone(),
         driver_info: info.driver_info.clone(),
         vulkan_version: info.api_version.clone(),
@@ -18,6 +18,47 @@ pub fn meta(info: &DeviceInfo) -> Meta {
         causticlab_version: env!("CARGO_PKG_VERSION").to_string(),
         quirks: info.quirks.iter().map(|q| q.to_string()).collect(),
     }
+}
+
+/// The results folder of a device: its driver, name and driver version, e.g.
+/// `llvmpipe-llvmpipe-llvm-15-0-6-256-bits-mesa-22-3-6-llvm-15-0-6` or
+/// `nvidia-nvidia-h100-80gb-hbm3-580-159-04`, so that a driver update writes a new folder
+/// instead of overwriting the tables of the old driver.
+pub fn results_slug(info: &DeviceInfo) -> String {
+    let version = slug(&info.driver_info);
+    if version.is_empty() {
+        info.slug()
+    } else {
+        format!("{}-{version}", info.slug())
+    }
+}
+
+/// Lower-case ASCII letters and digits, every other run of characters one `-`, at most 40.
+fn slug(text: &str) -> String {
+    let mut s = String::new();
+    for c in text.to_lowercase().chars() {
+        if c.is_ascii_alphanumeric() {
+            s.push(c);
+        } else if !s.ends_with('-') {
+            s.push('-');
+        }
+    }
+    s.trim_matches('-').chars().take(40).collect::<String>().trim_end_matches('-').to_string()
+}
+
+/// Whether `path` (which may not exist yet) lies in the work tree of the git repository the
+/// current directory is in: a results folder whose tables are committed.
+pub fn in_work_tree(path: &std::path::Path) -> bool {
+    let toplevel = std::process::Command::new("git")
+        .args(["rev-parse", "--show-toplevel"])
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim()));
+    let Some(top) = toplevel.and_then(|t| t.canonicalize().ok()) else { return false };
+    // The nearest existing ancestor decides (the folder is made by the run).
+    let abs = std::env::current_dir().map(|d| d.join(path)).unwrap_or_else(|_| path.to_path_buf());
+    abs.ancestors().find_map(|a| a.canonicalize().ok()).is_some_and(|a| a.starts_with(&top))
 }
 
 /// `model name` from /proc/cpuinfo and the number of logical CPUs.
@@ -100,5 +141,12 @@ mod tests {
         // 2000-02-29 (a leap day) 12:34:56 and 2026-11-22 00:00:00, from `date -u -d ... +%s`.
         assert_eq!(super::format_utc(951_827_696), "2000-02-29T12:34:56Z");
         assert_eq!(super::format_utc(1_795_305_600), "2026-11-22T00:00:00Z");
+    }
+
+    #[test]
+    fn driver_versions_slug() {
+        assert_eq!(super::slug("Mesa 22.3.6 (LLVM 15.0.6)"), "mesa-22-3-6-llvm-15-0-6");
+        assert_eq!(super::slug("580.159.04"), "580-159-04");
+        assert_eq!(super::slug("  "), "");
     }
 }

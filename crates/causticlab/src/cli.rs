@@ -66,9 +66,13 @@ pub struct BenchArgs {
     /// `causticlab bench merge`.
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
-    /// Results folder; tables go to <results>/<device-slug>/.
+    /// Results folder; tables go to <results>/<device-slug>/ (driver, device and driver version).
     #[arg(long, default_value = "results")]
     pub results: PathBuf,
+    /// Write into a results folder inside the repository even though the work tree has
+    /// uncommitted changes (the tables record the commit as `<hash>-dirty`).
+    #[arg(long)]
+    pub allow_dirty: bool,
 }
 
 #[derive(Debug, Subcommand)]

@@ -20,6 +20,17 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     let config = LoadedConfig::load(path)?;
     // The tables are written after every cell ran: a --results that cannot be a folder fails now.
     caustics::image_io::check_output_dir(&args.results).context("--results")?;
+    // Committed tables come from committed code: a timing run from a tree with uncommitted changes
+    // (other than results and Markdown) does not write into the repository's results folder.
+    let commit = bench::meta::commit();
+    if !args.quick && commit.ends_with("-dirty") && !args.allow_dirty && bench::meta::in_work_tree(&args.results) {
+        return Err(caustics::input_error!(
+            "bench: the work tree has uncommitted changes ({commit}), so the tables in {} would not match any commit; \
+             commit first, write elsewhere with --results, or pass --allow-dirty (the tables then say `{commit}`)",
+            args.results.display()
+        )
+        .into());
+    }
     let opts = crate::context_options(g)?;
     // Timing runs never have validation on, and never pretend a feature is missing: those
     // are for --quick smoke tests, whose tables go to their own folder.

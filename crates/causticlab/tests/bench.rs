@@ -430,7 +430,8 @@ fn config_errors_name_the_file_and_key() {
         (vec!["--filter", "colour=red"], "colour"),
         (vec!["--shard", "3/2"], "--shard"),
     ] {
-        let mut all: Vec<&std::ffi::OsStr> = vec![cfg.as_os_str()];
+        let scratch_results = dir.join("results-selections");
+        let mut all: Vec<&std::ffi::OsStr> = vec![cfg.as_os_str(), "--results".as_ref(), scratch_results.as_os_str()];
         all.extend(args.iter().map(std::ffi::OsStr::new));
         let r = bench(&all);
         assert_eq!(r.code, Some(2), "{args:?}: {}", r.describe());
@@ -613,4 +614,52 @@ fn results_over_a_regular_file_fails_before_the_device_is_opened() {
     }
     assert_eq!(std::fs::read(&file).expect("the file is still there"), b"keep me");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A timing run from a work tree with uncommitted changes does not write into that tree's
+/// results folder (the tables would name no commit), unless told to; `--quick` runs (ignored
+/// by git) and folders outside the tree are not refused.
+#[test]
+fn a_dirty_tree_does_not_write_committed_tables() {
+    let repo = scratch("bench-dirty");
+    let git = |args: &[&str]| {
+        let out = std::process::Command::new("git")
+            .args(["-c", "user.name=t", "-c", "user.email=t@t", "-c", "init.defaultBranch=main"])
+            .args(args)
+            .current_dir(&repo)
+            .output()
+            .expect("git");
+        assert!(out.status.success(), "git {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    };
+    git(&["init", "-q"]);
+    let cfg = config_file(&repo, "small.toml", SMALL);
+    git(&["add", "configs/small.toml"]);
+    git(&["commit", "-qm", "config"]);
+    let text = std::fs::read_to_string(&cfg).expect("the config");
+    std::fs::write(&cfg, format!("{text}\n# edited\n")).expect("editing the config");
+    let run = |extra: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_causticlab"))
+            .args(["bench", "--device", "no-such-gpu"])
+            .arg(&cfg)
+            .args(extra)
+            .current_dir(&repo)
+            .env_remove("VK_LOADER_DEBUG")
+            .output()
+            .expect("causticlab");
+        (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (code, stderr) = run(&[]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("uncommitted changes") && stderr.contains("--allow-dirty"), "{stderr}");
+    assert!(!repo.join("results").exists(), "a refused run wrote results");
+    // Told to, or writing elsewhere, or a smoke test: the run goes on (and stops at the
+    // device, which does not exist: the refusal is not what stopped it).
+    let outside = scratch("bench-dirty-outside");
+    for extra in [vec!["--allow-dirty"], vec!["--quick"], vec!["--results", outside.to_str().expect("utf-8 path")]] {
+        let (code, stderr) = run(&extra);
+        assert_ne!(code, Some(0), "{extra:?}: {stderr}");
+        assert!(!stderr.contains("uncommitted changes") && stderr.contains("no-such-gpu"), "{extra:?}: {stderr}");
+    }
+    let _ = std::fs::remove_dir_all(&repo);
+    let _ = std::fs::remove_dir_all(&outside);
 }
