@@ -140,7 +140,10 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
         }
         let caustic_half = caustic_half.min(80f32.to_radians());
         let up = if axis.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
-        let view = Mat4::look_at_rh(light.position, light.position + axis, up);
+        // (The fitted view looks at the centre itself: the same matrix, bit for bit, as before
+        // the photon view could be chosen.)
+        let target = if settings.photon_view == PhotonView::Fitted { centre } else { light.position + axis };
+        let view = Mat4::look_at_rh(light.position, target, up);
         let far = d + diag;
         // The specular objects' nearest depth along the axis, halved (any view holds them in front).
         let photon_near = ((centre - light.position).dot(axis) - radius).max(far * 1e-3) * 0.5;
