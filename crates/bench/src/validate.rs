@@ -60,6 +60,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             format!("must be between 1 and {MAX_FRAMES}, got {}", r.measured_frames),
         ));
     }
+    check_budget(&bad, "run", r.time_budget_s, r.measured_frames, r.max_frames)?;
     for (key, p) in
         [("run.light_path", &r.light_path), ("run.camera_path", &r.camera_path), ("run.object_path", &r.object_path)]
     {
@@ -167,6 +168,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     if q.warmup_frames > MAX_FRAMES {
         return Err(bad("quick.warmup_frames", format!("must be at most {MAX_FRAMES}")));
     }
+    check_budget(&bad, "quick", q.time_budget_s, q.measured_frames, q.max_frames)?;
     if !(16..=8192).contains(&q.caustic_map_resolution) {
         return Err(bad(
             "quick.caustic_map_resolution",
@@ -188,6 +190,33 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
         ));
     }
     validate_layout(lc, &bad)
+}
+
+/// Longest time budget a cell may have, seconds.
+const MAX_BUDGET_S: f64 = 3600.0;
+
+fn check_budget(
+    bad: &dyn Fn(&str, String) -> anyhow::Error,
+    section: &str,
+    budget: f64,
+    min: u32,
+    max: Option<u32>,
+) -> Result<()> {
+    if !(budget.is_finite() && (0.0..=MAX_BUDGET_S).contains(&budget)) {
+        return Err(bad(
+            &format!("{section}.time_budget_s"),
+            format!("must be between 0 and {MAX_BUDGET_S} seconds, got {budget}"),
+        ));
+    }
+    if let Some(max) = max {
+        if !(min..=MAX_FRAMES).contains(&max) {
+            return Err(bad(
+                &format!("{section}.max_frames"),
+                format!("must be between {section}.measured_frames ({min}) and {MAX_FRAMES}, got {max}"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn check_photons(bad: &dyn Fn(&str, String) -> anyhow::Error, key: &str, v: &[u32]) -> Result<()> {
@@ -252,6 +281,14 @@ fn validate_layout(lc: &LoadedConfig, bad: &dyn Fn(&str, String) -> anyhow::Erro
             ));
         }
     }
+    if let Some(cmp) = &l.compare {
+        for (i, metric) in cmp.metrics.iter().enumerate() {
+            if !c.metrics.iter().any(|m| m.label == *metric) {
+                return Err(bad(&format!("layout.compare.metrics[{i}]"), format!("`{metric}` is no metric's label")));
+            }
+        }
+    }
+    validate_picks(c, &m, bad)?;
     let inner = l.columns.last().map(String::as_str).unwrap_or("metric");
     let inner_keys = m.keys(c, inner);
     for (i, e) in c.paper.iter().enumerate() {
@@ -275,6 +312,11 @@ fn validate_layout(lc: &LoadedConfig, bad: &dyn Fn(&str, String) -> anyhow::Erro
                 return Err(bad(&format!("paper[{i}]"), format!("must name a `{a}` (the axis has several values)")));
             }
         }
+        for (key, v) in [("scene_note", &e.scene_note), ("not_comparable", &e.not_comparable)] {
+            if v.as_ref().is_some_and(|v| v.trim().is_empty()) {
+                return Err(bad(&format!("paper[{i}].{key}"), "must not be empty".into()));
+            }
+        }
         for k in e.values.keys() {
             if !inner_keys.contains(k) {
                 return Err(bad(
@@ -283,6 +325,43 @@ fn validate_layout(lc: &LoadedConfig, bad: &dyn Fn(&str, String) -> anyhow::Erro
                 ));
             }
         }
+    }
+    Ok(())
+}
+
+/// `[[layout.column]]`: each names one column of the layout by a label of every column axis
+/// that has several values, and no column twice.
+fn validate_picks(c: &crate::config::Config, m: &Matrix, bad: &dyn Fn(&str, String) -> anyhow::Error) -> Result<()> {
+    let l = &c.layout;
+    let mut seen: Vec<Vec<(&'static str, String)>> = vec![];
+    for (i, p) in l.pick.iter().enumerate() {
+        let key = |k: &str| format!("layout.column[{i}]{k}");
+        let axes = crate::paper::column_axes(p);
+        for (axis, value) in &axes {
+            if !l.columns.iter().any(|a| a == axis) {
+                return Err(bad(&key(&format!(".{axis}")), format!("`{axis}` is not a column axis of the layout")));
+            }
+            if !m.keys(c, axis).contains(value) {
+                return Err(bad(
+                    &key(&format!(".{axis}")),
+                    format!("`{value}` is not a value of axis `{axis}` ({})", m.keys(c, axis).join(", ")),
+                ));
+            }
+        }
+        for a in &l.columns {
+            if m.keys(c, a).len() > 1 && !axes.iter().any(|(x, _)| x == a) {
+                return Err(bad(&key(""), format!("must name a `{a}` (a column axis with several values)")));
+            }
+        }
+        if p.header.as_ref().is_some_and(|h| h.trim().is_empty()) {
+            return Err(bad(&key(".header"), "must not be empty".into()));
+        }
+        let mut sorted = axes.clone();
+        sorted.sort();
+        if seen.contains(&sorted) {
+            return Err(bad(&key(""), "picks a column that an earlier entry picks".into()));
+        }
+        seen.push(sorted);
     }
     Ok(())
 }
