@@ -211,7 +211,8 @@ fn every_line_of_a_wide_table_fits_a_terminal() {
     }
     let r = results(&config, cells);
     for out in [bench::report::markdown(&config, &r), bench::report::summary(&config, &r)] {
-        let table_lines = out.lines().filter(|l| l.starts_with('|') || l.starts_with("photons") || l.starts_with("256"));
+        let table_lines =
+            out.lines().filter(|l| l.starts_with('|') || l.starts_with("photons") || l.starts_with("256"));
         for l in table_lines {
             assert!(l.chars().count() <= 120, "{} columns: {l}", l.chars().count());
         }
