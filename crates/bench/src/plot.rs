@@ -54,6 +54,8 @@ pub fn render(fig: &Figure) -> Result<Plot> {
         let mut enc = png::Encoder::new(&mut png, WIDTH, height);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
+        enc.set_compression(png::Compression::Best);
+        enc.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
         let mut w = enc.write_header().context("encoding the PNG plot")?;
         w.write_image_data(&rgb).context("encoding the PNG plot")?;
     }

@@ -68,13 +68,15 @@ impl TextTable {
 
     /// The table as lines no wider than `width` (unless one column alone is wider).
     pub fn render(&self, style: Style, width: usize) -> String {
-        let col_width = |header: &str, cell: &dyn Fn(&(Vec<String>, Vec<String>)) -> &str| {
-            self.rows.iter().map(|r| chars(cell(r))).max().unwrap_or(0).max(chars(header))
+        let width_of = |header: &str, cells: &mut dyn Iterator<Item = &String>| {
+            cells.map(|c| chars(c)).max().unwrap_or(0).max(chars(header))
         };
-        let stub_w: Vec<usize> =
-            (0..self.stub_headers.len()).map(|i| col_width(&self.stub_headers[i], &|r| &r.0[i])).collect();
-        let val_w: Vec<usize> =
-            (0..self.headers.len()).map(|i| col_width(&self.headers[i], &|r| r.1[i].as_str())).collect();
+        let stub_w: Vec<usize> = (0..self.stub_headers.len())
+            .map(|i| width_of(&self.stub_headers[i], &mut self.rows.iter().map(|r| &r.0[i])))
+            .collect();
+        let val_w: Vec<usize> = (0..self.headers.len())
+            .map(|i| width_of(&self.headers[i], &mut self.rows.iter().map(|r| &r.1[i])))
+            .collect();
         // Markdown: "| a | b |" is 1 + (w + 3) per column; plain: columns two spaces apart.
         let cost = |w: usize| if style == Style::Markdown { w + 3 } else { w + 2 };
         let stub_cost: usize = stub_w.iter().map(|&w| cost(w)).sum::<usize>() + 1;

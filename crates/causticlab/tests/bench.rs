@@ -648,3 +648,22 @@ fn results_over_a_regular_file_fails_before_the_device_is_opened() {
     assert_eq!(std::fs::read(&file).expect("the file is still there"), b"keep me");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_missing_plot_font_fails_before_any_cell_runs() {
+    let dir = scratch("bench-font");
+    let cfg = config_file(&dir, "small.toml", SMALL);
+    let root = dir.join("results");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_causticlab"))
+        .args(["bench".as_ref(), cfg.as_os_str(), "--results".as_ref(), root.as_os_str()])
+        .env("CAUSTICLAB_FONT", "/nonexistent/plot-font.ttf")
+        .current_dir(workspace())
+        .output()
+        .expect("spawning causticlab");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(stderr.contains("/nonexistent/plot-font.ttf") && stderr.contains("fonts-dejavu-core"), "{stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("cells in"), "{stderr}");
+    assert!(!root.exists(), "a run without a font wrote results");
+    let _ = std::fs::remove_dir_all(&dir);
+}
