@@ -26,6 +26,7 @@ pub mod steal;
 pub mod table;
 pub mod text_table;
 mod validate;
+mod validate_layout;
 
 pub use config::LoadedConfig;
 pub use record::Timings;
