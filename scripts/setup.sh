@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Installs what causticlab needs on Debian 12 (idempotent): lavapipe (software Vulkan), the
 # Khronos validation layer, the Vulkan loader/headers, vulkaninfo, and the static shaderc/glslang
-# that vkcore links (see .cargo/config.toml). Checks that cargo is there.
+# that vkcore links (see .cargo/config.toml), and DejaVu Sans, the font the bench plots are
+# drawn with (crates/bench/src/font.rs). Checks that cargo is there.
 set -euo pipefail
 
-packages=(mesa-vulkan-drivers vulkan-validationlayers libvulkan-dev vulkan-tools libshaderc-dev glslang-dev spirv-tools)
+packages=(mesa-vulkan-drivers vulkan-validationlayers libvulkan-dev vulkan-tools libshaderc-dev glslang-dev spirv-tools fonts-dejavu-core)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -64,8 +64,16 @@ fn yes() -> bool {
 pub struct RunSpec {
     #[serde(default = "default_warmup")]
     pub warmup_frames: u32,
+    /// The fewest frames a cell measures; it measures until it has these and `time_budget_s`.
     #[serde(default = "default_measured")]
     pub measured_frames: u32,
+    /// Seconds of measured frames a cell runs at least (once it has `measured_frames`).
+    #[serde(default = "default_budget")]
+    pub time_budget_s: f64,
+    /// The most frames a cell measures, whatever the budget; default the larger of
+    /// [`DEFAULT_MAX_FRAMES`] and `measured_frames`.
+    #[serde(default)]
+    pub max_frames: Option<u32>,
     /// `static` or `orbit` for each of the light, camera and specular objects.
     #[serde(default = "default_path")]
     pub light_path: String,
@@ -82,8 +90,13 @@ fn default_warmup() -> u32 {
     2
 }
 fn default_measured() -> u32 {
-    10
+    5
 }
+fn default_budget() -> f64 {
+    1.0
+}
+/// The cap on measured frames when a config gives no `max_frames`.
+pub const DEFAULT_MAX_FRAMES: u32 = 1000;
 fn default_path() -> String {
     "static".into()
 }
@@ -96,6 +109,8 @@ impl Default for RunSpec {
         RunSpec {
             warmup_frames: default_warmup(),
             measured_frames: default_measured(),
+            time_budget_s: default_budget(),
+            max_frames: None,
             light_path: default_path(),
             camera_path: default_path(),
             object_path: default_path(),
@@ -190,6 +205,11 @@ pub struct LayoutSpec {
     pub columns: Vec<String>,
     /// Ratios against one value of an axis: `{ axis = "technique", baseline = "points" }`.
     pub compare: Option<CompareSpec>,
+    /// The paper's columns, in its order: each picks one column of `columns` and names it.
+    /// Empty: every column, one table per metric when `columns` crosses the metrics with
+    /// another axis.
+    #[serde(default, rename = "column")]
+    pub pick: Vec<ColumnSpec>,
 }
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -197,6 +217,56 @@ pub struct LayoutSpec {
 pub struct CompareSpec {
     pub axis: String,
     pub baseline: String,
+    /// The metrics that get a ratio grid; empty = every metric.
+    #[serde(default)]
+    pub metrics: Vec<String>,
+}
+
+/// One column of a table laid out like the paper's: a label for each column axis, and the
+/// header to print (default: the labels joined by ` · `).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ColumnSpec {
+    pub header: Option<String>,
+    pub scene: Option<String>,
+    pub technique: Option<String>,
+    pub photons: Option<u32>,
+    pub lights: Option<u32>,
+    pub resolution: Option<String>,
+    pub lighting: Option<String>,
+    pub metric: Option<String>,
+}
+
+/// How many frames a cell renders: `warmup` unrecorded, then measured frames until there are at
+/// least `min` and they took at least `budget_s` seconds, but never more than `max`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FramePlan {
+    pub warmup: u32,
+    pub min: u32,
+    pub budget_s: f64,
+    pub max: u32,
+}
+
+impl FramePlan {
+    /// Is a cell that has measured `frames` frames in `elapsed_s` seconds done?
+    pub fn done(&self, frames: u32, elapsed_s: f64) -> bool {
+        frames >= self.max || (frames >= self.min && elapsed_s >= self.budget_s)
+    }
+}
+
+impl Config {
+    /// The frames of every cell: `[run]`, or `[quick]` under `--quick`.
+    pub fn frame_plan(&self, quick: bool) -> FramePlan {
+        let r = &self.run;
+        if quick {
+            let q = &self.quick;
+            let max = q.measured_frames.max(q.max_frames.unwrap_or(q.measured_frames));
+            FramePlan { warmup: q.warmup_frames, min: q.measured_frames, budget_s: q.time_budget_s, max }
+        } else {
+            let max = r.max_frames.unwrap_or(DEFAULT_MAX_FRAMES.max(r.measured_frames));
+            FramePlan { warmup: r.warmup_frames, min: r.measured_frames, budget_s: r.time_budget_s, max }
+        }
+    }
 }
 
 /// Overrides for `--quick` (smoke tests: few frames, small sizes).
@@ -209,6 +279,11 @@ pub struct QuickSpec {
     pub warmup_frames: u32,
     #[serde(default = "quick_measured")]
     pub measured_frames: u32,
+    /// Default 0: a quick cell measures exactly `measured_frames`.
+    #[serde(default)]
+    pub time_budget_s: f64,
+    #[serde(default)]
+    pub max_frames: Option<u32>,
     #[serde(default = "quick_resolution")]
     pub resolution: Vec<[u32; 2]>,
     #[serde(default = "quick_caustic_map")]
@@ -239,6 +314,8 @@ impl Default for QuickSpec {
             photons: quick_photons(),
             warmup_frames: 0,
             measured_frames: quick_measured(),
+            time_budget_s: 0.0,
+            max_frames: None,
             resolution: quick_resolution(),
             caustic_map_resolution: quick_caustic_map(),
             reference_photons: quick_reference(),
@@ -283,6 +360,12 @@ pub struct PaperEntry {
     pub lighting: Option<String>,
     pub metric: Option<String>,
     pub values: BTreeMap<String, f64>,
+    /// The scene the paper measured these on, when it is not ours (e.g. `"Buddha"`): the cell
+    /// reads `ours (paper, Buddha)` and no ratio against the paper is printed for it.
+    pub scene_note: Option<String>,
+    /// Why these values measure different work than our cell: the cell is marked, the reason
+    /// listed under the table, and no ratio against the paper is printed for it.
+    pub not_comparable: Option<String>,
 }
 
 /// A config as read from its file, with the file's path, name and a hash of its bytes.

@@ -12,7 +12,7 @@ const HEADER: &str = "# Results
 Every table here was written by `causticlab bench` (or `causticlab bench merge`); this index is
 rebuilt after each run. One folder per device (`<driver>-<device>` slug); in each, per config:
 `<config>.md` (the table beside the paper's), `.csv` (one row per cell and metric), `.json`
-(everything, raw samples included) and `.svg` (the plot). lavapipe numbers are serialized CPU
+(everything, raw samples included) and `.png` and `.svg` (the plot). lavapipe numbers are serialized CPU
 time: compare techniques within one device, never lavapipe against a GPU.
 
 Other folders: `quality/` (caustic error against the CPU reference, `scripts/quality_table.sh`),

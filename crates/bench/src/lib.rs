@@ -1,24 +1,32 @@
 //! The benchmark harness: bench configs that regenerate the papers' tables (`config`,
 //! `validate`), the cells they expand to (`plan`), running a cell (`measure`, `metrics`), and
-//! the outputs (`results` JSON, `table` + `report` markdown/CSV/SVG, `index`), plus
+//! the outputs (`results` JSON; `table` + `sections` + `report`: Markdown, terminal summary and
+//! CSV; `figure` + `plot`: SVG and PNG; `index`), plus
 //! `timings.json` of single renders (`record`).
 
 pub mod config;
+pub mod figure;
+pub mod font;
+pub mod format;
 pub mod index;
 pub mod measure;
 pub mod meta;
 pub mod metrics;
 pub mod paper;
 pub mod plan;
+pub mod plot;
 pub mod progress;
 pub mod record;
 pub mod report;
 pub mod results;
 pub mod run;
+pub mod sections;
+pub mod stats;
 pub mod steal;
-pub mod svg;
 pub mod table;
+pub mod text_table;
 mod validate;
+mod validate_layout;
 
 pub use config::LoadedConfig;
 pub use record::Timings;

@@ -132,10 +132,7 @@ impl<'a> Runner<'a> {
             object: c.run.object_path == "orbit" && !static_lighting,
             period_frames: c.run.period_frames,
         };
-        let (warmup, measured) = match self.quick {
-            Some(q) => (q.warmup_frames, q.measured_frames),
-            None => (c.run.warmup_frames, c.run.measured_frames),
-        };
+        let plan = c.frame_plan(self.quick.is_some());
         let step = FrameStep { reuse_photons: static_lighting, pipeline_statistics: false };
         if static_lighting {
             // Static lighting renders its photon buffer once, before any frame is timed.
@@ -144,17 +141,28 @@ impl<'a> Runner<'a> {
         let mut frames = vec![];
         let mut wall_ms = vec![];
         let cpu_before = crate::steal::sample();
-        for f in 0..warmup + measured {
+        // Warm-up frames, then measured frames until the plan is met: at least `min` frames
+        // and `budget_s` seconds of them (pose updates included), at most `max`.
+        let mut measuring_since = None;
+        let mut f = 0u32;
+        loop {
+            if f >= plan.warmup {
+                let since = *measuring_since.get_or_insert_with(Instant::now);
+                if plan.done(frames.len() as u32, since.elapsed().as_secs_f64()) {
+                    break;
+                }
+            }
             if f > 0 && !anim.is_static() {
                 renderer.set_pose(&scene_at(&scene, &anim, f))?;
             }
             let start = Instant::now();
             let report = renderer.frame(step)?;
             let ms = start.elapsed().as_secs_f64() * 1e3;
-            if f >= warmup {
+            if f >= plan.warmup {
                 frames.push(report);
                 wall_ms.push(ms);
             }
+            f += 1;
         }
         let cpu_steal = cpu_before.zip(crate::steal::sample()).and_then(|(a, b)| crate::steal::fraction(a, b));
         let stats_frame = if self.ctx.info().has(vkcore::Feature::PipelineStatisticsQuery) {

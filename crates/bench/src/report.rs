@@ -1,20 +1,18 @@
-//! `<config>.md` (laid out like the paper's table, ours beside the paper's, ratios of ratios
-//! where the config compares along an axis), `<config>.csv` (one row per cell and metric) and
-//! `<config>.svg` (the papers' line charts: values against photon count).
+//! `<config>.md`: the tables laid out like the paper's (ours beside the paper's, with the
+//! spread of every time), the legend, the ratios against the config's baseline as one grid per
+//! metric, the notes and the plot; the same tables in plain text as the terminal summary; and
+//! `<config>.csv`, one row per cell and metric.
 
 use crate::config::Config;
-use crate::results::Results;
-use crate::svg::{Chart, Series};
-use crate::table::{display, format_value, grid, unit, Grid};
+use crate::format::unit;
+use crate::results::{is_timing, Results};
+use crate::sections::{legend, ratio_tables, value_tables, Footnotes};
+use crate::table::grid;
+use crate::text_table::Style;
 use std::fmt::Write as _;
-
-fn header_of(axes: &[String], keys: &[String]) -> String {
-    axes.iter().zip(keys).map(|(a, k)| display(a, k)).collect::<Vec<_>>().join(" · ")
-}
 
 pub fn markdown(config: &Config, results: &Results) -> String {
     let g = grid(config, results);
-    let has_paper = g.entries.iter().flatten().any(|e| e.paper.is_some());
     let m = &results.meta;
     let r = &results.run;
     let mut s = String::new();
@@ -44,9 +42,13 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     );
     let _ = writeln!(
         s,
-        "- **Run:** {} warm-up + {} measured frames per cell; light path {}, camera path {}, object path {} \
-         ({} frames per loop). Times are medians over the measured frames; fps is 1000 / mean frame time.",
-        r.warmup_frames, r.measured_frames, r.light_path, r.camera_path, r.object_path, r.period_frames
+        "- **Run:** {}; light path {}, camera path {}, object path {} ({} frames per loop). Times are medians \
+         over the measured frames; fps is 1000 / mean frame time.",
+        frames_line(results),
+        r.light_path,
+        r.camera_path,
+        r.object_path,
+        r.period_frames
     );
     if !m.quirks.is_empty() {
         let _ = writeln!(s, "- **Device quirks worked around:** {}", m.quirks.join("; "));
@@ -55,33 +57,22 @@ pub fn markdown(config: &Config, results: &Results) -> String {
         let _ = writeln!(s, "{line}");
     }
     let _ = writeln!(s);
-    // The table: for each column, ours then the paper's.
-    let mut head = g.row_axes.iter().map(|a| a.to_string()).collect::<Vec<_>>();
-    for c in &g.cols {
-        let h = header_of(&g.col_axes, c);
-        if has_paper {
-            head.push(format!("{h} (ours)"));
-            head.push("paper".into());
-        } else {
-            head.push(h);
-        }
+    let mut notes = Footnotes::default();
+    s.push_str(&value_tables(&g, Style::Markdown, &mut notes));
+    let mut below: Vec<String> = units_line(config.metrics.iter().map(|m| (m.label.as_str(), m.kind.as_str())))
+        .into_iter()
+        .chain(legend(&g, &notes))
+        .collect();
+    if let Some(hidden) = hidden_columns(&g) {
+        below.push(hidden);
     }
-    let _ = writeln!(s, "| {} |", head.join(" | "));
-    let _ = writeln!(s, "|{}", head.iter().map(|_| "---|").collect::<String>());
-    for (ri, row) in g.rows.iter().enumerate() {
-        let mut cells: Vec<String> = g.row_axes.iter().zip(row).map(|(a, k)| display(a, k)).collect();
-        for e in &g.entries[ri] {
-            cells.push(format_value(&e.kind, e.ours));
-            if has_paper {
-                cells.push(paper_value(&e.kind, e.paper));
-            }
-        }
-        let _ = writeln!(s, "| {} |", cells.join(" | "));
+    for line in below {
+        let _ = writeln!(s, "{line}\n");
     }
-    if let Some(line) = units_line(config.metrics.iter().map(|m| (m.label.as_str(), m.kind.as_str()))) {
-        let _ = writeln!(s, "\n{line}");
+    let ratios = ratio_tables(config, &g, Style::Markdown);
+    if !ratios.is_empty() {
+        let _ = writeln!(s, "{ratios}");
     }
-    ratios(&mut s, config, &g, has_paper);
     let mut notes = config.table.notes.clone();
     if m.driver_name.to_lowercase().contains("llvmpipe") || m.device.to_lowercase().contains("llvmpipe") {
         notes.push(
@@ -93,21 +84,90 @@ pub fn markdown(config: &Config, results: &Results) -> String {
         );
     }
     if !notes.is_empty() {
-        let _ = writeln!(s, "\n## Notes\n");
+        let _ = writeln!(s, "## Notes\n");
         for n in notes {
             let _ = writeln!(s, "- {n}");
         }
+        let _ = writeln!(s);
     }
-    let _ = writeln!(s, "\n![plot]({}.svg)\n", results.config.name);
+    let name = &results.config.name;
+    let _ = writeln!(s, "![plot]({name}.png)\n\nThe plot as SVG: [{name}.svg]({name}.svg).\n");
     let _ = writeln!(
         s,
-        "Regenerate: `causticlab bench {}{}`; raw samples in `{}.json`, one row per cell and metric in `{}.csv`.",
+        "Regenerate: `causticlab bench {}{}`; raw samples in `{name}.json`, one row per cell and metric in \
+         `{name}.csv`; redraw this table from the JSON with `causticlab bench merge {name}.json`.",
         results.config.file,
         if r.quick { " --quick" } else { "" },
-        results.config.name,
-        results.config.name
     );
     s
+}
+
+/// The terminal's view of a run: what ran where, the tables and the ratio grids in plain text.
+pub fn summary(config: &Config, results: &Results) -> String {
+    let g = grid(config, results);
+    let m = &results.meta;
+    let mut s = format!(
+        "{}, Table {}{}\n{} ({}) · {} cells · {}\n\n",
+        config.table.paper,
+        config.table.number,
+        if results.run.quick { " (quick run: not a measurement)" } else { "" },
+        m.device,
+        m.driver_info,
+        results.cells.len(),
+        frames_line(results)
+    );
+    let mut notes = Footnotes::default();
+    s.push_str(&value_tables(&g, Style::Plain, &mut notes));
+    for line in units_line(config.metrics.iter().map(|m| (m.label.as_str(), m.kind.as_str())))
+        .into_iter()
+        .chain(legend(&g, &notes))
+    {
+        let _ = writeln!(s, "{}", crate::text_table::wrap(&line, crate::text_table::WIDTH));
+    }
+    let ratios = ratio_tables(config, &g, Style::Plain);
+    if !ratios.is_empty() {
+        let _ = write!(s, "\n{ratios}");
+    }
+    s
+}
+
+/// `1 warm-up frame, then at least 3 measured frames and 1 s (at most 1000): 3 to 41 frames,
+/// median 5`.
+fn frames_line(results: &Results) -> String {
+    let r = &results.run;
+    let plural = |n: u32, what: &str| format!("{n} {what}{}", if n == 1 { "" } else { "s" });
+    let mut s = format!("{}, then ", plural(r.warmup_frames, "warm-up frame"));
+    match r.time_budget_s.filter(|b| *b > 0.0) {
+        Some(b) => {
+            let _ = write!(s, "at least {} and {b} s of them", plural(r.measured_frames, "measured frame"));
+            if let Some(max) = r.max_frames {
+                let _ = write!(s, " (at most {max})");
+            }
+        }
+        None => s.push_str(&plural(r.measured_frames, "measured frame")),
+    }
+    s.push_str(" per cell");
+    let mut counts: Vec<usize> = results.cells.iter().map(|c| c.wall_ms.len()).collect();
+    counts.sort_unstable();
+    if let (Some(lo), Some(hi)) = (counts.first(), counts.last()) {
+        if lo != hi {
+            let _ = write!(s, ": {lo} to {hi} frames, median {}", counts[counts.len() / 2]);
+        }
+    }
+    s
+}
+
+/// Says how many measured columns the paper's layout leaves out of the Markdown.
+fn hidden_columns(g: &crate::table::Grid) -> Option<String> {
+    let shown: usize = g.sections.iter().map(|s| s.cols.len()).sum();
+    let hidden = g.cols.len().saturating_sub(shown);
+    (hidden > 0).then(|| {
+        format!(
+            "The paper's columns only: {hidden} more measured column{} ({}) are in the CSV and JSON.",
+            if hidden == 1 { "" } else { "s" },
+            g.col_axes.join(" · ")
+        )
+    })
 }
 
 /// The unit of every column: `Values in ms.` when all metrics share one, else each unit with the
@@ -142,43 +202,6 @@ fn units_line<'a>(metrics: impl Iterator<Item = (&'a str, &'a str)>) -> Option<S
     }
 }
 
-/// Ratios against the baseline of `layout.compare`: ours, the paper's, and ours ÷ the paper's
-/// (1.0 = the same relative cost as in the paper).
-fn ratios(s: &mut String, config: &Config, g: &Grid, has_paper: bool) {
-    let Some(cmp) = &config.layout.compare else { return };
-    let _ = writeln!(s, "\n## Ratios against {} `{}`\n", cmp.axis, display(&cmp.axis, &cmp.baseline));
-    let _ = writeln!(s, "| {} | {} | ours | paper | ours ÷ paper |", g.row_axes.join(" · "), g.col_axes.join(" · "));
-    let _ = writeln!(s, "|---|---|---|---|---|");
-    for (ri, row) in g.rows.iter().enumerate() {
-        for (ci, col) in g.cols.iter().enumerate() {
-            let e = &g.entries[ri][ci];
-            if e.keys.get(&cmp.axis) == Some(&cmp.baseline) {
-                continue;
-            }
-            let Some(b) = g.baseline_of(e, &cmp.axis, &cmp.baseline) else { continue };
-            let ratio = |x: Option<f64>, y: Option<f64>| match (x, y) {
-                (Some(x), Some(y)) if y != 0.0 => Some(x / y),
-                _ => None,
-            };
-            let ours = ratio(e.ours, b.ours);
-            let paper = ratio(e.paper, b.paper);
-            if ours.is_none() && paper.is_none() {
-                continue;
-            }
-            let f = |v: Option<f64>| v.map(|v| format!("{v:.2}")).unwrap_or_else(|| "–".into());
-            let _ = writeln!(
-                s,
-                "| {} | {} | {} | {} | {} |",
-                header_of(&g.row_axes, row),
-                header_of(&g.col_axes, col),
-                f(ours),
-                if has_paper { f(paper) } else { "–".into() },
-                f(ratio(ours, paper))
-            );
-        }
-    }
-}
-
 fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n']) {
         format!("\"{}\"", s.replace('"', "\"\""))
@@ -189,7 +212,8 @@ fn csv_field(s: &str) -> String {
 
 pub fn csv(config: &Config, results: &Results) -> String {
     let mut s = String::from(
-        "config,device,scene,technique,photons,lights,resolution,lighting,metric,kind,value,min,max,paper\n",
+        "config,device,scene,technique,photons,lights,resolution,lighting,metric,kind,value,min,max,q1,q3,frames,\
+         paper,paper_note\n",
     );
     let num = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
     for c in &results.cells {
@@ -202,6 +226,13 @@ pub fn csv(config: &Config, results: &Results) -> String {
                     .collect();
             keys.insert("metric".into(), m.label.clone());
             let paper = crate::paper::value(config, &keys);
+            let quartiles = crate::stats::quartiles(&v.samples).filter(|_| is_timing(&v.kind));
+            let note = paper.as_ref().map(|p| match (&p.scene_note, &p.not_comparable) {
+                (Some(s), Some(r)) => format!("scene: {s}; not comparable: {r}"),
+                (Some(s), None) => format!("scene: {s}"),
+                (None, Some(r)) => format!("not comparable: {r}"),
+                (None, None) => String::new(),
+            });
             let fields = [
                 results.config.name.clone(),
                 results.meta.device.clone(),
@@ -216,121 +247,16 @@ pub fn csv(config: &Config, results: &Results) -> String {
                 num(v.value),
                 num(v.min),
                 num(v.max),
-                num(paper),
+                num(quartiles.map(|q| q.0)),
+                num(quartiles.map(|q| q.2)),
+                if v.samples.is_empty() { String::new() } else { v.samples.len().to_string() },
+                num(paper.as_ref().map(|p| p.value)),
+                note.unwrap_or_default(),
             ];
             let _ = writeln!(s, "{}", fields.iter().map(|f| csv_field(f)).collect::<Vec<_>>().join(","));
         }
     }
     s
-}
-
-/// Values against photon count (photons² on a log2 axis), one solid line per table column and
-/// other row axis, the paper's values dashed in the same colour. A table whose columns cross
-/// the metrics with another axis (techniques × passes, as Wyman 2008 Table 3) gets a panel per
-/// metric, each technique keeping its colour, rather than one chart of 30-odd lines.
-pub fn plot(config: &Config, results: &Results) -> String {
-    let g = grid(config, results);
-    let photons_row = g.row_axes.iter().position(|a| a == "photons");
-    let metric_col = g.col_axes.iter().position(|a| a == "metric");
-    let panelled = metric_col.is_some() && g.col_axes.len() > 1 && config.metrics.len() > 1;
-    let x_of = |ri: usize, row: &[String]| -> f64 {
-        match photons_row {
-            Some(p) => row[p].parse::<f64>().map(|n| n * n).unwrap_or(f64::NAN),
-            None => ri as f64 + 1.0,
-        }
-    };
-    let mut ticks: Vec<(f64, String)> = vec![];
-    for (ri, row) in g.rows.iter().enumerate() {
-        let label = match photons_row {
-            Some(p) => display("photons", &row[p]),
-            None => header_of(&g.row_axes, row),
-        };
-        let x = x_of(ri, row);
-        if !ticks.iter().any(|(t, _)| *t == x) {
-            ticks.push((x, label));
-        }
-    }
-    // Series = columns (less the metric when panelled) x the row axes other than photons.
-    let panel_names: Vec<String> =
-        if panelled { config.metrics.iter().map(|m| m.label.clone()).collect() } else { vec![String::new()] };
-    let mut panels: Vec<Vec<Series>> = vec![vec![]; panel_names.len()];
-    let mut colours: Vec<String> = vec![];
-    for (ri, row) in g.rows.iter().enumerate() {
-        let others: Vec<String> = g
-            .row_axes
-            .iter()
-            .zip(row)
-            .enumerate()
-            .filter(|(i, _)| photons_row.is_some() && Some(*i) != photons_row)
-            .map(|(_, (a, k))| display(a, k))
-            .collect();
-        for (ci, col) in g.cols.iter().enumerate() {
-            let (panel, axes, keys): (usize, Vec<String>, Vec<String>) = match metric_col.filter(|_| panelled) {
-                Some(m) => (
-                    panel_names.iter().position(|n| *n == col[m]).unwrap_or(0),
-                    g.col_axes.iter().enumerate().filter(|(i, _)| *i != m).map(|(_, a)| a.clone()).collect(),
-                    col.iter().enumerate().filter(|(i, _)| *i != m).map(|(_, k)| k.clone()).collect(),
-                ),
-                None => (0, g.col_axes.clone(), col.clone()),
-            };
-            let mut name = header_of(&axes, &keys);
-            if !others.is_empty() {
-                name = format!("{} · {name}", others.join(" · "));
-            }
-            let colour = match colours.iter().position(|n| *n == name) {
-                Some(i) => i,
-                None => {
-                    colours.push(name.clone());
-                    colours.len() - 1
-                }
-            };
-            let e = &g.entries[ri][ci];
-            let x = x_of(ri, row);
-            let series = &mut panels[panel];
-            for (paper, v) in [(false, e.ours), (true, e.paper)] {
-                let label = if paper { format!("{name} (paper)") } else { name.clone() };
-                let idx = match series.iter().position(|s| s.label == label) {
-                    Some(i) => i,
-                    None => {
-                        series.push(Series { label, points: vec![], dashed: paper, colour: Some(colour) });
-                        series.len() - 1
-                    }
-                };
-                if let Some(v) = v {
-                    series[idx].points.push((x, v));
-                }
-            }
-        }
-    }
-    let kinds: Vec<&str> = config.metrics.iter().map(|m| unit(&m.kind)).collect();
-    let y_label = match kinds.first() {
-        Some(u) if !u.is_empty() && kinds.iter().all(|k| k == u) => u.to_string(),
-        _ => "value".into(),
-    };
-    let title = format!("{}, Table {}", config.table.paper, config.table.number);
-    let subtitle = format!("{} · {} · {}", results.meta.device, results.meta.driver_info, results.meta.date);
-    let charts: Vec<Chart> = panels
-        .into_iter()
-        .zip(&panel_names)
-        .map(|(mut series, panel)| {
-            // Drop paper series the paper has no value for.
-            series.retain(|s| !s.dashed || !s.points.is_empty());
-            Chart {
-                title: panel.clone(),
-                subtitle: String::new(),
-                x_label: if photons_row.is_some() { "photons".into() } else { g.row_axes.join(" · ") },
-                y_label: y_label.clone(),
-                x_log2: photons_row.is_some(),
-                x_tick_labels: ticks.clone(),
-                y_log: config.table.plot_log_y,
-                series,
-            }
-        })
-        .collect();
-    match charts.as_slice() {
-        [one] if !panelled => crate::svg::render(&Chart { title, subtitle, ..one.clone() }),
-        _ => crate::svg::render_panels(&title, &subtitle, &charts),
-    }
 }
 
 /// Cells above this CPU steal are named in the table's header.
@@ -371,28 +297,8 @@ fn short(cell: &crate::plan::Cell) -> String {
     format!("{} · {} · {}²", cell.key("scene"), cell.key("technique"), cell.key("photons"))
 }
 
-/// A paper's value as the paper prints it (the config holds it verbatim): 3.6 stays 3.6, 8.0 stays
-/// 8.0 (TOML keeps no trailing zeros beyond that).
-/// Counts keep their thousands separators.
-fn paper_value(kind: &str, v: Option<f64>) -> String {
-    match (kind, v) {
-        ("photons_emitted" | "splats_drawn" | "photons_processed", _) | (_, None) => format_value(kind, v),
-        (_, Some(v)) if v.fract() == 0.0 => format!("{v:.1}"),
-        (_, Some(v)) => format!("{v}"),
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    #[test]
-    fn paper_values_print_as_the_paper_prints_them() {
-        assert_eq!(super::paper_value("fps", Some(3.6)), "3.6");
-        assert_eq!(super::paper_value("pass_ms", Some(861.0)), "861.0");
-        assert_eq!(super::paper_value("pass_ms", Some(0.02)), "0.02");
-        assert_eq!(super::paper_value("photons_processed", Some(262144.0)), "262,144");
-        assert_eq!(super::paper_value("fps", None), "–");
-    }
-
     #[test]
     fn units_line_names_the_unit_of_every_metric() {
         let line = |m: &[(&'static str, &'static str)]| super::units_line(m.iter().copied());

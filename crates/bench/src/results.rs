@@ -36,7 +36,14 @@ pub struct ConfigInfo {
 pub struct RunInfo {
     pub quick: bool,
     pub warmup_frames: u32,
+    /// The fewest frames a cell measured (`run.measured_frames`).
     pub measured_frames: u32,
+    /// Seconds of measured frames each cell ran at least, and the most frames it could
+    /// measure; absent in results written before cells ran to a time budget.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_budget_s: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_frames: Option<u32>,
     pub light_path: String,
     pub camera_path: String,
     pub object_path: String,
@@ -88,10 +95,17 @@ pub struct CellResult {
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct Value {
     pub kind: String,
-    /// The table's number (median for times; exact for counts).
+    /// The table's number (median for times, 1000 / mean frame time for fps; exact for
+    /// counts).
     pub value: Option<f64>,
     pub min: Option<f64>,
     pub max: Option<f64>,
+    /// First and third quartiles of `samples` (absent in results written before they were
+    /// kept; the table computes its spread from `samples` either way).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub q1: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub q3: Option<f64>,
     /// Per measured frame, where the metric has one value per frame.
     pub samples: Vec<f64>,
 }

@@ -25,6 +25,8 @@ pub struct BenchOptions {
 pub struct Outcome {
     pub written: Vec<PathBuf>,
     pub markdown: String,
+    /// The tables in plain text, for the terminal.
+    pub summary: String,
 }
 
 /// Runs the cells `opts` selects and writes the table (or, for a filtered or sharded run, a
@@ -44,10 +46,8 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
     if cells.is_empty() {
         return Err(input_error!("{}: --filter/--shard selects no cell", lc.path.display()).into());
     }
-    let (warmup, measured) = match quick {
-        Some(q) => (q.warmup_frames, q.measured_frames),
-        None => (c.run.warmup_frames, c.run.measured_frames),
-    };
+    let plan = c.frame_plan(opts.quick);
+    let (warmup, measured) = (plan.warmup, plan.min);
     let costs = cells
         .iter()
         .map(|cell| {
@@ -57,6 +57,8 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
                 * (warmup + measured + 1) as f64
         })
         .collect();
+    // The plots need a font: fail now rather than after the last cell.
+    crate::font::load()?;
     let mut progress = Progress::new(costs);
     let mut runner = Runner::new(ctx, shaders, lc, quick);
     // Everything that can be checked before the first cell is: every scene with every
@@ -95,6 +97,8 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
             quick: opts.quick,
             warmup_frames: warmup,
             measured_frames: measured,
+            time_budget_s: Some(plan.budget_s),
+            max_frames: Some(plan.max),
             light_path: c.run.light_path.clone(),
             camera_path: c.run.camera_path.clone(),
             object_path: c.run.object_path.clone(),
@@ -121,7 +125,8 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         let tag = tags.join(".");
         let part = dir.join("parts").join(format!("{}.{tag}.json", lc.name));
         write_json(&part, &results)?;
-        Ok(Outcome { written: vec![part], markdown: crate::report::markdown(c, &results) })
+        let (markdown, summary) = (crate::report::markdown(c, &results), crate::report::summary(c, &results));
+        Ok(Outcome { written: vec![part], markdown, summary })
     }
 }
 
@@ -140,25 +145,30 @@ fn write_json(path: &Path, results: &Results) -> Result<()> {
     write_file_atomically(path, json.as_bytes())
 }
 
-/// Writes `<name>.{json,csv,svg,md}` into `dir` (the markdown last: it links the others) and
-/// refreshes the index of `root`.
+/// Writes `<name>.{json,csv,svg,png,md}` into `dir` (the markdown last: it links the others)
+/// and refreshes the index of `root`.
 pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Result<Outcome> {
     let name = &results.config.name;
-    make_dir(dir)?;
     let md = crate::report::markdown(c, results);
+    let plot = crate::plot::render(&crate::figure::figure(c, results, &crate::table::grid(c, results)))?;
+    make_dir(dir)?;
     let files = [
-        (dir.join(format!("{name}.json")), serde_json::to_string_pretty(results).context("serialising the results")?),
-        (dir.join(format!("{name}.csv")), crate::report::csv(c, results)),
-        (dir.join(format!("{name}.svg")), crate::report::plot(c, results)),
-        (dir.join(format!("{name}.md")), md.clone()),
+        (
+            dir.join(format!("{name}.json")),
+            serde_json::to_string_pretty(results).context("serialising the results")?.into_bytes(),
+        ),
+        (dir.join(format!("{name}.csv")), crate::report::csv(c, results).into_bytes()),
+        (dir.join(format!("{name}.svg")), plot.svg.into_bytes()),
+        (dir.join(format!("{name}.png")), plot.png),
+        (dir.join(format!("{name}.md")), md.clone().into_bytes()),
     ];
     let mut written = vec![];
-    for (path, text) in files {
-        write_file_atomically(&path, text.as_bytes())?;
+    for (path, bytes) in files {
+        write_file_atomically(&path, &bytes)?;
         written.push(path);
     }
     written.push(crate::index::write_index(root)?);
-    Ok(Outcome { written, markdown: md })
+    Ok(Outcome { written, markdown: md, summary: crate::report::summary(c, results) })
 }
 
 /// `bench merge`: the cells of every part (shards or filtered runs of one config on one device)

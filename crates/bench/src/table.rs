@@ -1,9 +1,16 @@
-//! The table a config lays out: rows and columns as nested axes, each entry our value and the
-//! paper's for the same cell. Markdown, CSV and the plot are all drawn from this one grid.
+//! The table a config lays out: rows and columns as nested axes, each entry our value (with its
+//! spread, for times) and the paper's for the same cell. The Markdown, the terminal summary,
+//! the CSV and the plots are all drawn from this one grid.
+//!
+//! The printed tables are *sections* of the grid: the columns the config picks with
+//! `[[layout.column]]` (the paper's own columns, in its order), or else every column, one table
+//! per metric when the columns cross the metrics with another axis.
 
 use crate::config::Config;
+use crate::format::display;
+use crate::paper::PaperValue;
 use crate::plan::Matrix;
-use crate::results::{CellResult, Results};
+use crate::results::{is_timing, CellResult, Results};
 use std::collections::BTreeMap;
 
 /// One table entry.
@@ -12,8 +19,31 @@ pub struct Entry {
     /// Every axis's label for this entry (metric included).
     pub keys: BTreeMap<String, String>,
     pub ours: Option<f64>,
-    pub paper: Option<f64>,
+    /// Times: interquartile range of the per-frame samples over their median.
+    pub spread: Option<f64>,
+    pub paper: Option<PaperValue>,
     pub kind: String,
+}
+
+impl Entry {
+    pub fn noisy(&self) -> bool {
+        self.spread.is_some_and(crate::stats::is_noisy)
+    }
+}
+
+/// One column of the layout: a label per column axis and the header it prints under.
+#[derive(Debug, Clone)]
+pub struct Column {
+    pub labels: Vec<String>,
+    pub header: String,
+}
+
+/// One printed table: a title (the metric, when a table is split by metric) and its columns.
+#[derive(Debug, Clone)]
+pub struct Section {
+    pub metric: Option<String>,
+    /// Indices into [`Grid::cols`].
+    pub cols: Vec<usize>,
 }
 
 pub struct Grid {
@@ -21,9 +51,11 @@ pub struct Grid {
     pub col_axes: Vec<String>,
     /// Each row's labels, one per row axis.
     pub rows: Vec<Vec<String>>,
-    pub cols: Vec<Vec<String>>,
+    /// Every column of the layout (the product of its column axes).
+    pub cols: Vec<Column>,
     /// entries[row][col].
     pub entries: Vec<Vec<Entry>>,
+    pub sections: Vec<Section>,
 }
 
 fn product(axes: &[String], keys: &dyn Fn(&str) -> Vec<String>) -> Vec<Vec<String>> {
@@ -39,13 +71,22 @@ fn find<'r>(results: &'r Results, keys: &BTreeMap<String, String>) -> Option<&'r
     results.cells.iter().find(|c| keys.iter().filter(|(a, _)| *a != "metric").all(|(a, k)| c.cell.key(a) == *k))
 }
 
+fn header_of(axes: &[String], labels: &[String], skip: Option<&str>) -> String {
+    axes.iter()
+        .zip(labels)
+        .filter(|(a, _)| Some(a.as_str()) != skip)
+        .map(|(a, k)| display(a, k))
+        .collect::<Vec<_>>()
+        .join(" · ")
+}
+
 pub fn grid(config: &Config, results: &Results) -> Grid {
     let quick = results.run.quick.then_some(&config.quick);
     let matrix = Matrix::new(config, quick);
     let keys = |a: &str| matrix.keys(config, a);
     let (row_axes, col_axes) = (config.layout.rows.clone(), config.layout.columns.clone());
     let rows = product(&row_axes, &keys);
-    let cols = product(&col_axes, &keys);
+    let col_labels = product(&col_axes, &keys);
     // Axes outside the layout have exactly one value.
     let fixed: Vec<(String, String)> = crate::config::AXES
         .iter()
@@ -55,22 +96,62 @@ pub fn grid(config: &Config, results: &Results) -> Grid {
     let entries = rows
         .iter()
         .map(|r| {
-            cols.iter()
+            col_labels
+                .iter()
                 .map(|c| {
                     let mut k: BTreeMap<String, String> = fixed.iter().cloned().collect();
                     k.extend(row_axes.iter().cloned().zip(r.iter().cloned()));
                     k.extend(col_axes.iter().cloned().zip(c.iter().cloned()));
-                    let metric = k.get("metric").cloned().unwrap_or_default();
-                    let kind =
-                        config.metrics.iter().find(|m| m.label == metric).map(|m| m.kind.clone()).unwrap_or_default();
-                    let ours = find(results, &k).and_then(|cell| cell.metrics.get(&metric)).and_then(|v| v.value);
-                    let paper = crate::paper::value(config, &k);
-                    Entry { keys: k, ours, paper, kind }
+                    entry(config, results, k)
                 })
                 .collect()
         })
         .collect();
-    Grid { row_axes, col_axes, rows, cols, entries }
+    let by_metric = col_axes.len() > 1 && col_axes.iter().any(|a| a == "metric") && config.metrics.len() > 1;
+    let skip = by_metric.then_some("metric");
+    let mut cols: Vec<Column> =
+        col_labels.iter().map(|l| Column { labels: l.clone(), header: header_of(&col_axes, l, skip) }).collect();
+    let sections = if !config.layout.pick.is_empty() {
+        let mut picked = vec![];
+        for p in &config.layout.pick {
+            let want = crate::paper::column_axes(p);
+            let found = (0..cols.len()).find(|&ci| {
+                want.iter().all(|(a, v)| col_axes.iter().position(|x| x == a).is_some_and(|i| cols[ci].labels[i] == *v))
+            });
+            if let Some(ci) = found {
+                if let Some(h) = &p.header {
+                    cols[ci].header = h.clone();
+                } else {
+                    cols[ci].header = header_of(&col_axes, &cols[ci].labels, None);
+                }
+                picked.push(ci);
+            }
+        }
+        vec![Section { metric: None, cols: picked }]
+    } else if by_metric {
+        let m = col_axes.iter().position(|a| a == "metric").unwrap_or(0);
+        config
+            .metrics
+            .iter()
+            .map(|mt| Section {
+                metric: Some(mt.label.clone()),
+                cols: (0..cols.len()).filter(|&ci| cols[ci].labels[m] == mt.label).collect(),
+            })
+            .collect()
+    } else {
+        vec![Section { metric: None, cols: (0..cols.len()).collect() }]
+    };
+    Grid { row_axes, col_axes, rows, cols, entries, sections }
+}
+
+fn entry(config: &Config, results: &Results, keys: BTreeMap<String, String>) -> Entry {
+    let metric = keys.get("metric").cloned().unwrap_or_default();
+    let kind = config.metrics.iter().find(|m| m.label == metric).map(|m| m.kind.clone()).unwrap_or_default();
+    let value = find(results, &keys).and_then(|cell| cell.metrics.get(&metric));
+    let ours = value.and_then(|v| v.value);
+    let spread = value.filter(|_| is_timing(&kind)).and_then(|v| crate::stats::relative_spread(&v.samples));
+    let paper = crate::paper::value(config, &keys);
+    Entry { keys, ours, spread, paper, kind }
 }
 
 impl Grid {
@@ -80,83 +161,22 @@ impl Grid {
         want.insert(axis.to_string(), baseline.to_string());
         self.entries.iter().flatten().find(|x| x.keys == want)
     }
-}
 
-/// A label as the papers print it: photon counts as N².
-pub fn display(axis: &str, key: &str) -> String {
-    match axis {
-        "photons" => format!("{key}²"),
-        "lights" if key != "scene" => format!("{key} light{}", if key == "1" { "" } else { "s" }),
-        _ => key.to_string(),
+    /// The metric of column `ci`, when the metric is a column axis or fixed (not a row axis).
+    pub fn metric_of(&self, ci: usize) -> Option<String> {
+        if self.row_axes.iter().any(|a| a == "metric") {
+            return None;
+        }
+        self.entries.first()?.get(ci)?.keys.get("metric").cloned()
     }
-}
 
-/// A value formatted for its metric kind.
-pub fn format_value(kind: &str, v: Option<f64>) -> String {
-    let Some(v) = v else { return "–".into() };
-    if !v.is_finite() {
-        return "n/a".into();
+    /// Any paper value anywhere in the grid?
+    pub fn has_paper(&self) -> bool {
+        self.entries.iter().flatten().any(|e| e.paper.is_some())
     }
-    match kind {
-        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" => significant(v),
-        "photons_emitted" | "splats_drawn" | "photons_processed" => thousands(v.round() as u64),
-        "rel_rmse" | "flux_ratio" => format!("{v:.4}"),
-        _ => format!("{v}"),
-    }
-}
 
-/// A time or a rate with at least three significant digits and at most one decimal above 10, so
-/// that lavapipe's 0.013 fps and a GPU's 0.024 ms passes do not print as 0.0.
-fn significant(v: f64) -> String {
-    let a = v.abs();
-    if a >= 10.0 || a == 0.0 {
-        return format!("{v:.1}");
-    }
-    // Digits before the decimal point are 1 for a ≥ 1; below 1, leading zeros add decimals.
-    let decimals = (2.0 - a.log10().floor()).max(2.0) as usize;
-    format!("{v:.decimals$}")
-}
-
-fn thousands(n: u64) -> String {
-    let digits: Vec<char> = n.to_string().chars().collect();
-    let head = digits.len() % 3;
-    let mut groups: Vec<String> = vec![];
-    if head > 0 {
-        groups.push(digits[..head].iter().collect());
-    }
-    groups.extend(digits[head..].chunks(3).map(|c| c.iter().collect::<String>()));
-    groups.join(",")
-}
-
-/// The unit of a metric kind, for headers and plot axes.
-pub fn unit(kind: &str) -> &'static str {
-    match kind {
-        "pass_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
-        "fps" => "fps",
-        "photons_emitted" => "photons",
-        "splats_drawn" | "photons_processed" => "points",
-        _ => "",
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn formatting() {
-        assert_eq!(thousands(16777216), "16,777,216");
-        assert_eq!(thousands(999), "999");
-        assert_eq!(thousands(1000), "1,000");
-        assert_eq!(format_value("pass_ms", Some(4.256)), "4.26");
-        assert_eq!(format_value("pass_ms", Some(861.54)), "861.5");
-        assert_eq!(format_value("fps", None), "–");
-        assert_eq!(format_value("fps", Some(32.44)), "32.4");
-        assert_eq!(format_value("fps", Some(3.456)), "3.46");
-        assert_eq!(format_value("fps", Some(0.01234)), "0.0123");
-        assert_eq!(format_value("pass_ms", Some(0.5)), "0.500");
-        assert_eq!(format_value("fps", Some(0.0)), "0.0");
-        assert_eq!(display("photons", "256"), "256²");
-        assert_eq!(display("lights", "2"), "2 lights");
+    /// A row's labels as printed, one per row axis.
+    pub fn row_labels(&self, ri: usize) -> Vec<String> {
+        self.row_axes.iter().zip(&self.rows[ri]).map(|(a, k)| display(a, k)).collect()
     }
 }

@@ -1,8 +1,7 @@
 //! Checks a parsed config before anything runs: ranges, names, files, and that the layout and
 //! the paper's values fit the matrix. Every message names the file and the key.
 
-use crate::config::{fnv1a, Config, LoadedConfig, AXES, MAX_FRAMES, MAX_PHOTONS, MAX_RESOLUTION, METRIC_KINDS};
-use crate::plan::Matrix;
+use crate::config::{fnv1a, Config, LoadedConfig, MAX_FRAMES, MAX_PHOTONS, MAX_RESOLUTION, METRIC_KINDS};
 use anyhow::{Context as _, Result};
 use caustics::animation::PATHS;
 use caustics::input_error;
@@ -60,6 +59,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             format!("must be between 1 and {MAX_FRAMES}, got {}", r.measured_frames),
         ));
     }
+    check_budget(&bad, "run", r.time_budget_s, r.measured_frames, r.max_frames)?;
     for (key, p) in
         [("run.light_path", &r.light_path), ("run.camera_path", &r.camera_path), ("run.object_path", &r.object_path)]
     {
@@ -184,6 +184,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     if q.warmup_frames > MAX_FRAMES {
         return Err(bad("quick.warmup_frames", format!("must be at most {MAX_FRAMES}")));
     }
+    check_budget(&bad, "quick", q.time_budget_s, q.measured_frames, q.max_frames)?;
     if !(16..=8192).contains(&q.caustic_map_resolution) {
         return Err(bad(
             "quick.caustic_map_resolution",
@@ -204,7 +205,34 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             "quality metrics compare the rest pose with the CPU reference: keep every path static".into(),
         ));
     }
-    validate_layout(lc, &bad)
+    crate::validate_layout::validate_layout(lc, &bad)
+}
+
+/// Longest time budget a cell may have, seconds.
+const MAX_BUDGET_S: f64 = 3600.0;
+
+fn check_budget(
+    bad: &dyn Fn(&str, String) -> anyhow::Error,
+    section: &str,
+    budget: f64,
+    min: u32,
+    max: Option<u32>,
+) -> Result<()> {
+    if !(budget.is_finite() && (0.0..=MAX_BUDGET_S).contains(&budget)) {
+        return Err(bad(
+            &format!("{section}.time_budget_s"),
+            format!("must be between 0 and {MAX_BUDGET_S} seconds, got {budget}"),
+        ));
+    }
+    if let Some(max) = max {
+        if !(min..=MAX_FRAMES).contains(&max) {
+            return Err(bad(
+                &format!("{section}.max_frames"),
+                format!("must be between {section}.measured_frames ({min}) and {MAX_FRAMES}, got {max}"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn check_photons(bad: &dyn Fn(&str, String) -> anyhow::Error, key: &str, v: &[u32]) -> Result<()> {
@@ -226,79 +254,6 @@ fn check_resolutions(bad: &dyn Fn(&str, String) -> anyhow::Error, key: &str, v: 
     for r in v {
         if r.iter().any(|&x| !(1..=MAX_RESOLUTION).contains(&x)) {
             return Err(bad(key, format!("{}x{}: sides must be between 1 and {MAX_RESOLUTION}", r[0], r[1])));
-        }
-    }
-    Ok(())
-}
-
-fn validate_layout(lc: &LoadedConfig, bad: &dyn Fn(&str, String) -> anyhow::Error) -> Result<()> {
-    let c = &lc.config;
-    let l = &c.layout;
-    let m = Matrix::new(c, None);
-    let placed: Vec<&String> = l.rows.iter().chain(&l.columns).collect();
-    for (i, a) in placed.iter().enumerate() {
-        if !AXES.contains(&a.as_str()) {
-            return Err(bad("layout", format!("unknown axis `{a}`; axes: {}", AXES.join(", "))));
-        }
-        if placed[..i].contains(a) {
-            return Err(bad("layout", format!("axis `{a}` is placed twice")));
-        }
-    }
-    if l.rows.is_empty() || l.columns.is_empty() {
-        return Err(bad("layout", "needs at least one axis in `rows` and one in `columns`".into()));
-    }
-    let quick = Matrix::new(c, Some(&c.quick));
-    for a in AXES {
-        for (matrix, which) in [(&m, ""), (&quick, " under --quick")] {
-            if matrix.keys(c, a).len() > 1 && !placed.iter().any(|p| p == a) {
-                return Err(bad(
-                    "layout",
-                    format!("axis `{a}` has several values{which} but is in neither `rows` nor `columns`"),
-                ));
-            }
-        }
-    }
-    if let Some(cmp) = &l.compare {
-        if !placed.iter().any(|p| **p == cmp.axis) {
-            return Err(bad("layout.compare.axis", format!("`{}` is not in the layout", cmp.axis)));
-        }
-        if !m.keys(c, &cmp.axis).contains(&cmp.baseline) || !quick.keys(c, &cmp.axis).contains(&cmp.baseline) {
-            return Err(bad(
-                "layout.compare.baseline",
-                format!("`{}` is not a value of axis `{}`", cmp.baseline, cmp.axis),
-            ));
-        }
-    }
-    let inner = l.columns.last().map(String::as_str).unwrap_or("metric");
-    let inner_keys = m.keys(c, inner);
-    for (i, e) in c.paper.iter().enumerate() {
-        let fixed = crate::paper::fixed_axes(e);
-        for (axis, value) in &fixed {
-            if *axis == inner {
-                return Err(bad(
-                    &format!("paper[{i}].{axis}"),
-                    format!("`{inner}` is the innermost column axis: its values are the keys of `values`"),
-                ));
-            }
-            if !m.keys(c, axis).contains(value) {
-                return Err(bad(
-                    &format!("paper[{i}].{axis}"),
-                    format!("`{value}` is not a value of axis `{axis}` ({})", m.keys(c, axis).join(", ")),
-                ));
-            }
-        }
-        for a in AXES.iter().filter(|a| **a != inner) {
-            if m.keys(c, a).len() > 1 && !fixed.iter().any(|(x, _)| x == a) {
-                return Err(bad(&format!("paper[{i}]"), format!("must name a `{a}` (the axis has several values)")));
-            }
-        }
-        for k in e.values.keys() {
-            if !inner_keys.contains(k) {
-                return Err(bad(
-                    &format!("paper[{i}].values"),
-                    format!("`{k}` is not a value of the innermost column axis `{inner}` ({})", inner_keys.join(", ")),
-                ));
-            }
         }
     }
     Ok(())

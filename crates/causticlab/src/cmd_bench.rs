@@ -55,7 +55,7 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
 }
 
 fn report(out: &bench::Outcome) {
-    println!("{}", out.markdown);
+    println!("{}", out.summary);
     for f in &out.written {
         println!("wrote {}", f.display());
     }

@@ -44,7 +44,7 @@ fn quick_run(config: &str) -> (PathBuf, Value) {
     assert_clean(&r);
     let dir = device_dir(&root).join("quick");
     let stem = config.trim_end_matches(".toml");
-    for ext in ["md", "csv", "json", "svg"] {
+    for ext in ["md", "csv", "json", "svg", "png"] {
         let f = dir.join(format!("{stem}.{ext}"));
         assert!(f.is_file(), "{} missing\n{}", f.display(), r.describe());
     }
@@ -82,7 +82,7 @@ fn quick_wyman2008_table1_times_every_phase_and_copies_only_on_the_copy_path() {
         assert_eq!(samples, 2, "raw samples of the 2 measured quick frames are kept");
     }
     let md = std::fs::read_to_string(dir.join("wyman2008_table1.md")).expect("md");
-    assert!(md.contains("Costs for the caustic mapping phases") && md.contains("| 64² |"), "{md}");
+    assert!(md.contains("Costs for the caustic mapping phases") && md.contains("| 64² "), "{md}");
     // On Linux each cell records how much CPU the hypervisor took while it ran, and the table says so.
     if cfg!(target_os = "linux") {
         for cell in r["cells"].as_array().expect("cells") {
@@ -279,7 +279,7 @@ fn an_interrupted_run_leaves_the_previous_table_untouched() {
     let r = bench(&[cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
     assert_eq!(r.code, Some(0), "{}", r.describe());
     let dev = device_dir(&root);
-    let files = ["small.md", "small.json", "small.csv", "small.svg"];
+    let files = ["small.md", "small.json", "small.csv", "small.svg", "small.png"];
     let before: Vec<Vec<u8>> = files.iter().map(|f| std::fs::read(dev.join(f)).expect("table file")).collect();
 
     // The same sweep again, killed (SIGKILL: no chance to clean up) once two cells are done.
@@ -389,6 +389,33 @@ fn config_errors_name_the_file_and_key() {
             format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 80\nvalues = {{ bogus = 1.0 }}\n"),
             "paper[0].values",
         ),
+        ("negative_budget.toml", SMALL.replace("[run]", "[run]\ntime_budget_s = -1.0"), "run.time_budget_s"),
+        ("few_max_frames.toml", SMALL.replace("[run]", "[run]\nmax_frames = 0"), "run.max_frames"),
+        (
+            "bad_pick.toml",
+            format!("{SMALL}\n[[layout.column]]\ntechnique = \"quads\"\nmetric = \"photons\"\n"),
+            "layout.column[0].technique",
+        ),
+        (
+            "pick_missing_axis.toml",
+            format!("{SMALL}\n[[layout.column]]\ntechnique = \"shah\"\n"),
+            "layout.column[0]",
+        ),
+        (
+            "pick_unknown_key.toml",
+            format!("{SMALL}\n[[layout.column]]\ntechnique = \"shah\"\nmetric = \"photons\"\ncolour = \"red\"\n"),
+            "colour",
+        ),
+        (
+            "bad_compare_metric.toml",
+            SMALL.replace("columns = [\"technique\", \"metric\"]", "columns = [\"technique\", \"metric\"]\ncompare = { axis = \"technique\", baseline = \"points\", metrics = [\"fps\"] }"),
+            "layout.compare.metrics[0]",
+        ),
+        (
+            "empty_not_comparable.toml",
+            format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 80\nnot_comparable = \" \"\nvalues = {{ photons = 1.0 }}\n"),
+            "paper[0].not_comparable",
+        ),
         (
             "caustics_photons.toml",
             SMALL.replacen("[[technique]]", "[caustics]\nphotons = 256\n\n[[technique]]", 1),
@@ -446,7 +473,29 @@ fn config_errors_name_the_file_and_key() {
 fn quick_hierarchical_tables_count_and_time_every_cell() {
     // Wyman 2008 Tables 3-5: every timed column has a value in every cell.
     for config in ["wyman2008_table3.toml", "wyman2008_table4.toml", "wyman2008_table5.toml"] {
-        let (_, r) = quick_run(config);
+        let (dir, r) = quick_run(config);
+        // Laid out like the paper's: its columns (Table 3: photons and ten more), each line
+        // of the table within a 120-column terminal.
+        let md = std::fs::read_to_string(dir.join(config.replace(".toml", ".md"))).expect("md");
+        // The header lines of the value table (wrapped into blocks), before the ratio grid.
+        let values = &md[..md.find("## Ratios").unwrap_or(md.len())];
+        let headers: std::collections::BTreeSet<&str> = values
+            .lines()
+            .filter(|l| l.starts_with("| photons") || l.starts_with("| scene"))
+            .flat_map(|l| l.split('|').map(str::trim).filter(|c| !c.is_empty()))
+            .collect();
+        assert!(md.lines().filter(|l| l.starts_with('|')).all(|l| l.chars().count() <= 120), "{md}");
+        let paper_columns = match config {
+            "wyman2008_table3.toml" => 11,
+            "wyman2008_table4.toml" => 7,
+            _ => 3, // Table 5: scene and the quick run's two photon counts
+        };
+        assert_eq!(headers.len(), paper_columns, "{config}: {headers:?}");
+        if config == "wyman2008_table3.toml" {
+            for h in ["Render Photon Buffer", "W&D 2006 Gather", "Varying, Single Map", "Final Render, Multi-Res"] {
+                assert!(headers.contains(h), "{config}: no column `{h}` in {headers:?}");
+            }
+        }
         for cell in r["cells"].as_array().expect("cells") {
             for (label, v) in cell["metrics"].as_object().expect("metrics") {
                 let x = v["value"].as_f64().unwrap_or(-1.0);
@@ -662,4 +711,23 @@ fn a_dirty_tree_does_not_write_committed_tables() {
     }
     let _ = std::fs::remove_dir_all(&repo);
     let _ = std::fs::remove_dir_all(&outside);
+}
+
+#[test]
+fn a_missing_plot_font_fails_before_any_cell_runs() {
+    let dir = scratch("bench-font");
+    let cfg = config_file(&dir, "small.toml", SMALL);
+    let root = dir.join("results");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_causticlab"))
+        .args(["bench".as_ref(), cfg.as_os_str(), "--results".as_ref(), root.as_os_str()])
+        .env("CAUSTICLAB_FONT", "/nonexistent/plot-font.ttf")
+        .current_dir(workspace())
+        .output()
+        .expect("spawning causticlab");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(stderr.contains("/nonexistent/plot-font.ttf") && stderr.contains("fonts-dejavu-core"), "{stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("cells in"), "{stderr}");
+    assert!(!root.exists(), "a run without a font wrote results");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,0 +1,126 @@
+//! How values and labels print: photon counts as N², times with three significant digits,
+//! counts with thousands separators, the paper's values as the paper prints them.
+
+/// A label as the papers print it: photon counts as N².
+pub fn display(axis: &str, key: &str) -> String {
+    match axis {
+        "photons" => format!("{key}²"),
+        "lights" if key != "scene" => format!("{key} light{}", if key == "1" { "" } else { "s" }),
+        _ => key.to_string(),
+    }
+}
+
+/// A value formatted for its metric kind.
+pub fn format_value(kind: &str, v: Option<f64>) -> String {
+    let Some(v) = v else { return "–".into() };
+    if !v.is_finite() {
+        return "n/a".into();
+    }
+    match kind {
+        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" => significant(v),
+        "photons_emitted" | "splats_drawn" | "photons_processed" => thousands(v.round() as u64),
+        "rel_rmse" | "flux_ratio" => format!("{v:.4}"),
+        _ => format!("{v}"),
+    }
+}
+
+/// A time or a rate with at least three significant digits and at most one decimal above 10, so
+/// that lavapipe's 0.013 fps and a GPU's 0.024 ms passes do not print as 0.0.
+pub fn significant(v: f64) -> String {
+    let a = v.abs();
+    if a >= 10.0 || a == 0.0 {
+        return format!("{v:.1}");
+    }
+    // Digits before the decimal point are 1 for a ≥ 1; below 1, leading zeros add decimals.
+    let decimals = (2.0 - a.log10().floor()).max(2.0) as usize;
+    format!("{v:.decimals$}")
+}
+
+fn thousands(n: u64) -> String {
+    let digits: Vec<char> = n.to_string().chars().collect();
+    let head = digits.len() % 3;
+    let mut groups: Vec<String> = vec![];
+    if head > 0 {
+        groups.push(digits[..head].iter().collect());
+    }
+    groups.extend(digits[head..].chunks(3).map(|c| c.iter().collect::<String>()));
+    groups.join(",")
+}
+
+/// The unit of a metric kind, for headers and plot axes.
+pub fn unit(kind: &str) -> &'static str {
+    match kind {
+        "pass_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
+        "fps" => "fps",
+        "photons_emitted" => "photons",
+        "splats_drawn" | "photons_processed" => "points",
+        _ => "",
+    }
+}
+
+/// A paper's value as the paper prints it (the config holds it verbatim): 3.6 stays 3.6, 8.0 stays
+/// 8.0 (TOML keeps no trailing zeros beyond that).
+/// Counts keep their thousands separators.
+pub fn paper_value(kind: &str, v: Option<f64>) -> String {
+    match (kind, v) {
+        ("photons_emitted" | "splats_drawn" | "photons_processed", _) | (_, None) => format_value(kind, v),
+        (_, Some(v)) if v.fract() == 0.0 => format!("{v:.1}"),
+        (_, Some(v)) => format!("{v}"),
+    }
+}
+
+/// A ratio: two decimals from 0.1 to 100, whole numbers above, two significant digits below
+/// (0.012), so that a 50x speed-up and a 0.02 cost share both read.
+pub fn ratio(v: f64) -> String {
+    let a = v.abs();
+    if !v.is_finite() {
+        "n/a".into()
+    } else if a >= 100.0 {
+        format!("{v:.0}")
+    } else if a >= 0.1 || a == 0.0 {
+        format!("{v:.2}")
+    } else {
+        let decimals = (1.0 - a.log10().floor()) as usize;
+        format!("{v:.decimals$}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paper_values_print_as_the_paper_prints_them() {
+        assert_eq!(paper_value("fps", Some(3.6)), "3.6");
+        assert_eq!(paper_value("pass_ms", Some(861.0)), "861.0");
+        assert_eq!(paper_value("pass_ms", Some(0.02)), "0.02");
+        assert_eq!(paper_value("photons_processed", Some(262144.0)), "262,144");
+        assert_eq!(paper_value("fps", None), "–");
+    }
+
+    #[test]
+    fn ratios() {
+        assert_eq!(ratio(0.3812), "0.38");
+        assert_eq!(ratio(52.346), "52.35");
+        assert_eq!(ratio(158.6), "159");
+        assert_eq!(ratio(0.01234), "0.012");
+        assert_eq!(ratio(0.05), "0.050");
+    }
+
+    #[test]
+    fn formatting() {
+        assert_eq!(thousands(16777216), "16,777,216");
+        assert_eq!(thousands(999), "999");
+        assert_eq!(thousands(1000), "1,000");
+        assert_eq!(format_value("pass_ms", Some(4.256)), "4.26");
+        assert_eq!(format_value("pass_ms", Some(861.54)), "861.5");
+        assert_eq!(format_value("fps", None), "–");
+        assert_eq!(format_value("fps", Some(32.44)), "32.4");
+        assert_eq!(format_value("fps", Some(3.456)), "3.46");
+        assert_eq!(format_value("fps", Some(0.01234)), "0.0123");
+        assert_eq!(format_value("pass_ms", Some(0.5)), "0.500");
+        assert_eq!(format_value("fps", Some(0.0)), "0.0");
+        assert_eq!(display("photons", "256"), "256²");
+        assert_eq!(display("lights", "2"), "2 lights");
+    }
+}

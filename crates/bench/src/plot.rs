@@ -1,0 +1,296 @@
+//! Draws a [`Figure`] with plotters, once as SVG and once as PNG (same layout): the title and the
+//! device above panels stacked one per metric, each with its legend in a column on the right
+//! sized to the longest label, so that no title or legend is clipped.
+
+use crate::figure::{Figure, Panel, Series};
+use crate::font::FAMILY;
+use anyhow::{Context as _, Result};
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+const WIDTH: u32 = 1100;
+const PANEL_HEIGHT: u32 = 420;
+const TITLE_HEIGHT: u32 = 64;
+/// Matplotlib's "tab10": distinct, print-friendly.
+const PALETTE: [RGBColor; 10] = [
+    RGBColor(0x1f, 0x77, 0xb4),
+    RGBColor(0xff, 0x7f, 0x0e),
+    RGBColor(0x2c, 0xa0, 0x2c),
+    RGBColor(0xd6, 0x27, 0x28),
+    RGBColor(0x94, 0x67, 0xbd),
+    RGBColor(0x8c, 0x56, 0x4b),
+    RGBColor(0xe3, 0x77, 0xc2),
+    RGBColor(0x7f, 0x7f, 0x7f),
+    RGBColor(0xbc, 0xbd, 0x22),
+    RGBColor(0x17, 0xbe, 0xcf),
+];
+const GREY: RGBColor = RGBColor(0x55, 0x55, 0x55);
+
+/// The plot as SVG text and as PNG bytes.
+pub struct Plot {
+    pub svg: String,
+    pub png: Vec<u8>,
+}
+
+pub fn render(fig: &Figure) -> Result<Plot> {
+    crate::font::load()?;
+    let height = TITLE_HEIGHT + PANEL_HEIGHT * fig.panels.len().max(1) as u32;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
+        draw(&root, fig).context("drawing the SVG plot")?;
+        root.present().map_err(|e| anyhow::anyhow!("writing the SVG plot: {e}"))?;
+    }
+    let mut rgb = vec![0u8; (WIDTH * height * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (WIDTH, height)).into_drawing_area();
+        draw(&root, fig).context("drawing the PNG plot")?;
+        root.present().map_err(|e| anyhow::anyhow!("drawing the PNG plot: {e}"))?;
+    }
+    let mut png = vec![];
+    {
+        let mut enc = png::Encoder::new(&mut png, WIDTH, height);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_compression(png::Compression::Best);
+        enc.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
+        let mut w = enc.write_header().context("encoding the PNG plot")?;
+        w.write_image_data(&rgb).context("encoding the PNG plot")?;
+    }
+    Ok(Plot { svg, png })
+}
+
+/// Width in pixels of `text` at `size` in the plot font (0 if it cannot be measured).
+fn text_width(text: &str, size: f64) -> u32 {
+    (FAMILY, size).into_font().box_size(text).map(|(w, _)| w).unwrap_or(0)
+}
+
+/// The largest size from `max` down to `min` at which `text` fits in `width` pixels.
+fn fit_size(text: &str, width: u32, max: f64, min: f64) -> f64 {
+    let mut size = max;
+    while size > min && text_width(text, size) > width {
+        size -= 1.0;
+    }
+    size
+}
+
+/// `text`, cut with an ellipsis until it fits in `width` pixels at `size`.
+fn ellipsize(text: &str, width: u32, size: f64) -> String {
+    let mut s: Vec<char> = text.chars().collect();
+    if text_width(text, size) <= width {
+        return text.to_string();
+    }
+    while !s.is_empty() && text_width(&format!("{}…", s.iter().collect::<String>()), size) > width {
+        s.pop();
+    }
+    format!("{}…", s.iter().collect::<String>())
+}
+
+type DrawResult = Result<(), String>;
+
+fn err<E: std::fmt::Display>(e: E) -> String {
+    e.to_string()
+}
+
+fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &Figure) -> Result<()> {
+    draw_figure(root, fig).map_err(anyhow::Error::msg)
+}
+
+fn draw_figure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &Figure) -> DrawResult {
+    root.fill(&WHITE).map_err(err)?;
+    let (top, rest) = root.split_vertically(TITLE_HEIGHT);
+    let room = WIDTH - 40;
+    let size = fit_size(&fig.title, room, 22.0, 13.0);
+    let title = ellipsize(&fig.title, room, size);
+    top.draw(&Text::new(title, (20, 12), (FAMILY, size).into_font())).map_err(err)?;
+    let sub = ellipsize(&fig.subtitle, room, 14.0);
+    top.draw(&Text::new(sub, (20, 20 + size as i32), (FAMILY, 14.0).into_font().color(&GREY))).map_err(err)?;
+    if fig.panels.is_empty() {
+        return rest.draw(&Text::new("no data", (20, 20), (FAMILY, 16.0).into_font())).map_err(err);
+    }
+    for (area, panel) in rest.split_evenly((fig.panels.len(), 1)).iter().zip(&fig.panels) {
+        draw_panel(area, panel)?;
+    }
+    Ok(())
+}
+
+/// Legend row height and font size for `n` entries in a panel.
+fn legend_metrics(n: usize) -> (i32, f64) {
+    let row = ((PANEL_HEIGHT as i32 - 40) / n.max(1) as i32).clamp(12, 22);
+    (row, (row as f64 - 6.0).clamp(10.0, 14.0))
+}
+
+fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> DrawResult {
+    let (row, font) = legend_metrics(p.series.len());
+    let widest = p.series.iter().map(|s| text_width(&s.label, font)).max().unwrap_or(0);
+    let legend_w = (widest + 60).clamp(140, WIDTH * 42 / 100);
+    let (chart_area, legend_area) = area.split_horizontally(WIDTH - legend_w);
+    draw_legend(&legend_area, &p.series, legend_w - 56, row, font, p.bars)?;
+    let values: Vec<f64> = p
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|&(_, v)| v))
+        .chain(p.unit_line.then_some(1.0))
+        .filter(|v| v.is_finite() && (!p.log_y || *v > 0.0))
+        .collect();
+    let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    let n = p.x_labels.len().max(1);
+    let caption_room = WIDTH - legend_w - 40;
+    let caption_size = fit_size(&p.title, caption_room, 18.0, 12.0);
+    let caption = ellipsize(&p.title, caption_room, caption_size);
+    // Category labels shrink to fit their slot.
+    let slot = (WIDTH - legend_w - 110) / n as u32;
+    let widest_x = p.x_labels.iter().max_by_key(|l| text_width(l, 14.0)).cloned().unwrap_or_default();
+    let x_font = fit_size(&widest_x, slot.saturating_sub(6), 14.0, 9.0);
+    let x_labels: Vec<String> = p.x_labels.iter().map(|l| ellipsize(l, slot.saturating_sub(6), x_font)).collect();
+    let mut builder = ChartBuilder::on(&chart_area);
+    builder
+        .caption(caption, (FAMILY, caption_size))
+        .margin(12)
+        .margin_right(24)
+        .x_label_area_size(40)
+        .y_label_area_size(84);
+    let x_range = -0.5..(n as f64 - 0.5);
+    if values.is_empty() {
+        let chart = builder.build_cartesian_2d(x_range, 0.0..1.0).map_err(err)?;
+        return chart.plotting_area().draw(&Text::new("no data", (0.0, 0.5), (FAMILY, 16.0).into_font())).map_err(err);
+    }
+    if p.log_y {
+        let (lo, hi) = (lo / 1.6, hi * 1.6);
+        let mut chart = builder.build_cartesian_2d(x_range, (lo..hi).log_scale()).map_err(err)?;
+        mesh(&mut chart, p, &x_labels, x_font)?;
+        plot_series(&mut chart, p, lo)
+    } else {
+        // From zero when zero is near (errors, counts); else around the data (flux ratios).
+        let pad = 0.08 * (hi - lo).max(hi.abs() * 0.01).max(1e-9);
+        let lo = if lo >= 0.0 && lo < 0.5 * hi { 0.0 } else { lo - pad };
+        let hi = hi + pad;
+        let mut chart = builder.build_cartesian_2d(x_range, lo..hi).map_err(err)?;
+        mesh(&mut chart, p, &x_labels, x_font)?;
+        plot_series(&mut chart, p, lo)
+    }
+}
+
+fn mesh<DB, Y>(
+    chart: &mut ChartContext<DB, Cartesian2d<RangedCoordf64, Y>>,
+    p: &Panel,
+    x: &[String],
+    x_font: f64,
+) -> DrawResult
+where
+    DB: DrawingBackend,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let label = |v: &f64| {
+        let i = v.round();
+        if (v - i).abs() < 1e-6 && i >= 0.0 {
+            x.get(i as usize).cloned().unwrap_or_default()
+        } else {
+            String::new()
+        }
+    };
+    chart
+        .configure_mesh()
+        .x_labels(x.len().max(1))
+        .x_label_formatter(&label)
+        .x_label_style((FAMILY, x_font))
+        .y_label_style((FAMILY, 13.0))
+        .y_label_formatter(&tick)
+        .y_desc(p.y_label.as_str())
+        .axis_desc_style((FAMILY, 14.0))
+        .y_labels(8)
+        .max_light_lines(2)
+        .light_line_style(RGBColor(0xf0, 0xf0, 0xf0))
+        .bold_line_style(RGBColor(0xd8, 0xd8, 0xd8))
+        .draw()
+        .map_err(err)
+}
+
+/// A y tick as short as it reads: 1000, 2.5, 0.05, 1e-5.
+fn tick(v: &f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        "0".into()
+    } else if !(1e-3..1e6).contains(&a) {
+        format!("{v:.0e}")
+    } else {
+        let s = format!("{v:.4}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
+fn colour(s: &Series) -> RGBColor {
+    PALETTE[s.colour % PALETTE.len()]
+}
+
+fn plot_series<DB, Y>(chart: &mut ChartContext<DB, Cartesian2d<RangedCoordf64, Y>>, p: &Panel, floor: f64) -> DrawResult
+where
+    DB: DrawingBackend,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let n = p.x_labels.len().max(1) as f64;
+    if p.unit_line {
+        let style = ShapeStyle::from(&BLACK.mix(0.6)).stroke_width(1);
+        chart.draw_series(LineSeries::new([(-0.5, 1.0), (n - 0.5, 1.0)], style)).map_err(err)?;
+    }
+    let k = p.series.len().max(1) as f64;
+    for (si, s) in p.series.iter().enumerate() {
+        let c = colour(s);
+        if p.bars {
+            // Series side by side within each category, 80% of its slot.
+            let w = 0.8 / k;
+            let bar = |&(x, v): &(usize, f64)| {
+                let x0 = x as f64 - 0.4 + si as f64 * w;
+                let style = if s.paper { c.stroke_width(2) } else { c.filled() };
+                Rectangle::new([(x0 + 0.1 * w, floor), (x0 + 0.9 * w, v)], style)
+            };
+            chart.draw_series(s.points.iter().map(bar)).map_err(err)?;
+            continue;
+        }
+        let pts: Vec<(f64, f64)> = s.points.iter().map(|&(x, v)| (x as f64, v)).collect();
+        let line = c.stroke_width(2);
+        if s.paper {
+            chart.draw_series(DashedLineSeries::new(pts.clone(), 8, 6, line)).map_err(err)?;
+            chart.draw_series(pts.iter().map(|&q| Circle::new(q, 4, c.stroke_width(2)))).map_err(err)?;
+        } else {
+            chart.draw_series(LineSeries::new(pts.clone(), line)).map_err(err)?;
+            chart.draw_series(pts.iter().map(|&q| Circle::new(q, 4, c.filled()))).map_err(err)?;
+        }
+    }
+    Ok(())
+}
+
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    series: &[Series],
+    text_room: u32,
+    row: i32,
+    font: f64,
+    bars: bool,
+) -> DrawResult {
+    let top = 40;
+    for (i, s) in series.iter().enumerate() {
+        let y = top + i as i32 * row;
+        let c = colour(s);
+        if bars {
+            let style = if s.paper { c.stroke_width(2) } else { c.filled() };
+            area.draw(&Rectangle::new([(6, y - 6), (34, y + 6)], style)).map_err(err)?;
+        } else if s.paper {
+            area.draw(&PathElement::new(vec![(4, y), (13, y)], c.stroke_width(2))).map_err(err)?;
+            area.draw(&PathElement::new(vec![(27, y), (36, y)], c.stroke_width(2))).map_err(err)?;
+            area.draw(&Circle::new((20, y), 4, c.stroke_width(2))).map_err(err)?;
+        } else {
+            area.draw(&PathElement::new(vec![(4, y), (36, y)], c.stroke_width(2))).map_err(err)?;
+            area.draw(&Circle::new((20, y), 4, c.filled())).map_err(err)?;
+        }
+        let label = ellipsize(&s.label, text_room, font);
+        let style = TextStyle::from((FAMILY, font).into_font()).pos(plotters::style::text_anchor::Pos::new(
+            plotters::style::text_anchor::HPos::Left,
+            plotters::style::text_anchor::VPos::Center,
+        ));
+        area.draw(&Text::new(label, (44, y), style)).map_err(err)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,259 @@
+//! The table, summary and plot of a result built from synthetic samples, through the same code
+//! that renders a real run: a noisy cell is flagged and a steady one is not; a paper value from
+//! another scene or for other work is marked and gets no ratio; the ratios are one grid; every
+//! line fits a 120-column terminal; the plot has a ratio panel and draws as SVG and PNG.
+
+use bench::config::Config;
+use bench::plan::Cell;
+use bench::results::{CellResult, ConfigInfo, Meta, Results, RunInfo, Value, SCHEMA};
+use std::collections::BTreeMap;
+
+const CONFIG: &str = r#"
+[table]
+paper = "Synthetic"
+number = "S"
+caption = "Synthetic samples."
+
+[matrix]
+scenes = ["../scenes/sphere_on_plane.toml"]
+photons = [256, 512]
+
+[[technique]]
+label = "base"
+technique = "wd-points"
+
+[[technique]]
+label = "fast"
+technique = "hcm"
+
+[[metric]]
+label = "Gather"
+kind = "pass_ms"
+passes = ["splat.*"]
+
+[layout]
+rows = ["photons"]
+columns = ["technique"]
+compare = { axis = "technique", baseline = "base" }
+
+[[paper]]
+photons = 256
+values = { base = 10.0, fast = 5.0 }
+
+[[paper]]
+photons = 512
+values = { base = 20.0, fast = 8.0 }
+not_comparable = "the paper's fast gather skips the copy"
+"#;
+
+/// Steady: IQR 0.1 of a median of 10 (1%). Noisy: IQR 14 - 6 = 8 of a median of 10 (80%).
+const STEADY: [f64; 5] = [10.0, 10.1, 9.9, 10.0, 10.05];
+const NOISY: [f64; 5] = [5.0, 10.0, 15.0, 6.0, 14.0];
+
+fn value(samples: &[f64]) -> Value {
+    let (q1, m, q3) = bench::stats::quartiles(samples).expect("samples");
+    Value {
+        kind: "pass_ms".into(),
+        value: Some(m),
+        min: samples.iter().copied().reduce(f64::min),
+        max: samples.iter().copied().reduce(f64::max),
+        q1: Some(q1),
+        q3: Some(q3),
+        samples: samples.to_vec(),
+    }
+}
+
+fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: &[f64]) -> CellResult {
+    CellResult {
+        cell: Cell {
+            index,
+            scene: "../scenes/sphere_on_plane.toml".into(),
+            technique,
+            technique_label: label.into(),
+            photons,
+            lights: 0,
+            resolution: [0, 0],
+            lighting: "dynamic".into(),
+        },
+        caustics: serde_json::Value::Null,
+        photon_copy: "none".into(),
+        triangles: 0,
+        metrics: BTreeMap::from([("Gather".to_string(), value(samples))]),
+        wall_ms: samples.to_vec(),
+        passes: vec![],
+        cpu_steal: None,
+    }
+}
+
+fn results(config: &Config, cells: Vec<CellResult>) -> Results {
+    Results {
+        schema: SCHEMA,
+        config: ConfigInfo {
+            file: "synthetic.toml".into(),
+            name: "synthetic".into(),
+            hash: "0".into(),
+            paper: config.table.paper.clone(),
+            table: config.table.number.clone(),
+            caption: config.table.caption.clone(),
+            toml: CONFIG.into(),
+        },
+        run: RunInfo {
+            quick: false,
+            warmup_frames: 1,
+            measured_frames: 5,
+            time_budget_s: Some(1.0),
+            max_frames: Some(1000),
+            light_path: "static".into(),
+            camera_path: "static".into(),
+            object_path: "static".into(),
+            period_frames: 60,
+            validation: false,
+            filter: Default::default(),
+            shard: None,
+            total_cells: cells.len(),
+        },
+        meta: Meta {
+            device: "synthetic device".into(),
+            device_type: "other".into(),
+            device_slug: "synthetic".into(),
+            driver_name: "none".into(),
+            driver_info: "none".into(),
+            vulkan_version: "1.3".into(),
+            timestamp_period_ns: 1.0,
+            cpu: "none".into(),
+            commit: "0000000".into(),
+            date: "2026-01-01T00:00:00Z".into(),
+            causticlab_version: "0".into(),
+            quirks: vec![],
+        },
+        cells,
+    }
+}
+
+fn synthetic() -> (Config, Results) {
+    let config: Config = toml::from_str(CONFIG).expect("the test config parses");
+    let cells = vec![
+        cell(0, 0, "base", 256, &STEADY),
+        cell(1, 0, "base", 512, &STEADY),
+        cell(2, 1, "fast", 256, &NOISY),
+        cell(3, 1, "fast", 512, &STEADY),
+    ];
+    let r = results(&config, cells);
+    (config, r)
+}
+
+/// The cells of the Markdown table row (or ratio row) that starts with `label`, after `skip`
+/// earlier such rows.
+fn row<'a>(md: &'a str, label: &str, skip: usize) -> Vec<&'a str> {
+    let line = md
+        .lines()
+        .filter(|l| l.starts_with(&format!("| {label}")))
+        .nth(skip)
+        .unwrap_or_else(|| panic!("no row {label} #{skip} in\n{md}"));
+    line.split('|').map(str::trim).filter(|c| !c.is_empty()).collect()
+}
+
+#[test]
+fn a_noisy_cell_is_flagged_and_a_steady_one_is_not() {
+    let (config, r) = synthetic();
+    let md = bench::report::markdown(&config, &r);
+    // Columns: photons, base, fast.
+    let r256 = row(&md, "256²", 0);
+    assert!(r256[1].starts_with("10.0 ±1% (10.0)") && !r256[1].contains('!'), "steady cell: {r256:?}");
+    assert!(r256[2].contains("±80%!"), "noisy cell not flagged: {r256:?}");
+    assert!(!row(&md, "512²", 0)[2].contains("%!"), "{md}");
+    assert!(md.contains("(1 of 4 timed cells)"), "{md}");
+    // The terminal summary flags the same cell.
+    let summary = bench::report::summary(&config, &r);
+    assert_eq!(summary.matches("%!").count(), 1, "{summary}");
+    assert!(!summary.contains("| "), "the summary is plain text, not Markdown:\n{summary}");
+}
+
+#[test]
+fn a_not_comparable_paper_value_is_marked_and_gets_no_ratio() {
+    let (config, r) = synthetic();
+    let md = bench::report::markdown(&config, &r);
+    assert!(row(&md, "512²", 0)[2].ends_with("(8.0¹)"), "{md}");
+    assert!(md.contains("¹ The paper's value measures other work: the paper's fast gather skips the copy"), "{md}");
+    // One ratio grid: photons x the techniques other than the baseline.
+    let ratios = &md[md.find("## Ratios against technique `base`").expect("ratio section")..];
+    assert_eq!(row(ratios, "photons", 0), vec!["photons", "fast"], "{ratios}");
+    // Ours 5 / 10 = 0.50 (flagged: the fast cell is noisy) beside the paper's 5 / 10.
+    assert_eq!(row(ratios, "256²", 0)[1], "1.00! (0.50)", "{ratios}");
+    // At 512² the paper's value is not comparable: our ratio alone.
+    assert_eq!(row(ratios, "512²", 0)[1], "1.00", "{ratios}");
+}
+
+#[test]
+fn a_paper_value_from_another_scene_names_it_and_gets_no_ratio() {
+    let text = CONFIG.replace("not_comparable = \"the paper's fast gather skips the copy\"", "scene_note = \"Buddha\"");
+    let config: Config = toml::from_str(&text).expect("parses");
+    let (_, r) = synthetic();
+    let md = bench::report::markdown(&config, &r);
+    assert!(row(&md, "512²", 0)[1].ends_with("(20.0, Buddha)"), "{md}");
+    let ratios = &md[md.find("## Ratios").expect("ratio section")..];
+    assert_eq!(row(ratios, "512²", 0)[1], "1.00", "{ratios}");
+}
+
+#[test]
+fn every_line_of_a_wide_table_fits_a_terminal() {
+    // Twelve techniques: wider than 120 columns in one block.
+    let mut text = CONFIG.to_string();
+    for i in 0..10 {
+        text.push_str(&format!("\n[[technique]]\nlabel = \"technique number {i}\"\ntechnique = \"hcm\"\n"));
+    }
+    let config: Config = toml::from_str(&text).expect("parses");
+    let mut cells = vec![];
+    for (t, tech) in config.techniques.iter().enumerate() {
+        for (k, p) in [256, 512].into_iter().enumerate() {
+            cells.push(cell(t * 2 + k, t, &tech.label, p, &NOISY));
+        }
+    }
+    let r = results(&config, cells);
+    for out in [bench::report::markdown(&config, &r), bench::report::summary(&config, &r)] {
+        let table_lines =
+            out.lines().filter(|l| l.starts_with('|') || l.starts_with("photons") || l.starts_with("256"));
+        for l in table_lines {
+            assert!(l.chars().count() <= 120, "{} columns: {l}", l.chars().count());
+        }
+        for t in &config.techniques {
+            assert!(out.contains(&t.label), "column {} missing", t.label);
+        }
+    }
+}
+
+#[test]
+fn the_plot_has_a_ratio_panel_and_draws_as_svg_and_png() {
+    let (config, r) = synthetic();
+    let g = bench::table::grid(&config, &r);
+    let fig = bench::figure::figure(&config, &r, &g);
+    assert_eq!(fig.panels.len(), 2, "values and ratios");
+    let ratio = &fig.panels[1];
+    assert!(ratio.title.contains("ratio against base") && ratio.unit_line, "{}", ratio.title);
+    // The ratio panel: ours for `fast`, and the paper's at 256² only (512² is not comparable).
+    let paper: Vec<_> = ratio.series.iter().filter(|s| s.paper).collect();
+    assert_eq!(paper.len(), 1);
+    assert_eq!(paper[0].points, vec![(0, 0.5)]);
+    let plot = bench::plot::render(&fig).expect("a font is installed (fonts-dejavu-core)");
+    assert!(plot.svg.starts_with("<svg") && plot.svg.contains("<polyline"), "no lines in the SVG");
+    assert!(plot.svg.contains("fast (paper)"), "legend missing from the SVG");
+    assert!(plot.png.starts_with(b"\x89PNG\r\n\x1a\n") && plot.png.len() > 10_000, "not a PNG");
+}
+
+#[test]
+fn rows_without_photons_plot_as_grouped_bars() {
+    let text = CONFIG
+        .replace("photons = [256, 512]", "photons = [256]")
+        .replace("rows = [\"photons\"]", "rows = [\"technique\"]")
+        .replace("columns = [\"technique\"]", "columns = [\"metric\"]")
+        .replace("compare = { axis = \"technique\", baseline = \"base\" }\n", "");
+    let text = &text[..text.find("[[paper]]").expect("paper")];
+    let config: Config = toml::from_str(text).expect("parses");
+    let r = results(&config, vec![cell(0, 0, "base", 256, &STEADY), cell(1, 1, "fast", 256, &NOISY)]);
+    let fig = bench::figure::figure(&config, &r, &bench::table::grid(&config, &r));
+    assert_eq!(fig.panels.len(), 1);
+    assert!(fig.panels[0].bars, "categorical rows are bars");
+    assert_eq!(fig.panels[0].x_labels, vec!["base", "fast"]);
+    let plot = bench::plot::render(&fig).expect("plot");
+    assert!(plot.svg.contains("<rect"), "bars");
+}
