@@ -164,7 +164,10 @@ fn check(techniques: &[Technique], space: Space) -> Vec<String> {
             let (landed, held) = if scene.caustics.eye_space() {
                 (landed_on_receiver(get("photon_buffer"), &scene), receiver_flux(receiver, &scene))
             } else {
-                (power(get("photon_buffer"), "light0.power", Some("light0.position")), power(get("caustic_map"), "light0", None))
+                (
+                    power(get("photon_buffer"), "light0.power", Some("light0.position")),
+                    power(get("caustic_map"), "light0", None),
+                )
             };
             let drift = held / landed - 1.0;
             let spaced = matches!(t, Technique::WdQuads | Technique::WdGather);

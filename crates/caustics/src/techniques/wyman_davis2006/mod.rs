@@ -39,8 +39,8 @@ use anyhow::{Context as _, Result};
 use glam::{Mat4, Vec3};
 use settings::{Space, TemporalFilter};
 use temporal::History;
-use vkcore::{Context, Frame, ImageView, Pipeline, ShaderCompiler};
 use views::ViewBuffers;
+use vkcore::{Context, Frame, ImageView, Pipeline, ShaderCompiler};
 
 /// Which of the paper's ways of turning photons into light a render uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -247,7 +247,13 @@ impl ImageSpace {
     /// After every light: the eye-space gathers (or the points' per-pixel resolve) of the eye's
     /// and the receiver's views, and the caustics added to the eye's radiance. Advances the
     /// temporal filter's history when this frame wrote it.
-    pub fn record_after_lights(&self, f: &mut Frame, c: &CausticPasses, eye: Option<EyeView>, reuse: bool) -> Result<()> {
+    pub fn record_after_lights(
+        &self,
+        f: &mut Frame,
+        c: &CausticPasses,
+        eye: Option<EyeView>,
+        reuse: bool,
+    ) -> Result<()> {
         if !self.eye_space() {
             if !reuse {
                 self.history.advance();

@@ -42,7 +42,8 @@ pub struct ViewBuffers {
 impl ViewBuffers {
     pub fn new(ctx: &Context, name: &str, (w, h): (u32, u32), layers: u32, caustic: bool) -> Result<ViewBuffers> {
         let photons = Target::array(ctx, ImageDesc::new_2d(&format!("{name} photons"), COLOR, w, h).layers(layers))?;
-        let views = (0..layers).map(|k| Ok(photons.image.view(ViewKind::D2, 0..1, k..k + 1)?)).collect::<Result<_>>()?;
+        let views =
+            (0..layers).map(|k| Ok(photons.image.view(ViewKind::D2, 0..1, k..k + 1)?)).collect::<Result<_>>()?;
         let caustic = match caustic {
             true => Some(Target::array(ctx, ImageDesc::new_2d(&format!("{name} caustic"), COLOR, w, h))?),
             false => None,
@@ -89,8 +90,8 @@ pub fn view_constants(view_proj: Mat4, eye: Vec3, tolerance: [f32; 2], ortho: bo
 pub fn tolerance(scene: &Scene, ortho: bool) -> [f32; 2] {
     match (ortho, &scene.receiver_map) {
         (true, Some(r)) => {
-            let texel = ((r.x_range[1] - r.x_range[0]).abs()).max((r.z_range[1] - r.z_range[0]).abs())
-                / r.resolution as f32;
+            let texel =
+                ((r.x_range[1] - r.x_range[0]).abs()).max((r.z_range[1] - r.z_range[0]).abs()) / r.resolution as f32;
             [0.0, 1.5 * texel]
         }
         _ => [0.02, 1e-3],
