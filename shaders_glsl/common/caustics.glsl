@@ -7,6 +7,8 @@
 #define CAUSTIC_FRESNEL 1u          // settings.w bit: Fresnel transmittance at both interfaces
 #define CAUSTIC_WD_DEPTH_SEARCH 2u  // settings.w bit: Wyman & Davis depth search, else Shah rayGeo
 #define CAUSTIC_BEAM_AREA 4u        // settings.w bit: varying splats by Eq. 1-2, else max distance
+#define CAUSTIC_EYE_SPACE 8u        // settings.w bit: caustics rendered in the eye's view (Wyman & Davis 2006)
+#define CAUSTIC_REFLECTION_PLANE 16u  // settings.w bit: mirrored photons land on one plane (Wyman & Davis 2006 Sec. 4)
 #define SPLAT_FIXED 0.0
 #define SPLAT_VARYING_SINGLE 1.0
 #define SPLAT_VARYING_MULTIRES 2.0
@@ -29,6 +31,7 @@ layout(std140, binding = CAUSTICS_BINDING) uniform Caustics {
     uvec4 settings;   // x: lights with caustics (0 = none), y: photons per side, z: iterations, w: flags
     vec4 splat;       // x: splat radius (caustic-map texels), y: kernel (0 Gaussian, 1 box), z: back-face iterations,
                       // w: splat sizes (SPLAT_FIXED, SPLAT_VARYING_SINGLE, SPLAT_VARYING_MULTIRES)
+    vec4 background_plane;  // x: y of the plane mirrored photons land on (CAUSTIC_REFLECTION_PLANE)
     CausticLight lights[MAX_LIGHTS];
 } caustics;
 

@@ -14,6 +14,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 3, rgba32f) uniform writeonly image2D ratio_map;       // rgb E/E0
 layout(binding = 4, rgba32f) uniform writeonly image2D irradiance_map;  // rgb E (W/m^2), a: mean E0
 layout(binding = 5, rgba32f) uniform writeonly image2D caustic_only;    // rgb caustic E (W/m^2)
+// Eye-space techniques (CAUSTIC_EYE_SPACE): the caustic irradiance their eye-space pass found
+// from the orthographic view straight down on the receiver plane, texel for texel.
+layout(binding = 9) uniform sampler2DArray receiver_view_caustic;
 
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
@@ -26,7 +29,9 @@ void main() {
     vec3 up = vec3(0.0, 1.0, 0.0);
     vec3 e0 = vec3(0.0);
     for (uint l = 0u; l < frame.counts.x; ++l) e0 += unoccluded_irradiance(l, p, up);
-    vec3 ec = caustic_irradiance(p, up);
+    vec3 ec = (caustics.settings.w & CAUSTIC_EYE_SPACE) != 0u
+        ? texelFetch(receiver_view_caustic, ivec3(ij, 0), 0).rgb
+        : caustic_irradiance(p, up);
     vec3 e = direct_irradiance(p, up) + ec;
     vec3 ratio = vec3(e0.r > 0.0 ? e.r / e0.r : 0.0, e0.g > 0.0 ? e.g / e0.g : 0.0, e0.b > 0.0 ? e.b / e0.b : 0.0);
     imageStore(ratio_map, ij, vec4(ratio, 1.0));

@@ -109,7 +109,17 @@ Photon trace_photon(uint l, vec3 p1, vec3 n1, float d_n, float omega) {
         d = normalize(t2);
     }
     vec3 hit;
-    if (!find_receiver(l, o, d, hit)) {
+    bool found;
+    if (mesh.material == MATERIAL_REFLECTIVE && (caustics.settings.w & CAUSTIC_REFLECTION_PLANE) != 0u) {
+        // Wyman & Davis 2006 Sec. 4: "we reflect about the surface normal and perform a ray-plane
+        // intersection with a single background plane".
+        float t = (caustics.background_plane.x - o.y) / d.y;
+        found = d.y != 0.0 && t > 0.0;
+        hit = o + t * d;
+    } else {
+        found = find_receiver(l, o, d, hit);
+    }
+    if (!found) {
         ph.power = vec4(power, 0.0);
         ph.direction.w = PHOTON_LOST_NO_RECEIVER;
         return ph;

@@ -23,8 +23,16 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let technique = scene.caustics.technique;
     // `all` means every buffer this render has; naming a buffer of another technique is a
     // mistake worth saying.
-    let own = render::dumps_of(technique);
+    let own = render::dumps_for(&scene.caustics);
     if let Some(n) = dumps.iter().find(|d| !own.contains(&d.as_str()) && !dump_all(args.dump.as_deref())) {
+        if technique.dumps().contains(&n.as_str()) {
+            return Err(input_error!(
+                "--dump: `{n}` is a buffer of `{technique}` with --space {}, not with --space {}",
+                if scene.caustics.eye_space() { "light" } else { "eye" },
+                scene.caustics.space
+            )
+            .into());
+        }
         let owners: Vec<&str> =
             Technique::ALL.iter().filter(|t| t.dumps().contains(&n.as_str())).map(|t| t.name()).collect();
         return Err(input_error!(

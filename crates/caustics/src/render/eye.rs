@@ -16,6 +16,8 @@ pub struct EyeInputs<'a> {
     pub meshes: &'a [GpuMesh],
     pub nearest: &'a Sampler,
     pub linear: &'a Sampler,
+    /// Eye-space caustics: the receiver view's caustic irradiance, which the receiver map reads.
+    pub receiver_view_caustic: Option<&'a vkcore::ImageView>,
 }
 
 fn draw_meshes<'m>(
@@ -28,6 +30,13 @@ fn draw_meshes<'m>(
 }
 
 pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) -> Result<()> {
+    record_shadows_and_background(f, p, t, inp)?;
+    record_after_background(f, p, t, inp)
+}
+
+/// The shadow maps and the diffuse background with its geometry buffer (what eye-space caustics
+/// are rendered into).
+pub fn record_shadows_and_background(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) -> Result<()> {
     let meshes = inp.meshes;
 
     // Shadow map per light: all six cube faces in one instanced draw (gl_Layer per instance).
@@ -46,7 +55,7 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
             })?;
     }
 
-    let background = [&t.background, &t.position, &t.normal];
+    let background = [&t.background, &t.position, &t.normal, &t.albedo];
     f.pass("background")
         .bind(
             &p.background,
@@ -69,7 +78,12 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
             cmd.end_rendering();
             Ok(())
         })?;
+    Ok(())
+}
 
+/// The refractors and reflectors over the background, the composite and the receiver map.
+pub fn record_after_background(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) -> Result<()> {
+    let meshes = inp.meshes;
     let refractors = || meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE);
     f.pass("refractor_back_faces")
         .bind(&p.back_faces, [Bind::Uniform(inp.uniforms)])
@@ -131,6 +145,7 @@ pub fn record(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) 
             Bind::Uniform(inp.caustic_uniforms),
             Bind::Sampled(&inp.caustics.caustic_map.view, inp.nearest),
             Bind::Sampled(&inp.caustics.receiver_positions.view, inp.nearest),
+            Bind::Sampled(inp.receiver_view_caustic.unwrap_or(&t.no_receiver_view.view), inp.nearest),
         ];
         f.pass("receiver_map").bind(&p.receiver_map, binds).record(|cmd| {
             let (w, h) = ratio.view.extent;

@@ -26,9 +26,15 @@ pub const EYE_DUMPS: &[&str] =
 pub const LIGHT_SPACE_DUMPS: &[&str] =
     &["photon_back_faces", "photon_buffer", "hierarchy", "hierarchy_lists", "splats"];
 
-/// The buffers `technique` can dump: the eye render's, then the technique's own.
+/// The buffers `technique` can dump under any of its settings: the eye render's, then the
+/// technique's own.
 pub fn dumps_of(technique: Technique) -> Vec<&'static str> {
     [EYE_DUMPS.to_vec(), technique.dumps()].concat()
+}
+
+/// The buffers a render with `settings` dumps: the eye render's, then its technique's own.
+pub fn dumps_for(settings: &crate::techniques::CausticSettings) -> Vec<&'static str> {
+    [EYE_DUMPS.to_vec(), settings.dumps()].concat()
 }
 
 /// Every buffer some technique can dump (what `--dump` accepts), in the order of

@@ -9,6 +9,7 @@ use crate::scene::Scene;
 use crate::techniques::shah2007::VertexPhotons;
 use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
 use crate::techniques::wyman2008::{self, Hierarchy};
+use crate::techniques::wyman_davis2006::{EyeView, ImageSpace};
 use crate::techniques::{self, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
 use anyhow::{Context as _, Result};
 use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler, Use};
@@ -43,6 +44,8 @@ struct CausticResources {
     /// What the `splats` dump reads the hierarchy's splats with (built by the first such dump).
     footprints: Option<SplatFootprints>,
     compute_splat: Option<techniques::ComputeSplat>,
+    /// Wyman & Davis 2006's eye-space points, quads and gathers.
+    image_space: Option<ImageSpace>,
 }
 
 pub struct Renderer<'c> {
@@ -155,6 +158,7 @@ impl<'c> Renderer<'c> {
                 footprints: None,
                 hierarchy,
                 compute_splat,
+                image_space: ImageSpace::new(ctx, shaders, scene)?,
             })
         } else {
             None
@@ -223,11 +227,29 @@ impl<'c> Renderer<'c> {
                 Ok(())
             })?;
         }
+        let image_space = self.caustic.as_ref().and_then(|c| c.image_space.as_ref());
+        let eye_inputs = eye::EyeInputs {
+            uniforms: &self.uniforms,
+            caustic_uniforms: &self.caustic_uniforms,
+            caustics: &self.caustic_targets,
+            meshes: &self.meshes,
+            nearest: &self.nearest,
+            linear: &self.linear,
+            receiver_view_caustic: image_space.and_then(|i| i.receiver_caustic()),
+        };
+        // Eye-space caustics are drawn into the eye's view: the background and its geometry
+        // buffer first.
+        let eye_space = image_space.is_some_and(|i| i.eye_space());
+        if eye_space {
+            eye::record_shadows_and_background(&mut f, &self.pipelines, &self.targets, &eye_inputs)?;
+        }
         match &self.caustic {
             Some(c) => {
+                let view = self.eye_view();
                 let frame = CausticFrame {
                     // One photon buffer serves every light: only one light's can be kept.
                     reuse_photons: step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1,
+                    image_space: c.image_space.as_ref().map(|i| (i, Some(view))),
                     ..self.caustic_frame(c)
                 };
                 let inputs = self.caustic_inputs(c);
@@ -236,15 +258,11 @@ impl<'c> Renderer<'c> {
             }
             None => techniques::record_cleared(&mut f, &self.caustic_targets)?,
         }
-        let eye_inputs = eye::EyeInputs {
-            uniforms: &self.uniforms,
-            caustic_uniforms: &self.caustic_uniforms,
-            caustics: &self.caustic_targets,
-            meshes: &self.meshes,
-            nearest: &self.nearest,
-            linear: &self.linear,
-        };
-        eye::record(&mut f, &self.pipelines, &self.targets, &eye_inputs)?;
+        if eye_space {
+            eye::record_after_background(&mut f, &self.pipelines, &self.targets, &eye_inputs)?;
+        } else {
+            eye::record(&mut f, &self.pipelines, &self.targets, &eye_inputs)?;
+        }
         let report = f.submit()?;
         self.photons_ready = true;
         Ok(report)
@@ -253,6 +271,19 @@ impl<'c> Renderer<'c> {
     /// The last frame's linear radiance.
     pub fn final_image(&self) -> Result<ImageF32> {
         dumps::final_image(self.ctx, &self.targets)
+    }
+
+    /// The eye's view as this frame renders it (for eye-space caustics).
+    fn eye_view(&self) -> EyeView<'_> {
+        let fu = setup::frame_uniforms(&self.scene);
+        EyeView {
+            view_proj: glam::Mat4::from_cols_array(&fu.view_proj),
+            eye: self.scene.camera.eye,
+            position: &self.targets.position.view,
+            normal: &self.targets.normal.view,
+            albedo: &self.targets.albedo.view,
+            background: &self.targets.background.view,
+        }
     }
 
     fn caustic_passes<'a>(
@@ -287,6 +318,7 @@ impl<'c> Renderer<'c> {
             vertex_photons: c.vertex_photons.as_ref(),
             hierarchy: c.hierarchy.as_ref(),
             compute_splat: c.compute_splat.as_ref(),
+            image_space: None,
         }
     }
 
@@ -353,6 +385,11 @@ impl<'c> Renderer<'c> {
                 Some(_) if name == "splats" => Some(splat_footprints::splats_image(&splats)),
                 Some(i) => per_light[i].take(),
                 None if light_space(name) => None,
+                None if !super::dumps_for(&self.scene.caustics).contains(&name.as_str()) => None,
+                None if name == "eye_caustic" => match self.caustic.as_ref().and_then(|c| c.image_space.as_ref()) {
+                    Some(is) => is.dump_eye(self.ctx)?,
+                    None => None,
+                },
                 None => {
                     let photons = self.caustic.as_ref().map(|c| &c.photons);
                     dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)?

@@ -24,6 +24,8 @@ pub struct EyeTargets {
     pub background: Target,
     pub position: Target,
     pub normal: Target,
+    /// rgb diffuse albedo, a = 1 where a surface was hit (eye-space caustics shade with it).
+    pub albedo: Target,
     pub depth: Target,
     pub back_faces: Target,
     pub back_depth: Target,
@@ -31,6 +33,8 @@ pub struct EyeTargets {
     pub final_image: Target,
     /// (E/E0, E and mean E0, caustic E) over the receiver grid.
     pub receiver: Option<(Target, Target, Target)>,
+    /// What the receiver map binds for the receiver view's caustics when there are none (1x1).
+    pub no_receiver_view: Target,
 }
 
 impl EyeTargets {
@@ -66,12 +70,14 @@ impl EyeTargets {
             background: Target::color(ctx, "background radiance", w, h)?,
             position: Target::color(ctx, "eye position", w, h)?,
             normal: Target::color(ctx, "eye normal", w, h)?,
+            albedo: Target::color(ctx, "eye albedo", w, h)?,
             depth: Target::depth(ctx, "eye depth", w, h)?,
             back_faces: Target::color(ctx, "refractor back faces", w, h)?,
             back_depth: Target::depth(ctx, "refractor back-face depth", w, h)?,
             surface: Target::color(ctx, "refractor front faces", w, h)?,
             final_image: Target::color(ctx, "final", w, h)?,
             receiver,
+            no_receiver_view: Target::array(ctx, ImageDesc::new_2d("no receiver view", COLOR, 1, 1))?,
         })
     }
 }

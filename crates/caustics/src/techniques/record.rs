@@ -8,6 +8,7 @@ use super::shared::compute_splat::{self, ComputeSplat};
 use super::shared::{photon_buffer, splat};
 use super::wyman2008::photon_copy::PhotonCopy;
 use super::wyman2008::Hierarchy;
+use super::wyman_davis2006::{EyeView, ImageSpace};
 use anyhow::Result;
 use vkcore::Frame;
 
@@ -29,6 +30,9 @@ pub struct CausticFrame<'a> {
     pub hierarchy: Option<&'a Hierarchy>,
     /// Splat with a compute shader instead of points (`splat_path = compute`).
     pub compute_splat: Option<&'a ComputeSplat>,
+    /// Wyman & Davis 2006's eye-space points, quads or gathers instead of a splat, with the
+    /// eye's view where they render into it.
+    pub image_space: Option<(&'a ImageSpace, Option<EyeView<'a>>)>,
 }
 
 /// Light `l`'s light-space work before its splat: receiver positions, back faces, the photon
@@ -59,6 +63,10 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
         if !frame.reuse_photons {
             record_light_space(f, c, l, frame)?;
         }
+        if let Some((is, eye)) = frame.image_space {
+            is.record_light(f, c, l, eye, frame.reuse_photons)?;
+            continue;
+        }
         let cmap = &ct.per_light[l as usize].0;
         let passes = inp.pass_inputs();
         match (frame.hierarchy, frame.compute_splat, frame.copy) {
@@ -68,6 +76,9 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
             (None, None, Some(copy)) => copy.record_splat(f, inp, cmap, l)?,
             (None, None, None) => splat::record_splat(f, c, l)?,
         }
+    }
+    if let Some((is, eye)) = frame.image_space {
+        is.record_after_lights(f, c, eye, frame.reuse_photons)?;
     }
     Ok(())
 }

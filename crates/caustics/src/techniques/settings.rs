@@ -9,6 +9,8 @@
 use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath};
 use super::technique::Technique;
 use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
+use super::wyman_davis2006::settings::{GatherLighting, QuadLighting, Reflection, Space, TemporalFilter};
+use super::{shared, wyman2008, wyman_davis2006};
 use serde::{Deserialize, Serialize};
 
 macro_rules! caustic_settings {
@@ -116,6 +118,21 @@ caustic_settings! {
     /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4: 1024, 2048, 4096);
     /// a power of two, 64..=65536; default 1024.
     instance_vertices: u32 = 1024;
+    /// wd-quads, wd-gather: render into the eye's view or a light-space caustic map (Wyman &
+    /// Davis 2006 Sec. 3.2.1-3.2.2); default eye.
+    space: Space = Space::Eye, only WdQuads | WdGather;
+    /// wd-eye-points, wd-gather: average the photon counts of the previous three frames with the
+    /// current frame's (Wyman & Davis 2006 Sec. 3.2.3): on or off; default off.
+    temporal_filter: TemporalFilter = TemporalFilter::Off, only WdEyePoints | WdGather;
+    /// wd-eye-points, wd-gather: the lighting of a pixel's photons, eq9 (each photon's own
+    /// direction), eq10 (their average direction, the paper's) or eq11 (the light's direction);
+    /// default eq10.
+    gather_lighting: GatherLighting = GatherLighting::Eq10, only WdEyePoints | WdGather;
+    /// wd-quads: Eq. 3 (the photons' stored directions) or Eq. 4 (the light's); default eq3.
+    quad_lighting: QuadLighting = QuadLighting::Eq3, only WdQuads;
+    /// Where mirrored photons land: depth-search (the ray/receiver intersection in effect) or
+    /// plane (Wyman & Davis 2006 Sec. 4: one background plane); default depth-search.
+    reflection: Reflection = Reflection::DepthSearch;
 }
 
 impl CausticSettings {
@@ -126,6 +143,28 @@ impl CausticSettings {
             4
         } else {
             1
+        }
+    }
+
+    /// Whether the technique renders its caustics in the eye's view (Wyman & Davis 2006's
+    /// eye-space points, quads and gather): the eye render then has no caustic-map lookup, and
+    /// the receiver map comes from an orthographic view of the receiver plane.
+    pub fn eye_space(&self) -> bool {
+        match self.technique {
+            Technique::WdEyePoints => true,
+            Technique::WdQuads | Technique::WdGather => self.space == Space::Eye,
+            _ => false,
+        }
+    }
+
+    /// The intermediate buffers this render's technique adds to the eye render's (`--dump`
+    /// names).
+    pub fn dumps(&self) -> Vec<&'static str> {
+        match self.technique {
+            Technique::None => vec![],
+            _ if self.eye_space() => wyman_davis2006::settings::EYE_DUMPS.to_vec(),
+            Technique::Hcm => [shared::settings::DUMPS, wyman2008::settings::DUMPS].concat(),
+            _ => shared::settings::DUMPS.to_vec(),
         }
     }
 

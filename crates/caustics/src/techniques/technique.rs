@@ -4,7 +4,8 @@
 
 use super::settings::CausticSettings;
 use super::shared::settings::Intersect;
-use super::{shah2007, shared, value_enum, wyman2008, wyman_davis2006};
+use super::wyman_davis2006::settings::Space;
+use super::{shah2007, value_enum, wyman2008, wyman_davis2006};
 use vkcore::Feature;
 
 value_enum::value_enum! {
@@ -17,8 +18,14 @@ value_enum::value_enum! {
         Shah = "shah",
         /// Shah et al.'s original first pass: a photon per vertex of the specular meshes.
         ShahVertex = "shah-vertex",
-        /// Wyman & Davis 2006: the photon buffer splatted as points.
+        /// Wyman & Davis 2006: the photon buffer splatted as points into a light-space caustic map.
         WdPoints = "wd-points",
+        /// Wyman & Davis 2006 Sec. 3.2, Fig. 4: the photons drawn as points into the eye's view.
+        WdEyePoints = "wd-eye-points",
+        /// Wyman & Davis 2006 Sec. 3.2.1: caustic quads between adjacent photons (--space eye|light).
+        WdQuads = "wd-quads",
+        /// Wyman & Davis 2006 Sec. 3.2.2: the 7x7 image-space gather (--space eye|light).
+        WdGather = "wd-gather",
         /// Wyman 2008: hierarchical caustic maps over the photon buffer.
         Hcm = "hcm",
     }
@@ -30,7 +37,9 @@ impl Technique {
         match self {
             Technique::None => "Wyman 2005 image-space refraction (no caustics)",
             Technique::Shah | Technique::ShahVertex => shah2007::settings::PAPER,
-            Technique::WdPoints => wyman_davis2006::PAPER,
+            Technique::WdPoints | Technique::WdEyePoints | Technique::WdQuads | Technique::WdGather => {
+                wyman_davis2006::PAPER
+            }
             Technique::Hcm => wyman2008::settings::PAPER,
         }
     }
@@ -52,7 +61,11 @@ impl Technique {
     /// The ray/receiver intersection the technique's paper uses.
     pub fn default_intersect(self) -> Intersect {
         match self {
-            Technique::WdPoints | Technique::Hcm => Intersect::WdDepthSearch,
+            Technique::WdPoints
+            | Technique::WdEyePoints
+            | Technique::WdQuads
+            | Technique::WdGather
+            | Technique::Hcm => Intersect::WdDepthSearch,
             Technique::None | Technique::Shah | Technique::ShahVertex => Intersect::ShahIterative,
         }
     }
@@ -73,16 +86,20 @@ impl Technique {
                 &[Feature::ShaderOutputLayer, Feature::LargePoints]
             }
             Technique::ShahVertex => shah2007::settings::VERTEX_PHOTON_FEATURES,
+            // Points of one pixel and triangles.
+            Technique::WdEyePoints | Technique::WdQuads | Technique::WdGather => &[Feature::ShaderOutputLayer],
         }
     }
 
-    /// The intermediate buffers the technique adds to the eye render's (`--dump` names).
+    /// The intermediate buffers the technique can add to the eye render's (`--dump` names), under
+    /// any of its settings (see [`CausticSettings::dumps`] for those of one render).
     pub fn dumps(self) -> Vec<&'static str> {
-        match self {
-            Technique::None => vec![],
-            Technique::Shah | Technique::ShahVertex | Technique::WdPoints => shared::settings::DUMPS.to_vec(),
-            Technique::Hcm => [shared::settings::DUMPS, wyman2008::settings::DUMPS].concat(),
+        let mut all = CausticSettings { technique: self, ..Default::default() }.dumps();
+        if matches!(self, Technique::WdQuads | Technique::WdGather) {
+            let light = CausticSettings { technique: self, space: Space::Light, ..Default::default() }.dumps();
+            all.extend(light.into_iter().filter(|d| !all.contains(d)).collect::<Vec<_>>());
         }
+        all
     }
 
     /// Photons the technique emits per light (for tables; hardware independent).
@@ -90,7 +107,12 @@ impl Technique {
         match self {
             Technique::None => 0,
             Technique::ShahVertex => specular_vertices as u64,
-            Technique::Shah | Technique::WdPoints | Technique::Hcm => settings.photons as u64 * settings.photons as u64,
+            Technique::Shah
+            | Technique::WdPoints
+            | Technique::WdEyePoints
+            | Technique::WdQuads
+            | Technique::WdGather
+            | Technique::Hcm => settings.photons as u64 * settings.photons as u64,
         }
     }
 }

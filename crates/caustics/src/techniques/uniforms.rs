@@ -7,6 +7,7 @@ use crate::gpu::setup::perspective;
 use crate::gpu::MAX_LIGHTS;
 use crate::scene::{Light, LightKind, MaterialKind, Scene};
 use crate::techniques::wyman2008::settings::{SplatMode, VaryingRadius};
+use crate::techniques::wyman_davis2006::{self, settings::Reflection};
 use crate::techniques::{CausticSettings, Technique};
 use anyhow::Result;
 use bytemuck::{Pod, Zeroable};
@@ -28,15 +29,19 @@ pub struct CausticLightUniforms {
 pub struct CausticUniforms {
     pub settings: [u32; 4],
     pub splat: [f32; 4],
+    /// x: the y of the plane mirrored photons land on (`reflection = plane`).
+    pub background_plane: [f32; 4],
     pub lights: [CausticLightUniforms; MAX_LIGHTS],
 }
 
 pub const FLAG_FRESNEL: u32 = 1;
 pub const FLAG_WD_DEPTH_SEARCH: u32 = 2;
 pub const FLAG_BEAM_AREA: u32 = 4;
+pub const FLAG_EYE_SPACE: u32 = 8;
+pub const FLAG_REFLECTION_PLANE: u32 = 16;
 
 const _: () = assert!(std::mem::size_of::<CausticLightUniforms>() == 2 * 64 + 4 * 16);
-const _: () = assert!(std::mem::size_of::<CausticUniforms>() == 32 + MAX_LIGHTS * 192);
+const _: () = assert!(std::mem::size_of::<CausticUniforms>() == 48 + MAX_LIGHTS * 192);
 
 /// Bounding sphere of every refractive or reflective object (None if there are none).
 pub fn specular_bounds(scene: &Scene) -> Option<(Vec3, f32)> {
@@ -89,11 +94,17 @@ pub fn photon_view(settings: &CausticSettings, light: &Light, centre: Vec3, radi
 
 /// Uniforms for `settings` on `scene`. With technique `none`, zero lights have caustics.
 pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<CausticUniforms> {
-    let mut u =
-        CausticUniforms { settings: [0; 4], splat: [0.0; 4], lights: [CausticLightUniforms::zeroed(); MAX_LIGHTS] };
+    let mut u = CausticUniforms {
+        settings: [0; 4],
+        splat: [0.0; 4],
+        background_plane: [wyman_davis2006::reflection::background_plane(scene), 0.0, 0.0, 0.0],
+        lights: [CausticLightUniforms::zeroed(); MAX_LIGHTS],
+    };
     let flags = if settings.fresnel { FLAG_FRESNEL } else { 0 }
         | if settings.intersect() == Intersect::WdDepthSearch { FLAG_WD_DEPTH_SEARCH } else { 0 }
-        | if settings.varying_radius == VaryingRadius::BeamArea { FLAG_BEAM_AREA } else { 0 };
+        | if settings.varying_radius == VaryingRadius::BeamArea { FLAG_BEAM_AREA } else { 0 }
+        | if settings.eye_space() { FLAG_EYE_SPACE } else { 0 }
+        | if settings.reflection == Reflection::Plane { FLAG_REFLECTION_PLANE } else { 0 };
     u.settings = [0, settings.photons, settings.iterations, flags];
     u.splat = [
         settings.splat_radius,
@@ -244,5 +255,7 @@ mod tests {
         assert!(src.contains(&format!("#define CAUSTIC_FRESNEL {FLAG_FRESNEL}u")));
         assert!(src.contains(&format!("#define CAUSTIC_WD_DEPTH_SEARCH {FLAG_WD_DEPTH_SEARCH}u")));
         assert!(src.contains(&format!("#define CAUSTIC_BEAM_AREA {FLAG_BEAM_AREA}u")));
+        assert!(src.contains(&format!("#define CAUSTIC_EYE_SPACE {FLAG_EYE_SPACE}u")));
+        assert!(src.contains(&format!("#define CAUSTIC_REFLECTION_PLANE {FLAG_REFLECTION_PLANE}u")));
     }
 }

@@ -1,0 +1,66 @@
+//! Caustic quads (Wyman & Davis 2006 Sec. 3.2.1, `shaders_glsl/wyman_davis2006/quads.*`): a
+//! polygon between every 2x2 block of adjacent landed photons, carrying R = w_B / w_P
+//! (Eq. 1-2), lit with Eq. 3 or 4 and blended additively into the eye's caustic irradiance or
+//! into light l's caustic map. The culling test is stated in quads.vert.
+
+use crate::gpu::formats::COLOR;
+use crate::gpu::ImageSpaceConstants;
+use crate::techniques::CausticPasses;
+use anyhow::Result;
+use vkcore::{
+    Access, Bind, BindingKind as K, Blend, Context, Cull, Frame, GraphicsDesc, ImageView, Pipeline, ShaderCompiler,
+    Targets, Topology, Use,
+};
+
+pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result<Pipeline> {
+    let defines: &[(&str, &str)] = if light_space { &[("LIGHT_SPACE", "1")] } else { &[] };
+    let name = if light_space { "wd.quads.light_space" } else { "wd.quads" };
+    let mut d = GraphicsDesc::new(
+        name,
+        sh.compile("wyman_davis2006/quads.vert", defines)?,
+        Some(sh.compile("wyman_davis2006/quads.frag", defines)?),
+    );
+    d.bindings = vec![K::UniformBuffer; 2];
+    d.bindings.extend([K::SampledImage; 6]);
+    d.topology = Topology::Triangles;
+    d.cull = Cull::None;
+    d.blend = Blend::Additive;
+    d.color_formats = vec![COLOR];
+    Ok(Pipeline::graphics(ctx, &d)?)
+}
+
+/// Draws light `l`'s caustic quads into `out`, seen through `geometry` (world position and
+/// normal; not read in light space), clearing it first if `clear`.
+#[allow(clippy::too_many_arguments)]
+pub fn record(
+    f: &mut Frame,
+    name: &str,
+    c: &CausticPasses,
+    pipeline: &Pipeline,
+    out: &ImageView,
+    geometry: (&ImageView, &ImageView),
+    clear: bool,
+    constants: ImageSpaceConstants,
+) -> Result<()> {
+    let (pt, inp) = (c.photons, c.inputs);
+    let binds = [
+        Bind::Uniform(inp.frame_uniforms),
+        Bind::Uniform(inp.caustic_uniforms),
+        Bind::Sampled(&pt.position.view, inp.nearest),
+        Bind::Sampled(&pt.direction.view, inp.nearest),
+        Bind::Sampled(&pt.power.view, inp.nearest),
+        Bind::Sampled(geometry.0, inp.nearest),
+        Bind::Sampled(geometry.1, inp.nearest),
+        Bind::Sampled(&c.targets.per_light[constants.light as usize].1, inp.nearest),
+    ];
+    let n = pt.width;
+    f.pass(name).bind(pipeline, binds).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(|cmd| {
+        cmd.begin_rendering(&Targets::color(out, if clear { Some([0.0; 4]) } else { None }))?;
+        cmd.push(&constants)?;
+        // Two triangles for each of the (N - 1)^2 blocks of 2x2 photons.
+        cmd.draw((n - 1) * (n - 1) * 6, 1, 0, 0);
+        cmd.end_rendering();
+        Ok(())
+    })?;
+    Ok(())
+}

@@ -1,0 +1,90 @@
+//! Wyman & Davis 2006's settings and dumps, as the scene's `[caustics]`, the bench configs and
+//! the command line name them (a leaf module: the scene description reads it).
+
+use super::super::value_enum::value_enum;
+
+/// The paper, as tables and `--help` cite it.
+pub const PAPER: &str = "Wyman & Davis 2006, image-space caustics";
+
+/// What the eye-space variants dump beside the shared buffers: the eye's caustic irradiance
+/// and the eye-space photon buffer it was gathered from.
+pub const EYE_DUMPS: &[&str] = &["receiver_positions", "photon_back_faces", "photon_buffer", "eye_caustic"];
+
+value_enum! {
+    /// Where caustic quads and gathers are rendered (`caustics.space`, `--space`; Sec. 3.2.1-3.2.2).
+    pub enum Space {
+        /// Into the eye's view, every frame (for the receiver map: an orthographic view straight
+        /// down on the receiver plane).
+        Eye = "eye",
+        /// Into a light-space caustic map projected like a shadow map, rendered again only when
+        /// the lighting changes.
+        Light = "light",
+    }
+}
+
+value_enum! {
+    /// Temporal filtering of the photon counts (`caustics.temporal_filter`, `--temporal-filter`;
+    /// Sec. 3.2.3).
+    pub enum TemporalFilter {
+        /// The counts of the current frame alone.
+        Off = "off",
+        /// The counts of the previous three frames averaged with the current frame's.
+        On = "on",
+    }
+}
+
+value_enum! {
+    /// Where a photon reflected by a mirror lands (`caustics.reflection`, `--reflection`; Sec. 4).
+    pub enum Reflection {
+        /// The ray/receiver intersection in effect (`caustics.intersect`).
+        DepthSearch = "depth-search",
+        /// The paper's: the reflected ray intersected with one background plane (the receiver
+        /// map's plane, else the lowest diffuse surface's).
+        Plane = "plane",
+    }
+}
+
+value_enum! {
+    /// How the gathers and the eye-space points light a pixel's photons
+    /// (`caustics.gather_lighting`, `--gather-lighting`; Sec. 3.2.2).
+    pub enum GatherLighting {
+        /// Eq. 9: each photon lit from its own stored incident direction.
+        Eq9 = "eq9",
+        /// Eq. 10: one lighting computation per pixel with its photons' average incident
+        /// direction (the paper's choice).
+        Eq10 = "eq10",
+        /// Eq. 11: the photons lit from the light's direct direction (no stored directions).
+        Eq11 = "eq11",
+    }
+}
+
+value_enum! {
+    /// How a caustic quad is lit (`caustics.quad_lighting`, `--quad-lighting`; Sec. 3.2.1).
+    pub enum QuadLighting {
+        /// Eq. 3: from the direction its photons arrive in (stored in the photon buffer).
+        Eq3 = "eq3",
+        /// Eq. 4: from the light's direct direction.
+        Eq4 = "eq4",
+    }
+}
+
+impl GatherLighting {
+    /// The equation number the shaders switch on.
+    pub fn equation(self) -> u32 {
+        match self {
+            GatherLighting::Eq9 => 9,
+            GatherLighting::Eq10 => 10,
+            GatherLighting::Eq11 => 11,
+        }
+    }
+}
+
+impl QuadLighting {
+    /// The equation number the shaders switch on.
+    pub fn equation(self) -> u32 {
+        match self {
+            QuadLighting::Eq3 => 3,
+            QuadLighting::Eq4 => 4,
+        }
+    }
+}

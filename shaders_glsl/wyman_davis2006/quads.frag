@@ -1,0 +1,50 @@
+// A caustic quad's light where it covers a pixel (Sec. 3.2.1): the caustic term of Eq. 3,
+// R L(V, N, L_photon), with L = I cos / d^2 for the Lambertian receivers (the light's intensity
+// and what the specular surfaces let through are in v_intensity), or of Eq. 4 with the light's
+// direct direction. Blended additively: overlapping beams add.
+// Eye space: irradiance (W/m^2) at the surface the pixel sees, if the quad lies on it.
+// Light space (LIGHT_SPACE): the power (W) the quad puts into the caustic-map texel, R I w_t
+// (times Eq. 3's cos(photon) / cos(direct)), which the caustic-map lookup turns into irradiance.
+// A polygon smaller than a pixel is hit or missed by the rasterizer, whose snapped vertices can
+// make a needle of nearly no area (R in the thousands, at a caustic) cover pixels: no pixel
+// takes more than the polygon's whole beam, I w_B (in eye space: over the pixel's area on the
+// polygon, from the derivatives of its position).
+#version 450
+#define CAUSTICS_BINDING 1
+#include "common/caustics.glsl"
+#include "wyman_davis2006/image_space.glsl"
+#ifndef LIGHT_SPACE
+layout(binding = 5) uniform sampler2D view_position;
+layout(binding = 6) uniform sampler2D view_normal;
+#endif
+layout(location = 0) in vec3 v_position;
+layout(location = 1) in vec3 v_direction;
+layout(location = 2) flat in vec3 v_intensity;
+layout(location = 3) flat in vec3 v_normal;
+layout(location = 0) out vec4 o_caustic;
+
+void main() {
+    CausticLight cl = caustics.lights[constants.light];
+    vec3 d_photon = normalize(v_direction);
+#ifdef LIGHT_SPACE
+    vec3 p = v_position;
+    vec3 n = v_normal;
+#else
+    ivec2 t = ivec2(gl_FragCoord.xy);
+    vec4 surface = texelFetch(view_position, t, 0);
+    if (!on_surface(surface, v_position)) discard;
+    vec3 p = surface.xyz;
+    vec3 n = texelFetch(view_normal, t, 0).xyz;
+#endif
+    vec3 to_light = cl.position.xyz - p;
+    float d2 = dot(to_light, to_light);
+    float cos_direct = dot(n, to_light * inversesqrt(d2));
+    float f = constants.lighting == 3u ? photon_lighting(dot(n, -d_photon), cos_direct) : 1.0;
+#ifdef LIGHT_SPACE
+    float m = cl.caustic_plane.y;
+    float w_t = texel_solid_angle(gl_FragCoord.xy / m * 2.0 - 1.0, cl.caustic_plane);
+    o_caustic = vec4(v_intensity * w_t * f, 0.0);
+#else
+    o_caustic = vec4(v_intensity * max(cos_direct, 0.0) * f / d2, 0.0);
+#endif
+}

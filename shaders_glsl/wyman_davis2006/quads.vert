@@ -1,0 +1,91 @@
+// Wyman & Davis 2006 Sec. 3.2.1: caustic quads. Every 2x2 block of adjacent photons of the
+// photon buffer is a polygon P between where they land, drawn as two triangles (six vertices,
+// each fetching the block's four photons). The polygon carries the ratio R = w_B / w_P (Eq. 1-2):
+// w_B the solid angle of the beam between the four photons as the light emits it (precomputed
+// for the photon buffer: one texel's), w_P the solid angle P subtends from the light,
+// approximated as the paper does by the area of the polygon whose vertices are P's projected on
+// the unit sphere about the light: the areas of its two triangles as they are drawn, so that a
+// polygon folded over itself at a caustic (a bow tie) spreads its beam over what it covers.
+// Culled (all six vertices outside the view; and needles, see below): blocks with a photon that did not land (it missed
+// the specular object, was lost to total internal reflection or found no receiver), and blocks
+// that stretch between different surfaces, tested as: the centre of the four landing points is
+// not on the surface the light sees in its direction: its distance from the light differs from
+// that of the light's receiver-positions map there by more than 5% of the polygon's longer
+// diagonal plus 2% of the distance (the map's texels are coarse). Between two points of one
+// plane (or of a smooth surface, for a small polygon) the centre lies on it; between a floor and
+// a wall it hangs in the air, in front of what the light sees.
+#version 450
+#define CAUSTICS_BINDING 1
+#include "common/caustics.glsl"
+#include "wyman_davis2006/image_space.glsl"
+layout(binding = 2) uniform sampler2D photon_position;
+layout(binding = 3) uniform sampler2D photon_direction;
+layout(binding = 4) uniform sampler2D photon_power;
+layout(binding = 7) uniform sampler2D receiver_positions;   // light l's first diffuse surfaces
+layout(location = 0) out vec3 v_position;
+layout(location = 1) out vec3 v_direction;
+layout(location = 2) flat out vec3 v_intensity;   // R * mean(Phi_k / w_k): W/sr the polygon carries
+layout(location = 3) flat out vec3 v_normal;      // the polygon's, towards the light
+
+// Corners of the two triangles of a block: (0,0) (1,0) (1,1) and (0,0) (1,1) (0,1).
+const ivec2 CORNERS[6] = ivec2[](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 0), ivec2(1, 1), ivec2(0, 1));
+const ivec2 BLOCK[4] = ivec2[](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 1));
+
+void main() {
+    uint n = constants.photon_side;
+    uint quad = uint(gl_VertexIndex) / 6u;
+    ivec2 base = ivec2(quad % (n - 1u), quad / (n - 1u));
+    CausticLight cl = caustics.lights[constants.light];
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    v_position = vec3(0.0);
+    v_direction = vec3(0.0);
+    v_intensity = vec3(0.0);
+    v_normal = vec3(0.0, 1.0, 0.0);
+    vec3 p[4];
+    vec3 u[4];
+    vec3 intensity = vec3(0.0);
+    for (int k = 0; k < 4; ++k) {
+        ivec2 texel = base + BLOCK[k];
+        vec4 pos = texelFetch(photon_position, texel, 0);
+        if (pos.w < 0.5) return;
+        p[k] = pos.xyz;
+        u[k] = normalize(pos.xyz - cl.position.xyz);
+        // The photon's power over its texel's solid angle: the light's intensity times what
+        // the specular surfaces let through (Eq. 1's E_B without the beam's solid angle).
+        vec2 ndc = (vec2(texel) + 0.5) / float(n) * 2.0 - 1.0;
+        intensity += texelFetch(photon_power, texel, 0).rgb / texel_solid_angle(ndc, cl.photon_plane);
+    }
+    vec3 centre = 0.25 * (p[0] + p[1] + p[2] + p[3]);
+    float span = max(distance(p[2], p[0]), distance(p[3], p[1]));
+    vec4 clip_c = cl.caustic_view_proj * vec4(centre, 1.0);
+    if (clip_c.w <= 0.0) return;
+    vec4 seen = texture(receiver_positions, clip_c.xy / clip_c.w * 0.5 + 0.5);
+    float d_centre = distance(centre, cl.position.xyz);
+    float d_seen = distance(seen.xyz, cl.position.xyz);
+    if (seen.w < 0.5 || abs(d_seen - d_centre) > 0.05 * span + 0.02 * d_centre) return;
+    vec3 diagonals = cross(p[2] - p[0], p[3] - p[1]);
+    if (dot(diagonals, diagonals) > 0.0) {
+        vec3 normal = normalize(diagonals);
+        v_normal = dot(normal, cl.position.xyz - centre) < 0.0 ? -normal : normal;
+    }
+    // Eq. 1-2: R = w_B / w_P. The beam's corners are the four photon texels' centres, so it
+    // spans one texel, centred on the block's shared corner.
+    vec2 corner = vec2(base + 1) / float(n) * 2.0 - 1.0;
+    float w_b = texel_solid_angle(corner, cl.photon_plane);
+    float w_p = 0.5 * (length(cross(u[1] - u[0], u[2] - u[0])) + length(cross(u[2] - u[0], u[3] - u[0])));
+    // A polygon focused below a thousandth of its beam's solid angle is a needle whose area the
+    // rasterizer does not see (its vertices snap to sub-pixel positions: it covers pixels it
+    // should nearly never cover, each taking R in the thousands): dropped.
+    if (!(w_p > w_b * 1e-3)) return;
+    ivec2 c = base + CORNERS[gl_VertexIndex % 6];
+    vec3 here = texelFetch(photon_position, c, 0).xyz;
+    v_position = here;
+    v_direction = texelFetch(photon_direction, c, 0).xyz;
+    v_intensity = 0.25 * intensity * (w_b / w_p);
+#ifdef LIGHT_SPACE
+    vec4 clip = cl.caustic_view_proj * vec4(here, 1.0);
+#else
+    vec4 clip = constants.view_proj * vec4(here, 1.0);
+#endif
+    gl_Position = clip;
+}
