@@ -53,7 +53,12 @@ impl Technique {
     /// `photon_view`), as opposed to the specular meshes' vertices or no photons at all.
     pub fn has_photon_buffer(self) -> bool {
         match self {
-            Technique::Shah | Technique::WdPoints | Technique::Hcm => true,
+            Technique::Shah
+            | Technique::WdPoints
+            | Technique::WdEyePoints
+            | Technique::WdQuads
+            | Technique::WdGather
+            | Technique::Hcm => true,
             Technique::None | Technique::ShahVertex => false,
         }
     }
