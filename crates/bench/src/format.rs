@@ -18,7 +18,9 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
     }
     match kind {
         "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" => significant(v),
-        "photons_emitted" | "splats_drawn" | "photons_processed" => thousands(v.round() as u64),
+        "photons_emitted" | "splats_drawn" | "photons_processed" | "valid_photons" => thousands(v.round() as u64),
+        // A share of the photon buffer, as a percentage with three significant digits.
+        "valid_fraction" => format!("{}%", significant(100.0 * v)),
         "rel_rmse" | "flux_ratio" => format!("{v:.4}"),
         _ => format!("{v}"),
     }
@@ -54,6 +56,7 @@ pub fn unit(kind: &str) -> &'static str {
         "fps" => "fps",
         "photons_emitted" => "photons",
         "splats_drawn" | "photons_processed" => "points",
+        "valid_photons" => "photons",
         _ => "",
     }
 }
@@ -120,6 +123,9 @@ mod tests {
         assert_eq!(format_value("fps", Some(0.01234)), "0.0123");
         assert_eq!(format_value("pass_ms", Some(0.5)), "0.500");
         assert_eq!(format_value("fps", Some(0.0)), "0.0");
+        assert_eq!(format_value("valid_fraction", Some(0.5928440093994141)), "59.3%");
+        assert_eq!(format_value("valid_fraction", Some(0.0062103271484375)), "0.621%");
+        assert_eq!(format_value("valid_photons", Some(8216.0)), "8,216");
         assert_eq!(display("photons", "256"), "256²");
         assert_eq!(display("lights", "2"), "2 lights");
     }
