@@ -10,7 +10,7 @@ use caustics::input_error;
 use caustics::render::{self, RenderRequest};
 use caustics::scene::Scene;
 use caustics::techniques::wyman2008::SplatMode;
-use caustics::techniques::{SplatPath, Technique};
+use caustics::techniques::{Refraction, SplatPath, Technique};
 use std::sync::Arc;
 use vkcore::{Context, DeviceInfo, ShaderCompiler, ValidationLog};
 
@@ -23,8 +23,15 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let technique = scene.caustics.technique;
     // `all` means every buffer this render has; naming a buffer of another technique is a
     // mistake worth saying.
-    let own = render::dumps_of(technique);
+    let own = render::dumps_of(&scene.caustics);
     if let Some(n) = dumps.iter().find(|d| !own.contains(&d.as_str()) && !dump_all(args.dump.as_deref())) {
+        if let Some(r) = Refraction::ALL.iter().find(|r| r.dumps().contains(&n.as_str())) {
+            return Err(input_error!(
+                "--dump: `{n}` is a buffer of --refraction {r}, not of `{}`",
+                scene.caustics.refraction
+            )
+            .into());
+        }
         let owners: Vec<&str> =
             Technique::ALL.iter().filter(|t| t.dumps().contains(&n.as_str())).map(|t| t.name()).collect();
         return Err(input_error!(

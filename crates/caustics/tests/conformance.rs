@@ -91,7 +91,7 @@ fn every_technique_renders_clean_conserves_power_and_meets_its_stated_error() {
             let all: Vec<String> = all_dump_names().iter().map(|s| s.to_string()).collect();
             let dumps = r.dumps(&all).expect("dumps");
             let names: Vec<&str> = dumps.iter().map(|(n, _)| n.as_str()).collect();
-            assert_eq!(names, dumps_of(t), "{t} on {scene_name}: dumps written vs declared");
+            assert_eq!(names, dumps_of(&scene.caustics), "{t} on {scene_name}: dumps written vs declared");
             let log = ctx.validation_log();
             assert_eq!(log.count(), 0, "{t} on {scene_name}: validation messages:\n{}", log.messages().join("\n"));
 

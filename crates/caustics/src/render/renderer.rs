@@ -9,6 +9,7 @@ use crate::scene::Scene;
 use crate::techniques::shah2007::VertexPhotons;
 use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
 use crate::techniques::wyman2008::{self, Hierarchy};
+use crate::techniques::wyman_nichols2009::{deferred_refraction, DeferredRefraction, Refraction};
 use crate::techniques::{self, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
 use anyhow::{Context as _, Result};
 use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler, Use};
@@ -63,6 +64,10 @@ pub struct Renderer<'c> {
     caustic: Option<CausticResources>,
     specular_vertices: u32,
     photons_ready: bool,
+    /// `--refraction deferred`: its passes and buffers.
+    deferred: Option<DeferredRefraction>,
+    /// The specular objects, farthest from the eye first (Wyman & Nichols 2009 Sec. 3.1.1).
+    refraction_order: Vec<usize>,
 }
 
 impl<'c> Renderer<'c> {
@@ -159,6 +164,17 @@ impl<'c> Renderer<'c> {
         } else {
             None
         };
+        let refraction_order = deferred_refraction::back_to_front(scene);
+        let deferred = match settings.refraction {
+            Refraction::Forward => None,
+            Refraction::Deferred => Some(DeferredRefraction::new(
+                ctx,
+                shaders,
+                refraction_order.len(),
+                scene.camera.width,
+                scene.camera.height,
+            )?),
+        };
         Ok(Renderer {
             ctx,
             shaders,
@@ -176,6 +192,8 @@ impl<'c> Renderer<'c> {
             caustic,
             specular_vertices,
             photons_ready: false,
+            deferred,
+            refraction_order,
         })
     }
 
@@ -201,6 +219,7 @@ impl<'c> Renderer<'c> {
             }
         }
         self.pending_uniforms = Some(uniforms_of(scene, self.active)?);
+        self.refraction_order = deferred_refraction::back_to_front(scene);
         self.scene = scene.clone();
         Ok(())
     }
@@ -243,6 +262,7 @@ impl<'c> Renderer<'c> {
             meshes: &self.meshes,
             nearest: &self.nearest,
             linear: &self.linear,
+            deferred: self.deferred.as_ref().map(|d| (d, self.refraction_order.as_slice())),
         };
         eye::record(&mut f, &self.pipelines, &self.targets, &eye_inputs)?;
         let report = f.submit()?;
@@ -353,10 +373,16 @@ impl<'c> Renderer<'c> {
                 Some(_) if name == "splats" => Some(splat_footprints::splats_image(&splats)),
                 Some(i) => per_light[i].take(),
                 None if light_space(name) => None,
-                None => {
-                    let photons = self.caustic.as_ref().map(|c| &c.photons);
-                    dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)?
-                }
+                None if super::other_refractions(name, self.scene.caustics.refraction) => None,
+                None => match &self.deferred {
+                    Some(d) if Refraction::Deferred.dumps().contains(&name.as_str()) => {
+                        Some(dumps::deferred(self.ctx, d, &self.targets, name)?)
+                    }
+                    _ => {
+                        let photons = self.caustic.as_ref().map(|c| &c.photons);
+                        dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)?
+                    }
+                },
             };
             if let Some(img) = img {
                 out.push((name.clone(), img));

@@ -9,6 +9,7 @@
 use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath};
 use super::technique::Technique;
 use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
+use super::wyman_nichols2009::settings::Refraction;
 use serde::{Deserialize, Serialize};
 
 macro_rules! caustic_settings {
@@ -116,6 +117,9 @@ caustic_settings! {
     /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4: 1024, 2048, 4096);
     /// a power of two, 64..=65536; default 1024.
     instance_vertices: u32 = 1024;
+    /// The eye render's refraction, whatever the technique: forward (Wyman 2005, the default)
+    /// or deferred (Wyman & Nichols 2009 Sec. 3.1, several refractors back to front).
+    refraction: Refraction = Refraction::Forward;
 }
 
 impl CausticSettings {
