@@ -535,3 +535,25 @@ fn render_help_lists_every_enumerated_value_under_its_group() {
         }
     }
 }
+
+#[test]
+fn deferred_refraction_without_geometry_shaders() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(
+        &["--without-feature", "geometry_shader", "render", "--scene", &s, "--refraction", "deferred"],
+        &["geometry_shader", "refraction `deferred`"],
+    );
+    expect_input_error(
+        &["render", "--scene", &s, "--refraction", "sideways"],
+        &["--refraction", "sideways", "deferred"],
+    );
+    // A buffer of the other refraction.
+    expect_input_error(
+        &["render", "--scene", &s, "--dump", "refractor_geometry"],
+        &["refractor_geometry", "--refraction deferred"],
+    );
+    expect_input_error(
+        &["render", "--scene", &s, "--refraction", "deferred", "--dump", "refractor_back_faces"],
+        &["refractor_back_faces", "--refraction forward"],
+    );
+}

@@ -134,3 +134,96 @@ fn deferred_refraction_gives_the_forward_image() {
         assert!(all_over * 100 <= w * h, "{name}: {all_over} pixels differ by more than 1% with silhouettes");
     }
 }
+
+/// `sphere_on_plane` with its glass sphere at each of `centres` instead of (0, 1, 0).
+fn spheres(centres: &[[f32; 3]]) -> Scene {
+    let mut s = load("sphere_on_plane", 200, 150);
+    let sphere = s.objects.pop().expect("the sphere");
+    assert_eq!(sphere.name, "sphere");
+    for (i, c) in centres.iter().enumerate() {
+        let mut o = sphere.clone();
+        o.name = format!("sphere{i}");
+        let offset = glam::Vec3::from(*c) - glam::Vec3::new(0.0, 1.0, 0.0);
+        o.mesh.positions.iter_mut().for_each(|p| *p += offset);
+        s.objects.push(o);
+    }
+    s
+}
+
+/// Pixels of the front layer of refractor `k` (layer `k` of the back-to-front order).
+fn coverage(geometry: &ImageF32, k: usize) -> Vec<bool> {
+    channel(geometry, Some(&format!("layer{k}.front")), "distance").iter().map(|d| *d > 0.0).collect()
+}
+
+/// Pixels where `a` and `b` differ by more than 1e-6 of the mean radiance, among `pixels`.
+fn differing(a: &ImageF32, b: &ImageF32, pixels: &[usize]) -> usize {
+    let mean = b.layers[0].data.iter().map(|v| *v as f64).sum::<f64>() / b.layers[0].data.len() as f64;
+    let diff = differences(a, b);
+    pixels.iter().filter(|&&i| diff[i] as f64 > 1e-6 * mean).count()
+}
+
+/// Sec. 3.1.1 with two refractors that do not overlap on screen: over each refractor's pixels
+/// the two-layer image is that refractor's single-refractor render. The order is back to
+/// front: layer 0 holds the farther sphere, and its result (`refraction_layers`) is the
+/// farther sphere's single render.
+#[test]
+fn multi_layer_refraction_composites_each_refractor_over_the_previous_result() {
+    let (ctx, sh) = context();
+    let (far, near) = ([-1.3, 1.0, -1.2], [1.2, 1.0, 0.9]);
+    let dumps = ["refractor_geometry", "refraction_layers", "background"];
+    let both = render(&ctx, &sh, &spheres(&[near, far]), Refraction::Deferred, &dumps);
+    let far_alone = render(&ctx, &sh, &spheres(&[far]), Refraction::Deferred, &dumps);
+    let near_alone = render(&ctx, &sh, &spheres(&[near]), Refraction::Deferred, &dumps);
+    let (w, h) = (200, 150);
+    let (far_px, near_px) = (coverage(&both[1], 0), coverage(&both[1], 1));
+    assert_eq!(far_px, coverage(&far_alone[1], 0), "layer 0 is the farther sphere");
+    assert_eq!(near_px, coverage(&near_alone[1], 0), "layer 1 is the nearer sphere");
+    assert!((0..w * h).all(|i| !(far_px[i] && near_px[i])), "the spheres overlap on screen");
+    for (name, covered, alone) in [("far", &far_px, &far_alone), ("near", &near_px, &near_alone)] {
+        let silhouette = near_silhouette(covered, w, h);
+        let pixels: Vec<usize> = (0..w * h).filter(|&i| covered[i] && !silhouette[i]).collect();
+        assert!(pixels.len() > 300, "{name}: {} pixels", pixels.len());
+        // The spheres see each other's shadow on the floor (a few pixels), not each other.
+        let off = differing(&both[0], &alone[0], &pixels);
+        println!("{name} sphere: {off} of {} pixels differ from its single-refractor render", pixels.len());
+        assert!(off * 50 <= pixels.len(), "{name}: {off} of {} pixels differ", pixels.len());
+    }
+    // After the first pass (the farther sphere over the background) the image is the farther
+    // sphere's single render wherever their backgrounds agree (not in the nearer sphere's
+    // shadow, nor where the farther sphere sees that shadow).
+    let background = differences(&both[3], &far_alone[3]);
+    let same_background: Vec<usize> = (0..w * h).filter(|&i| background[i] == 0.0).collect();
+    assert!(same_background.len() * 10 > w * h * 9, "{} pixels", same_background.len());
+    let first = ImageF32 { layers: vec![both[2].layers[0].clone()], ..both[2].clone() };
+    let off = differing(&first, &far_alone[0], &same_background);
+    println!(
+        "after the first layer: {off} of {} pixels differ from the farther sphere's render",
+        same_background.len()
+    );
+    assert!(off * 1000 <= same_background.len(), "{off} pixels");
+}
+
+/// Sec. 3.1.1: the farther refractor is seen through the nearer one (the nearer one's pass
+/// reads the farther one's result as its background), which the single-refractor render of the
+/// nearer one cannot show; where the nearer one covers the farther one, the farther one is
+/// hidden.
+#[test]
+fn a_refractor_is_seen_through_a_nearer_one() {
+    let (ctx, sh) = context();
+    let (far, near) = ([0.2, 0.5, -1.5], [0.0, 1.4, 0.8]);
+    let both = render(&ctx, &sh, &spheres(&[far, near]), Refraction::Deferred, &["refractor_geometry"]);
+    let near_alone = render(&ctx, &sh, &spheres(&[near]), Refraction::Deferred, &[]);
+    let (far_px, near_px) = (coverage(&both[1], 0), coverage(&both[1], 1));
+    let overlap = (0..200 * 150).filter(|&i| far_px[i] && near_px[i]).count();
+    assert!(overlap > 300, "{overlap} overlapping pixels");
+    // Pixels of the nearer sphere: where their refracted rays meet the farther sphere's image,
+    // they show it.
+    let near_pixels: Vec<usize> = (0..200 * 150).filter(|&i| near_px[i]).collect();
+    let changed = differing(&both[0], &near_alone[0], &near_pixels);
+    println!("{changed} of {} pixels of the nearer sphere show the farther one ({overlap} overlap)", near_pixels.len());
+    assert!(changed >= 100, "{changed} of {} pixels changed", near_pixels.len());
+    // The farther sphere's own pixels that the nearer one covers are the nearer one's.
+    let hidden: Vec<usize> = (0..200 * 150).filter(|&i| far_px[i] && near_px[i]).collect();
+    let first = render(&ctx, &sh, &spheres(&[far]), Refraction::Deferred, &[]);
+    assert!(differing(&both[0], &first[0], &hidden) * 10 > hidden.len() * 9, "the farther sphere shows through");
+}
