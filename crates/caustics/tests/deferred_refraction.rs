@@ -4,7 +4,7 @@
 //!
 //! Both paths rasterize the same triangles and run the same refraction code
 //! (`eye/image_space_refraction.glsl`); they differ only in where the front face is shaded (its
-//! fragment, or the geometry buffer read back in a compute pass, which reconstructs the point
+//! fragment, or the geometry buffer read back in a full-screen pass, which reconstructs the point
 //! from its distance along the pixel's eye ray) and in who decides a face's facing (the
 //! rasterizer's culling, or the geometry shader). The reconstructed entry point differs from
 //! the interpolated one by float rounding, and the background search (nearest texels, 8 steps)

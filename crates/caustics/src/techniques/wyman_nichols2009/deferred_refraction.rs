@@ -7,13 +7,15 @@
 //!   depth, Wyman 2005 thickness) written in one pass over its triangles; a geometry shader
 //!   routes each face to the front (0) or back (1) layer (gl_Layer), which are depth-tested
 //!   separately (steps 2 and 3 combined);
-//! - `deferred_refraction.layer<k>`: one full-screen compute pass that refracts where the
-//!   refractor is visible and copies the previous result elsewhere (step 4), the previous
-//!   result being the background for the farthest refractor and the last pass's output for
-//!   the others (Sec. 3.1.1, steps 2-5). The last refractor's pass writes the final image.
+//! - `deferred_refraction.layer<k>`: one full-screen pass (a triangle covering the screen)
+//!   that refracts where the refractor is visible and copies the previous result elsewhere
+//!   (step 4), the previous result being the background for the farthest refractor and the
+//!   last pass's output for the others (Sec. 3.1.1, steps 2-5). The last refractor's pass
+//!   writes the final image.
 //!
 //! Each refractor keeps its own geometry buffers and result, so that every one is dumpable.
-//! Reflective objects are layers too (a reflection lookup instead of the refraction).
+//! Reflective objects are layers too (a reflection lookup instead of the refraction). Photons
+//! are not traced through several refractors this way (the light-space passes are unchanged).
 
 use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::mesh_pipeline::mesh_layout;
@@ -28,17 +30,16 @@ use vkcore::{
 /// The window depth and thickness layers: two floats.
 pub const DEPTH_AND_THICKNESS: Format = Format::R32G32_SFLOAT;
 
-/// One refractor's views: its two layers for rendering, and each layer for sampling.
+/// One refractor's views: its two layers for rendering, and those its deferred pass samples.
 pub struct LayerViews {
     surfaces: ImageView,
     depths: ImageView,
     depth_buffer: ImageView,
-    pub front: ImageView,
-    pub back: ImageView,
-    pub front_depth: ImageView,
-    pub back_depth: ImageView,
+    front: ImageView,
+    back: ImageView,
+    front_depth: ImageView,
     /// Where its deferred pass writes (None for the last refractor: the final image).
-    pub result: Option<ImageView>,
+    result: Option<ImageView>,
 }
 
 pub struct DeferredRefraction {
@@ -104,15 +105,16 @@ impl DeferredRefraction {
         d.depth_test = true;
         d.depth_write = true;
         let geometry = Pipeline::graphics(ctx, &d)?;
-        let mut bindings = vec![K::UniformBuffer];
-        bindings.extend([K::SampledImage; 6]);
-        bindings.push(K::StorageImage);
-        let refraction = Pipeline::compute(
-            ctx,
+        // Step 4: "render a full screen quad" (one triangle over the screen).
+        let mut r = GraphicsDesc::new(
             "deferred_refraction",
-            &sh.compile("wyman_nichols2009/deferred_refraction.comp", &[])?,
-            &bindings,
-        )?;
+            sh.compile("wyman_nichols2009/full_screen.vert", &[])?,
+            Some(sh.compile("wyman_nichols2009/deferred_refraction.frag", &[])?),
+        );
+        r.bindings = vec![K::UniformBuffer];
+        r.bindings.extend([K::SampledImage; 6]);
+        r.color_formats = vec![COLOR];
+        let refraction = Pipeline::graphics(ctx, &r)?;
         let array =
             |name: &str, format, layers| Image::new(ctx, ImageDesc::new_2d(name, format, width, height).layers(layers));
         let surfaces = array("refractor geometry: normal, distance", COLOR, 2 * n)?;
@@ -130,7 +132,6 @@ impl DeferredRefraction {
                     front: one(&surfaces, 2 * k)?,
                     back: one(&surfaces, 2 * k + 1)?,
                     front_depth: one(&depths, 2 * k)?,
-                    back_depth: one(&depths, 2 * k + 1)?,
                     result: match &results {
                         Some(r) if k + 1 < n => Some(one(r, k)?),
                         _ => None,
@@ -186,15 +187,19 @@ impl DeferredRefraction {
                 Bind::Sampled(&views.front, inp.nearest),
                 Bind::Sampled(&views.back, inp.nearest),
                 Bind::Sampled(&views.front_depth, inp.nearest),
-                Bind::Storage(output),
             ];
-            f.pass(&format!("deferred_refraction.layer{k}")).bind(&self.refraction, binds).record(|cmd| {
-                // Without a refractor the geometry buffers are empty: every pixel is copied.
-                cmd.push(&mesh.map(|m| m.constants).unwrap_or_default())?;
-                let (w, h) = output.extent;
-                cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);
-                Ok(())
-            })?;
+            let uses = [Use::view(output, Access::COLOR_ATTACHMENT)];
+            f.pass(&format!("deferred_refraction.layer{k}")).bind(&self.refraction, binds).uses(uses).record(
+                |cmd| {
+                    // Every pixel is written: the previous contents need not be loaded.
+                    cmd.begin_rendering(&Targets::color(output, Some([0.0; 4])))?;
+                    // Without a refractor the geometry buffers are empty: every pixel is copied.
+                    cmd.push(&mesh.map(|m| m.constants).unwrap_or_default())?;
+                    cmd.draw(3, 1, 0, 0);
+                    cmd.end_rendering();
+                    Ok(())
+                },
+            )?;
         }
         Ok(())
     }
