@@ -279,7 +279,8 @@ fn rendered(stem: &'static str) -> &'static Rendered {
 fn render_writes_every_output() {
     let r = rendered("sphere_on_plane");
     let mut expected: Vec<String> = vec!["final.exr".into(), "final.png".into(), "timings.json".into()];
-    expected.extend(caustics::render::EYE_DUMPS.iter().map(|n| format!("{n}.exr")));
+    let settings = caustics::scene::CausticSettings::default();
+    expected.extend(caustics::render::dumps_of(&settings).iter().map(|n| format!("{n}.exr")));
     for f in &expected {
         assert!(r.out.join(f).is_file(), "{} missing\n{}", f, r.run.describe());
     }
