@@ -15,7 +15,7 @@ layout(location = 1) in vec3 v_normal;
 layout(location = 2) in float v_thickness;
 layout(location = 0) out vec4 o_radiance;
 layout(location = 1) out vec4 o_position;   // xyz world, w = 1 where a surface was hit
-layout(location = 2) out vec4 o_normal;     // xyz world normal facing the eye
+layout(location = 2) out vec4 o_normal;     // xyz world normal facing the eye, w window depth
 layout(location = 3) out vec4 o_albedo;     // rgb diffuse albedo, w = 1 where a surface was hit
 
 const float PI = 3.14159265358979;
@@ -28,6 +28,6 @@ void main() {
     if ((caustics.settings.w & CAUSTIC_EYE_SPACE) == 0u) e += caustic_irradiance(v_world, n);
     o_radiance = vec4(mesh.colour.rgb / PI * e, 1.0);
     o_position = vec4(v_world, 1.0);
-    o_normal = vec4(n, 0.0);
+    o_normal = vec4(n, gl_FragCoord.z);   // w: window depth, for the deferred refraction's depth test
     o_albedo = vec4(mesh.colour.rgb, 1.0);
 }

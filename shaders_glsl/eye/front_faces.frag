@@ -1,113 +1,18 @@
-// Refractive and reflective surfaces seen from the eye.
-// Refractive: two-sided image-space refraction (Wyman 2005): refract at the front face,
-// estimate the distance to the back face from d_V (front-to-back distance along the view ray,
-// from the back-face buffer) and d_N (per-vertex thickness along the inward normal), weighted
-// by the ratio of refraction to incidence angles; refract again with the back-face normal
-// found by projecting that point; then look the exiting ray up in the background image with
-// an iterative image-space search (as Shah et al. intersect refracted rays with receivers).
-// Fresnel (exact dielectric) splits light between the refracted and reflected lookups.
-// Reflective: one reflection lookup, tinted by the specular colour.
+// Refractive and reflective surfaces seen from the eye, shaded as they are rasterized: Wyman
+// 2005's forward image-space refraction (eye/image_space_refraction.glsl), step 3 of Wyman &
+// Nichols 2009 Fig. 3 (top). Hidden fragments are shaded too (overdraw).
 #version 450
 #include "common/frame.glsl"
 #include "common/mesh_constants.glsl"
 layout(binding = 1) uniform sampler2D background_radiance;
 layout(binding = 2) uniform sampler2D background_position;
 layout(binding = 3) uniform sampler2D back_faces;
+#include "eye/image_space_refraction.glsl"
 layout(location = 0) in vec3 v_world;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in float v_thickness;
 layout(location = 0) out vec4 o_radiance;
 
-#define SEARCH_ITERATIONS 8
-
-vec2 project_uv(vec3 p, out bool inside) {
-    vec4 c = frame.view_proj * vec4(p, 1.0);
-    vec2 uv = c.xy / c.w * 0.5 + 0.5;
-    inside = c.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
-    return uv;
-}
-
-// Radiance arriving along the ray o + t d from the diffuse background.
-vec3 background_lookup(vec3 o, vec3 d) {
-    bool inside;
-    vec2 uv = project_uv(o + d, inside);
-    float t = 1.0;
-    vec4 hit = texture(background_position, uv);
-    if (inside && hit.w > 0.5) t = distance(hit.xyz, o);
-    for (int i = 0; i < SEARCH_ITERATIONS; ++i) {
-        uv = project_uv(o + t * d, inside);
-        if (!inside) return frame.background.rgb;
-        hit = texture(background_position, uv);
-        if (hit.w < 0.5) return frame.background.rgb;
-        t = distance(hit.xyz, o);
-    }
-    // The search converges to the surface the ray meets where the background image can see it;
-    // where it cannot (hidden or behind the camera), the last estimate is the best there is.
-    return texture(background_radiance, uv).rgb;
-}
-
-// Unpolarised Fresnel reflectance for cos_i on the incident side, eta = n_i / n_t.
-float fresnel(float cos_i, float eta) {
-    float sin_t2 = eta * eta * max(0.0, 1.0 - cos_i * cos_i);
-    if (sin_t2 >= 1.0) return 1.0;
-    float cos_t = sqrt(1.0 - sin_t2);
-    float rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    float rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
-// Radiance through the refractor for one IOR; also returns the front-face Fresnel term.
-vec3 refract_through(vec3 p1, vec3 v, vec3 n1, float ior, out float f1) {
-    float cos_i = dot(-v, n1);
-    f1 = fresnel(cos_i, 1.0 / ior);
-    vec3 t1 = refract(v, n1, 1.0 / ior);
-    bool inside;
-    vec2 uv = project_uv(p1, inside);
-    vec4 back = texture(back_faces, uv);
-    float d_v = max(back.w - distance(p1, frame.eye.xyz), 0.0);
-    float d_n = v_thickness;
-    float theta_i = acos(clamp(cos_i, -1.0, 1.0));
-    float theta_t = acos(clamp(dot(-t1, n1), -1.0, 1.0));
-    float ratio = theta_i > 1e-4 ? theta_t / theta_i : 1.0;
-    float d = ratio * d_v + (1.0 - ratio) * d_n;   // Wyman 2005, Eq. 2
-    vec3 p2 = p1 + d * t1;
-    vec2 uv2 = project_uv(p2, inside);
-    vec3 n2 = texture(back_faces, uv2).xyz;
-    if (dot(n2, n2) < 0.5) n2 = -n1;               // missed the back-face buffer: assume a slab
-    n2 = normalize(n2);
-    vec3 t2 = refract(t1, -n2, ior);
-    float f2 = 1.0;
-    if (dot(t2, t2) < 0.5) {
-        t2 = reflect(t1, -n2);                     // total internal reflection: keep going inside, once
-    } else {
-        f2 = 1.0 - fresnel(dot(-t1, -n2), ior);
-    }
-    return f2 * background_lookup(p2, normalize(t2));
-}
-
 void main() {
-    vec3 n = normalize(v_normal);
-    vec3 v = normalize(v_world - frame.eye.xyz);
-    if (dot(n, v) > 0.0) n = -n;
-    vec3 colour;
-    if (mesh.material == MATERIAL_REFLECTIVE) {
-        colour = mesh.colour.rgb * background_lookup(v_world, reflect(v, n));
-    } else {
-        vec3 reflected = background_lookup(v_world, reflect(v, n));
-        vec3 through;
-        float f1;
-        if (mesh.ior.r == mesh.ior.g && mesh.ior.g == mesh.ior.b) {
-            through = refract_through(v_world, v, n, mesh.ior.r, f1);
-            colour = (1.0 - f1) * through * mesh.colour.rgb + f1 * reflected;
-        } else {
-            // Dispersion: one path per channel.
-            float fr, fg, fb;
-            vec3 r = refract_through(v_world, v, n, mesh.ior.r, fr);
-            vec3 g = refract_through(v_world, v, n, mesh.ior.g, fg);
-            vec3 b = refract_through(v_world, v, n, mesh.ior.b, fb);
-            vec3 f = vec3(fr, fg, fb);
-            colour = (1.0 - f) * vec3(r.r, g.g, b.b) * mesh.colour.rgb + f * reflected;
-        }
-    }
-    o_radiance = vec4(colour, 1.0);
+    o_radiance = vec4(specular_radiance(v_world, v_normal, v_thickness), 1.0);
 }

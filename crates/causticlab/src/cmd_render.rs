@@ -10,7 +10,7 @@ use caustics::input_error;
 use caustics::render::{self, RenderRequest};
 use caustics::scene::Scene;
 use caustics::techniques::wyman2008::SplatMode;
-use caustics::techniques::{SplatPath, Technique};
+use caustics::techniques::{Refraction, SplatPath, Technique};
 use std::sync::Arc;
 use vkcore::{Context, DeviceInfo, ShaderCompiler, ValidationLog};
 
@@ -25,6 +25,13 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     // mistake worth saying.
     let own = render::dumps_for(&scene.caustics);
     if let Some(n) = dumps.iter().find(|d| !own.contains(&d.as_str()) && !dump_all(args.dump.as_deref())) {
+        if let Some(r) = Refraction::ALL.iter().find(|r| r.dumps().contains(&n.as_str())) {
+            return Err(input_error!(
+                "--dump: `{n}` is a buffer of --refraction {r}, not of `{}`",
+                scene.caustics.refraction
+            )
+            .into());
+        }
         if technique.dumps().contains(&n.as_str()) {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of `{technique}` with --space {}, not with --space {}",

@@ -529,6 +529,46 @@ fn quick_hierarchical_tables_count_and_time_every_cell() {
     }
 }
 
+#[test]
+fn quick_photon_view_times_every_view_and_the_fitted_one_wastes_least() {
+    // V1: every view is timed, and the fitted view spends the largest share of its photons on
+    // the object.
+    let (_, r) = quick_run("photon_view.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    for c in cells {
+        for m in ["Render Photon Buffer", "Gather"] {
+            assert!(metric(c, m).unwrap_or(-1.0) > 0.0, "{}: {m} not timed", c["cell"]);
+        }
+        let valid = metric(c, "valid").unwrap_or(-1.0);
+        assert!((0.0..=1.0).contains(&valid), "{}: valid share {valid}", c["cell"]);
+    }
+    for c in cells.iter().filter(|c| c["cell"]["technique_label"] == "W&D 90°") {
+        let fitted = cell(&r, "W&D fitted", c["cell"]["photons"].as_u64().unwrap_or(0));
+        assert!(metric(fitted, "valid") > metric(c, "valid"), "{}", c["cell"]);
+    }
+}
+
+#[test]
+fn quick_fig9_times_each_refraction_by_its_own_passes() {
+    // Wyman & Nichols 2009 Fig. 9: forward and deferred refraction, each metric timed from the
+    // refraction's own passes, on every model.
+    let (_, r) = quick_run("wyman_nichols2009_fig9.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 16);
+    for c in cells {
+        let refraction = c["caustics"]["refraction"].as_str().unwrap_or_default();
+        assert_eq!(c["cell"]["technique_label"].as_str(), Some(refraction));
+        for m in ["refraction", "geometry", "shading", "eye"] {
+            assert!(metric(c, m).unwrap_or(-1.0) > 0.0, "{} {refraction}: {m} not timed", c["cell"]);
+        }
+        let passes: Vec<&str> =
+            c["passes"].as_array().expect("passes").iter().filter_map(|p| p["name"].as_str()).collect();
+        let deferred = passes.contains(&"refractor_geometry.layer0") && passes.contains(&"deferred_refraction.layer0");
+        let forward = passes.contains(&"refractor_back_faces") && passes.contains(&"composite");
+        assert_eq!((forward, deferred), (refraction == "forward", refraction == "deferred"), "{passes:?}");
+    }
+}
+
 /// The cell of `r` with this technique label and photon count.
 fn cell<'a>(r: &'a Value, technique: &str, photons: u64) -> &'a Value {
     r["cells"]

@@ -238,7 +238,9 @@ fn caustics_match_the_exact_reference_within_regression_thresholds() {
 #[test]
 fn every_intermediate_buffer_is_dumped_with_named_channels() {
     let out = render("dumps", &scene("sphere_on_plane"), &["--technique", "wd-points", "--photons", "128"], "all");
-    let wd = caustics::render::dumps_of(caustics::techniques::Technique::WdPoints);
+    let settings =
+        caustics::scene::CausticSettings { technique: caustics::techniques::Technique::WdPoints, ..Default::default() };
+    let wd = caustics::render::dumps_for(&settings);
     for name in caustics::render::all_dump_names() {
         // The hierarchy's buffers belong to `hcm` (hierarchical_caustic_maps_dump_every_level...).
         assert_eq!(out.join(format!("{name}.exr")).is_file(), wd.contains(&name), "{name}.exr");

@@ -279,7 +279,8 @@ fn rendered(stem: &'static str) -> &'static Rendered {
 fn render_writes_every_output() {
     let r = rendered("sphere_on_plane");
     let mut expected: Vec<String> = vec!["final.exr".into(), "final.png".into(), "timings.json".into()];
-    expected.extend(caustics::render::EYE_DUMPS.iter().map(|n| format!("{n}.exr")));
+    let settings = caustics::scene::CausticSettings::default();
+    expected.extend(caustics::render::dumps_for(&settings).iter().map(|n| format!("{n}.exr")));
     for f in &expected {
         assert!(r.out.join(f).is_file(), "{} missing\n{}", f, r.run.describe());
     }
@@ -534,4 +535,26 @@ fn render_help_lists_every_enumerated_value_under_its_group() {
             assert!(section.contains(&format!("- {n}:")), "{flag} does not list `{n}`: {section}");
         }
     }
+}
+
+#[test]
+fn deferred_refraction_without_geometry_shaders() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(
+        &["--without-feature", "geometry_shader", "render", "--scene", &s, "--refraction", "deferred"],
+        &["geometry_shader", "refraction `deferred`"],
+    );
+    expect_input_error(
+        &["render", "--scene", &s, "--refraction", "sideways"],
+        &["--refraction", "sideways", "deferred"],
+    );
+    // A buffer of the other refraction.
+    expect_input_error(
+        &["render", "--scene", &s, "--dump", "refractor_geometry"],
+        &["refractor_geometry", "--refraction deferred"],
+    );
+    expect_input_error(
+        &["render", "--scene", &s, "--refraction", "deferred", "--dump", "refractor_back_faces"],
+        &["refractor_back_faces", "--refraction forward"],
+    );
 }

@@ -6,7 +6,7 @@
 //!   from the photon buffer dump), within the technique's stated tolerance;
 //! - stays within its stated error of the exact CPU photon reference (relative RMSE and caustic
 //!   flux ratio of the receiver map, `caustics::compare`);
-//! - writes every dump it declares (`render::dumps_of`) and no other.
+//! - writes every dump it declares (`render::dumps_for`) and no other.
 //!
 //! Settings: 256² photons, Fresnel off (the image-space model the reference can match exactly),
 //! a 512² caustic map, Wyman & Davis 2006's photons lit from the light's direction (Eq. 11 and

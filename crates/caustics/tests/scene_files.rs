@@ -85,3 +85,20 @@ fn bunny_stands_on_the_floor_inside_the_room() {
     }
     assert_eq!(load("two_lights.toml").lights.len(), 2);
 }
+
+/// Wyman & Nichols 2009 Fig. 4 / Fig. 13: a glass sphere behind the glass dragon, rendered with
+/// deferred refraction, the sphere first (farther from the eye), clear of the dragon and on the floor.
+#[test]
+fn sphere_behind_dragon_is_two_refractors_back_to_front() {
+    use caustics::techniques::wyman_nichols2009::deferred_refraction::back_to_front;
+    use caustics::techniques::Refraction;
+    let s = load("sphere_behind_dragon.toml");
+    assert_eq!(s.caustics.refraction, Refraction::Deferred);
+    let index = |name: &str| s.objects.iter().position(|o| o.name == name).expect(name);
+    let (dragon, sphere) = (index("dragon"), index("sphere"));
+    assert!(s.objects[dragon].mesh.triangle_count() > 200_000);
+    assert_eq!(back_to_front(&s), vec![sphere, dragon]);
+    let ((dlo, dhi), (slo, shi)) = (s.objects[dragon].mesh.bounds(), s.objects[sphere].mesh.bounds());
+    assert!(shi.z < dlo.z, "the sphere ({slo}..{shi}) is behind the dragon ({dlo}..{dhi})");
+    assert!(slo.y.abs() < 1e-3, "the sphere stands on the floor: {slo}");
+}

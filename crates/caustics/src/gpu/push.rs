@@ -121,6 +121,7 @@ mod tests {
             ("shadow/shadow_map.frag", &[]),
             ("eye/background.frag", &[]),
             ("eye/front_faces.frag", &[]),
+            ("wyman_nichols2009/deferred_refraction.frag", &[]),
             ("shared/light_mesh.vert", &[]),
             ("shared/light_mesh.vert", photon_view),
             ("shared/back_faces.frag", &[]),

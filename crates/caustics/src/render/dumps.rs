@@ -2,9 +2,10 @@
 
 use super::targets::{EyeTargets, Target};
 use crate::image_io::{ImageF32, Layer};
+use crate::techniques::wyman_nichols2009::DeferredRefraction;
 use crate::techniques::{CausticTargets, PhotonTargets};
 use anyhow::Result;
-use vkcore::Context;
+use vkcore::{Context, Image};
 
 const FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
@@ -17,8 +18,20 @@ pub(crate) fn layer(
     names: &[&str],
     pick: &[usize],
 ) -> Result<Layer> {
-    let texels = ctx.read_image_f32(&t.image, 0, layer_index)?;
-    let stride = texels.len() / (t.view.extent.0 * t.view.extent.1) as usize;
+    image_layer(ctx, &t.image, layer_index, name, names, pick)
+}
+
+/// [`layer`] of any image (mip 0): its texels, of any float format.
+fn image_layer(
+    ctx: &Context,
+    image: &Image,
+    layer_index: u32,
+    name: Option<&str>,
+    names: &[&str],
+    pick: &[usize],
+) -> Result<Layer> {
+    let texels = ctx.read_image_f32(image, 0, layer_index)?;
+    let stride = texels.len() / (image.desc.width * image.desc.height) as usize;
     let data = texels.chunks(stride).flat_map(|px| pick.iter().map(move |&c| px[c])).collect();
     Ok(Layer::new(name, names, data))
 }
@@ -112,6 +125,42 @@ pub fn dump(
         "caustic_map" => per_light(ctx, &ct.caustic_map, &["R", "G", "B", "photons"], &[0, 1, 2, 3])?,
         other => anyhow::bail!("no intermediate buffer called `{other}`"),
     }))
+}
+
+/// The deferred refraction's buffers (Wyman & Nichols 2009 Sec. 3.1), refractor k (0: the
+/// farthest) in layers `layer<k>.*`: `refractor_geometry`, its front and back faces (normal and
+/// distance, window depth and thickness); `refraction_layers`, the image after its pass.
+pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, name: &str) -> Result<ImageF32> {
+    let mut layers = vec![];
+    for k in 0..d.layers.len() as u32 {
+        match name {
+            "refractor_geometry" => {
+                for (face, l) in [("front", 2 * k), ("back", 2 * k + 1)] {
+                    let (surface, depth) = (format!("layer{k}.{face}"), format!("layer{k}.{face}_depth"));
+                    layers.push(image_layer(
+                        ctx,
+                        &d.surfaces,
+                        l,
+                        Some(&surface),
+                        &["NX", "NY", "NZ", "distance"],
+                        &[0, 1, 2, 3],
+                    )?);
+                    layers.push(image_layer(ctx, &d.depths, l, Some(&depth), &["depth", "thickness"], &[0, 1])?);
+                }
+            }
+            "refraction_layers" => {
+                let n = Some(format!("layer{k}"));
+                layers.push(match &d.results {
+                    Some(r) if k + 1 < d.layers.len() as u32 => {
+                        image_layer(ctx, r, k, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?
+                    }
+                    _ => layer(ctx, &t.final_image, 0, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?,
+                });
+            }
+            other => anyhow::bail!("no deferred refraction buffer called `{other}`"),
+        }
+    }
+    Ok(image(&t.final_image, layers))
 }
 
 /// The photon buffer or its back faces (`name`) as they are now: the light that rendered them

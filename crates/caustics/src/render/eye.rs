@@ -1,10 +1,13 @@
 //! Records one frame of the eye render: shadow maps, diffuse background with its geometry
-//! buffer, refractor back faces, refractor/reflector front faces, composite, receiver map.
+//! buffer, then the refractors and reflectors: forward (Wyman 2005: back faces, front faces,
+//! composite) or deferred (Wyman & Nichols 2009 Sec. 3.1, `techniques::wyman_nichols2009`),
+//! then the receiver map.
 
 use super::pipelines::EyePipelines;
 use super::targets::EyeTargets;
 use crate::gpu::*;
 use crate::gpu::{mesh_uses, GpuMesh};
+use crate::techniques::wyman_nichols2009::{deferred_refraction, DeferredRefraction};
 use anyhow::Result;
 use vkcore::{Access, Bind, Buffer, Cmd, Frame, Sampler, Targets, Use};
 
@@ -18,6 +21,8 @@ pub struct EyeInputs<'a> {
     pub linear: &'a Sampler,
     /// Eye-space caustics: the receiver view's caustic irradiance, which the receiver map reads.
     pub receiver_view_caustic: Option<&'a vkcore::ImageView>,
+    /// `--refraction deferred`: its passes and the specular meshes, farthest first.
+    pub deferred: Option<(&'a DeferredRefraction, &'a [usize])>,
 }
 
 fn draw_meshes<'m>(
@@ -81,8 +86,52 @@ pub fn record_shadows_and_background(f: &mut Frame, p: &EyePipelines, t: &EyeTar
     Ok(())
 }
 
-/// The refractors and reflectors over the background, the composite and the receiver map.
+/// The refractors and reflectors over the background (Wyman 2005 forward, or Wyman & Nichols
+/// 2009 deferred refraction), then the receiver map.
 pub fn record_after_background(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) -> Result<()> {
+    let meshes = inp.meshes;
+    match inp.deferred {
+        Some((deferred, order)) => deferred.record(
+            f,
+            &deferred_refraction::Inputs {
+                uniforms: inp.uniforms,
+                meshes,
+                order,
+                background: &t.background.view,
+                position: &t.position.view,
+                normal: &t.normal.view,
+                final_image: &t.final_image.view,
+                nearest: inp.nearest,
+            },
+        )?,
+        None => record_forward(f, p, t, inp)?,
+    }
+
+    if let Some((ratio, irradiance, caustic)) = &t.receiver {
+        let binds = [
+            Bind::Uniform(inp.uniforms),
+            Bind::Sampled(&t.shadow.distance.view, inp.nearest),
+            Bind::Sampled(&t.spot_textures.view, inp.linear),
+            Bind::Storage(&ratio.view),
+            Bind::Storage(&irradiance.view),
+            Bind::Storage(&caustic.view),
+            Bind::Uniform(inp.caustic_uniforms),
+            Bind::Sampled(&inp.caustics.caustic_map.view, inp.nearest),
+            Bind::Sampled(&inp.caustics.receiver_positions.view, inp.nearest),
+            Bind::Sampled(inp.receiver_view_caustic.unwrap_or(&t.no_receiver_view.view), inp.nearest),
+        ];
+        f.pass("receiver_map").bind(&p.receiver_map, binds).record(|cmd| {
+            let (w, h) = ratio.view.extent;
+            cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
+/// Wyman 2005's image-space refraction (Wyman & Nichols 2009 Fig. 3, top): the refractors'
+/// back faces, their front faces (refracted as they are rasterized, with reflectors), composite.
+fn record_forward(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) -> Result<()> {
     let meshes = inp.meshes;
     let refractors = || meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE);
     f.pass("refractor_back_faces")
@@ -133,25 +182,5 @@ pub fn record_after_background(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, 
         cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);
         Ok(())
     })?;
-
-    if let Some((ratio, irradiance, caustic)) = &t.receiver {
-        let binds = [
-            Bind::Uniform(inp.uniforms),
-            Bind::Sampled(&t.shadow.distance.view, inp.nearest),
-            Bind::Sampled(&t.spot_textures.view, inp.linear),
-            Bind::Storage(&ratio.view),
-            Bind::Storage(&irradiance.view),
-            Bind::Storage(&caustic.view),
-            Bind::Uniform(inp.caustic_uniforms),
-            Bind::Sampled(&inp.caustics.caustic_map.view, inp.nearest),
-            Bind::Sampled(&inp.caustics.receiver_positions.view, inp.nearest),
-            Bind::Sampled(inp.receiver_view_caustic.unwrap_or(&t.no_receiver_view.view), inp.nearest),
-        ];
-        f.pass("receiver_map").bind(&p.receiver_map, binds).record(|cmd| {
-            let (w, h) = ratio.view.extent;
-            cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);
-            Ok(())
-        })?;
-    }
     Ok(())
 }

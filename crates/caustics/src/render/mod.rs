@@ -12,29 +12,45 @@ pub use renderer::{FrameStep, Renderer, RendererOptions};
 
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
-use crate::techniques::{SplatPath, Technique};
+use crate::techniques::{Refraction, SplatPath, Technique};
 use anyhow::Result;
 use vkcore::{Context, FrameReport, ShaderCompiler};
 
-/// The intermediate buffers of every render (`--dump` names); each caustic technique adds its
-/// own ([`Technique::dumps`]).
-pub const EYE_DUMPS: &[&str] =
-    &["shadow_map", "background", "refractor_back_faces", "refractor_front_faces", "eye_gbuffer", "receiver"];
+/// The intermediate buffers of the eye render (`--dump` names): those of every render, and
+/// those of forward or deferred refraction only ([`Refraction::dumps`]); each caustic technique
+/// adds its own ([`Technique::dumps`]).
+pub const EYE_DUMPS: &[&str] = &[
+    "shadow_map",
+    "background",
+    "refractor_back_faces",
+    "refractor_front_faces",
+    "refractor_geometry",
+    "refraction_layers",
+    "eye_gbuffer",
+    "receiver",
+];
 
 /// The light-space buffers that serve every light in turn (dumped light by light, layers
 /// `light<l>.<layer>`; see `Renderer::dumps`).
 pub const LIGHT_SPACE_DUMPS: &[&str] =
     &["photon_back_faces", "photon_buffer", "hierarchy", "hierarchy_lists", "splats"];
 
-/// The buffers `technique` can dump under any of its settings: the eye render's, then the
-/// technique's own.
+/// Whether the eye-render buffer `name` belongs to the other refraction than `refraction`.
+pub(crate) fn other_refractions(name: &str, refraction: Refraction) -> bool {
+    Refraction::ALL.iter().any(|r| *r != refraction && r.dumps().contains(&name))
+}
+
+/// The buffers `technique` can dump under any of its settings: the eye render's (both
+/// refractions'), then the technique's own.
 pub fn dumps_of(technique: Technique) -> Vec<&'static str> {
     [EYE_DUMPS.to_vec(), technique.dumps()].concat()
 }
 
-/// The buffers a render with `settings` dumps: the eye render's, then its technique's own.
+/// The buffers a render with `settings` dumps: the eye render's (with its refraction's), then
+/// its technique's own under those settings.
 pub fn dumps_for(settings: &crate::techniques::CausticSettings) -> Vec<&'static str> {
-    [EYE_DUMPS.to_vec(), settings.dumps()].concat()
+    let eye = EYE_DUMPS.iter().copied().filter(|n| !other_refractions(n, settings.refraction));
+    eye.chain(settings.dumps()).collect()
 }
 
 /// Every buffer some technique can dump (what `--dump` accepts), in the order of
@@ -75,6 +91,10 @@ pub struct Rendered {
 pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
     let c = &scene.caustics;
     ctx.require(&format!("technique `{}`", c.technique), c.technique.required_features())?;
+    ctx.require(
+        &format!("refraction `{}` (a geometry shader routes each face to the front or back layer)", c.refraction),
+        c.refraction.required_features(),
+    )?;
     if c.technique == Technique::Hcm {
         ctx.require(&format!("technique `hcm` with --path {}", c.path), c.path.features())?;
     }
@@ -141,6 +161,18 @@ mod tests {
         sorted.sort();
         sorted.dedup();
         assert_eq!(sorted.len(), all.len());
-        assert_eq!(dumps_of(Technique::None), EYE_DUMPS);
+        let mut c = crate::techniques::CausticSettings::default();
+        assert_eq!(
+            dumps_for(&c),
+            ["shadow_map", "background", "refractor_back_faces", "refractor_front_faces", "eye_gbuffer", "receiver"]
+        );
+        c.refraction = Refraction::Deferred;
+        assert_eq!(
+            dumps_for(&c),
+            ["shadow_map", "background", "refractor_geometry", "refraction_layers", "eye_gbuffer", "receiver"]
+        );
+        for r in Refraction::ALL {
+            assert!(r.dumps().iter().all(|d| EYE_DUMPS.contains(d)), "{r}");
+        }
     }
 }

@@ -10,6 +10,7 @@ use crate::techniques::shah2007::VertexPhotons;
 use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
 use crate::techniques::wyman2008::{self, Hierarchy};
 use crate::techniques::wyman_davis2006::{EyeView, ImageSpace};
+use crate::techniques::wyman_nichols2009::{deferred_refraction, DeferredRefraction, Refraction};
 use crate::techniques::{self, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
 use anyhow::{Context as _, Result};
 use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler, Use};
@@ -66,6 +67,10 @@ pub struct Renderer<'c> {
     caustic: Option<CausticResources>,
     specular_vertices: u32,
     photons_ready: bool,
+    /// `--refraction deferred`: its passes and buffers.
+    deferred: Option<DeferredRefraction>,
+    /// The specular objects, farthest from the eye first (Wyman & Nichols 2009 Sec. 3.1.1).
+    refraction_order: Vec<usize>,
 }
 
 impl<'c> Renderer<'c> {
@@ -163,6 +168,17 @@ impl<'c> Renderer<'c> {
         } else {
             None
         };
+        let refraction_order = deferred_refraction::back_to_front(scene);
+        let deferred = match settings.refraction {
+            Refraction::Forward => None,
+            Refraction::Deferred => Some(DeferredRefraction::new(
+                ctx,
+                shaders,
+                refraction_order.len(),
+                scene.camera.width,
+                scene.camera.height,
+            )?),
+        };
         Ok(Renderer {
             ctx,
             shaders,
@@ -180,6 +196,8 @@ impl<'c> Renderer<'c> {
             caustic,
             specular_vertices,
             photons_ready: false,
+            deferred,
+            refraction_order,
         })
     }
 
@@ -205,6 +223,7 @@ impl<'c> Renderer<'c> {
             }
         }
         self.pending_uniforms = Some(uniforms_of(scene, self.active)?);
+        self.refraction_order = deferred_refraction::back_to_front(scene);
         self.scene = scene.clone();
         Ok(())
     }
@@ -236,6 +255,7 @@ impl<'c> Renderer<'c> {
             nearest: &self.nearest,
             linear: &self.linear,
             receiver_view_caustic: image_space.and_then(|i| i.receiver_caustic()),
+            deferred: self.deferred.as_ref().map(|d| (d, self.refraction_order.as_slice())),
         };
         // Eye-space caustics are drawn into the eye's view: the background and its geometry
         // buffer first.
@@ -390,10 +410,15 @@ impl<'c> Renderer<'c> {
                     Some(is) => is.dump_eye(self.ctx)?,
                     None => None,
                 },
-                None => {
-                    let photons = self.caustic.as_ref().map(|c| &c.photons);
-                    dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)?
-                }
+                None => match &self.deferred {
+                    Some(d) if Refraction::Deferred.dumps().contains(&name.as_str()) => {
+                        Some(dumps::deferred(self.ctx, d, &self.targets, name)?)
+                    }
+                    _ => {
+                        let photons = self.caustic.as_ref().map(|c| &c.photons);
+                        dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)?
+                    }
+                },
             };
             if let Some(img) = img {
                 out.push((name.clone(), img));

@@ -6,6 +6,7 @@
 //! | `shah`, `shah-vertex` | Shah, Konttinen & Pattanaik, caustics mapping | [`shah2007`] |
 //! | `wd-points` | Wyman & Davis 2006, the photon buffer as points | [`wyman_davis2006`] |
 //! | `hcm` | Wyman 2008, hierarchical caustic maps | [`wyman2008`] |
+//! | (`--refraction deferred`, any technique) | Wyman & Nichols 2009 Sec. 3.1, deferred refraction | [`wyman_nichols2009`] |
 //!
 //! Stages that several papers share (photon emission, the point and compute splats, the
 //! caustic-map targets and uniforms) are in [`shared`]; [`record`] records a frame's caustic
@@ -22,6 +23,7 @@ pub mod uniforms;
 mod value_enum;
 pub mod wyman2008;
 pub mod wyman_davis2006;
+pub mod wyman_nichols2009;
 
 pub use record::{record_caustics, record_cleared, record_light_space, CausticFrame, CausticInputs, CausticPasses};
 pub use settings::{CausticOverrides, CausticSettings};
@@ -30,3 +32,4 @@ pub use shared::{
 };
 pub use technique::Technique;
 pub use wyman2008::photon_copy::{CopyType, PhotonCopy};
+pub use wyman_nichols2009::Refraction;

@@ -10,6 +10,7 @@ use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath};
 use super::technique::Technique;
 use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
 use super::wyman_davis2006::settings::{GatherLighting, QuadLighting, Reflection, Space, TemporalFilter};
+use super::wyman_nichols2009::settings::Refraction;
 use super::{shared, wyman2008, wyman_davis2006};
 use serde::{Deserialize, Serialize};
 
@@ -133,6 +134,9 @@ caustic_settings! {
     /// Where mirrored photons land: depth-search (the ray/receiver intersection in effect) or
     /// plane (Wyman & Davis 2006 Sec. 4: one background plane); default depth-search.
     reflection: Reflection = Reflection::DepthSearch;
+    /// The eye render's refraction, whatever the technique: forward (Wyman 2005, the default)
+    /// or deferred (Wyman & Nichols 2009 Sec. 3.1, several refractors back to front).
+    refraction: Refraction = Refraction::Forward;
 }
 
 impl CausticSettings {
