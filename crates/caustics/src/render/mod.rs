@@ -2,13 +2,15 @@
 //! physically scaled irradiance, two-sided image-space refraction (Wyman 2005) and reflection
 //! lookups, and the receiver map E/E0 that every caustic technique is validated with.
 
+mod dispatch;
 mod dumps;
 mod eye;
 pub mod pipelines;
 mod renderer;
 pub mod targets;
 
-pub use renderer::{FrameStep, Renderer, RendererOptions};
+pub use dispatch::Renderer;
+pub use renderer::{FrameStep, MeshRenderer, RendererOptions};
 
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
@@ -26,8 +28,12 @@ pub const EYE_DUMPS: &[&str] =
 pub const LIGHT_SPACE_DUMPS: &[&str] =
     &["photon_back_faces", "photon_buffer", "hierarchy", "hierarchy_lists", "splats"];
 
-/// The buffers `technique` can dump: the eye render's, then the technique's own.
+/// The buffers `technique` can dump: the eye render's, then the technique's own (a technique
+/// that renders pool scenes has only its own).
 pub fn dumps_of(technique: Technique) -> Vec<&'static str> {
+    if !technique.renders_meshes() {
+        return technique.dumps();
+    }
     [EYE_DUMPS.to_vec(), technique.dumps()].concat()
 }
 

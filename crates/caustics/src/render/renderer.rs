@@ -1,6 +1,6 @@
-//! A renderer that keeps its pipelines, targets and photon buffers between frames, so that a
+//! The mesh renderer: keeps its pipelines, targets and photon buffers between frames, so that a
 //! benchmark can render many frames of an animation (uniforms and moving meshes updated per
-//! frame) and time each one.
+//! frame) and time each one. (Pool scenes have their own: see `super::dispatch`.)
 
 use super::{dumps, eye, pipelines, targets};
 use crate::gpu::{self, setup};
@@ -45,7 +45,7 @@ struct CausticResources {
     compute_splat: Option<techniques::ComputeSplat>,
 }
 
-pub struct Renderer<'c> {
+pub struct MeshRenderer<'c> {
     ctx: &'c Context,
     shaders: &'c ShaderCompiler,
     scene: Scene,
@@ -65,7 +65,7 @@ pub struct Renderer<'c> {
     photons_ready: bool,
 }
 
-impl<'c> Renderer<'c> {
+impl<'c> MeshRenderer<'c> {
     pub fn new(ctx: &'c Context, shaders: &'c ShaderCompiler, scene: &Scene, opts: &RendererOptions) -> Result<Self> {
         let settings = &scene.caustics;
         let technique = settings.technique;
@@ -159,7 +159,7 @@ impl<'c> Renderer<'c> {
         } else {
             None
         };
-        Ok(Renderer {
+        Ok(MeshRenderer {
             ctx,
             shaders,
             scene: scene.clone(),

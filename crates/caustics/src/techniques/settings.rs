@@ -8,6 +8,7 @@
 
 use super::shared::settings::{Intersect, SplatKernel, SplatPath};
 use super::technique::Technique;
+use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNEL};
 use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
 use serde::{Deserialize, Serialize};
 
@@ -77,7 +78,8 @@ macro_rules! caustic_settings {
 caustic_settings! {
     /// The caustic technique (default `none`).
     technique: Technique = Technique::None;
-    /// Photon buffer resolution N (N x N photons per light), 64..=4096; default 512.
+    /// Photon buffer resolution N (N x N photons per light), 64..=4096; default 512. For
+    /// pool-convolution: the height field's side (and the receiver map's).
     photons: u32 = 512;
     /// Splat radius in caustic-map texels, (0, 32]; default 1.5.
     splat_radius: f32 = 1.5;
@@ -109,6 +111,12 @@ caustic_settings! {
     /// Vertices per instance of the instanced photon fetch (Wyman 2008 Sec. 4: 1024, 2048, 4096);
     /// a power of two, 64..=65536; default 1024.
     instance_vertices: u32 = 1024;
+    /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
+    /// default float.
+    precision: Precision = Precision::Float, only PoolConvolution;
+    /// pool-convolution: the side of the Pass 6 kernels, odd, 3..=63 (Sec. 4.1); default 7 (the
+    /// paper's).
+    kernel: u32 = DEFAULT_KERNEL, only PoolConvolution;
 }
 
 impl CausticSettings {
@@ -174,6 +182,12 @@ impl CausticSettings {
             bad(
                 "instance_vertices",
                 format!("must be a power of two between 64 and 65536, got {}", self.instance_vertices),
+            )?;
+        }
+        if !(3..=MAX_KERNEL).contains(&self.kernel) || self.kernel % 2 == 0 {
+            bad(
+                "kernel",
+                format!("must be an odd number between 3 and {MAX_KERNEL} (taps per side), got {}", self.kernel),
             )?;
         }
         if !(1..=64).contains(&self.iterations) {

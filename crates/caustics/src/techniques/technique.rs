@@ -4,7 +4,7 @@
 
 use super::settings::CausticSettings;
 use super::shared::settings::Intersect;
-use super::{shah2007, shared, value_enum, wyman2008, wyman_davis2006};
+use super::{shah2007, shared, trendall_stewart2000, value_enum, wyman2008, wyman_davis2006};
 use vkcore::Feature;
 
 value_enum::value_enum! {
@@ -21,6 +21,8 @@ value_enum::value_enum! {
         WdPoints = "wd-points",
         /// Wyman 2008: hierarchical caustic maps over the photon buffer.
         Hcm = "hcm",
+        /// Trendall & Stewart 2000: pool caustics as three convolutions (pool scenes only).
+        PoolConvolution = "pool-convolution",
     }
 }
 
@@ -32,6 +34,7 @@ impl Technique {
             Technique::Shah | Technique::ShahVertex => shah2007::settings::PAPER,
             Technique::WdPoints => wyman_davis2006::PAPER,
             Technique::Hcm => wyman2008::settings::PAPER,
+            Technique::PoolConvolution => trendall_stewart2000::settings::PAPER,
         }
     }
 
@@ -40,11 +43,19 @@ impl Technique {
         self != Technique::None
     }
 
+    /// Whether the technique renders the scene's meshes (every technique but `pool-convolution`,
+    /// which renders pool scenes: a `[pool]` table instead of objects and lights).
+    pub fn renders_meshes(self) -> bool {
+        self != Technique::PoolConvolution
+    }
+
     /// The ray/receiver intersection the technique's paper uses.
     pub fn default_intersect(self) -> Intersect {
         match self {
             Technique::WdPoints | Technique::Hcm => Intersect::WdDepthSearch,
-            Technique::None | Technique::Shah | Technique::ShahVertex => Intersect::ShahIterative,
+            Technique::None | Technique::Shah | Technique::ShahVertex | Technique::PoolConvolution => {
+                Intersect::ShahIterative
+            }
         }
     }
 
@@ -64,6 +75,8 @@ impl Technique {
                 &[Feature::ShaderOutputLayer, Feature::LargePoints]
             }
             Technique::ShahVertex => shah2007::settings::VERTEX_PHOTON_FEATURES,
+            // Fragment passes into RGBA8 or RGBA32F targets and compute passes: core Vulkan.
+            Technique::PoolConvolution => &[],
         }
     }
 
@@ -73,13 +86,14 @@ impl Technique {
             Technique::None => vec![],
             Technique::Shah | Technique::ShahVertex | Technique::WdPoints => shared::settings::DUMPS.to_vec(),
             Technique::Hcm => [shared::settings::DUMPS, wyman2008::settings::DUMPS].concat(),
+            Technique::PoolConvolution => trendall_stewart2000::settings::DUMPS.to_vec(),
         }
     }
 
     /// Photons the technique emits per light (for tables; hardware independent).
     pub fn photons_per_light(self, settings: &CausticSettings, specular_vertices: u32) -> u64 {
         match self {
-            Technique::None => 0,
+            Technique::None | Technique::PoolConvolution => 0,
             Technique::ShahVertex => specular_vertices as u64,
             Technique::Shah | Technique::WdPoints | Technique::Hcm => settings.photons as u64 * settings.photons as u64,
         }
@@ -95,7 +109,7 @@ mod tests {
         for t in Technique::ALL {
             assert_eq!(Technique::parse(t.name()), Some(*t));
             assert!(!t.paper().is_empty());
-            assert!(t.required_features().contains(&Feature::ShaderOutputLayer));
+            assert_eq!(t.required_features().contains(&Feature::ShaderOutputLayer), t.renders_meshes(), "{t}");
             assert_eq!(t.has_caustics(), !t.dumps().is_empty(), "{t}");
         }
     }
