@@ -1,7 +1,9 @@
 //! Turns one cell's frames into the values of the config's metrics.
 //!
 //! Times: `pass_ms` sums the GPU timestamps of the matching passes within each frame, then
-//! takes the median over the measured frames (min and max kept); `gpu_frame_ms` does so over
+//! takes the median over the measured frames (min and max kept); `pass_fps` is 1000 / that sum,
+//! per frame (a rate of some passes alone: Trendall & Stewart 2000 Table 1 times the caustic
+//! passes without the height field or the display); `gpu_frame_ms` does so over
 //! every pass; `frame_ms` is the host's wall time per frame (record, submit, wait), which also
 //! covers work a driver's timestamps miss; `fps` is 1000 / mean `frame_ms`. Counts are exact
 //! per frame. `rel_rmse` and `flux_ratio` are `causticlab compare`'s relative RMSE and caustic
@@ -90,6 +92,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
         let k = m.kind.as_str();
         let v = match k {
             "pass_ms" => of_samples(k, pass_samples(run, &m.passes)),
+            "pass_fps" => of_samples(k, pass_samples(run, &m.passes).iter().map(|ms| 1000.0 / ms).collect()),
             "gpu_frame_ms" => of_samples(k, pass_samples(run, &["*".to_string()])),
             "frame_ms" => of_samples(k, run.wall_ms.clone()),
             "fps" => {

@@ -98,7 +98,7 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         return "n/a".into();
     }
     match kind {
-        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" => significant(v),
+        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" | "pass_fps" => significant(v),
         "photons_emitted" | "splats_drawn" | "photons_processed" => thousands(v.round() as u64),
         "rel_rmse" | "flux_ratio" => format!("{v:.4}"),
         _ => format!("{v}"),
@@ -132,7 +132,7 @@ fn thousands(n: u64) -> String {
 pub fn unit(kind: &str) -> &'static str {
     match kind {
         "pass_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
-        "fps" => "fps",
+        "fps" | "pass_fps" => "fps",
         "photons_emitted" => "photons",
         "splats_drawn" | "photons_processed" => "points",
         _ => "",

@@ -93,11 +93,14 @@ impl<'c> PoolRenderer<'c> {
     /// Moves to `scene`, the same pool at another time (`crate::animation`).
     pub fn set_pose(&mut self, scene: &Scene) -> Result<()> {
         let pool = pool_of(scene)?;
-        anyhow::ensure!(
-            pool.at_time(self.init.pool.time) == self.init.pool,
-            "set_pose: {} is not this pool at another time",
-            scene.path.display()
-        );
+        if pool.at_time(self.init.pool.time) != self.init.pool {
+            return Err(crate::input_error!(
+                "{}: pool-convolution renders the same pool at other times only: the light, and with it the \
+                 kernels, lookup tables and E_flat of Init, cannot move between frames (light_path = \"static\")",
+                scene.path.display()
+            )
+            .into());
+        }
         self.init.pool = pool.clone();
         let faithful = self.init.precision == Precision::Unorm8;
         let i = &self.init;

@@ -152,3 +152,74 @@ pub fn pool_uniforms(
         sources: sources_out,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::mem::offset_of;
+
+    /// (GLSL type, name) of each member of the `PoolUniforms` block in pool.glsl, in order.
+    fn glsl_members() -> Vec<(String, String)> {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/trendall_stewart2000/pool.glsl");
+        let src = std::fs::read_to_string(path).expect("pool.glsl");
+        let start = src.find("uniform PoolUniforms {").expect("the block") + "uniform PoolUniforms {".len();
+        let body = &src[start..start + src[start..].find('}').expect("its end")];
+        body.lines()
+            .map(|l| l.split("//").next().unwrap_or("").trim())
+            .filter(|l| l.ends_with(';'))
+            .map(|l| {
+                let mut it = l.trim_end_matches(';').split_whitespace();
+                (it.next().unwrap_or("").to_string(), it.next().unwrap_or("").to_string())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_glsl_block_is_the_twin_of_the_struct() {
+        // The Rust members with their offsets; every one is 16 bytes (std140 vec4s), in order.
+        let rust = [
+            ("uvec4", "grid", offset_of!(PoolUniforms, grid)),
+            ("ivec4", "kernel", offset_of!(PoolUniforms, kernel)),
+            ("vec4", "pool", offset_of!(PoolUniforms, pool)),
+            ("vec4", "light", offset_of!(PoolUniforms, light)),
+            ("vec4", "optics", offset_of!(PoolUniforms, optics)),
+            ("vec4", "medium", offset_of!(PoolUniforms, medium)),
+            ("vec4", "wave", offset_of!(PoolUniforms, wave)),
+            ("vec4", "wave_damping", offset_of!(PoolUniforms, wave_damping)),
+            ("vec4", "basis_x", offset_of!(PoolUniforms, basis_x)),
+            ("vec4", "basis_y", offset_of!(PoolUniforms, basis_y)),
+            ("vec4", "basis_z", offset_of!(PoolUniforms, basis_z)),
+            ("vec4", "enc_height_slope", offset_of!(PoolUniforms, enc_height_slope)),
+            ("vec4", "enc_cos", offset_of!(PoolUniforms, enc_cos)),
+            ("vec4", "enc_normal_lo", offset_of!(PoolUniforms, enc_normal_lo)),
+            ("vec4", "enc_normal_span", offset_of!(PoolUniforms, enc_normal_span)),
+            ("vec4", "enc_gamma_n_lo", offset_of!(PoolUniforms, enc_gamma_n_lo)),
+            ("vec4", "enc_gamma_n_span", offset_of!(PoolUniforms, enc_gamma_n_span)),
+            ("vec4", "enc_lt_lo", offset_of!(PoolUniforms, enc_lt_lo)),
+            ("vec4", "enc_lt_span", offset_of!(PoolUniforms, enc_lt_span)),
+            ("vec4", "enc_direction_lo", offset_of!(PoolUniforms, enc_direction_lo)),
+            ("vec4", "enc_direction_span", offset_of!(PoolUniforms, enc_direction_span)),
+            ("vec4", "enc_convolution_lo", offset_of!(PoolUniforms, enc_convolution_lo)),
+            ("vec4", "enc_convolution_span", offset_of!(PoolUniforms, enc_convolution_span)),
+            ("vec4", "cam_right", offset_of!(PoolUniforms, cam_right)),
+            ("vec4", "cam_up", offset_of!(PoolUniforms, cam_up)),
+            ("vec4", "cam_forward", offset_of!(PoolUniforms, cam_forward)),
+            ("vec4", "eye", offset_of!(PoolUniforms, eye)),
+            ("vec4", "view", offset_of!(PoolUniforms, view)),
+            ("vec4", "sky", offset_of!(PoolUniforms, sky)),
+            ("vec4", "sources[MAX_SOURCES]", offset_of!(PoolUniforms, sources)),
+        ];
+        for (i, (_, name, offset)) in rust.iter().enumerate() {
+            assert_eq!(*offset, 16 * i, "{name}");
+        }
+        let glsl = glsl_members();
+        let want: Vec<(String, String)> = rust.iter().map(|(t, n, _)| (t.to_string(), n.to_string())).collect();
+        assert_eq!(glsl, want);
+        let src = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../shaders_glsl/trendall_stewart2000/pool.glsl"
+        ))
+        .expect("pool.glsl");
+        assert!(src.contains(&format!("#define MAX_SOURCES {MAX_SOURCES}")));
+    }
+}
