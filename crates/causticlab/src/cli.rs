@@ -140,6 +140,10 @@ pub struct CompareArgs {
     /// Print the figures as one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// The texels compared: `caustic` (where either map differs from 1 by more than 0.05) or
+    /// `lit` (every texel with E0 > 0: Trendall & Stewart 2000's relative RMS error).
+    #[arg(long, value_enum, default_value_t = caustics::compare::Region::Caustic)]
+    pub region: caustics::compare::Region,
 }
 
 #[derive(Debug, Args)]

@@ -174,8 +174,8 @@ fn fresnel_transmittance_on_the_gpu_is_the_closed_form() {
             let a = deg.to_radians();
             pool.light_direction = DVec3::new(a.sin(), -a.cos(), 0.0);
             let v = channel(&render(&ctx, &sh, &s, &["pass3_transmitted"])[0], None, "value");
-            let (n1, n2, ci) = (1.0, 1.333, a.cos());
-            let ct = (1.0 - (n1 / n2 as f64).powi(2) * (1.0 - ci * ci)).sqrt();
+            let (n1, n2, ci): (f64, f64, f64) = (1.0, 1.333, a.cos());
+            let ct = (1.0 - (n1 / n2).powi(2) * (1.0 - ci * ci)).sqrt();
             let rs = ((n1 * ci - n2 * ct) / (n1 * ci + n2 * ct)).powi(2);
             let rp = ((n2 * ci - n1 * ct) / (n2 * ci + n1 * ct)).powi(2);
             let want = ci * (1.0 - 0.5 * (rs + rp));

@@ -6,7 +6,7 @@
 use super::renderer::{FrameStep, MeshRenderer, RendererOptions};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
-use crate::techniques::trendall_stewart2000::PoolRenderer;
+use crate::techniques::trendall_stewart2000::{self as ts, PoolRenderer};
 use crate::techniques::wyman2008::Hierarchy;
 use anyhow::Result;
 use vkcore::{Context, FrameReport, ShaderCompiler};
@@ -70,7 +70,12 @@ impl<'c> Renderer<'c> {
     /// The named intermediate buffers of the last frame, skipping those this render has none of.
     pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
         match self {
-            Renderer::Mesh(r) => r.dumps(names),
+            Renderer::Mesh(r) => {
+                // The pool's own buffers are no mesh render's.
+                let pool_only = |n: &str| ts::DUMPS.contains(&n) && !super::EYE_DUMPS.contains(&n);
+                let mesh: Vec<String> = names.iter().filter(|n| !pool_only(n)).cloned().collect();
+                r.dumps(&mesh)
+            }
             Renderer::Pool(r) => r.dumps(names),
         }
     }

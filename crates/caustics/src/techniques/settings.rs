@@ -184,7 +184,7 @@ impl CausticSettings {
                 format!("must be a power of two between 64 and 65536, got {}", self.instance_vertices),
             )?;
         }
-        if !(3..=MAX_KERNEL).contains(&self.kernel) || self.kernel % 2 == 0 {
+        if !(3..=MAX_KERNEL).contains(&self.kernel) || self.kernel.is_multiple_of(2) {
             bad(
                 "kernel",
                 format!("must be an odd number between 3 and {MAX_KERNEL} (taps per side), got {}", self.kernel),
