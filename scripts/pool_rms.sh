@@ -16,7 +16,7 @@ scenes=("$@")
 work=${WORK:-out/pool_rms}
 results=${RESULTS:-results/trendall_stewart2000}
 mkdir -p "$work" "$results"
-device=$($bin devices | sed -n 's/^\[\([0-9]*\)\] \(.*\) \[default\].*/\2/p' | head -1)
+device=$($bin devices | sed -n 's/^\[\([0-9]*\)\] \(.*\) \[default\].*/\2/p' | head -1 | sed 's/ *$//')
 slug=$(echo "${device:-default}" | tr '[:upper:]' '[:lower:]' | sed 's/[^a-z0-9]\{1,\}/-/g; s/^-//; s/-$//' | cut -c1-48)
 rows=$work/rows
 : > "$rows"
