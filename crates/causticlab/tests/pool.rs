@@ -1,6 +1,6 @@
 //! `causticlab` on pool scenes (Trendall & Stewart 2000): the render's flags and files with
-//! validation on, `reference` (the f64 passes and `--direct` Eq. 2) against the render, bad
-//! input, and a quick run of the Table 1 config.
+//! validation on, `reference` (the f64 passes and `--direct` Eq. 2) against the render, and bad
+//! input. (The Table 1 config's quick run is in tests/bench.rs.)
 
 mod common;
 
@@ -156,33 +156,4 @@ fn bad_pool_input_exits_2_naming_what_is_wrong() {
         causticlab(&["render", "--scene", &bad.display().to_string(), "--out", &out.join("x").display().to_string()]);
     assert_input_error(&r, &["bad.toml", "pool.deepness"]);
     assert!(!out.join("x").exists(), "no output on bad input");
-}
-
-#[test]
-fn quick_trendall_stewart2000_table1_times_the_passes_and_the_height_field() {
-    let root = scratch("bench-pool");
-    let cfg = workspace().join("bench_configs/trendall_stewart2000_table1.toml");
-    let r = causticlab(&[
-        "--validate",
-        "bench",
-        &cfg.display().to_string(),
-        "--quick",
-        "--results",
-        &root.display().to_string(),
-    ]);
-    assert_clean(&r);
-    let slug =
-        std::fs::read_dir(&root).expect("results").filter_map(|e| e.ok()).find(|e| e.path().is_dir()).expect("device");
-    let json = slug.path().join("quick/trendall_stewart2000_table1.json");
-    let results: Value = serde_json::from_str(&std::fs::read_to_string(&json).expect("json")).expect("json");
-    let cells = results["cells"].as_array().expect("cells");
-    assert_eq!(cells.len(), 2 * 3 * 2, "2 scenes x 3 techniques x 2 sizes");
-    for c in cells {
-        for m in ["caustics fps", "height field fps"] {
-            let v = c["metrics"][m]["value"].as_f64();
-            assert!(v.is_some_and(|v| v.is_finite() && v > 0.0), "{m}: {c}");
-        }
-    }
-    let md = std::fs::read_to_string(slug.path().join("quick/trendall_stewart2000_table1.md")).expect("md");
-    assert!(md.contains("37.9") && md.contains("178"), "the paper's values beside ours");
 }
