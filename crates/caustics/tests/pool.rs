@@ -309,3 +309,29 @@ fn the_faithful_8_bit_path_stays_within_its_stated_error_of_float() {
         assert!(e_rms > 1e-3, "{name}: the 8-bit path should not be this exact: {e_rms}");
     }
 }
+
+/// Footnote 1: L_s varies over the surface with a projected texture; Pass 3 carries it.
+#[test]
+fn a_projected_texture_scales_pass_3() {
+    let (ctx, sh) = context();
+    let dir = std::env::temp_dir().join(format!("causticlab-pool-texture-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    // Left half black, right half white (sRGB 255 is linear 1).
+    let png = dir.join("half.png");
+    caustics::image_io::write_png_grey(&png, 2, 1, &[0.0, 1.0], 1.0).expect("png");
+    for precision in [Precision::Float, Precision::Unorm8, Precision::F64] {
+        let mut s = scene("pool_overhead", precision);
+        s.caustics.photons = 64;
+        let pool = s.pool.as_mut().expect("pool");
+        pool.impulses.clear();
+        pool.light_texture = Some(png.clone());
+        pool.light_radiance = 0.5;
+        let v = channel(&render(&ctx, &sh, &s, &["pass3_transmitted"])[0], None, "value");
+        let want = 0.5 * (1.0 - (0.333f64 / 2.333).powi(2));
+        for j in [0, 31, 63] {
+            assert_eq!(v[j * 64 + 10], 0.0, "{precision}: the black half");
+            assert!((v[j * 64 + 50] - want).abs() < 2.0 / 255.0, "{precision}: {} vs {want}", v[j * 64 + 50]);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -9,6 +9,13 @@
 //! `height_range` and `slope_range`, pushed through Eq. 1, the Fresnel T and the kernels. A
 //! product of an adjusted function f~ and an unadjusted g in [0, 1] keeps f's encoding,
 //! (fg)~ = g f~ + (1 - g) beta, so the encodings of such f contain 0 (Sec. 3.2, Products).
+//!
+//! What the OpenGL 1.2 pipeline did with fixed functions between two 8-bit stores (scale and
+//! bias, the colour matrix, colour-table lookups, the convolution, blending) the fragment
+//! shaders do in float within one pass; what makes the path faithful is that every function
+//! crosses from one pass to the next as an 8-bit code, and every non-linear function is an
+//! 8-bit table indexed by an 8-bit code. The height field is evaluated per texel and stored once
+//! (the paper's distance texture and per-impulse colour tables are not emulated).
 
 use super::kernels::{basis, interface, Kernels};
 use crate::scene::PoolSpec;
