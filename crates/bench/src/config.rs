@@ -165,6 +165,7 @@ fn default_copy() -> String {
 /// Metric kinds: see `bench_configs/README.md`.
 pub const METRIC_KINDS: &[&str] = &[
     "pass_ms",
+    "pass_fps",
     "gpu_frame_ms",
     "frame_ms",
     "fps",
@@ -182,7 +183,7 @@ pub const METRIC_KINDS: &[&str] = &[
 pub struct MetricSpec {
     pub label: String,
     pub kind: String,
-    /// For `pass_ms`: pass names summed per frame; `*` matches any run of characters.
+    /// For `pass_ms` and `pass_fps`: pass names summed per frame; `*` matches any run of characters.
     #[serde(default)]
     pub passes: Vec<String>,
     /// For `frame_ms` and `fps`: passes whose GPU time is taken off each frame's wall time, for

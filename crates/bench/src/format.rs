@@ -17,7 +17,7 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         return "n/a".into();
     }
     match kind {
-        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" => significant(v),
+        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" | "pass_fps" => significant(v),
         "photons_emitted" | "splats_drawn" | "photons_processed" | "valid_photons" => thousands(v.round() as u64),
         // A share of the photon buffer, as a percentage with three significant digits.
         "valid_fraction" => format!("{}%", significant(100.0 * v)),
@@ -53,7 +53,7 @@ fn thousands(n: u64) -> String {
 pub fn unit(kind: &str) -> &'static str {
     match kind {
         "pass_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
-        "fps" => "fps",
+        "fps" | "pass_fps" => "fps",
         "photons_emitted" => "photons",
         "splats_drawn" | "photons_processed" => "points",
         "valid_photons" => "photons",

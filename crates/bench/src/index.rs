@@ -18,6 +18,8 @@ time: compare techniques within one device, never lavapipe against a GPU.
 Other folders: `quality/` (caustic error against the CPU reference, `scripts/quality_table.sh`),
 `criterion/` (CPU benchmarks, `scripts/criterion.sh`). [`wyman2008_findings.md`](wyman2008_findings.md)
 reads the Wyman 2008 tables of both devices: which of the paper's claims hold, and why.
+[`trendall_stewart2000/`](trendall_stewart2000/README.md): Trendall & Stewart 2000's Sec. 5.2
+relative RMS errors (`scripts/pool_rms.sh`) and what Table 1 and they show.
 ";
 
 /// Rebuilds `<root>/README.md` from `<root>/*/*.json`.

@@ -2,6 +2,8 @@
 //!
 //! Times: `pass_ms` sums the GPU timestamps of the matching passes within each frame, then
 //! takes the median over the measured frames (quartiles, min and max and every sample kept);
+//! `pass_fps` is 1000 / that sum, per frame (a rate of some passes alone: Trendall & Stewart
+//! 2000 Table 1 times the caustic passes without the height field or the display);
 //! `gpu_frame_ms` does so over every pass; `frame_ms` is the host's wall time per frame
 //! (record, submit, wait), which also covers work a driver's timestamps miss; `fps` is 1000 /
 //! mean `frame_ms` (the papers' average over an animation), its samples and quartiles the
@@ -98,6 +100,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
         let k = m.kind.as_str();
         let v = match k {
             "pass_ms" => of_samples(k, pass_samples(run, &m.passes)),
+            "pass_fps" => of_samples(k, pass_samples(run, &m.passes).iter().map(|ms| 1000.0 / ms).collect()),
             "gpu_frame_ms" => of_samples(k, pass_samples(run, &["*".to_string()])),
             "frame_ms" => of_samples(k, wall_ms(run, &m.exclude)),
             "fps" => {

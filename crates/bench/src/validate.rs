@@ -164,10 +164,14 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                 format!("unknown kind `{}`; expected one of {}", mt.kind, METRIC_KINDS.join(", ")),
             ));
         }
-        if (mt.kind == "pass_ms") == mt.passes.is_empty() {
-            let msg =
-                if mt.passes.is_empty() { "kind pass_ms needs `passes`" } else { "only kind pass_ms takes `passes`" };
-            return Err(bad(&format!("metric[{i}].passes"), msg.into()));
+        let per_pass = mt.kind == "pass_ms" || mt.kind == "pass_fps";
+        if per_pass == mt.passes.is_empty() {
+            let msg = if mt.passes.is_empty() {
+                format!("kind {} needs `passes`", mt.kind)
+            } else {
+                "only kinds pass_ms and pass_fps take `passes`".to_string()
+            };
+            return Err(bad(&format!("metric[{i}].passes"), msg));
         }
         if !mt.exclude.is_empty() && mt.kind != "fps" && mt.kind != "frame_ms" {
             return Err(bad(&format!("metric[{i}].exclude"), "only kinds fps and frame_ms take `exclude`".into()));

@@ -39,7 +39,8 @@ pub enum Command {
     Devices,
     /// Render a scene and write final.exr, final.png, timings.json and the requested dumps.
     Render(RenderArgs),
-    /// Trace the exact CPU photon reference of a scene's receiver map into DIR/receiver.exr.
+    /// Trace the exact CPU photon reference of a scene's receiver map into DIR/receiver.exr; for
+    /// a pool scene, evaluate passes 1-6 in f64 (or Eq. 2 itself with --direct).
     Reference(ReferenceArgs),
     /// Compare two receiver maps (B is the reference): errors, peak, flux; writes an error image.
     Compare(CompareArgs),
@@ -116,6 +117,16 @@ pub struct ReferenceArgs {
     /// (the smooth surface the mesh stands for, as the renderer shades it).
     #[arg(long)]
     pub facet_normals: bool,
+    /// Pool scenes: evaluate Eq. 2 directly (the Gaussian lobe, P from the surface point) instead
+    /// of the f64 convolution passes (Trendall & Stewart 2000).
+    #[arg(long)]
+    pub direct: bool,
+    /// Pool scenes: the grid side (default: the scene's `caustics.photons`).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub grid: Option<u32>,
+    /// Pool scenes: the Pass 6 kernel side, odd (default: the scene's `caustics.kernel`).
+    #[arg(long)]
+    pub kernel: Option<u32>,
     /// Output directory (receiver.exr, reference.json).
     #[arg(long)]
     pub out: PathBuf,
@@ -133,6 +144,10 @@ pub struct CompareArgs {
     /// Print the figures as one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// The texels compared: `caustic` (where either map differs from 1 by more than 0.05) or
+    /// `lit` (every texel with E0 > 0: Trendall & Stewart 2000's relative RMS error).
+    #[arg(long, value_enum, default_value_t = caustics::compare::Region::Caustic)]
+    pub region: caustics::compare::Region,
 }
 
 #[derive(Debug, Args)]

@@ -11,11 +11,12 @@ use std::path::Path;
 pub fn run(args: &CompareArgs) -> Result<()> {
     check_exr(&args.a)?;
     check_exr(&args.b)?;
-    let (c, error_image) = compare_files(&args.a, &args.b)?;
+    let (c, error_image) = compare_files(&args.a, &args.b, args.region)?;
     if args.json {
         let v = serde_json::json!({
             "a": args.a.display().to_string(),
             "b": args.b.display().to_string(),
+            "region": format!("{:?}", args.region).to_lowercase(),
             "region_texels": c.region_texels,
             "rel_rmse": c.rel_rmse,
             "rel_rmse_scaled": c.rel_rmse_scaled,

@@ -26,6 +26,19 @@ struct Record {
 
 pub fn run(args: &ReferenceArgs) -> Result<()> {
     let scene = Scene::load(&args.scene)?;
+    if scene.pool.is_some() {
+        return crate::cmd_pool_reference::run(args, &scene);
+    }
+    for (set, flag) in [(args.direct, "--direct"), (args.grid.is_some(), "--grid"), (args.kernel.is_some(), "--kernel")]
+    {
+        if set {
+            return Err(caustics::input_error!(
+                "{flag}: only for pool scenes ([pool], technique pool-convolution); {} is not one",
+                args.scene.display()
+            )
+            .into());
+        }
+    }
     let opts = ReferenceOptions {
         photons: args.photons,
         seed: args.seed,

@@ -81,6 +81,12 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         let file = format!("{name}.exr");
         image_io::write_exr_with(&out.path(&file), image, &header)?;
         written.push(file);
+        if name == "receiver" {
+            // To look at without an EXR viewer: E/E0 from black (0) through grey (1) to white (2).
+            let ratio = receiver_ratio(image)?;
+            image_io::write_png_grey(&out.path(RECEIVER_PNG), image.width, image.height, &ratio, 2.0)?;
+            written.push(RECEIVER_PNG.to_string());
+        }
     }
     let timings = Timings::new(
         ctx.info(),
@@ -97,8 +103,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     out.commit()?;
     // Dumps an earlier render left in the same folder would read as this run's: remove the
     // buffers this run did not write (only names causticlab writes; nothing else is touched).
-    for name in render::all_dump_names() {
-        let file = format!("{name}.exr");
+    for file in render::all_dump_names().iter().map(|n| format!("{n}.exr")).chain([RECEIVER_PNG.to_string()]) {
         if !written.contains(&file) && final_dir.join(&file).is_file() {
             std::fs::remove_file(final_dir.join(&file))
                 .with_context(|| format!("removing the stale {}", final_dir.join(&file).display()))?;
@@ -125,6 +130,15 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         println!("wrote {}", final_dir.join(f).display());
     }
     Ok(())
+}
+
+/// The receiver map as a PNG, beside receiver.exr.
+const RECEIVER_PNG: &str = "receiver.png";
+
+/// The mean of R, G, B of the receiver map's main layer (E/E0), per texel.
+fn receiver_ratio(image: &ImageF32) -> Result<Vec<f32>> {
+    let (_, _, rgb) = main_rgb(image)?;
+    Ok(rgb.chunks_exact(3).map(|p| (p[0] + p[1] + p[2]) / 3.0).collect())
 }
 
 /// Whether `--dump` says `all`.
@@ -164,7 +178,9 @@ fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
     }
     sizes.push(("render.shadow_map_resolution", scene.render.shadow_map_resolution));
     let c = &scene.caustics;
-    if c.technique.has_caustics() {
+    if !c.technique.renders_meshes() {
+        sizes.push(("caustics.photons", c.photons));
+    } else if c.technique.has_caustics() {
         sizes.push(("caustics.caustic_map_resolution", c.caustic_map_resolution));
         sizes.push(("caustics.photons", c.photons));
         // A splat is a point of 2 ceil(r) + 2 pixels (shared/splat_photon.glsl). Varying splats

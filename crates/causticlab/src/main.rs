@@ -7,6 +7,7 @@ mod cli;
 mod cmd_bench;
 mod cmd_compare;
 mod cmd_devices;
+mod cmd_pool_reference;
 mod cmd_reference;
 mod cmd_render;
 mod exit;

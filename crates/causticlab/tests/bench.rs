@@ -639,6 +639,20 @@ fn quick_splat_paths_splat_the_same_photons_and_time_every_splat() {
 }
 
 #[test]
+fn quick_trendall_stewart2000_table1_times_the_passes_and_the_height_field() {
+    let (dir, r) = quick_run("trendall_stewart2000_table1.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 2 * 3 * 2, "2 scenes x 3 techniques x 2 grid sides");
+    for c in cells {
+        for m in ["caustics fps", "height field fps"] {
+            assert!(metric(c, m).is_some_and(|v| v.is_finite() && v > 0.0), "{m}: {}", c["cell"]);
+        }
+    }
+    let md = std::fs::read_to_string(dir.join("trendall_stewart2000_table1.md")).expect("md");
+    assert!(md.contains("37.9") && md.contains("178"), "the paper's values beside ours");
+}
+
+#[test]
 fn every_bench_config_has_a_quick_test() {
     // A config no test runs could rot unnoticed: each must be named in this file.
     let src = include_str!("bench.rs");

@@ -515,8 +515,8 @@ fn render_help_lists_every_enumerated_value_under_its_group() {
         assert!(run.stdout.contains(heading), "no `{heading}` group in\n{}", run.stdout);
     }
     // Each enumerated flag with the names the enum accepts (read from the enums, not copied).
-    use caustics::techniques::{wyman2008, Intersect, SplatKernel, SplatPath, Technique};
-    let flags: [(&str, &[&str]); 8] = [
+    use caustics::techniques::{trendall_stewart2000, wyman2008, Intersect, SplatKernel, SplatPath, Technique};
+    let flags: [(&str, &[&str]); 9] = [
         ("--technique", Technique::NAMES),
         ("--splat-kernel", SplatKernel::NAMES),
         ("--intersect", Intersect::NAMES),
@@ -525,6 +525,7 @@ fn render_help_lists_every_enumerated_value_under_its_group() {
         ("--splat", wyman2008::SplatMode::NAMES),
         ("--varying-radius", wyman2008::VaryingRadius::NAMES),
         ("--splat-path", SplatPath::NAMES),
+        ("--precision", trendall_stewart2000::Precision::NAMES),
     ];
     for (flag, names) in flags {
         let at = run.stdout.find(&format!("{flag} ")).unwrap_or_else(|| panic!("{flag} missing"));

@@ -17,7 +17,7 @@ pub struct Animation {
     /// The eye orbits the vertical axis through the camera target.
     pub camera: bool,
     /// Specular objects turn about their own vertical axis and circle a quarter of their
-    /// radius around their rest position.
+    /// radius around their rest position; a pool's water advances by `pool.time_step` a frame.
     pub object: bool,
     /// Frames per full turn (≥ 1).
     pub period_frames: u32,
@@ -77,6 +77,15 @@ pub fn scene_at(base: &Scene, anim: &Animation, frame: u32) -> Scene {
     }
     if anim.camera {
         s.camera.eye = orbit(s.camera.eye, s.camera.target, a);
+    }
+    if let Some(pool) = &mut s.pool {
+        // A pool's light turns like the others; its water moves by time, not by turning.
+        if anim.light {
+            pool.light_direction = glam::DMat3::from_rotation_y(a as f64) * pool.light_direction;
+        }
+        if anim.object {
+            pool.time += (frame % anim.period_frames.max(1)) as f64 * pool.time_step;
+        }
     }
     if anim.object {
         let turn = Mat3::from_rotation_y(a);

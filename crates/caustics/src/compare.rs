@@ -11,6 +11,9 @@
 //!   the argmax texels;
 //! * `caustic_flux_ratio = Σ caustic_a / Σ caustic_b` (mean RGB of the `caustic` layers)
 //!   when both have one, else `Σ max(v − 1, 0)·E0` over all texels.
+//!
+//! [`Region::Lit`] compares every texel instead (where `E0 > 0`): the relative RMS error "between
+//! the two caustics" of Trendall & Stewart 2000 Sec. 5.2, over the whole image.
 
 use crate::error::InputError;
 use crate::image_io::{read_exr, ImageF32, Layer};
@@ -19,6 +22,16 @@ use std::path::Path;
 
 /// Texels whose relative irradiance differs from 1 by more than this are compared.
 pub const REGION_THRESHOLD: f64 = 0.05;
+
+/// Which texels the errors are over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Region {
+    /// Where either map differs from 1 by more than `REGION_THRESHOLD` (and `E0 > 0`).
+    #[default]
+    Caustic,
+    /// Every texel with `E0 > 0` in both maps (every texel where there is no `E0`).
+    Lit,
+}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Comparison {
@@ -102,17 +115,23 @@ fn ratio(a: f64, b: f64) -> f64 {
 /// Compares `a` against the reference `b`; see the module docs. Returns the metrics and an
 /// error image (main layer `A`, `B`, `diff = a − b`, `in_region` ∈ {0, 1}).
 pub fn compare(a: &ImageF32, b: &ImageF32) -> anyhow::Result<(Comparison, ImageF32)> {
-    compare_labelled(a, "image A", b, "image B")
+    compare_labelled(a, "image A", b, "image B", Region::Caustic)
 }
 
-/// [`compare`] on two EXR files, naming the files in errors.
-pub fn compare_files(a: &Path, b: &Path) -> anyhow::Result<(Comparison, ImageF32)> {
+/// [`compare`] on two EXR files, naming the files in errors, over `region`.
+pub fn compare_files(a: &Path, b: &Path, region: Region) -> anyhow::Result<(Comparison, ImageF32)> {
     let ia = read_exr(a)?;
     let ib = read_exr(b)?;
-    compare_labelled(&ia, &a.display().to_string(), &ib, &b.display().to_string())
+    compare_labelled(&ia, &a.display().to_string(), &ib, &b.display().to_string(), region)
 }
 
-fn compare_labelled(a: &ImageF32, la: &str, b: &ImageF32, lb: &str) -> anyhow::Result<(Comparison, ImageF32)> {
+fn compare_labelled(
+    a: &ImageF32,
+    la: &str,
+    b: &ImageF32,
+    lb: &str,
+    region_kind: Region,
+) -> anyhow::Result<(Comparison, ImageF32)> {
     if (a.width, a.height) != (b.width, b.height) {
         return Err(InputError::new(format!(
             "size mismatch: {la} is {}x{} but {lb} is {}x{}",
@@ -132,7 +151,8 @@ fn compare_labelled(a: &ImageF32, la: &str, b: &ImageF32, lb: &str) -> anyhow::R
                 Some(e) => e[t] > 0.0,
                 None => true,
             });
-            lit && ((x - 1.0).abs() > REGION_THRESHOLD || (y - 1.0).abs() > REGION_THRESHOLD)
+            let differs = (x - 1.0).abs() > REGION_THRESHOLD || (y - 1.0).abs() > REGION_THRESHOLD;
+            lit && (differs || region_kind == Region::Lit)
         })
         .collect();
 

@@ -1,6 +1,6 @@
 //! Integration tests of the exact CPU photon reference and of the image comparison.
 
-use caustics::compare::{compare, compare_files};
+use caustics::compare::{compare, compare_files, Region};
 use caustics::image_io::{write_exr, ImageF32, Layer};
 use caustics::reference::{trace_reference, ReferenceOptions, ReferenceResult};
 use caustics::scene::{ReceiverMapSpec, Scene};
@@ -293,7 +293,7 @@ fn compare_errors_name_the_file_and_channel() {
     let pb = dir.join("big_b.exr");
     write_exr(&pa, &synthetic(16, blob(8.0, 8.0))).unwrap();
     write_exr(&pb, &synthetic(32, blob(8.0, 8.0))).unwrap();
-    let err = compare_files(&pa, &pb).unwrap_err();
+    let err = compare_files(&pa, &pb, Region::Caustic).unwrap_err();
     assert!(err.downcast_ref::<caustics::InputError>().is_some(), "{err:#}");
     let msg = format!("{err:#}");
     assert!(msg.contains("small_a.exr") && msg.contains("big_b.exr"), "{msg}");
@@ -303,11 +303,11 @@ fn compare_errors_name_the_file_and_channel() {
     bad.layers[0] = Layer::new(None, &["R", "B", "E0"], vec![1.0; 16 * 16 * 3]);
     let pc = dir.join("no_green.exr");
     write_exr(&pc, &bad).unwrap();
-    let err = compare_files(&pa, &pc).unwrap_err();
+    let err = compare_files(&pa, &pc, Region::Caustic).unwrap_err();
     let msg = format!("{err:#}");
     assert!(msg.contains("no_green.exr") && msg.contains("`G`"), "{msg}");
     // Round trip through files gives the same result as in memory.
-    let (cmp, _) = compare_files(&pa, &pa).unwrap();
+    let (cmp, _) = compare_files(&pa, &pa, Region::Caustic).unwrap();
     assert_eq!(cmp.rel_rmse, 0.0);
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -25,6 +25,12 @@ fn every_shipped_scene_loads() {
     }
     for path in names {
         let s = Scene::load(&path).unwrap_or_else(|e| panic!("{}: {e:#}", path.display()));
+        if let Some(pool) = &s.pool {
+            // A pool scene (Trendall & Stewart 2000): its light and surfaces are the pool's.
+            assert!(s.lights.is_empty() && s.objects.is_empty() && s.receiver_map.is_none());
+            assert!(!pool.impulses.is_empty(), "{}", path.display());
+            continue;
+        }
         assert!(!s.lights.is_empty() && !s.objects.is_empty());
         assert!(s.receiver_map.is_some(), "{}: no receiver map", path.display());
         for o in &s.objects {
@@ -101,4 +107,29 @@ fn sphere_behind_dragon_is_two_refractors_back_to_front() {
     let ((dlo, dhi), (slo, shi)) = (s.objects[dragon].mesh.bounds(), s.objects[sphere].mesh.bounds());
     assert!(shi.z < dlo.z, "the sphere ({slo}..{shi}) is behind the dragon ({dlo}..{dhi})");
     assert!(slo.y.abs() < 1e-3, "the sphere stands on the floor: {slo}");
+}
+
+/// The canonical pools of Trendall & Stewart 2000, exactly as issue 17 gives them.
+#[test]
+fn the_canonical_pools_have_the_issues_numbers() {
+    use caustics::techniques::Technique;
+    use std::f64::consts::TAU;
+    for (name, light) in [("pool_overhead.toml", [0.0, -1.0, 0.0]), ("pool_oblique.toml", [0.5, -0.8660254, 0.0])] {
+        let s = load(name);
+        let p = s.pool.clone().expect("a pool");
+        assert_eq!((p.side, p.depth, p.albedo, p.ior, p.ior_air, p.time), (1.0, 0.3, 0.8, 1.333, 1.0, 2.4));
+        let want = glam::DVec3::from_array(light).normalize();
+        assert!((p.light_direction - want).length() < 1e-12, "{name}");
+        assert_eq!((p.scattering, p.exponent, p.extinction), (2000.0, 4000.0, 0.5));
+        let w = p.wave;
+        assert_eq!((w.amplitude, w.time_damping, w.distance_damping), (0.005, 0.3, 10.0));
+        assert!((w.wave_number - TAU / 0.1).abs() < 1e-12 && (w.angular_frequency - TAU * 1.25).abs() < 1e-12);
+        assert_eq!(p.impulses.len(), 1);
+        assert_eq!((p.impulses[0].position.x, p.impulses[0].position.y, p.impulses[0].start), (0.3, 0.1, 0.0));
+        assert!(p.wall_reflections);
+        assert_eq!(s.caustics.technique, Technique::PoolConvolution);
+        assert_eq!((s.caustics.photons, s.caustics.kernel), (256, 7));
+    }
+    let animated = load("pool.toml").pool.expect("a pool");
+    assert!(animated.impulses.len() >= 3 && animated.time_step > 0.0);
 }

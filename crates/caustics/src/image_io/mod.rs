@@ -348,6 +348,31 @@ pub fn write_png_tonemapped(path: &Path, width: u32, height: u32, rgb: &[f32], e
     })
 }
 
+/// Writes one value per pixel (`width*height`, row 0 = top) as an 8-bit grey PNG, 0 black and
+/// `white` white, linearly (for relative irradiance maps: E/E0 = 1 is mid-grey with `white` 2).
+/// Non-finite values become black. Atomic.
+pub fn write_png_grey(path: &Path, width: u32, height: u32, values: &[f32], white: f32) -> Result<()> {
+    ensure!(
+        values.len() == width as usize * height as usize && white > 0.0,
+        "writing {}: {} values for {width}x{height}",
+        path.display(),
+        values.len()
+    );
+    let bytes: Vec<u8> = values
+        .iter()
+        .map(|&v| if v.is_finite() { (v / white * 255.0).round().clamp(0.0, 255.0) as u8 } else { 0 })
+        .collect();
+    write_atomically(path, |w| {
+        let mut encoder = png::Encoder::new(w, width, height);
+        encoder.set_color(png::ColorType::Grayscale);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(&bytes)?;
+        writer.finish()?;
+        Ok(())
+    })
+}
+
 /// An output directory whose files appear only when the whole run succeeded.
 ///
 /// Files are written into a staging directory beside the final one

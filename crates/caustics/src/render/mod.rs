@@ -2,13 +2,15 @@
 //! physically scaled irradiance, two-sided image-space refraction (Wyman 2005) and reflection
 //! lookups, and the receiver map E/E0 that every caustic technique is validated with.
 
+mod dispatch;
 mod dumps;
 mod eye;
 pub mod pipelines;
 mod renderer;
 pub mod targets;
 
-pub use renderer::{FrameStep, Renderer, RendererOptions};
+pub use dispatch::Renderer;
+pub use renderer::{FrameStep, MeshRenderer, RendererOptions};
 
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
@@ -43,12 +45,18 @@ pub(crate) fn other_refractions(name: &str, refraction: Refraction) -> bool {
 /// The buffers `technique` can dump under any of its settings: the eye render's (both
 /// refractions'), then the technique's own.
 pub fn dumps_of(technique: Technique) -> Vec<&'static str> {
+    if !technique.renders_meshes() {
+        return technique.dumps();
+    }
     [EYE_DUMPS.to_vec(), technique.dumps()].concat()
 }
 
 /// The buffers a render with `settings` dumps: the eye render's (with its refraction's), then
 /// its technique's own under those settings.
 pub fn dumps_for(settings: &crate::techniques::CausticSettings) -> Vec<&'static str> {
+    if !settings.technique.renders_meshes() {
+        return settings.dumps();
+    }
     let eye = EYE_DUMPS.iter().copied().filter(|n| !other_refractions(n, settings.refraction));
     eye.chain(settings.dumps()).collect()
 }

@@ -1,6 +1,6 @@
-//! A renderer that keeps its pipelines, targets and photon buffers between frames, so that a
+//! The mesh renderer: keeps its pipelines, targets and photon buffers between frames, so that a
 //! benchmark can render many frames of an animation (uniforms and moving meshes updated per
-//! frame) and time each one.
+//! frame) and time each one. (Pool scenes have their own: see `super::dispatch`.)
 
 use super::{dumps, eye, pipelines, targets};
 use crate::gpu::{self, setup};
@@ -49,7 +49,7 @@ struct CausticResources {
     image_space: Option<ImageSpace>,
 }
 
-pub struct Renderer<'c> {
+pub struct MeshRenderer<'c> {
     ctx: &'c Context,
     shaders: &'c ShaderCompiler,
     scene: Scene,
@@ -73,7 +73,7 @@ pub struct Renderer<'c> {
     refraction_order: Vec<usize>,
 }
 
-impl<'c> Renderer<'c> {
+impl<'c> MeshRenderer<'c> {
     pub fn new(ctx: &'c Context, shaders: &'c ShaderCompiler, scene: &Scene, opts: &RendererOptions) -> Result<Self> {
         let settings = &scene.caustics;
         let technique = settings.technique;
@@ -179,7 +179,7 @@ impl<'c> Renderer<'c> {
                 scene.camera.height,
             )?),
         };
-        Ok(Renderer {
+        Ok(MeshRenderer {
             ctx,
             shaders,
             scene: scene.clone(),

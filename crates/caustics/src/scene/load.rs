@@ -91,7 +91,14 @@ pub fn load_scene(path: &Path, search: &ModelSearchPath) -> anyhow::Result<Scene
 
 fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow::Result<Scene> {
     let camera = build_camera(ctx, &def.camera)?;
-    if def.lights.is_empty() {
+    let pool = match &def.pool {
+        Some(p) => {
+            super::pool::check_pool_scene(ctx, &def)?;
+            Some(super::pool::build_pool(ctx, p)?)
+        }
+        None => None,
+    };
+    if def.lights.is_empty() && pool.is_none() {
         return Err(ctx.err("lights", "the scene has no lights; add at least one [[lights]] table"));
     }
     let lights = def
@@ -102,7 +109,7 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         .collect::<anyhow::Result<Vec<_>>>()?;
     let materials =
         def.materials.iter().map(|(name, m)| build_material(ctx, name, m)).collect::<anyhow::Result<Vec<_>>>()?;
-    if def.objects.is_empty() {
+    if def.objects.is_empty() && pool.is_none() {
         return Err(ctx.err("objects", "the scene has no objects; add at least one [[objects]] table"));
     }
     let objects = def
@@ -122,7 +129,7 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
     let mut caustics = super::CausticSettings::default();
     def.caustics.apply(&mut caustics);
     caustics.validate(&ctx.file.display().to_string(), "caustics.")?;
-    Ok(Scene { path: ctx.file.to_path_buf(), camera, lights, materials, objects, receiver_map, render, caustics })
+    Ok(Scene { path: ctx.file.to_path_buf(), camera, lights, materials, objects, receiver_map, render, caustics, pool })
 }
 
 fn build_camera(ctx: &Ctx, c: &schema::CameraDef) -> anyhow::Result<Camera> {

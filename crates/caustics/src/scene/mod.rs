@@ -9,6 +9,7 @@ pub mod mesh;
 pub mod obj;
 mod object;
 mod parse;
+pub mod pool;
 pub mod procedural;
 pub mod schema;
 pub mod search_path;
@@ -18,6 +19,7 @@ pub use glam::Vec3;
 pub use load::{MAX_RESOLUTION, MAX_SUBDIVISIONS};
 pub use mesh::Mesh;
 pub use parse::parse_toml;
+pub use pool::{Impulse, PoolSpec, Wave};
 pub use search_path::ModelSearchPath;
 
 use std::path::{Path, PathBuf};
@@ -35,6 +37,8 @@ pub struct Scene {
     pub receiver_map: Option<ReceiverMapSpec>,
     pub render: RenderSettings,
     pub caustics: CausticSettings,
+    /// `[pool]`: a pool scene (Trendall & Stewart 2000) has this instead of objects and lights.
+    pub pool: Option<PoolSpec>,
 }
 
 /// A pinhole camera. `up` is normalised (not necessarily orthogonal to the view direction).

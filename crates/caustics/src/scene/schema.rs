@@ -23,6 +23,8 @@ pub struct SceneFile {
     #[serde(default)]
     /// `[caustics]`: the caustic technique and its parameters (each overridable on the command line).
     pub caustics: super::CausticOverrides,
+    /// `[pool]`: a pool scene (Trendall & Stewart 2000), instead of objects and lights.
+    pub pool: Option<super::pool::PoolDef>,
 }
 
 #[derive(Debug, Deserialize)]

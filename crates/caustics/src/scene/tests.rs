@@ -312,3 +312,93 @@ fn hierarchy_settings_belong_to_hcm() {
         &["caustics.varying_radius", "beam-area", "max-distance"],
     );
 }
+
+/// A pool scene (Trendall & Stewart 2000): no objects or lights, a `[pool]` instead.
+const POOL: &str = r#"
+[camera]
+eye = [0.0, 1.7, 1.0]
+target = [0.0, -0.3, 0.0]
+fov_y = 40.0
+resolution = [64, 64]
+
+[caustics]
+technique = "pool-convolution"
+
+[pool]
+side = 1.0
+depth = 0.3
+albedo = 0.8
+ior = 1.333
+time = 2.4
+light_direction = [0.0, -2.0, 0.0]
+scattering = 2000.0
+extinction = 0.5
+
+[pool.wave]
+amplitude = 0.005
+wavelength = 0.1
+frequency = 1.25
+time_damping = 0.3
+distance_damping = 10.0
+
+[[pool.impulses]]
+position = [0.3, 0.1]
+"#;
+
+#[test]
+fn pool_scene_loads_with_defaults() {
+    let s = load_text("pool.toml", POOL).unwrap();
+    let p = s.pool.expect("a pool");
+    assert!(s.objects.is_empty() && s.lights.is_empty());
+    assert_eq!(p.light_direction, glam::DVec3::NEG_Y);
+    assert_eq!((p.ior_air, p.light_radiance, p.exponent, p.wall_reflections), (1.0, 1.0, 4000.0, true));
+    assert_eq!(p.impulses[0].start, 0.0);
+    // The faithful path's bounds default to one wave's: A and A (K + beta).
+    assert_eq!(p.height_range, 0.005);
+    assert!((p.slope_range - 0.005 * (std::f64::consts::TAU / 0.1 + 10.0)).abs() < 1e-12);
+}
+
+#[test]
+fn pool_keys_and_values_are_checked() {
+    expect_error("pool_key.toml", &POOL.replace("depth = 0.3", "depth = 0.3\ndeep = 1"), &["pool.deep", "deep"]);
+    expect_error("pool_wave_key.toml", &POOL.replace("amplitude", "amplitud"), &["pool.wave.amplitud"]);
+    let text = POOL.replace("position = [0.3, 0.1]", "position = [0.3, 0.1]\nsize = 2");
+    expect_error("pool_impulse_key.toml", &text, &["pool.impulses[0].size"]);
+    expect_error("pool_depth.toml", &POOL.replace("depth = 0.3", "depth = -0.3"), &["pool.depth", "-0.3"]);
+    expect_error("pool_ior.toml", &POOL.replace("ior = 1.333", "ior = 0.9"), &["pool.ior", "ior_air"]);
+    let up = POOL.replace("[0.0, -2.0, 0.0]", "[0.0, 1.0, 0.0]");
+    expect_error("pool_up.toml", &up, &["pool.light_direction", "downwards"]);
+    let out = POOL.replace("[0.3, 0.1]", "[0.7, 0.1]");
+    expect_error("pool_outside.toml", &out, &["pool.impulses[0].position", "inside the pool"]);
+    let ls = POOL.replace("extinction = 0.5", "extinction = 0.5\nlight_radiance = 2.0");
+    expect_error("pool_ls.toml", &ls, &["pool.light_radiance", "between 0 and 1"]);
+    let tex = POOL.replace("extinction = 0.5", "extinction = 0.5\nlight_texture = \"nope.png\"");
+    expect_error("pool_tex.toml", &tex, &["pool.light_texture", "nope.png"]);
+    let wave = POOL.replace("wavelength = 0.1", "wavelength = 0");
+    expect_error("pool_wavelength.toml", &wave, &["pool.wave.wavelength"]);
+}
+
+#[test]
+fn a_pool_scene_has_no_objects_lights_or_receiver_map() {
+    let lights = format!("{POOL}\n[[lights]]\ntype = \"point\"\nposition = [0, 5, 0]\nintensity = [1, 1, 1]\n");
+    expect_error("pool_lights.toml", &lights, &["lights", "pool.light_direction"]);
+    let rmap = format!("{POOL}\n[receiver_map]\nx_range = [-1, 1]\nz_range = [-1, 1]\nresolution = 8\n");
+    expect_error("pool_rmap.toml", &rmap, &["receiver_map", "height-field grid"]);
+    // Without [pool] the usual rules hold.
+    let no_pool = POOL[..POOL.find("[caustics]").unwrap()].to_string();
+    expect_error("no_pool.toml", &no_pool, &["lights"]);
+}
+
+#[test]
+fn pool_settings_belong_to_pool_convolution() {
+    let text = BASE.to_string() + "\n[caustics]\ntechnique = \"wd-points\"\nprecision = \"unorm8\"\n";
+    let s = load_text("precision.toml", &text).unwrap();
+    let err = s.caustics.validate_combination("precision.toml", "caustics.").unwrap_err().to_string();
+    assert!(err.contains("caustics.precision") && err.contains("pool-convolution"), "{err}");
+    expect_error("kernel.toml", &(BASE.to_string() + "\n[caustics]\nkernel = 8\n"), &["caustics.kernel", "odd"]);
+    expect_error(
+        "precision_bad.toml",
+        &(BASE.to_string() + "\n[caustics]\nprecision = \"fp16\"\n"),
+        &["precision", "fp16"],
+    );
+}

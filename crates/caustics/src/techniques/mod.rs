@@ -7,6 +7,7 @@
 //! | `wd-points` | Wyman & Davis 2006, the photon buffer as points | [`wyman_davis2006`] |
 //! | `hcm` | Wyman 2008, hierarchical caustic maps | [`wyman2008`] |
 //! | (`--refraction deferred`, any technique) | Wyman & Nichols 2009 Sec. 3.1, deferred refraction | [`wyman_nichols2009`] |
+//! | `pool-convolution` | Trendall & Stewart 2000, pool caustics as convolutions | [`trendall_stewart2000`] |
 //!
 //! Stages that several papers share (photon emission, the point and compute splats, the
 //! caustic-map targets and uniforms) are in [`shared`]; [`record`] records a frame's caustic
@@ -19,6 +20,7 @@ pub mod settings;
 pub mod shah2007;
 pub mod shared;
 mod technique;
+pub mod trendall_stewart2000;
 pub mod uniforms;
 mod value_enum;
 pub mod wyman2008;

@@ -8,6 +8,7 @@
 
 use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath};
 use super::technique::Technique;
+use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNEL};
 use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
 use super::wyman_davis2006::settings::{GatherLighting, QuadLighting, Reflection, Space, TemporalFilter};
 use super::wyman_nichols2009::settings::Refraction;
@@ -80,7 +81,8 @@ macro_rules! caustic_settings {
 caustic_settings! {
     /// The caustic technique (default `none`).
     technique: Technique = Technique::None;
-    /// Photon buffer resolution N (N x N photons per light), 64..=4096; default 512.
+    /// Photon buffer resolution N (N x N photons per light), 64..=4096; default 512. For
+    /// pool-convolution: the height field's side (and the receiver map's).
     photons: u32 = 512;
     /// Splat radius in caustic-map texels, (0, 32]; default 1.5.
     splat_radius: f32 = 1.5;
@@ -137,6 +139,12 @@ caustic_settings! {
     /// The eye render's refraction, whatever the technique: forward (Wyman 2005, the default)
     /// or deferred (Wyman & Nichols 2009 Sec. 3.1, several refractors back to front).
     refraction: Refraction = Refraction::Forward;
+    /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
+    /// default float.
+    precision: Precision = Precision::Float, only PoolConvolution;
+    /// pool-convolution: the side of the Pass 6 kernels, odd, 3..=63 (Sec. 4.1); default 7 (the
+    /// paper's).
+    kernel: u32 = DEFAULT_KERNEL, only PoolConvolution;
 }
 
 impl CausticSettings {
@@ -234,6 +242,12 @@ impl CausticSettings {
         }
         if !(self.photon_fov >= 1.0 && self.photon_fov <= 160.0) {
             bad("photon_fov", format!("must be between 1 and 160 degrees, got {}", self.photon_fov))?;
+        }
+        if !(3..=MAX_KERNEL).contains(&self.kernel) || self.kernel.is_multiple_of(2) {
+            bad(
+                "kernel",
+                format!("must be an odd number between 3 and {MAX_KERNEL} (taps per side), got {}", self.kernel),
+            )?;
         }
         if !(1..=64).contains(&self.iterations) {
             bad("iterations", format!("must be between 1 and 64, got {}", self.iterations))?;

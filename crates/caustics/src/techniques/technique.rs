@@ -5,7 +5,7 @@
 use super::settings::CausticSettings;
 use super::shared::settings::Intersect;
 use super::wyman_davis2006::settings::Space;
-use super::{shah2007, value_enum, wyman2008, wyman_davis2006};
+use super::{shah2007, trendall_stewart2000, value_enum, wyman2008, wyman_davis2006};
 use vkcore::Feature;
 
 value_enum::value_enum! {
@@ -28,6 +28,8 @@ value_enum::value_enum! {
         WdGather = "wd-gather",
         /// Wyman 2008: hierarchical caustic maps over the photon buffer.
         Hcm = "hcm",
+        /// Trendall & Stewart 2000: pool caustics as three convolutions (pool scenes only).
+        PoolConvolution = "pool-convolution",
     }
 }
 
@@ -41,6 +43,7 @@ impl Technique {
                 wyman_davis2006::PAPER
             }
             Technique::Hcm => wyman2008::settings::PAPER,
+            Technique::PoolConvolution => trendall_stewart2000::settings::PAPER,
         }
     }
 
@@ -59,8 +62,14 @@ impl Technique {
             | Technique::WdQuads
             | Technique::WdGather
             | Technique::Hcm => true,
-            Technique::None | Technique::ShahVertex => false,
+            Technique::None | Technique::ShahVertex | Technique::PoolConvolution => false,
         }
+    }
+
+    /// Whether the technique renders the scene's meshes (every technique but `pool-convolution`,
+    /// which renders pool scenes: a `[pool]` table instead of objects and lights).
+    pub fn renders_meshes(self) -> bool {
+        self != Technique::PoolConvolution
     }
 
     /// The ray/receiver intersection the technique's paper uses.
@@ -71,7 +80,9 @@ impl Technique {
             | Technique::WdQuads
             | Technique::WdGather
             | Technique::Hcm => Intersect::WdDepthSearch,
-            Technique::None | Technique::Shah | Technique::ShahVertex => Intersect::ShahIterative,
+            Technique::None | Technique::Shah | Technique::ShahVertex | Technique::PoolConvolution => {
+                Intersect::ShahIterative
+            }
         }
     }
 
@@ -93,6 +104,8 @@ impl Technique {
             Technique::ShahVertex => shah2007::settings::VERTEX_PHOTON_FEATURES,
             // Points of one pixel and triangles.
             Technique::WdEyePoints | Technique::WdQuads | Technique::WdGather => &[Feature::ShaderOutputLayer],
+            // Fragment passes into RGBA8 or RGBA32F targets and compute passes: core Vulkan.
+            Technique::PoolConvolution => &[],
         }
     }
 
@@ -110,7 +123,7 @@ impl Technique {
     /// Photons the technique emits per light (for tables; hardware independent).
     pub fn photons_per_light(self, settings: &CausticSettings, specular_vertices: u32) -> u64 {
         match self {
-            Technique::None => 0,
+            Technique::None | Technique::PoolConvolution => 0,
             Technique::ShahVertex => specular_vertices as u64,
             Technique::Shah
             | Technique::WdPoints
@@ -131,7 +144,7 @@ mod tests {
         for t in Technique::ALL {
             assert_eq!(Technique::parse(t.name()), Some(*t));
             assert!(!t.paper().is_empty());
-            assert!(t.required_features().contains(&Feature::ShaderOutputLayer));
+            assert_eq!(t.required_features().contains(&Feature::ShaderOutputLayer), t.renders_meshes(), "{t}");
             assert_eq!(t.has_caustics(), !t.dumps().is_empty(), "{t}");
         }
     }

@@ -1,0 +1,120 @@
+//! `Renderer`: what `causticlab render`, the bench and the tests drive frame by frame. A scene of
+//! meshes and lights is rendered by the [`MeshRenderer`] (the eye render and the photon
+//! techniques); a pool scene (`[pool]`) by Trendall & Stewart 2000's `PoolRenderer`, which has no
+//! photons, meshes or shadow maps.
+
+use super::renderer::{FrameStep, MeshRenderer, RendererOptions};
+use crate::image_io::ImageF32;
+use crate::scene::Scene;
+use crate::techniques::trendall_stewart2000::{self as ts, PoolRenderer};
+use crate::techniques::wyman2008::Hierarchy;
+use anyhow::Result;
+use vkcore::{Context, FrameReport, ShaderCompiler};
+
+pub enum Renderer<'c> {
+    Mesh(Box<MeshRenderer<'c>>),
+    Pool(Box<PoolRenderer<'c>>),
+}
+
+impl<'c> Renderer<'c> {
+    /// The renderer of `scene`'s technique; a pool scene needs `pool-convolution` and
+    /// `pool-convolution` a pool scene (input errors naming the file otherwise).
+    pub fn new(ctx: &'c Context, shaders: &'c ShaderCompiler, scene: &Scene, opts: &RendererOptions) -> Result<Self> {
+        let technique = scene.caustics.technique;
+        settings_belong(scene)?;
+        if technique.renders_meshes() {
+            if scene.pool.is_some() {
+                return Err(crate::input_error!(
+                    "{}: a pool scene ([pool]) is rendered by technique `pool-convolution` alone, not `{technique}`",
+                    scene.path.display()
+                )
+                .into());
+            }
+            return Ok(Renderer::Mesh(Box::new(MeshRenderer::new(ctx, shaders, scene, opts)?)));
+        }
+        if opts.photon_copy.is_some() {
+            return Err(crate::input_error!("photon_copy: `{technique}` has no photon buffer to copy").into());
+        }
+        Ok(Renderer::Pool(Box::new(PoolRenderer::new(ctx, shaders, scene)?)))
+    }
+
+    /// Moves to `scene`, a pose of the scene this renderer was made for (`crate::animation`).
+    pub fn set_pose(&mut self, scene: &Scene) -> Result<()> {
+        match self {
+            Renderer::Mesh(r) => r.set_pose(scene),
+            Renderer::Pool(r) => r.set_pose(scene),
+        }
+    }
+
+    /// Records, submits and waits for one frame; returns its per-pass timings.
+    pub fn frame(&mut self, step: FrameStep) -> Result<FrameReport> {
+        match self {
+            Renderer::Mesh(r) => r.frame(step),
+            Renderer::Pool(r) => r.frame(step),
+        }
+    }
+
+    /// The last frame's linear radiance.
+    pub fn final_image(&self) -> Result<ImageF32> {
+        match self {
+            Renderer::Mesh(r) => r.final_image(),
+            Renderer::Pool(r) => r.final_image(),
+        }
+    }
+
+    /// The named intermediate buffer of the last frame (None where this render has none).
+    pub fn dump(&mut self, name: &str) -> Result<Option<ImageF32>> {
+        Ok(self.dumps(&[name.to_string()])?.pop().map(|(_, img)| img))
+    }
+
+    /// The named intermediate buffers of the last frame, skipping those this render has none of.
+    pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
+        match self {
+            Renderer::Mesh(r) => {
+                // The pool's own buffers are no mesh render's.
+                let pool_only = |n: &str| ts::DUMPS.contains(&n) && !super::EYE_DUMPS.contains(&n);
+                let mesh: Vec<String> = names.iter().filter(|n| !pool_only(n)).cloned().collect();
+                r.dumps(&mesh)
+            }
+            Renderer::Pool(r) => r.dumps(names),
+        }
+    }
+
+    /// Photons emitted per frame over all lights (a pool has none).
+    pub fn photons_emitted(&self) -> u64 {
+        match self {
+            Renderer::Mesh(r) => r.photons_emitted(),
+            Renderer::Pool(_) => 0,
+        }
+    }
+
+    /// Valid photons of the last frame (see `MeshRenderer::valid_photons`; a pool has none).
+    pub fn valid_photons(&mut self) -> Result<Option<u64>> {
+        match self {
+            Renderer::Mesh(r) => r.valid_photons(),
+            Renderer::Pool(_) => Ok(None),
+        }
+    }
+
+    /// The hierarchy of `hcm` (None for the other techniques).
+    pub fn hierarchy(&self) -> Option<&Hierarchy> {
+        match self {
+            Renderer::Mesh(r) => r.hierarchy(),
+            Renderer::Pool(_) => None,
+        }
+    }
+
+    /// Points drawn per frame over all lights (a pool draws none).
+    pub fn splats_drawn(&self) -> Result<u64> {
+        match self {
+            Renderer::Mesh(r) => r.splats_drawn(),
+            Renderer::Pool(_) => Ok(0),
+        }
+    }
+}
+
+/// The final settings must belong together (a `[caustics]` may leave the technique to the
+/// command line; see `CausticSettings::validate_combination`).
+fn settings_belong(scene: &Scene) -> Result<()> {
+    scene.caustics.validate_combination(&scene.path.display().to_string(), "caustics.")
+}

@@ -1,0 +1,197 @@
+//! `PoolRenderer`: one frame of Sec. 4.2's loop, "for each height field in the sequence": the
+//! height field at the pool's time, passes 1-6, the receiver map and the final render. Init
+//! computes the kernels, the lookup tables and E_flat (the same passes on a flat surface) once.
+//! `--precision f64` runs the height field and passes 1-6 on the CPU (timed on the host) and
+//! uploads what the receiver map and the final render read.
+
+use super::cpu::{self, CpuPasses};
+use super::gpu_passes::{record_passes, PassInputs};
+use super::pipelines::PoolPipelines;
+use super::targets::PoolTargets;
+use super::uniforms::{pool_uniforms, PoolUniforms};
+use super::{dumps, pool_of, water_surface, Init, Precision};
+use crate::gpu::Target;
+use crate::image_io::ImageF32;
+use crate::render::FrameStep;
+use crate::scene::Scene;
+use anyhow::{Context as _, Result};
+use std::time::Instant;
+use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, PassTiming, Sampler, ShaderCompiler, Use};
+
+pub struct PoolRenderer<'c> {
+    ctx: &'c Context,
+    scene: Scene,
+    init: Init,
+    pipelines: PoolPipelines,
+    targets: PoolTargets,
+    uniforms: Buffer,
+    /// Uniforms to write at the start of the next frame (a new time).
+    pending: Option<PoolUniforms>,
+    nearest: Sampler,
+    linear: Sampler,
+    /// `f64`: the last frame's passes and the flat surface's.
+    cpu: Option<(CpuPasses, CpuPasses)>,
+}
+
+/// RGBA32F texels of a CPU grid, for upload.
+fn texels(values: impl Iterator<Item = [f64; 4]>) -> Vec<f32> {
+    values.flat_map(|v| v.map(|x| x as f32)).collect()
+}
+
+impl<'c> PoolRenderer<'c> {
+    pub fn new(ctx: &'c Context, shaders: &ShaderCompiler, scene: &Scene) -> Result<Self> {
+        let pool = pool_of(scene)?;
+        let init = Init::new(pool, &scene.caustics)?;
+        let pipelines = PoolPipelines::new(ctx, shaders, init.precision)?;
+        let targets = PoolTargets::new(ctx, &init, scene.camera.width, scene.camera.height)?;
+        let faithful = init.precision == Precision::Unorm8;
+        // E_flat: the same passes for a flat surface (no wave has started).
+        let flat_pool = crate::scene::PoolSpec { impulses: vec![], ..pool.clone() };
+        let flat_uniforms = pool_uniforms(scene, &flat_pool, init.n as u32, &init.kernels, &init.adjustments, faithful);
+        let uniforms = ctx.buffer_with_data("pool uniforms", bytemuck::bytes_of(&flat_uniforms))?;
+        let nearest = Sampler::new(ctx, Filter::Nearest)?;
+        let cpu = match &pipelines.passes {
+            Some(p) => {
+                let mut f = ctx.frame(FrameOptions::default())?;
+                record_passes(
+                    &mut f,
+                    p,
+                    &targets,
+                    &PassInputs { uniforms: &uniforms, nearest: &nearest },
+                    &targets.flat,
+                )?;
+                f.submit().context("computing E_flat")?;
+                None
+            }
+            None => {
+                let n = init.n;
+                let flat = cpu::run(pool, n, &init.kernels, vec![0.0; n * n], &init.light_radiance);
+                ctx.upload_image(
+                    &targets.flat.image,
+                    0,
+                    0,
+                    bytemuck::cast_slice(&texels(flat.convolutions.iter().copied())),
+                )?;
+                Some((flat.clone(), flat))
+            }
+        };
+        let pending = Some(pool_uniforms(scene, pool, init.n as u32, &init.kernels, &init.adjustments, faithful));
+        Ok(PoolRenderer {
+            ctx,
+            scene: scene.clone(),
+            init,
+            pipelines,
+            targets,
+            uniforms,
+            pending,
+            nearest,
+            linear: Sampler::new(ctx, Filter::Linear)?,
+            cpu,
+        })
+    }
+
+    /// Moves to `scene`, the same pool at another time (`crate::animation`).
+    pub fn set_pose(&mut self, scene: &Scene) -> Result<()> {
+        let pool = pool_of(scene)?;
+        if pool.at_time(self.init.pool.time) != self.init.pool {
+            return Err(crate::input_error!(
+                "{}: pool-convolution renders the same pool at other times only: the light, and with it the \
+                 kernels, lookup tables and E_flat of Init, cannot move between frames (light_path = \"static\")",
+                scene.path.display()
+            )
+            .into());
+        }
+        self.init.pool = pool.clone();
+        let faithful = self.init.precision == Precision::Unorm8;
+        let i = &self.init;
+        self.pending = Some(pool_uniforms(scene, pool, i.n as u32, &i.kernels, &i.adjustments, faithful));
+        self.scene = scene.clone();
+        Ok(())
+    }
+
+    /// The CPU path's height field and passes 1-6, uploaded; their host times.
+    fn cpu_passes(&mut self) -> Result<Vec<PassTiming>> {
+        let n = self.init.n;
+        let start = Instant::now();
+        let height = water_surface::height_field(&self.init.pool, n);
+        let mut timings = vec![("pool.height_field", start.elapsed().as_secs_f64() * 1e3)];
+        let c = cpu::run(&self.init.pool, n, &self.init.kernels, height, &self.init.light_radiance);
+        timings.extend(c.timings.iter().copied());
+        let start = Instant::now();
+        let t = &self.targets;
+        let up = |target: &Target, v: Vec<f32>| self.ctx.upload_image(&target.image, 0, 0, bytemuck::cast_slice(&v));
+        up(&t.height, texels(c.height.iter().map(|&h| [h, 0.0, 0.0, 1.0])))?;
+        up(&t.normals, texels(c.normals.iter().map(|v| [v.x, v.y, v.z, 1.0])))?;
+        up(&t.convolutions, texels(c.convolutions.iter().copied()))?;
+        timings.push(("pool.upload", start.elapsed().as_secs_f64() * 1e3));
+        if let Some((last, _)) = &mut self.cpu {
+            *last = c;
+        }
+        Ok(timings
+            .into_iter()
+            .map(|(name, ms)| PassTiming { name: name.into(), gpu_ms: Some(ms), stats: None })
+            .collect())
+    }
+
+    /// Records, submits and waits for one frame; returns its per-pass timings (host times for
+    /// the CPU path's passes).
+    pub fn frame(&mut self, step: FrameStep) -> Result<FrameReport> {
+        let cpu_timings = if self.cpu.is_some() { self.cpu_passes()? } else { vec![] };
+        let mut f = self.ctx.frame(FrameOptions {
+            timestamps: true,
+            pipeline_statistics: step.pipeline_statistics,
+            ..Default::default()
+        })?;
+        if let Some(u) = self.pending.take() {
+            f.pass("pool.uniforms").uses([Use::buffer(&self.uniforms, Access::TRANSFER_WRITE)]).record(|cmd| {
+                cmd.update_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u))?;
+                Ok(())
+            })?;
+        }
+        if let Some(p) = &self.pipelines.passes {
+            let inputs = PassInputs { uniforms: &self.uniforms, nearest: &self.nearest };
+            record_passes(&mut f, p, &self.targets, &inputs, &self.targets.convolutions)?;
+        }
+        super::view::record_view(&mut f, &self.pipelines, &self.targets, &self.uniforms, &self.nearest, &self.linear)?;
+        let mut report = f.submit()?;
+        report.passes.splice(0..0, cpu_timings);
+        Ok(report)
+    }
+
+    /// The last frame's linear radiance, row 0 at the top.
+    pub fn final_image(&self) -> Result<ImageF32> {
+        let t = &self.targets.final_image;
+        let texels = dumps::read(self.ctx, t)?;
+        let data = texels.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
+        let (w, h) = t.view.extent;
+        Ok(ImageF32 { width: w, height: h, layers: vec![crate::image_io::Layer::new(None, &["R", "G", "B"], data)] })
+    }
+
+    /// The named buffers of the last frame (names from `settings::DUMPS`; others are skipped).
+    pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
+        let n = self.init.n;
+        let mut out: Vec<(String, ImageF32)> = vec![];
+        for name in names {
+            if out.iter().any(|(m, _)| m == name) {
+                continue;
+            }
+            let img = match (&self.cpu, name.as_str()) {
+                (Some((last, flat)), "receiver") => {
+                    Some(dumps::receiver_image(n, &last.irradiance(), &flat.irradiance()))
+                }
+                (Some((last, flat)), other) => dumps::cpu_pass(last, flat, other),
+                (None, "receiver") => Some(dumps::gpu_receiver(self.ctx, &self.targets, n)?),
+                (None, other) => dumps::gpu_pass(self.ctx, &self.targets, &self.init.adjustments, other, n)?,
+            };
+            if let Some(img) = img {
+                out.push((name.clone(), img));
+            }
+        }
+        Ok(out)
+    }
+
+    /// What Init computed (the pool at its current time, the kernels, the encodings).
+    pub fn init(&self) -> &Init {
+        &self.init
+    }
+}

@@ -1,0 +1,39 @@
+//! The settings only `pool-convolution` has (Trendall & Stewart 2000), as the scene's
+//! `[caustics]`, the bench configs and the command line name them, and the technique's dumps (a
+//! leaf module: the scene description reads it).
+
+use super::super::value_enum::value_enum;
+
+/// The paper, as tables and `--help` cite it.
+pub const PAPER: &str = "Trendall & Stewart 2000, pool caustics as convolutions";
+
+/// The buffers `pool-convolution` has (`--dump` names): the height field, each pass's function,
+/// the convolutions, and the pool-bottom receiver map.
+pub const DUMPS: &[&str] = &[
+    "height_field",
+    "pass1_normals",
+    "pass2_gamma_n",
+    "pass3_transmitted",
+    "pass4_direction",
+    "pass5_integrand",
+    "pass6_convolutions",
+    "receiver",
+];
+
+/// The default side of the Pass 6 kernels (the paper's 7 x 7).
+pub const DEFAULT_KERNEL: u32 = 7;
+/// The widest kernel side accepted.
+pub const MAX_KERNEL: u32 = 63;
+
+value_enum! {
+    /// The arithmetic of passes 1-6 (`caustics.precision`, `--precision`).
+    pub enum Precision {
+        /// The paper's hardware: fragment passes into 8-bit UNORM targets, scale-and-bias
+        /// ("adjusted") arithmetic and 8-bit lookup tables (Sec. 3.2, 4.1-4.2).
+        Unorm8 = "unorm8",
+        /// The same fragment passes into 32-bit float targets, without lookup tables.
+        Float = "float",
+        /// The paper's software implementation: the same passes on the CPU in f64.
+        F64 = "f64",
+    }
+}

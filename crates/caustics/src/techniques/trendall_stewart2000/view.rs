@@ -1,0 +1,42 @@
+//! The receiver map (E / E_flat on the pool bottom) and the final render of the pool seen from
+//! above through the refracting surface (`shaders_glsl/trendall_stewart2000/view.comp`).
+
+use super::pipelines::PoolPipelines;
+use super::targets::PoolTargets;
+use anyhow::Result;
+use vkcore::{Bind, Buffer, Frame, Sampler};
+
+/// Records `pool.receiver` then `pool.view`.
+pub fn record_view(
+    f: &mut Frame,
+    p: &PoolPipelines,
+    t: &PoolTargets,
+    uniforms: &Buffer,
+    nearest: &Sampler,
+    linear: &Sampler,
+) -> Result<()> {
+    let n = t.receiver.view.extent.0;
+    let receiver = [
+        Bind::Uniform(uniforms),
+        Bind::Sampled(&t.convolutions.view, nearest),
+        Bind::Sampled(&t.flat.view, nearest),
+        Bind::Storage(&t.receiver.view),
+    ];
+    f.pass("pool.receiver").bind(&p.receiver, receiver).record(|cmd| {
+        cmd.dispatch(n.div_ceil(8), n.div_ceil(8), 1);
+        Ok(())
+    })?;
+    let view = [
+        Bind::Uniform(uniforms),
+        Bind::Sampled(&t.height.view, linear),
+        Bind::Sampled(&t.normals.view, linear),
+        Bind::Sampled(&t.receiver.view, linear),
+        Bind::Storage(&t.final_image.view),
+    ];
+    let (w, h) = t.final_image.view.extent;
+    f.pass("pool.view").bind(&p.view, view).record(|cmd| {
+        cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);
+        Ok(())
+    })?;
+    Ok(())
+}
