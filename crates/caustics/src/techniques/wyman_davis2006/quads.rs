@@ -77,20 +77,18 @@ pub fn record(
         Bind::Sampled(&c.targets.per_light[constants.light as usize].1, inp.nearest),
     ];
     let n = pt.width;
-    f.pass(name).bind(&pipelines.triangles, binds.clone()).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(
-        |cmd| {
-            cmd.begin_rendering(&Targets::color(out, if clear { Some([0.0; 4]) } else { None }))?;
-            cmd.push(&constants)?;
-            // Two triangles for each of the (N - 1)^2 blocks of 2x2 photons.
-            cmd.draw((n - 1) * (n - 1) * 6, 1, 0, 0);
-            // One point for each block under a pixel.
-            cmd.bind_pipeline(&pipelines.points);
-            cmd.bind(&binds)?;
-            cmd.push(&constants)?;
-            cmd.draw((n - 1) * (n - 1), 1, 0, 0);
-            cmd.end_rendering();
-            Ok(())
-        },
-    )?;
+    f.pass(name).bind(&pipelines.triangles, binds).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(|cmd| {
+        cmd.begin_rendering(&Targets::color(out, if clear { Some([0.0; 4]) } else { None }))?;
+        cmd.push(&constants)?;
+        // Two triangles for each of the (N - 1)^2 blocks of 2x2 photons.
+        cmd.draw((n - 1) * (n - 1) * 6, 1, 0, 0);
+        // One point for each block under a pixel.
+        cmd.bind_pipeline(&pipelines.points);
+        cmd.bind(&binds)?;
+        cmd.push(&constants)?;
+        cmd.draw((n - 1) * (n - 1), 1, 0, 0);
+        cmd.end_rendering();
+        Ok(())
+    })?;
     Ok(())
 }
