@@ -43,33 +43,6 @@ vec4 photons_of(ivec2 q) {
     return s / float(max(constants.frames, 1u));
 }
 
-#ifndef LIGHT_SPACE
-// The difference to the neighbour across pixel q along `axis`: central where both neighbours lie
-// on the surface at similar distances, else the shorter valid side.
-vec3 edge(ivec2 q, ivec2 axis, vec3 p, ivec2 size) {
-    ivec2 a = q + axis, b = q - axis;
-    bool va = all(lessThan(a, size)) && all(greaterThanEqual(a, ivec2(0)));
-    bool vb = all(lessThan(b, size)) && all(greaterThanEqual(b, ivec2(0)));
-    vec4 pa = va ? texelFetch(view_position, a, 0) : vec4(0.0);
-    vec4 pb = vb ? texelFetch(view_position, b, 0) : vec4(0.0);
-    va = va && pa.w > 0.5;
-    vb = vb && pb.w > 0.5;
-    vec3 da = pa.xyz - p, db = p - pb.xyz;
-    if (va && vb) {
-        float la = length(da), lb = length(db);
-        if (la < 2.0 * lb && lb < 2.0 * la) return 0.5 * (da + db);
-        return la < lb ? da : db;
-    }
-    if (va) return da;
-    if (vb) return db;
-    return vec3(0.0);
-}
-
-// Sec. 3.2.2 step 2 (2): the area pixel q covers, from the world positions next to it.
-float pixel_area(ivec2 q, vec3 p, ivec2 size) {
-    return length(cross(edge(q, ivec2(1, 0), p, size), edge(q, ivec2(0, 1), p, size)));
-}
-#endif
 
 void main() {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
@@ -114,7 +87,7 @@ void main() {
             float w_q = texel_solid_angle((vec2(q) + 0.5) / m * 2.0 - 1.0, caustics.lights[l].caustic_plane);
             sum += w * ph.rgb * (w_t / w_q) * f;
 #else
-            float area = pixel_area(q, surface.xyz, size);
+            float area = pixel_area(view_position, q, surface.xyz);
             if (area > 0.0) sum += w * ph.rgb / area * f;
 #endif
         }

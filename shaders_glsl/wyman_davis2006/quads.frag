@@ -5,10 +5,9 @@
 // Eye space: irradiance (W/m^2) at the surface the pixel sees, if the quad lies on it.
 // Light space (LIGHT_SPACE): the power (W) the quad puts into the caustic-map texel, R I w_t
 // (times Eq. 3's cos(photon) / cos(direct)), which the caustic-map lookup turns into irradiance.
-// A polygon smaller than a pixel is hit or missed by the rasterizer, whose snapped vertices can
-// make a needle of nearly no area (R in the thousands, at a caustic) cover pixels: no pixel
-// takes more than the polygon's whole beam, I w_B (in eye space: over the pixel's area on the
-// polygon, from the derivatives of its position).
+// QUAD_POINTS (a polygon under a pixel, see quads.vert): its whole power I w_B lands in the
+// pixel: in light space as it is, in eye space over the pixel's area on its surface (from the
+// world positions of the neighbouring pixels, as the gather's).
 #version 450
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
@@ -40,11 +39,21 @@ void main() {
     float d2 = dot(to_light, to_light);
     float cos_direct = dot(n, to_light * inversesqrt(d2));
     float f = constants.lighting == 3u ? photon_lighting(dot(n, -d_photon), cos_direct) : 1.0;
+#ifdef QUAD_POINTS
+#ifdef LIGHT_SPACE
+    o_caustic = vec4(v_intensity * f, 0.0);
+#else
+    float area = pixel_area(view_position, t, p);
+    if (!(area > 0.0)) discard;
+    o_caustic = vec4(v_intensity * f / area, 0.0);
+#endif
+#else
 #ifdef LIGHT_SPACE
     float m = cl.caustic_plane.y;
     float w_t = texel_solid_angle(gl_FragCoord.xy / m * 2.0 - 1.0, cl.caustic_plane);
     o_caustic = vec4(v_intensity * w_t * f, 0.0);
 #else
     o_caustic = vec4(v_intensity * max(cos_direct, 0.0) * f / d2, 0.0);
+#endif
 #endif
 }

@@ -134,6 +134,26 @@ fn quick_quality_compares_with_the_reference() {
     }
 }
 
+#[test]
+fn quick_quality_wd2006_compares_every_wyman_davis_technique_with_the_reference() {
+    let (_, r) = quick_run("quality_wd2006.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 3 * 6 * 2, "3 scenes x 6 techniques x 2 photon counts");
+    for cell in cells {
+        let rmse = metric(cell, "rel. RMSE").unwrap_or(f64::NAN);
+        let flux = metric(cell, "flux ratio").unwrap_or(f64::NAN);
+        assert!(rmse.is_finite() && rmse > 0.0, "{}: rel. RMSE {rmse}", cell["cell"]);
+        // Eye-space quads on ring_cardioid are off by up to 3x in flux (an open issue, see
+        // results/quality/wyman_davis2006.md); everything else is within 40% at
+        // the quick run's 64² photons (gather eye on ring_cardioid: 0.72).
+        let scene = cell["cell"]["scene"].as_str().unwrap_or_default();
+        let ring_quads = scene.ends_with("ring_cardioid.toml") && cell["cell"]["technique_label"] == "quads eye";
+        if !ring_quads {
+            assert!((0.6..1.4).contains(&flux), "{}: flux ratio {flux}", cell["cell"]);
+        }
+    }
+}
+
 /// Writes `text` as a config next to the shipped ones' scenes (paths like ../scenes/x.toml).
 fn config_file(dir: &Path, name: &str, text: &str) -> PathBuf {
     let cfg_dir = dir.join("configs");

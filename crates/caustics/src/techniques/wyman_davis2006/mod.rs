@@ -66,7 +66,7 @@ pub struct ImageSpace {
     lighting: u32,
     /// Points into a view (eye space) or into a caustic map (light-space gather).
     points: Option<Pipeline>,
-    quads: Option<Pipeline>,
+    quads: Option<quads::QuadPipelines>,
     gather: Option<Pipeline>,
     shade: Option<Pipeline>,
     receiver_geometry: Option<Pipeline>,

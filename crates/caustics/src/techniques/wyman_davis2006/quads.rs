@@ -1,7 +1,9 @@
 //! Caustic quads (Wyman & Davis 2006 Sec. 3.2.1, `shaders_glsl/wyman_davis2006/quads.*`): a
 //! polygon between every 2x2 block of adjacent landed photons, carrying R = w_B / w_P
 //! (Eq. 1-2), lit with Eq. 3 or 4 and blended additively into the eye's caustic irradiance or
-//! into light l's caustic map. The culling test is stated in quads.vert.
+//! into light l's caustic map. The culling test is stated in quads.vert. Polygons under a pixel
+//! of the view are drawn by a second pipeline as one point each, carrying the beam's whole
+//! power (`QUAD_POINTS`, see quads.vert): the rasterizer would hit or miss them whole.
 
 use crate::gpu::formats::COLOR;
 use crate::gpu::ImageSpaceConstants;
@@ -12,21 +14,42 @@ use vkcore::{
     Targets, Topology, Use,
 };
 
-pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result<Pipeline> {
-    let defines: &[(&str, &str)] = if light_space { &[("LIGHT_SPACE", "1")] } else { &[] };
-    let name = if light_space { "wd.quads.light_space" } else { "wd.quads" };
-    let mut d = GraphicsDesc::new(
-        name,
-        sh.compile("wyman_davis2006/quads.vert", defines)?,
-        Some(sh.compile("wyman_davis2006/quads.frag", defines)?),
-    );
-    d.bindings = vec![K::UniformBuffer; 2];
-    d.bindings.extend([K::SampledImage; 6]);
-    d.topology = Topology::Triangles;
-    d.cull = Cull::None;
-    d.blend = Blend::Additive;
-    d.color_formats = vec![COLOR];
-    Ok(Pipeline::graphics(ctx, &d)?)
+/// The quads' two pipelines: triangles for the polygons of a pixel or more, points for the
+/// smaller ones (same bindings and push constants).
+pub struct QuadPipelines {
+    triangles: Pipeline,
+    points: Pipeline,
+}
+
+pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result<QuadPipelines> {
+    let build = |points: bool| -> Result<Pipeline> {
+        let mut defines: Vec<(&str, &str)> = vec![];
+        if light_space {
+            defines.push(("LIGHT_SPACE", "1"));
+        }
+        if points {
+            defines.push(("QUAD_POINTS", "1"));
+        }
+        let name = match (light_space, points) {
+            (false, false) => "wd.quads",
+            (true, false) => "wd.quads.light_space",
+            (false, true) => "wd.quads.points",
+            (true, true) => "wd.quads.points.light_space",
+        };
+        let mut d = GraphicsDesc::new(
+            name,
+            sh.compile("wyman_davis2006/quads.vert", &defines)?,
+            Some(sh.compile("wyman_davis2006/quads.frag", &defines)?),
+        );
+        d.bindings = vec![K::UniformBuffer; 2];
+        d.bindings.extend([K::SampledImage; 6]);
+        d.topology = if points { Topology::Points } else { Topology::Triangles };
+        d.cull = Cull::None;
+        d.blend = Blend::Additive;
+        d.color_formats = vec![COLOR];
+        Ok(Pipeline::graphics(ctx, &d)?)
+    };
+    Ok(QuadPipelines { triangles: build(false)?, points: build(true)? })
 }
 
 /// Draws light `l`'s caustic quads into `out`, seen through `geometry` (world position and
@@ -36,7 +59,7 @@ pub fn record(
     f: &mut Frame,
     name: &str,
     c: &CausticPasses,
-    pipeline: &Pipeline,
+    pipelines: &QuadPipelines,
     out: &ImageView,
     geometry: (&ImageView, &ImageView),
     clear: bool,
@@ -54,11 +77,16 @@ pub fn record(
         Bind::Sampled(&c.targets.per_light[constants.light as usize].1, inp.nearest),
     ];
     let n = pt.width;
-    f.pass(name).bind(pipeline, binds).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(|cmd| {
+    f.pass(name).bind(&pipelines.triangles, binds).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(|cmd| {
         cmd.begin_rendering(&Targets::color(out, if clear { Some([0.0; 4]) } else { None }))?;
         cmd.push(&constants)?;
         // Two triangles for each of the (N - 1)^2 blocks of 2x2 photons.
         cmd.draw((n - 1) * (n - 1) * 6, 1, 0, 0);
+        // One point for each block under a pixel.
+        cmd.bind_pipeline(&pipelines.points);
+        cmd.bind(&binds)?;
+        cmd.push(&constants)?;
+        cmd.draw((n - 1) * (n - 1), 1, 0, 0);
         cmd.end_rendering();
         Ok(())
     })?;
