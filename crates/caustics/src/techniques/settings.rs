@@ -174,6 +174,7 @@ impl CausticSettings {
     pub fn dumps(&self) -> Vec<&'static str> {
         match self.technique {
             Technique::None => vec![],
+            Technique::PoolConvolution => super::trendall_stewart2000::settings::DUMPS.to_vec(),
             _ if self.eye_space() => wyman_davis2006::settings::EYE_DUMPS.to_vec(),
             Technique::Hcm => [shared::settings::DUMPS, wyman2008::settings::DUMPS].concat(),
             _ => shared::settings::DUMPS.to_vec(),
