@@ -20,6 +20,7 @@
 #define IMAGE_SPACE_REFRACTION_GLSL
 
 #define SEARCH_ITERATIONS 8
+#include "common/fresnel.glsl"
 
 vec2 project_uv(vec3 p, out bool inside) {
     vec4 c = frame.view_proj * vec4(p, 1.0);
@@ -47,21 +48,11 @@ vec3 background_lookup(vec3 o, vec3 d) {
     return textureLod(background_radiance, uv, 0.0).rgb;
 }
 
-// Unpolarised Fresnel reflectance for cos_i on the incident side, eta = n_i / n_t.
-float fresnel(float cos_i, float eta) {
-    float sin_t2 = eta * eta * max(0.0, 1.0 - cos_i * cos_i);
-    if (sin_t2 >= 1.0) return 1.0;
-    float cos_t = sqrt(1.0 - sin_t2);
-    float rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    float rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
 // Radiance through the refractor for one IOR, entering at p1 (normal n1 facing the eye, d_n
 // the thickness there); also returns the front-face Fresnel term.
 vec3 refract_through(vec3 p1, vec3 v, vec3 n1, float ior, float d_n, out float f1) {
     float cos_i = dot(-v, n1);
-    f1 = fresnel(cos_i, 1.0 / ior);
+    f1 = dielectric_fresnel(cos_i, 1.0 / ior);
     vec3 t1 = refract(v, n1, 1.0 / ior);
     bool inside;
     vec2 uv = project_uv(p1, inside);
@@ -81,7 +72,7 @@ vec3 refract_through(vec3 p1, vec3 v, vec3 n1, float ior, float d_n, out float f
     if (dot(t2, t2) < 0.5) {
         t2 = reflect(t1, -n2);                     // total internal reflection: keep going inside, once
     } else {
-        f2 = 1.0 - fresnel(dot(-t1, -n2), ior);
+        f2 = 1.0 - dielectric_fresnel(dot(-t1, -n2), ior);
     }
     return f2 * background_lookup(p2, normalize(t2));
 }

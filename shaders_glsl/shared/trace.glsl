@@ -7,6 +7,7 @@
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
 #include "common/mesh_constants.glsl"
+#include "common/fresnel.glsl"
 layout(binding = 2) uniform sampler2D light_back_faces;
 layout(binding = 3) uniform sampler2DArray receiver_positions;
 
@@ -19,15 +20,6 @@ struct Photon {
     vec4 direction;  // xyz incident direction at the receiver; w: 0, or why it was lost
     vec4 power;      // rgb W (also kept for lost photons, to account for them)
 };
-
-float dielectric_fresnel(float cos_i, float eta) {
-    float sin_t2 = eta * eta * max(0.0, 1.0 - cos_i * cos_i);
-    if (sin_t2 >= 1.0) return 1.0;
-    float cos_t = sqrt(1.0 - sin_t2);
-    float rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    float rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return 0.5 * (rs * rs + rp * rp);
-}
 
 vec2 project_ndc(mat4 m, vec3 p, out bool inside) {
     vec4 c = m * vec4(p, 1.0);
