@@ -7,7 +7,8 @@
 // (times Eq. 3's cos(photon) / cos(direct)), which the caustic-map lookup turns into irradiance.
 // QUAD_POINTS (a polygon under a pixel, see quads.vert): its whole power I w_B lands in the
 // pixel: in light space as it is, in eye space over the pixel's area on its surface (from the
-// world positions of the neighbouring pixels, as the gather's).
+// world positions of the neighbouring pixels, as the gather's). QUAD_LINES (a sliver): the
+// same, with the power shared by the line's fragments (quads.vert divides it).
 #version 450
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
@@ -39,7 +40,7 @@ void main() {
     float d2 = dot(to_light, to_light);
     float cos_direct = dot(n, to_light * inversesqrt(d2));
     float f = constants.lighting == 3u ? photon_lighting(dot(n, -d_photon), cos_direct) : 1.0;
-#ifdef QUAD_POINTS
+#if defined(QUAD_POINTS) || defined(QUAD_LINES)
 #ifdef LIGHT_SPACE
     o_caustic = vec4(v_intensity * f, 0.0);
 #else

@@ -23,8 +23,18 @@
 // not drawn as triangles here but, by the QUAD_POINTS variant (one vertex per block), as one
 // point at its centre carrying its beam's whole power I w_B, which quads.frag spreads over the
 // pixel's area: the power is then exact, and R (Eq. 1-4) still defines the irradiance of every
-// polygon the rasterizer can resolve. The two variants split the blocks between them by the
-// same test, so each block is drawn exactly once.
+// polygon the rasterizer can resolve.
+//
+// Slivers (QUAD_LINES). Next to a caustic the polygons fold into slivers: a pixel or more long
+// but less than one wide. The rasterizer hits or misses each along its length, and along a
+// caustic curve that runs parallel to the pixel grid (the coffee-cup caustic seen from straight
+// above) every sliver hits the same column of pixel centres or none does: the column burns
+// (eye-space quads read 2.5x the reference's caustic flux on ring_cardioid). A polygon of a
+// pixel or more whose width (area over its longest edge) is under a pixel is therefore drawn by
+// the QUAD_LINES variant as a line along its longer diagonal carrying its beam's whole power,
+// shared evenly by the fragments the line produces (one per pixel along its major axis).
+// The three variants split the blocks between them by the same tests, so each block is drawn
+// exactly once.
 #version 450
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
@@ -54,14 +64,20 @@ vec4 to_clip(vec3 p) {
 #endif
 }
 
-// The area, in the view's pixels, of the block's two triangles as the rasterizer gets them;
-// infinite when a corner is behind the view (clipping will resolve it).
-float projected_pixels(vec3 p[4]) {
+// The area, in the view's pixels, of the block's two triangles as the rasterizer gets them,
+// and (`width`) that area over the polygon's longest edge: how wide a sliver it is. Infinite
+// when a corner is behind the view (clipping will resolve it).
+vec2 view_size() {
 #ifdef LIGHT_SPACE
-    vec2 size = vec2(caustics.lights[constants.light].caustic_plane.y);
+    return vec2(caustics.lights[constants.light].caustic_plane.y);
 #else
-    vec2 size = vec2(textureSize(view_position, 0));
+    return vec2(textureSize(view_position, 0));
 #endif
+}
+
+float projected_pixels(vec3 p[4], out float width) {
+    width = 1e30;
+    vec2 size = view_size();
     vec2 s[4];
     for (int k = 0; k < 4; ++k) {
         vec4 c = to_clip(p[k]);
@@ -69,14 +85,19 @@ float projected_pixels(vec3 p[4]) {
         s[k] = (c.xy / c.w * 0.5 + 0.5) * size;
     }
     vec2 a = s[1] - s[0], b = s[2] - s[0], d = s[3] - s[0];
-    return 0.5 * (abs(a.x * b.y - a.y * b.x) + abs(b.x * d.y - b.y * d.x));
+    float area = 0.5 * (abs(a.x * b.y - a.y * b.x) + abs(b.x * d.y - b.y * d.x));
+    float longest = max(max(length(a), length(s[2] - s[1])), max(length(s[3] - s[2]), length(d)));
+    width = longest > 0.0 ? area / longest : 0.0;
+    return area;
 }
 
 void main() {
     uint n = constants.photon_side;
-#ifdef QUAD_POINTS
+#if defined(QUAD_POINTS)
     uint quad = uint(gl_VertexIndex);
     gl_PointSize = 1.0;
+#elif defined(QUAD_LINES)
+    uint quad = uint(gl_VertexIndex) / 2u;
 #else
     uint quad = uint(gl_VertexIndex) / 6u;
 #endif
@@ -122,8 +143,27 @@ void main() {
     vec2 corner = vec2(base + 1) / float(n) * 2.0 - 1.0;
     float w_b = texel_solid_angle(corner, cl.photon_plane);
     float w_p = 0.5 * (length(cross(u[1] - u[0], u[2] - u[0])) + length(cross(u[2] - u[0], u[3] - u[0])));
-    bool small = !(w_p > 0.0) || projected_pixels(p) < SMALL_QUAD_PIXELS;
-#ifdef QUAD_POINTS
+    float width;
+    float pixels = projected_pixels(p, width);
+    bool small = !(w_p > 0.0) || pixels < SMALL_QUAD_PIXELS;
+    bool sliver = !small && width < SMALL_QUAD_PIXELS;
+#if defined(QUAD_LINES)
+    if (!sliver) return;
+    // The longer diagonal; its fragments: one per pixel along its major axis (at least one).
+    bool first = distance(p[2], p[0]) >= distance(p[3], p[1]);
+    vec3 ends[2] = first ? vec3[2](p[0], p[2]) : vec3[2](p[1], p[3]);
+    vec4 c0 = to_clip(ends[0]), c1 = to_clip(ends[1]);
+    if (c0.w <= 0.0 || c1.w <= 0.0) return;
+    vec2 size = view_size();
+    vec2 run = abs(c1.xy / c1.w - c0.xy / c0.w) * 0.5 * size;
+    float fragments = max(1.0, round(max(run.x, run.y)));
+    vec3 here = ends[gl_VertexIndex % 2];
+    vec4 clip = to_clip(here);
+    v_position = here;
+    v_direction = direction;
+    v_intensity = intensity * w_b / fragments;
+    gl_Position = vec4(clip.xy / clip.w, 0.5, 1.0);
+#elif defined(QUAD_POINTS)
     if (!small) return;
     vec4 clip = to_clip(centre);
     if (clip.w <= 0.0) return;
@@ -132,7 +172,7 @@ void main() {
     v_intensity = intensity * w_b;
     gl_Position = vec4(clip.xy / clip.w, 0.5, 1.0);
 #else
-    if (small) return;
+    if (small || sliver) return;
     ivec2 c = base + CORNERS[gl_VertexIndex % 6];
     vec3 here = texelFetch(photon_position, c, 0).xyz;
     v_position = here;

@@ -138,9 +138,15 @@ pub struct CompareArgs {
     pub a: PathBuf,
     /// The reference (e.g. `causticlab reference` output).
     pub b: PathBuf,
-    /// Where to write the error image (default: no image).
+    /// Where to write the error image (default: no image): `.exr` for its layers (A, B,
+    /// diff = A − B, in_region), `.png` for a picture of it (red: A too bright, blue: too dark,
+    /// saturated at --error-scale; outside the region the reference in dim grey).
     #[arg(long)]
     pub error_image: Option<PathBuf>,
+    /// The |A − B| (in E/E0) at which the PNG error image saturates (default: half the
+    /// reference's peak over the region, at least 0.5).
+    #[arg(long)]
+    pub error_scale: Option<f32>,
     /// Print the figures as one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,

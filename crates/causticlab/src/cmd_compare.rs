@@ -3,7 +3,7 @@
 use crate::cli::CompareArgs;
 use anyhow::{Context as _, Result};
 use caustics::compare::compare_files;
-use caustics::image_io;
+use caustics::{error_png, image_io};
 use caustics::input_error;
 use std::io::{ErrorKind, Read as _};
 use std::path::Path;
@@ -11,6 +11,25 @@ use std::path::Path;
 pub fn run(args: &CompareArgs) -> Result<()> {
     check_exr(&args.a)?;
     check_exr(&args.b)?;
+    let png = match &args.error_image {
+        Some(p) => match p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+            Some("exr") => false,
+            Some("png") => true,
+            _ => {
+                return Err(input_error!(
+                    "--error-image {}: name an .exr (the error's layers) or a .png (its picture)",
+                    p.display()
+                )
+                .into())
+            }
+        },
+        None => false,
+    };
+    if let Some(s) = args.error_scale {
+        if !(s.is_finite() && s > 0.0) {
+            return Err(input_error!("--error-scale {s}: must be a positive number").into());
+        }
+    }
     let (c, error_image) = compare_files(&args.a, &args.b, args.region)?;
     if args.json {
         let v = serde_json::json!({
@@ -30,8 +49,14 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         println!("A: {}\nB (reference): {}\n{c}", args.a.display(), args.b.display());
     }
     if let Some(p) = &args.error_image {
-        image_io::write_exr(p, &error_image)?;
-        println!("wrote {}", p.display());
+        if png {
+            let scale = args.error_scale.unwrap_or_else(|| error_png::default_scale(&error_image));
+            error_png::write_error_png(p, &error_image, scale)?;
+            println!("wrote {} (red: A brighter, blue: A darker, saturated at |A - B| = {scale:.3})", p.display());
+        } else {
+            image_io::write_exr(p, &error_image)?;
+            println!("wrote {}", p.display());
+        }
     }
     Ok(())
 }

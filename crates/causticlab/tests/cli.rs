@@ -559,3 +559,38 @@ fn deferred_refraction_without_geometry_shaders() {
         &["refractor_back_faces", "--refraction forward"],
     );
 }
+
+#[test]
+fn compare_writes_its_error_image_as_exr_or_png_and_refuses_other_names() {
+    let dir = scratch("compare-error-image");
+    let (a, b) = (dir.join("a.exr"), dir.join("b.exr"));
+    small_exr(&a);
+    // B: texel 1 darker than A (A too bright there), the rest equal.
+    let data = vec![1.0, 1.0, 1.0, 1.0, 1.5, 1.5, 1.5, 1.0, 1.0, 1.0, 1.0, 1.0, 0.5, 0.5, 0.5, 1.0];
+    let layer = caustics::image_io::Layer::new(None, &["R", "G", "B", "E0"], data);
+    caustics::image_io::write_exr(&b, &caustics::image_io::ImageF32 { width: 2, height: 2, layers: vec![layer] })
+        .expect("writing a test EXR");
+    let (sa, sb) = (a.display().to_string(), b.display().to_string());
+    let png = dir.join("error.png");
+    let run = causticlab(&["compare", &sa, &sb, "--error-image", &png.display().to_string(), "--error-scale", "0.5"]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    let (w, h, rgba) = caustics::image_io::read_png_rgba(&png).expect("the PNG error image");
+    assert_eq!((w, h), (2, 2));
+    // Texel 1: A − B = +0.5 = the scale: saturated red (sRGB-decoded to linear, still 1, 0, 0).
+    assert!(rgba[4] > 0.99 && rgba[5] < 0.01 && rgba[6] < 0.01, "texel 1 is not red: {:?}", &rgba[4..8]);
+    // Texel 3 (0.5 in both, in the region): no error, white.
+    assert!(rgba[12..15].iter().all(|&c| c > 0.99), "texel 3 is not white: {:?}", &rgba[12..16]);
+    let exr = dir.join("error.exr");
+    let run = causticlab(&["compare", &sa, &sb, "--error-image", &exr.display().to_string()]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    let layers = caustics::image_io::read_exr(&exr).expect("the EXR error image");
+    assert_eq!(layers.layers[0].channels, ["A", "B", "diff", "in_region"]);
+    for bad in [vec!["--error-image", "error.tiff"], vec!["--error-scale", "0"]] {
+        let mut args = vec!["compare", &sa, &sb];
+        args.extend(bad.iter().copied());
+        let run = causticlab(&args);
+        assert_eq!(run.code, Some(2), "{bad:?}\n{}", run.describe());
+        assert!(run.stderr.contains(bad[0]), "{bad:?}: the error does not name {}\n{}", bad[0], run.describe());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -7,6 +7,7 @@ pub mod animation;
 pub mod bvh;
 pub mod compare;
 pub mod error;
+pub mod error_png;
 pub mod gpu;
 pub mod image_io;
 pub mod reference;

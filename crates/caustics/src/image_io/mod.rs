@@ -348,6 +348,26 @@ pub fn write_png_tonemapped(path: &Path, width: u32, height: u32, rgb: &[f32], e
     })
 }
 
+/// Writes 8-bit sRGB pixels (`width*height*3` bytes, row 0 = top) as a PNG. Atomic.
+pub fn write_rgb8_png(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<()> {
+    ensure!(
+        width > 0 && height > 0 && rgb.len() == width as usize * height as usize * 3,
+        "writing {}: {} bytes for {width}x{height} RGB",
+        path.display(),
+        rgb.len()
+    );
+    write_atomically(path, |w| {
+        let mut encoder = png::Encoder::new(w, width, height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(rgb)?;
+        writer.finish()?;
+        Ok(())
+    })
+}
+
 /// Writes one value per pixel (`width*height`, row 0 = top) as an 8-bit grey PNG, 0 black and
 /// `white` white, linearly (for relative irradiance maps: E/E0 = 1 is mid-grey with `white` 2).
 /// Non-finite values become black. Atomic.

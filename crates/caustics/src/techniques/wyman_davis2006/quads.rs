@@ -3,7 +3,9 @@
 //! (Eq. 1-2), lit with Eq. 3 or 4 and blended additively into the eye's caustic irradiance or
 //! into light l's caustic map. The culling test is stated in quads.vert. Polygons under a pixel
 //! of the view are drawn by a second pipeline as one point each, carrying the beam's whole
-//! power (`QUAD_POINTS`, see quads.vert): the rasterizer would hit or miss them whole.
+//! power (`QUAD_POINTS`, see quads.vert): the rasterizer would hit or miss them whole; slivers
+//! (a pixel or more long, under one wide) by a third as a line sharing that power among its
+//! fragments (`QUAD_LINES`).
 
 use crate::gpu::formats::COLOR;
 use crate::gpu::ImageSpaceConstants;
@@ -14,42 +16,57 @@ use vkcore::{
     Targets, Topology, Use,
 };
 
-/// The quads' two pipelines: triangles for the polygons of a pixel or more, points for the
-/// smaller ones (same bindings and push constants).
+/// How the quads' pipelines draw a block's polygon (same bindings and push constants).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Primitive {
+    /// Two triangles: polygons a pixel or more wide (Eq. 1-4 as the paper draws them).
+    Triangles,
+    /// One point with the beam's power: polygons under a pixel.
+    Points,
+    /// A line along the longer diagonal sharing the beam's power: slivers.
+    Lines,
+}
+
+/// The quads' three pipelines, one per [`Primitive`].
 pub struct QuadPipelines {
     triangles: Pipeline,
     points: Pipeline,
+    lines: Pipeline,
 }
 
 pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result<QuadPipelines> {
-    let build = |points: bool| -> Result<Pipeline> {
+    let build = |primitive: Primitive| -> Result<Pipeline> {
         let mut defines: Vec<(&str, &str)> = vec![];
         if light_space {
             defines.push(("LIGHT_SPACE", "1"));
         }
-        if points {
-            defines.push(("QUAD_POINTS", "1"));
-        }
-        let name = match (light_space, points) {
-            (false, false) => "wd.quads",
-            (true, false) => "wd.quads.light_space",
-            (false, true) => "wd.quads.points",
-            (true, true) => "wd.quads.points.light_space",
+        let (define, topology, base) = match primitive {
+            Primitive::Triangles => (None, Topology::Triangles, "wd.quads"),
+            Primitive::Points => (Some("QUAD_POINTS"), Topology::Points, "wd.quads.points"),
+            Primitive::Lines => (Some("QUAD_LINES"), Topology::Lines, "wd.quads.lines"),
         };
+        if let Some(d) = define {
+            defines.push((d, "1"));
+        }
+        let name = if light_space { format!("{base}.light_space") } else { base.to_string() };
         let mut d = GraphicsDesc::new(
-            name,
+            &name,
             sh.compile("wyman_davis2006/quads.vert", &defines)?,
             Some(sh.compile("wyman_davis2006/quads.frag", &defines)?),
         );
         d.bindings = vec![K::UniformBuffer; 2];
         d.bindings.extend([K::SampledImage; 6]);
-        d.topology = if points { Topology::Points } else { Topology::Triangles };
+        d.topology = topology;
         d.cull = Cull::None;
         d.blend = Blend::Additive;
         d.color_formats = vec![COLOR];
         Ok(Pipeline::graphics(ctx, &d)?)
     };
-    Ok(QuadPipelines { triangles: build(false)?, points: build(true)? })
+    Ok(QuadPipelines {
+        triangles: build(Primitive::Triangles)?,
+        points: build(Primitive::Points)?,
+        lines: build(Primitive::Lines)?,
+    })
 }
 
 /// Draws light `l`'s caustic quads into `out`, seen through `geometry` (world position and
@@ -87,6 +104,11 @@ pub fn record(
         cmd.bind(&binds)?;
         cmd.push(&constants)?;
         cmd.draw((n - 1) * (n - 1), 1, 0, 0);
+        // A line (two vertices) for each sliver.
+        cmd.bind_pipeline(&pipelines.lines);
+        cmd.bind(&binds)?;
+        cmd.push(&constants)?;
+        cmd.draw((n - 1) * (n - 1) * 2, 1, 0, 0);
         cmd.end_rendering();
         Ok(())
     })?;
