@@ -5,7 +5,8 @@
 // (Eq. 10 with its photons' average incident direction; Eq. 9 re-lit each photon when it was
 // drawn; Eq. 11 not at all). Neighbourhoods hit by fewer than `min_photons` photons are
 // discarded. With the temporal filter (Sec. 3.2.3) a pixel's photons are the mean of the last
-// `frames` frames' (the current one's directions only).
+// `frames` frames' (the current one's directions only). Every light is gathered from its own
+// photon layers (history_base = light * layers), so light adds up.
 //
 // Eye space: the area A_q of each neighbour comes from the world positions of the pixels next to
 // it (not Eq. 5); Eq. 6 gives its solid angle from the light, w_q = A_q cos_q / d^2, Eq. 8 the
@@ -27,7 +28,11 @@ layout(binding = 4) uniform sampler2D view_position;
 #ifndef LIGHT_SPACE
 layout(binding = 5) uniform sampler2D view_normal;
 #endif
-layout(binding = 6, rgba32f) uniform writeonly image2DArray gathered;
+#ifdef LIGHT_SPACE
+layout(binding = 6, rgba32f) uniform writeonly image2DArray gathered;   // light l's own layer
+#else
+layout(binding = 6, rgba32f) uniform image2DArray gathered;   // shared by the lights: they add
+#endif
 
 // The pixel's photons, averaged over the history frames (pairwise for four frames, so that four
 // equal frames give exactly one).
@@ -94,5 +99,14 @@ void main() {
     }
     // Step 2 (5): too few photons in the neighbourhood: noise, discarded.
     vec3 result = count < float(constants.min_photons) ? vec3(0.0) : sum / weights;
+#ifndef LIGHT_SPACE
+    // Each light is gathered from its own photons (the three-photon rule and Eq. 10's average
+    // direction are per light); the lights after the first add to the view's caustic.
+    if (constants.light > 0u) {
+        vec4 before = imageLoad(gathered, ivec3(t, 0));
+        result += before.rgb;
+        count += before.a;
+    }
+#endif
     imageStore(gathered, ivec3(t, 0), vec4(result, count));
 }

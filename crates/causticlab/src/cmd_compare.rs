@@ -3,8 +3,8 @@
 use crate::cli::CompareArgs;
 use anyhow::{Context as _, Result};
 use caustics::compare::compare_files;
-use caustics::{error_png, image_io};
 use caustics::input_error;
+use caustics::{error_png, image_io};
 use std::io::{ErrorKind, Read as _};
 use std::path::Path;
 

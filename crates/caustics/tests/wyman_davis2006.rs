@@ -7,6 +7,7 @@
 //!   definitions coincide: Eq. 11, and the gather's weights over the full 7x7 window);
 //! - the temporal filter changes nothing in a static scene, and lowers the frame-to-frame change
 //!   of the receiver map under a slowly orbiting light (the stability figure);
+//! - with two lights every variant gives the sum of what each light gives alone;
 //! - quads keep the coffee-cup caustic's flux in eye and light space (slivers as lines);
 //! - mirrored photons bring the same flux to the floor of `ring_cardioid` with the paper's
 //!   background plane as with the depth search (that floor is the plane).
@@ -338,4 +339,64 @@ fn quads_on_the_coffee_cup_caustic_keep_its_flux_in_eye_and_light_space() {
         assert!((c.caustic_flux_ratio - 1.0).abs() < 0.1, "{space:?}: caustic flux ratio {}", c.caustic_flux_ratio);
         assert!(c.rel_rmse < 0.6, "{space:?}: relative RMSE {}", c.rel_rmse);
     }
+}
+
+#[test]
+fn every_variant_adds_two_lights_up() {
+    // Light is additive: with a second light the caustic (W/m², the receiver map's `caustic`
+    // layer) must be the sum of what each light gives alone (the scene with only that light).
+    // A pass that clears, counts or normalises across lights instead of per light (the
+    // gathers' three-photon rule, the eye buffers the lights share, a light's caustic map
+    // overwritten by the next) breaks the sum. Stated bound: 1e-3 of the combined caustic's
+    // peak at any texel, 1e-4 in total flux.
+    let cases: [(Technique, Space); 6] = [
+        (Technique::WdPoints, Space::Light),
+        (Technique::WdEyePoints, Space::Eye),
+        (Technique::WdQuads, Space::Eye),
+        (Technique::WdQuads, Space::Light),
+        (Technique::WdGather, Space::Eye),
+        (Technique::WdGather, Space::Light),
+    ];
+    let mut failures = vec![];
+    for (t, space) in cases {
+        let scene_with = |keep: [bool; 2]| {
+            let mut s = load("sphere_on_plane", t, 128);
+            match t {
+                Technique::WdQuads => {
+                    s.caustics.space = space;
+                    s.caustics.quad_lighting = QuadLighting::Eq4;
+                }
+                Technique::WdGather => {
+                    s.caustics.space = space;
+                    s.caustics.gather_lighting = GatherLighting::Eq11;
+                }
+                Technique::WdEyePoints => s.caustics.gather_lighting = GatherLighting::Eq11,
+                _ => {}
+            }
+            let mut second = s.lights[0].clone();
+            second.position = glam::Vec3::new(2.0, 5.0, 1.0);
+            second.intensity = glam::Vec3::new(20.0, 60.0, 40.0);
+            s.lights.push(second);
+            let mut kept = keep.iter();
+            s.lights.retain(|_| *kept.next().unwrap_or(&false));
+            s
+        };
+        let caustic = |keep: [bool; 2]| -> Vec<f64> {
+            let dumps = render(&scene_with(keep), 1, &["receiver"]);
+            let (c, nc) = layer(get(&dumps, "receiver"), Some("caustic"));
+            (0..c.len() / nc).map(|i| mean3(&c[i * nc..])).collect()
+        };
+        let (both, first, second) = (caustic([true, true]), caustic([true, false]), caustic([false, true]));
+        let peak = both.iter().copied().fold(0.0, f64::max);
+        let worst = (0..both.len()).map(|i| (both[i] - first[i] - second[i]).abs()).fold(0.0, f64::max);
+        let sum = |v: &[f64]| v.iter().sum::<f64>();
+        let flux = sum(&both) / (sum(&first) + sum(&second)) - 1.0;
+        println!("{t} --space {space}: peak {peak:.3}, worst texel {:.2e} of it, flux {flux:+.2e}", worst / peak);
+        assert!(sum(&first) > 0.0 && sum(&second) > 0.0, "{t} --space {space}: a light gave no caustic");
+        if !(worst <= 1e-3 * peak && flux.abs() <= 1e-4) {
+            failures
+                .push(format!("{t} --space {space}: worst texel {:.2e} of the peak, flux {flux:+.2e}", worst / peak));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -105,14 +105,16 @@ impl ImageSpace {
         let camera = (scene.camera.width, scene.camera.height);
         let layers = history.layers();
         let eye = match eye_space {
-            true => Some(ViewBuffers::new(ctx, "eye", camera, layers, true)?),
+            // A light's photons have their own history layers (light * layers + slot), so
+            // each light is gathered from its own photons.
+            true => Some(ViewBuffers::new(ctx, "eye", camera, layers * lights, true)?),
             false => None,
         };
         let receiver = match (eye_space, &scene.receiver_map, views::receiver_view_proj(scene)) {
             (true, Some(r), Some(view_proj)) => {
                 let size = (r.resolution, r.resolution);
                 Some(ReceiverView {
-                    buffers: ViewBuffers::new(ctx, "receiver view", size, layers, true)?,
+                    buffers: ViewBuffers::new(ctx, "receiver view", size, layers * lights, true)?,
                     position: Target::color(ctx, "receiver view position", r.resolution, r.resolution)?,
                     normal: Target::color(ctx, "receiver view normal", r.resolution, r.resolution)?,
                     view_proj,
@@ -167,7 +169,8 @@ impl ImageSpace {
     }
 
     /// Light `l`'s part, once its photon buffer is rendered (or kept, `reuse`): its photons
-    /// drawn into the eye's and the receiver's views (eye space), or its quads or gather into its
+    /// drawn into the eye's and the receiver's views and gathered there (or resolved per pixel,
+    /// `wd-eye-points`), its quads drawn there (eye space), or its quads or gather into its
     /// caustic-map layer (light space, skipped when the photons were kept: the lighting did not
     /// change).
     pub fn record_light(
@@ -192,17 +195,31 @@ impl ImageSpace {
                 targets.push(("receiver", &r.buffers, (&r.position.view, &r.normal.view), base));
             }
             for (view, buffers, geometry, base) in targets {
-                let k = self.constants(base, c, l, 0);
+                let mut k = self.constants(base, c, l, 0);
                 match (&self.points, &self.quads) {
                     (Some(p), _) => {
+                        // Light l's own history layers, gathered at once into the view's
+                        // caustic (lights after the first add to it: gather.comp).
+                        let layers = self.history.layers();
+                        k.history_base = l * layers;
+                        k.slot = l * layers + self.history.slot();
                         let into = points::PointsInto {
                             name: format!("wd.photons.{view}.light{l}"),
                             buffers,
-                            slot: self.history.slot(),
+                            slot: k.slot,
                             geometry,
-                            clear: first,
+                            clear: true,
                         };
                         points::record(f, c, p, into, k)?;
+                        let g = self.gather.as_ref().context("no gather pipeline")?;
+                        let radius = if self.method == Method::EyePoints { 0 } else { gather::RADIUS };
+                        let kg = ImageSpaceConstants {
+                            radius,
+                            min_photons: self.constants(base, c, l, radius).min_photons,
+                            ..k
+                        };
+                        let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
+                        gather::record(f, &format!("wd.gather.{view}.light{l}"), c, g, buffers, geometry, out, kg)?;
                     }
                     (None, Some(q)) => {
                         let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
@@ -244,8 +261,8 @@ impl ImageSpace {
         Ok(())
     }
 
-    /// After every light: the eye-space gathers (or the points' per-pixel resolve) of the eye's
-    /// and the receiver's views, and the caustics added to the eye's radiance. Advances the
+    /// After every light (each gathered into the eye's and the receiver's views with its
+    /// photons, [`Self::record_light`]): the caustics added to the eye's radiance. Advances the
     /// temporal filter's history when this frame wrote it.
     pub fn record_after_lights(
         &self,
@@ -262,20 +279,6 @@ impl ImageSpace {
         }
         let eye = eye.context("eye-space caustics need the eye's view")?;
         let eye_buffers = self.eye.as_ref().context("no eye-space buffers")?;
-        let radius = if self.method == Method::EyePoints { 0 } else { gather::RADIUS };
-        if let Some(g) = &self.gather {
-            let base = views::view_constants(eye.view_proj, eye.eye, self.tolerance, false);
-            let out = &eye_buffers.caustic.as_ref().context("no caustic image")?.view;
-            let k = self.constants(base, c, 0, radius);
-            gather::record(f, "wd.gather.eye", c, g, eye_buffers, (eye.position, eye.normal), out, k)?;
-            if let Some(r) = &self.receiver {
-                let base = views::view_constants(r.view_proj, Vec3::ZERO, r.tolerance, true);
-                let out = &r.buffers.caustic.as_ref().context("no caustic image")?.view;
-                let k = self.constants(base, c, 0, radius);
-                let geometry = (&r.position.view, &r.normal.view);
-                gather::record(f, "wd.gather.receiver", c, g, &r.buffers, geometry, out, k)?;
-            }
-        }
         let shade = self.shade.as_ref().context("no shading pipeline")?;
         let caustic = &eye_buffers.caustic.as_ref().context("no caustic image")?.view;
         let binds = [
