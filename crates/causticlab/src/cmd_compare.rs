@@ -52,13 +52,24 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         if png {
             let scale = args.error_scale.unwrap_or_else(|| error_png::default_scale(&error_image));
             error_png::write_error_png(p, &error_image, scale)?;
-            println!("wrote {} (red: A brighter, blue: A darker, saturated at |A - B| = {scale:.3})", p.display());
+            let said =
+                format!("wrote {} (red: A brighter, blue: A darker, saturated at |A - B| = {scale:.3})", p.display());
+            say(args.json, &said);
         } else {
             image_io::write_exr(p, &error_image)?;
-            println!("wrote {}", p.display());
+            say(args.json, &format!("wrote {}", p.display()));
         }
     }
     Ok(())
+}
+
+/// Progress lines: on stderr under --json, so that stdout stays one JSON object.
+fn say(json: bool, line: &str) {
+    if json {
+        eprintln!("{line}");
+    } else {
+        println!("{line}");
+    }
 }
 
 /// OpenEXR files start with these four bytes (the "magic number" of the EXR file layout).
