@@ -28,7 +28,7 @@ variants=(
 for s in "${scenes[@]}"; do
   ref=$work/$s/ref1
   [ -f "$ref/receiver.exr" ] || $bin reference --scene "scenes/$s.toml" --photons "$ref_photons" --seed 1 --fresnel false --out "$ref"
-  mkdir -p "$results/$s"
+  mkdir -p "$results/$s" "$work/$s/images"
   for v in "${variants[@]}"; do
     IFS='|' read -r name flags <<< "$v"
     for n in 256 2048; do

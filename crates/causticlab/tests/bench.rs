@@ -805,3 +805,62 @@ fn a_missing_plot_font_fails_before_any_cell_runs() {
     assert!(!root.exists(), "a run without a font wrote results");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The columns of each paper table a config reproduces, row labels included, counted in the
+/// papers (../shared/papers): Wyman 2008 Tables 1-5 (Table 3-sparse lays out Table 3), Wyman &
+/// Davis 2006 Table 1 (scene, photons, 4 techniques x static/dynamic), Wyman & Nichols 2009
+/// Table 1, Trendall & Stewart 2000 Table 1 (size, 3 configurations x 2 machines).
+const PAPER_COLUMNS: [(&str, usize); 9] = [
+    ("wyman2008_table1", 5),
+    ("wyman2008_table2", 4),
+    ("wyman2008_table3", 11),
+    ("wyman2008_table3_sparse", 11),
+    ("wyman2008_table4", 7),
+    ("wyman2008_table5", 6),
+    ("wyman_davis2006_table1", 10),
+    ("wyman_nichols2009_table1", 5),
+    ("trendall_stewart2000_table1", 7),
+];
+
+#[test]
+fn every_committed_table_fits_its_paper_and_a_terminal() {
+    // Every table `bench` wrote into results/<device>/ (a .md beside its .json; quick runs are
+    // not committed): each table line within 120 columns, and a paper table with at most one
+    // column more than the paper's (its distinct header cells over the wrapped blocks of the
+    // value tables, before the ratio grids).
+    let mut checked = 0;
+    let mut failures = vec![];
+    for device in std::fs::read_dir(workspace().join("results")).expect("results/") {
+        let device = device.expect("entry").path();
+        if !device.is_dir() {
+            continue;
+        }
+        for file in std::fs::read_dir(&device).expect("device folder") {
+            let md = file.expect("entry").path();
+            if md.extension().is_none_or(|e| e != "md") || !md.with_extension("json").exists() {
+                continue;
+            }
+            let text = std::fs::read_to_string(&md).expect("table");
+            let name = md.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string();
+            for line in text.lines().filter(|l| l.starts_with('|') && l.chars().count() > 120) {
+                failures.push(format!("{}: a line of {} columns: {line}", md.display(), line.chars().count()));
+            }
+            let values = &text[..text.find("## Ratios").unwrap_or(text.len())];
+            let lines: Vec<&str> = values.lines().filter(|l| l.starts_with('|')).collect();
+            let rule = |l: &str| l.chars().all(|c| matches!(c, '|' | '-' | ':' | ' '));
+            let headers: std::collections::BTreeSet<&str> = lines
+                .windows(2)
+                .filter(|w| rule(w[1]))
+                .flat_map(|w| w[0].split('|').map(str::trim).filter(|c| !c.is_empty()))
+                .collect();
+            if let Some((_, paper)) = PAPER_COLUMNS.iter().find(|(n, _)| *n == name) {
+                if headers.len() > paper + 1 {
+                    failures.push(format!("{}: {} columns, the paper's {paper}: {headers:?}", md.display(), headers.len()));
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 10, "only {checked} committed tables found under results/");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
