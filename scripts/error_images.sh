@@ -37,7 +37,7 @@ for s in "${scenes[@]}"; do
       $bin render --scene "scenes/$s.toml" $flags --photons "$n" --fresnel false --dump receiver --out "$out" > "$out.log"
       printf '%s %s %s: ' "$s" "$name" "$n"
       $bin compare "$out/receiver.exr" "$ref/receiver.exr" --error-image "$results/$s/$name-$n.png" \
-        --error-scale "$scale" --json | python3 -c 'import json,sys; c=json.load(sys.stdin); print(f"rel. RMSE {c[\"rel_rmse\"]:.3f}, flux {c[\"caustic_flux_ratio\"]:.3f}")'
+        --error-scale "$scale" --json | python3 -c 'import json,sys; c=json.load(sys.stdin); print("rel. RMSE %.3f, flux %.3f" % (c["rel_rmse"], c["caustic_flux_ratio"]))'
     done
   done
 done
