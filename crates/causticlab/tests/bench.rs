@@ -855,7 +855,11 @@ fn every_committed_table_fits_its_paper_and_a_terminal() {
                 .collect();
             if let Some((_, paper)) = PAPER_COLUMNS.iter().find(|(n, _)| *n == name) {
                 if headers.len() > paper + 1 {
-                    failures.push(format!("{}: {} columns, the paper's {paper}: {headers:?}", md.display(), headers.len()));
+                    failures.push(format!(
+                        "{}: {} columns, the paper's {paper}: {headers:?}",
+                        md.display(),
+                        headers.len()
+                    ));
                 }
             }
             checked += 1;

@@ -101,3 +101,45 @@ fn two_lights_add_up() {
         }
     }
 }
+
+#[test]
+fn the_reference_projects_a_spot_texture_as_the_renderer_does() {
+    // Four quadrants of different brightness (mean RGB 1/3, 2/3, 0, 1) through a 30-degree
+    // spot: the exact reference's E0 must equal the renderer's texel for texel (same
+    // orientation, same filtering), away from the quadrant seams and the cone's edge.
+    let dir = scratch("spot-reference");
+    let quadrants = [[1e6, 0.0, 0.0], [1e6, 1e6, 0.0], [0.0, 0.0, 0.0], [1e6, 1e6, 1e6]].concat();
+    write_png_tonemapped(&dir.join("quadrants.png"), 2, 2, &quadrants, 1.0).unwrap();
+    let text = std::fs::read_to_string(scene("sphere_on_plane")).unwrap();
+    let light = "type = \"point\"\nposition = [0.0, 6.0, 0.0]";
+    let spot = "type = \"spot\"\nposition = [0.0, 6.0, 0.0]\ndirection = [0.0, -1.0, 0.0]\ncone_angle = 15.0\ntexture = \"quadrants.png\"";
+    std::fs::write(dir.join("scene.toml"), text.replace(light, spot)).unwrap();
+    let gpu = render_receiver(&dir);
+    let out = dir.join("reference");
+    let scene_path = dir.join("scene.toml").display().to_string();
+    let run =
+        causticlab(&["reference", "--scene", &scene_path, "--photons", "20000", "--out", &out.display().to_string()]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    let cpu = read_exr(&out.join("receiver.exr")).unwrap();
+    let (eg, ec) = (find_channel(&gpu, "E0").unwrap(), find_channel(&cpu, "E0").unwrap());
+    let n = gpu.width;
+    let (mut compared, mut levels) = (0, std::collections::BTreeSet::new());
+    for j in 0..n {
+        for i in 0..n {
+            let (x, z) = centre(i, j, n);
+            let angle = (x * x + z * z).sqrt().atan2(6.0);
+            if x.abs() < 0.1 || z.abs() < 0.1 || (angle - 15f64.to_radians()).abs() < 0.02 {
+                continue;
+            }
+            let (g, c) = (value(&gpu, eg, i, j), value(&cpu, ec, i, j));
+            assert!((g - c).abs() <= 1e-3 * g.abs().max(1e-3), "({x:.2}, {z:.2}): E0 renderer {g}, reference {c}");
+            if angle < 15f64.to_radians() {
+                levels.insert((g / (100.0 * 6.0 / (36.0 + x * x + z * z).powf(1.5)) * 3.0).round() as i64);
+            }
+            compared += 1;
+        }
+    }
+    // Every quadrant was inside the compared region: the four levels 0, 1, 2, 3 (thirds).
+    assert_eq!(levels.into_iter().collect::<Vec<_>>(), vec![0, 1, 2, 3], "quadrant levels");
+    assert!(compared > 10_000, "compared {compared} texels");
+}

@@ -169,7 +169,7 @@ pub fn frame_uniforms(scene: &Scene) -> FrameUniforms {
 use bytemuck::Zeroable;
 
 /// Spot-light textures resampled to one size, one layer per light (white where none).
-pub const SPOT_TEXTURE_SIZE: u32 = 256;
+pub const SPOT_TEXTURE_SIZE: u32 = crate::scene::spot_projector::SIZE;
 
 pub fn spot_texture_layers(scene: &Scene) -> Result<Vec<f32>> {
     let n = SPOT_TEXTURE_SIZE as usize;
@@ -177,17 +177,7 @@ pub fn spot_texture_layers(scene: &Scene) -> Result<Vec<f32>> {
     let mut out = vec![1.0f32; layers * n * n * 4];
     for (l, light) in scene.lights.iter().take(MAX_LIGHTS).enumerate() {
         if let LightKind::Spot { texture: Some(path), .. } = &light.kind {
-            let (w, h, rgba) = crate::image_io::read_png_rgba(path)
-                .with_context(|| format!("spot-light texture {}", path.display()))?;
-            for y in 0..n {
-                for x in 0..n {
-                    let sx = (x * w as usize / n).min(w as usize - 1);
-                    let sy = (y * h as usize / n).min(h as usize - 1);
-                    for c in 0..4 {
-                        out[((l * n + y) * n + x) * 4 + c] = rgba[(sy * w as usize + sx) * 4 + c];
-                    }
-                }
-            }
+            out[l * n * n * 4..(l + 1) * n * n * 4].copy_from_slice(&crate::scene::spot_projector::resample(path)?);
         }
     }
     Ok(out)

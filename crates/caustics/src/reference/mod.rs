@@ -7,7 +7,8 @@
 //! * The receiver is the rectangle of [`ReceiverMapSpec`](crate::scene::ReceiverMapSpec),
 //!   normal `+y`, `N × N` texels of area `A = (x1 − x0)(z1 − z0)/N²`, row 0 at `z0`.
 //! * `E0` per texel and RGB channel: `Σ_lights I · max(cos θ, 0) / r²` at the texel centre;
-//!   spot lights contribute zero outside their cone (projected textures are ignored).
+//!   spot lights contribute zero outside their cone and their projected texture's colour inside
+//!   it (`scene::spot_projector`, sampled as the renderer samples it).
 //! * Direct `E`: the same terms times a binary visibility of the segment texel centre →
 //!   light against *every* triangle (glass blocks direct light; the caustic adds it back).
 //! * Caustic `E`: from each light, photons are sampled uniformly in solid angle over the
@@ -52,7 +53,7 @@ use crate::error::InputError;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use emit::{bounding_sphere, Cone, Pcg32};
-use receiver::{emission_factor, Receiver};
+use receiver::{Emitter, Receiver};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -114,6 +115,7 @@ struct Task {
 /// Per-light emission data: every specular cone with its photon density `M/Ω`.
 struct LightCones {
     cones: Vec<(usize, Cone, u64, f64)>, // (object, cone, photons M, M/Ω)
+    emitter: Emitter,
 }
 
 #[derive(Default)]
@@ -222,7 +224,7 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
                 tasks.push(Task { light: li, object: *oi, chunk, count: (m - chunk * CHUNK).min(CHUNK) });
             }
         }
-        lights.push(LightCones { cones: with_m });
+        lights.push(LightCones { cones: with_m, emitter: Emitter::of(light)? });
     }
 
     let threads =
@@ -268,7 +270,8 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
 
     let area = rx.texel_area();
     let caustic: Vec<f64> = merger.grid.iter().map(|f| f / area).collect();
-    let (e0, direct) = receiver::direct_irradiance(&rx, &scene.lights, &bvh);
+    let emitters: Vec<&Emitter> = lights.iter().map(|l| &l.emitter).collect();
+    let (e0, direct) = receiver::direct_irradiance(&rx, &scene.lights, &emitters, &bvh);
     let image = receiver::build_image(n, &e0, &direct, &caustic);
     let t = merger.totals;
     Ok(ReferenceResult {
@@ -303,11 +306,11 @@ fn run_task(
         tot.photons += 1;
         let dir = cone.sample(&mut rng);
         let density: f64 = cones.iter().filter(|c| c.1.contains(dir) || c.0 == task.object).map(|c| c.3).sum();
-        let w = emission_factor(light, dir) / density;
-        if w == 0.0 {
+        let f = lights[task.light].emitter.emission(dir);
+        if f == [0.0; 3] {
             continue;
         }
-        let phi = intensity.map(|i| i * w);
+        let phi: [f64; 3] = std::array::from_fn(|c| intensity[c] * f[c] / density);
         add3(&mut tot.emitted, &phi);
         let channels: &[Option<usize>] = if dispersive { &[Some(0), Some(1), Some(2)] } else { &[None] };
         for &ch in channels {

@@ -6,7 +6,8 @@
 
 use crate::bvh::Bvh;
 use crate::image_io::{ImageF32, Layer};
-use crate::scene::{Light, LightKind, ReceiverMapSpec};
+use crate::scene::spot_projector::SpotProjector;
+use crate::scene::{Light, ReceiverMapSpec};
 use glam::DVec3;
 
 /// The horizontal receiver rectangle `y = plane_y`, `x ∈ x_range`, `z ∈ z_range`, split
@@ -66,19 +67,22 @@ impl Receiver {
     }
 }
 
-/// Factor by which a light emits towards unit direction `dir` (1 inside a spot cone, 0
-/// outside; point lights 1). Projected spot textures are ignored by the reference.
-#[inline]
-pub fn emission_factor(light: &Light, dir: DVec3) -> f64 {
-    match &light.kind {
-        LightKind::Point => 1.0,
-        LightKind::Spot { direction, cone_angle_deg, .. } => {
-            let cos_cone = (*cone_angle_deg as f64).to_radians().cos();
-            if dir.dot(direction.as_dvec3().normalize()) >= cos_cone {
-                1.0
-            } else {
-                0.0
-            }
+/// What a light emits towards a unit direction, per RGB channel, as a factor on its intensity:
+/// 1 for a point light; for a spot light 0 outside its cone and its projected texture's colour
+/// inside it (white without a texture), sampled as the renderer samples it
+/// ([`SpotProjector`]): the texture shapes the direct light and the photons alike.
+pub struct Emitter(Option<SpotProjector>);
+
+impl Emitter {
+    pub fn of(light: &Light) -> anyhow::Result<Emitter> {
+        Ok(Emitter(SpotProjector::of(light)?))
+    }
+
+    #[inline]
+    pub fn emission(&self, dir: DVec3) -> [f64; 3] {
+        match &self.0 {
+            None => [1.0; 3],
+            Some(spot) => spot.emission(dir),
         }
     }
 }
@@ -87,7 +91,7 @@ pub fn emission_factor(light: &Light, dir: DVec3) -> f64 {
 /// channel, `n*n*3` each, in W/m²: `Σ_lights I · max(cos θ, 0) / r²` with the receiver
 /// normal `+y`, visibility 1 when no triangle of `bvh` blocks the segment texel centre →
 /// light.
-pub fn direct_irradiance(rx: &Receiver, lights: &[Light], bvh: &Bvh) -> (Vec<f64>, Vec<f64>) {
+pub fn direct_irradiance(rx: &Receiver, lights: &[Light], emitters: &[&Emitter], bvh: &Bvh) -> (Vec<f64>, Vec<f64>) {
     let n = rx.n;
     let mut e0 = vec![0.0; n * n * 3];
     let mut ed = vec![0.0; n * n * 3];
@@ -95,7 +99,7 @@ pub fn direct_irradiance(rx: &Receiver, lights: &[Light], bvh: &Bvh) -> (Vec<f64
         for i in 0..n {
             let p = rx.texel_centre(i, j);
             let k = (j * n + i) * 3;
-            for light in lights {
+            for (light, emitter) in lights.iter().zip(emitters) {
                 let to = light.position.as_dvec3() - p;
                 let r2 = to.length_squared();
                 if r2 <= 0.0 {
@@ -106,15 +110,15 @@ pub fn direct_irradiance(rx: &Receiver, lights: &[Light], bvh: &Bvh) -> (Vec<f64
                 if cos <= 0.0 {
                     continue;
                 }
-                let f = emission_factor(light, -to / r);
-                if f == 0.0 {
+                let f = emitter.emission(-to / r);
+                if f == [0.0; 3] {
                     continue;
                 }
-                let g = f * cos / r2;
+                let g = cos / r2;
                 let visible = !bvh.occluded(p.as_vec3(), to.as_vec3(), 1e-4, 1.0 - 1e-4);
                 let intensity = light.intensity.as_dvec3().to_array();
                 for c in 0..3 {
-                    let e = intensity[c] * g;
+                    let e = intensity[c] * f[c] * g;
                     e0[k + c] += e;
                     if visible {
                         ed[k + c] += e;

@@ -13,6 +13,7 @@ pub mod pool;
 pub mod procedural;
 pub mod schema;
 pub mod search_path;
+pub mod spot_projector;
 
 pub use crate::techniques::settings::{CausticOverrides, CausticSettings};
 pub use glam::Vec3;
