@@ -26,7 +26,8 @@ pub struct CellRun {
     pub stats_frame: Option<FrameReport>,
     pub photons_emitted: u64,
     pub splats_drawn: u64,
-    /// `hcm`: per light, the traversal's list sizes from the 16² level down to the splatted list.
+    /// `hcm`: per light, the traversal's list sizes from the 16² level down to the splatted list;
+    /// `adaptive`: each level's pending clusters, then the splatted photons.
     pub hierarchy_sizes: Option<Vec<Vec<u64>>>,
     pub quality: Option<Comparison>,
     /// Photons of the last frame that met a specular object and a receiver (read back from the
@@ -178,7 +179,7 @@ impl<'a> Runner<'a> {
             stats_frame,
             photons_emitted: renderer.photons_emitted(),
             splats_drawn: renderer.splats_drawn()?,
-            hierarchy_sizes: renderer.hierarchy().map(|h| h.list_sizes(self.ctx)).transpose()?,
+            hierarchy_sizes: renderer.list_sizes()?,
             quality,
             valid_photons,
             lights: scene.lights.len() as u64,

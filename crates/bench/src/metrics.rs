@@ -86,7 +86,8 @@ fn wall_ms(run: &CellRun, exclude: &[String]) -> Vec<f64> {
 
 /// Photons (points) a frame pushes through the pipeline after the photon buffer: every texel
 /// for the dense techniques; for `hcm` every entry each traversal level reads plus the splatted
-/// list (Wyman & Nichols 2009 Table 1 counts the splatted ones: `splats_drawn`).
+/// list, for `adaptive` every pending cluster of every level plus the splatted photons (Wyman &
+/// Nichols 2009 Table 1 counts the splatted ones: `splats_drawn`).
 fn photons_processed(run: &CellRun) -> u64 {
     match &run.hierarchy_sizes {
         Some(lights) => lights.iter().flatten().sum(),
