@@ -164,6 +164,7 @@ mod tests {
             ("shared/splat.vert", &[("PHOTON_VERTEX_ARRAY", "1")]),
             ("shared/splat.vert", &[("PHOTON_VERTEX_ARRAY", "1"), ("PHOTON_HALF", "1")]),
             ("shared/splat.vert", &[("HIERARCHY", "1")]),
+            ("shared/splat.vert", &[("ADAPTIVE_PHOTONS", "1")]),
         ]);
     }
 
@@ -173,6 +174,8 @@ mod tests {
             ("shared/splat.comp", &[("ENTRY_BYTES", "4")]),
             ("shared/splat.comp", &[("ENTRY_BYTES", "4"), ("HIERARCHY", "1")]),
             ("shared/splat.comp", &[("ENTRY_BYTES", "4"), ("HIERARCHY", "1"), ("XFB", "1")]),
+            ("shared/splat.comp", &[("ENTRY_BYTES", "32"), ("ADAPTIVE_PHOTONS", "1")]),
+            ("shared/splat.comp", &[("ENTRY_BYTES", "32"), ("ADAPTIVE_PHOTONS", "1"), ("XFB", "1")]),
         ]);
     }
 
