@@ -290,3 +290,42 @@ fn every_level_refines_the_covered_clusters_of_the_level_above() {
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
 }
+
+/// With two lights, one set of geometry buffers and lists serves both in turn: each light's
+/// output photons (read back light by light through the `adaptive_lists` dump) are exactly
+/// that light's dense valid photons, and each light's per-level counts end with its own.
+#[test]
+fn every_light_creates_its_own_photons() {
+    let (ctx, sh) = context();
+    let n = 128;
+    for path in ["compute", "xfb"] {
+        let dense = run(&ctx, &sh, &scene("two_lights", "wd-points", n, path), &["photon_buffer"]);
+        let s = scene("two_lights", "adaptive", n, path);
+        let mut r = Renderer::new(&ctx, &sh, &s, &RendererOptions::default()).expect("renderer");
+        r.frame(FrameStep::default()).expect("frame");
+        let counts = r.adaptive().expect("adaptive").level_counts(&ctx).expect("counts");
+        let lists = r.dump("adaptive_lists").expect("dump").expect("the lists");
+        let pb = &dense.dumps["photon_buffer"];
+        let mut per_light = vec![];
+        for (l, (_, emitted)) in counts.iter().enumerate() {
+            let pos = layer(pb, &format!("light{l}.position"));
+            let want: BTreeSet<(u32, u32)> = (0..pb.width * pb.height)
+                .filter(|&i| pos.data[i as usize * 4 + 3] > 0.5)
+                .map(|i| (i % pb.width, i / pb.width))
+                .collect();
+            let photons = layer(&lists, &format!("light{l}.photons"));
+            let got: BTreeSet<(u32, u32)> =
+                photons.data.chunks_exact(11).filter(|r| r[10] > 0.5).map(|r| (r[0] as u32, r[1] as u32)).collect();
+            assert!(want.len() > 100, "{path}: light {l}: {} valid photons: a vacuous test", want.len());
+            if let Err(e) = same_sets(&got, &want) {
+                panic!("{path}: light {l}'s photons are not its dense valid photons: {e}");
+            }
+            assert_eq!(emitted.iter().sum::<u64>(), want.len() as u64, "{path}: light {l}'s counts");
+            per_light.push(want);
+        }
+        assert_eq!(per_light.len(), 2, "{path}: counts of {} lights", per_light.len());
+        assert_ne!(per_light[0], per_light[1], "{path}: both lights see the same photons: a vacuous test");
+    }
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}
