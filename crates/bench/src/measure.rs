@@ -29,6 +29,8 @@ pub struct CellRun {
     /// `hcm`: per light, the traversal's list sizes from the 16² level down to the splatted list;
     /// `adaptive`: each level's pending clusters, then the splatted photons.
     pub hierarchy_sizes: Option<Vec<Vec<u64>>>,
+    /// `adaptive`: the photon storage it allocated, bytes (Wyman & Nichols 2009 Sec. 4.3).
+    pub photon_storage: Option<u64>,
     pub quality: Option<Comparison>,
     /// Photons of the last frame that met a specular object and a receiver (read back from the
     /// photon buffer, untimed); `None` without a photon buffer.
@@ -180,6 +182,7 @@ impl<'a> Runner<'a> {
             photons_emitted: renderer.photons_emitted(),
             splats_drawn: renderer.splats_drawn()?,
             hierarchy_sizes: renderer.list_sizes()?,
+            photon_storage: renderer.adaptive().map(|a| a.photon_storage_bytes()),
             quality,
             valid_photons,
             lights: scene.lights.len() as u64,

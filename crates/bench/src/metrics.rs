@@ -122,6 +122,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
                 run.valid_photons.map(|v| v as f64 / (run.caustics.photons as f64).powi(2) / run.lights.max(1) as f64),
             ),
             "rel_rmse" => exact(k, run.quality.as_ref().map(|q| q.rel_rmse)),
+            "photon_storage" => exact(k, run.photon_storage.map(|b| b as f64 / (1024.0 * 1024.0))),
             "flux_ratio" => exact(k, run.quality.as_ref().map(|q| q.caustic_flux_ratio)),
             _ => exact(k, None),
         };

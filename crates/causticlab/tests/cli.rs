@@ -207,9 +207,10 @@ fn hierarchy_settings_need_technique_hcm() {
     assert_eq!(run.code, Some(0), "a scene's cluster key with --technique hcm: {}", run.describe());
 }
 
-/// `adaptive`'s settings (Wyman & Nichols 2009 Sec. 3.2): the photon grid must be 64 × 2^L, the
-/// geometry buffers a sane fraction of the caustic map, `max_level` within range and agreeing
-/// with `photons`; its keys are refused for other techniques; `--max-level` alone sets the grid.
+/// `adaptive`'s settings (Wyman & Nichols 2009 Sec. 3.2, 4.3): the photon grid must be 64 × 2^L
+/// (beyond 4096² only under a memory limit that can hold its batches), the geometry buffers a
+/// sane fraction of the caustic map, `max_level` within range and agreeing with `photons`; its
+/// keys are refused for other techniques; `--max-level` alone sets the grid.
 #[test]
 fn adaptive_settings_are_checked() {
     let s = scene("sphere_on_plane");
@@ -219,7 +220,9 @@ fn adaptive_settings_are_checked() {
         v.extend(extra.iter().map(|x| x.to_string()));
         v
     };
-    let cases: [(&[&str], &[&str]); 6] = [
+    let cases: [(&[&str], &[&str]); 8] = [
+        (&["--photons", "16384"], &["--photons", "4096", "16384"]),
+        (&["--photons", "16384", "--photon-memory-limit", "1"], &["--photon-memory-limit", "at least", "16384²"]),
         (&["--photons", "200"], &["--photons", "64 × 2^L", "200"]),
         (&["--gbuffer-scale", "0"], &["--gbuffer-scale", "(0, 4]"]),
         (&["--gbuffer-scale", "nan"], &["--gbuffer-scale", "(0, 4]"]),

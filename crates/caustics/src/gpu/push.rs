@@ -95,6 +95,29 @@ push_constants! {
 }
 
 push_constants! {
+    /// A batch's input of the adaptive traversal (`wyman_nichols2009/adaptive_batch.comp`).
+    pub struct BatchConstants {
+        /// The batch's first cluster of level B.
+        pub first: u32,
+        /// Clusters per batch.
+        pub size: u32,
+        /// 1 on the transform-feedback path (byte counts).
+        pub xfb: u32,
+    }
+}
+
+push_constants! {
+    /// The adaptive traversal's per-level counts (`wyman_nichols2009/adaptive_counts.comp`).
+    pub struct CountConstants {
+        /// The next level's slot (u32::MAX: none).
+        pub cluster_slot: u32,
+        pub photon_slot: u32,
+        /// 1 on the transform-feedback path (byte counts).
+        pub xfb: u32,
+    }
+}
+
+push_constants! {
     /// Wyman & Davis 2006's eye-space points, caustic quads and gathers
     /// (`shaders_glsl/wyman_davis2006/image_space.glsl`).
     pub struct ImageSpaceConstants {
@@ -207,6 +230,8 @@ mod tests {
         variants.extend(kernels.iter().map(|d| ("wyman_nichols2009/adaptive_step.geom", *d)));
         check::<AdaptiveConstants>(&variants);
         check::<CoverageConstants>(&[("wyman_nichols2009/coverage.comp", &[])]);
+        check::<BatchConstants>(&[("wyman_nichols2009/adaptive_batch.comp", &[])]);
+        check::<CountConstants>(&[("wyman_nichols2009/adaptive_counts.comp", &[])]);
     }
 
     #[test]

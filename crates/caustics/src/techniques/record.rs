@@ -49,14 +49,7 @@ pub fn record_light_space(f: &mut Frame, c: &CausticPasses, l: u32, frame: Caust
     if let Some(a) = frame.adaptive {
         // No photon buffer and no back-face pass: the geometry buffers hold the back faces.
         photon_buffer::record_receiver_positions(f, c, l)?;
-        let inputs = adaptive::Inputs {
-            frame_uniforms: inp.frame_uniforms,
-            caustic_uniforms: inp.caustic_uniforms,
-            meshes: inp.meshes,
-            receiver_positions: &c.targets.receiver_positions.view,
-            nearest: inp.nearest,
-        };
-        return a.record_traversal(f, &inputs, l);
+        return a.record_traversal(f, &adaptive_inputs(c), l, None);
     }
     photon_buffer::record_light_views(f, c, l)?;
     match frame.vertex_photons {
@@ -77,6 +70,19 @@ pub fn record_light_space(f: &mut Frame, c: &CausticPasses, l: u32, frame: Caust
 pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: CausticFrame) -> Result<()> {
     let (ct, pt, inp) = (c.targets, c.photons, c.inputs);
     for l in 0..lights {
+        if let Some(a) = frame.adaptive {
+            // Adaptive caustic maps splat batch after batch inside their traversal (Sec. 4.3).
+            let cmap = &ct.per_light[l as usize].0;
+            let splat =
+                adaptive::Splat { passes: inp.pass_inputs(), compute: frame.compute_splat, photon_targets: pt, cmap };
+            if frame.reuse_photons && !a.plan.batched() {
+                a.record_splat_batch(f, &splat, l, "", true, true)?;
+            } else {
+                photon_buffer::record_receiver_positions(f, c, l)?;
+                a.record_traversal(f, &adaptive_inputs(c), l, Some(&splat))?;
+            }
+            continue;
+        }
         if !frame.reuse_photons {
             record_light_space(f, c, l, frame)?;
         }
@@ -86,13 +92,6 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
         }
         let cmap = &ct.per_light[l as usize].0;
         let passes = inp.pass_inputs();
-        if let Some(a) = frame.adaptive {
-            match frame.compute_splat {
-                Some(cs) => cs.record(f, &passes, pt, &a.photon_list(), cmap, l)?,
-                None => a.record_splat(f, &passes, cmap, l)?,
-            }
-            continue;
-        }
         match (frame.hierarchy, frame.compute_splat, frame.copy) {
             (Some(h), None, _) => h.record_splat(f, &passes, pt, cmap, ct.levels, l)?,
             (Some(h), Some(cs), _) => cs.record(f, &passes, pt, &h.final_list(), cmap, l)?,
@@ -105,4 +104,16 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
         is.record_after_lights(f, c, eye, frame.reuse_photons)?;
     }
     Ok(())
+}
+
+/// What the adaptive traversal reads of the caustic passes' inputs.
+fn adaptive_inputs<'a>(c: &CausticPasses<'a>) -> adaptive::Inputs<'a> {
+    let inp = c.inputs;
+    adaptive::Inputs {
+        frame_uniforms: inp.frame_uniforms,
+        caustic_uniforms: inp.caustic_uniforms,
+        meshes: inp.meshes,
+        receiver_positions: &c.targets.receiver_positions.view,
+        nearest: inp.nearest,
+    }
 }

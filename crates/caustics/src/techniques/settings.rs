@@ -11,6 +11,7 @@ use super::technique::Technique;
 use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNEL};
 use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
 use super::wyman_davis2006::settings::{GatherLighting, QuadLighting, Reflection, Space, TemporalFilter};
+use super::wyman_nichols2009::adaptive::batches as wn2009_batches;
 use super::wyman_nichols2009::settings::{self as wn2009, Metric, Refraction};
 use super::{shared, wyman2008, wyman_davis2006};
 use serde::{Deserialize, Serialize};
@@ -151,6 +152,11 @@ caustic_settings! {
     /// adaptive: the light-space geometry buffers' resolution as a fraction of the caustic map's
     /// (Wyman & Nichols 2009 Sec. 3.2: 0.25, the default), (0, 4], 16..=8192 texels.
     gbuffer_scale: f32 = wn2009::DEFAULT_GBUFFER_SCALE, only Adaptive;
+    /// adaptive: the photon storage allowed, MiB (Wyman & Nichols 2009 Sec. 4.3): the traversal
+    /// goes breadth-first as deep as it fits, then splits the pending clusters into batches, each
+    /// refined and splatted before the next; 0 (the default) is no limit. With a limit, photons
+    /// may go up to 16384 (max_level 8).
+    photon_memory_limit: u32 = 0, only Adaptive;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.
     precision: Precision = Precision::Float, only PoolConvolution;
@@ -264,8 +270,9 @@ impl CausticSettings {
             let k = if key == "--" { k.replace('_', "-") } else { k.to_string() };
             Err(crate::input_error!("{origin}: key `{key}{k}`: {msg}").into())
         };
-        if !(64..=4096).contains(&self.photons) {
-            bad("photons", format!("must be between 64 and 4096 (photons per side), got {}", self.photons))?;
+        let most = self.most_photons();
+        if !(64..=most).contains(&self.photons) {
+            bad("photons", format!("must be between 64 and {most} (photons per side), got {}", self.photons))?;
         }
         if !(self.splat_radius > 0.0 && self.splat_radius <= 32.0) {
             bad("splat_radius", format!("must be in (0, 32] caustic-map texels, got {}", self.splat_radius))?;
@@ -312,10 +319,16 @@ impl CausticSettings {
             )?;
         }
         if let Some(level) = self.max_level {
-            let deepest = wn2009::finest_level(4096).unwrap_or(0);
+            let deepest = wn2009::finest_level(most).unwrap_or(0);
             if level > deepest {
-                bad("max_level", format!("must be between 0 and {deepest} (64² to 4096² photons), got {level}"))?;
+                bad("max_level", format!("must be between 0 and {deepest} (64² to {most}² photons), got {level}"))?;
             }
+        }
+        if self.photon_memory_limit > 1 << 20 {
+            bad(
+                "photon_memory_limit",
+                format!("must be at most 1048576 MiB (0: no limit), got {}", self.photon_memory_limit),
+            )?;
         }
         if self.technique == Technique::Adaptive {
             self.validate_adaptive(&bad)?;
@@ -336,11 +349,18 @@ impl CausticSettings {
                 "photons",
                 format!(
                     "technique `adaptive` refines a 64² grid of photons by halving its cells, so photons must be \
-                     64 × 2^L (64, 128, 256, 512, 1024, 2048 or 4096), got {}",
+                     64 × 2^L (64, 128, 256, ..., 4096; up to 16384 with a photon_memory_limit), got {}",
                     self.photons
                 ),
             );
         };
+        if self.photon_memory_limit > 0 {
+            let xfb = self.path == TraversalPath::Xfb;
+            let limit = self.photon_memory_limit as u64 * 1024 * 1024;
+            if let Err(e) = wn2009_batches::plan(level, self.metric, xfb, Some(limit), 1) {
+                bad("photon_memory_limit", e)?;
+            }
+        }
         match self.max_level {
             Some(max) if max != level => bad(
                 "max_level",
@@ -351,6 +371,16 @@ impl CausticSettings {
                 ),
             ),
             _ => Ok(()),
+        }
+    }
+
+    /// The most photons per side: 16384 for `adaptive` under a memory limit (its batches need no
+    /// buffer of them all), else 4096.
+    fn most_photons(&self) -> u32 {
+        if self.technique == Technique::Adaptive && self.photon_memory_limit > 0 {
+            wn2009::TOP_PHOTONS << wn2009::MAX_LEVEL
+        } else {
+            4096
         }
     }
 

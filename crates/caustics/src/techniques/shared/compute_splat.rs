@@ -59,6 +59,14 @@ impl ListKind {
 
 pub use super::PassInputs as Inputs;
 
+/// One batch of a splat made in batches: its pass-name tag, and whether it is the first (the
+/// sum is cleared) and the last (the sum is stored in the caustic map).
+pub struct Batch<'a> {
+    pub tag: &'a str,
+    pub first: bool,
+    pub last: bool,
+}
+
 /// Where the dispatch over the traversal's final list finds its work groups.
 enum ListDispatch {
     /// The compute traversal's append counter holds them (vkcore/compact_finalize.comp).
@@ -162,6 +170,23 @@ impl ComputeSplat {
         cmap: &ImageView,
         l: u32,
     ) -> Result<()> {
+        self.record_batch(f, inp, pt, photons, cmap, l, &Batch { tag: "", first: true, last: true })
+    }
+
+    /// [`Self::record`] for one batch of photons (adaptive caustic maps' batches, Wyman &
+    /// Nichols 2009 Sec. 4.3): the first clears the sum, the last stores it in `cmap`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_batch(
+        &self,
+        f: &mut Frame,
+        inp: &Inputs,
+        pt: &PhotonTargets,
+        photons: &Photons,
+        cmap: &ImageView,
+        l: u32,
+        batch: &Batch,
+    ) -> Result<()> {
+        let tag = batch.tag;
         let texels = pt.width * pt.width;
         // Check before recording anything.
         let kind = self.list.as_ref().map(|(_, kind)| *kind);
@@ -173,12 +198,14 @@ impl ComputeSplat {
                 anyhow::bail!("compute splat: built for {kind:?} (None: the photon texture), given other photons")
             }
         }
-        f.pass(&format!("splat.clear.light{l}"))
-            .uses([Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)])
-            .record(|cmd| {
-                cmd.fill_buffer(&self.accumulated, 0);
-                Ok(())
-            })?;
+        if batch.first {
+            f.pass(&format!("splat.clear.light{l}"))
+                .uses([Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)])
+                .record(|cmd| {
+                    cmd.fill_buffer(&self.accumulated, 0);
+                    Ok(())
+                })?;
+        }
         let mut binds = vec![
             Bind::Uniform(inp.frame_uniforms),
             Bind::Uniform(inp.caustic_uniforms),
@@ -193,7 +220,7 @@ impl ComputeSplat {
                 match &self.list {
                     Some((ListDispatch::ByteCount(b), _)) => {
                         let (pipeline, args) = &**b;
-                        f.pass(&format!("splat.arguments.light{l}"))
+                        f.pass(&format!("splat.arguments{tag}.light{l}"))
                             .bind(pipeline, [Bind::BufferRead(&list.counter), Bind::Buffer(args)])
                             .record(|cmd| {
                                 cmd.dispatch(1, 1, 1);
@@ -215,7 +242,7 @@ impl ComputeSplat {
             }
         }
         let arguments = indirect.map(|(args, _)| Use::buffer(args, Access::INDIRECT));
-        f.pass(&format!("splat.light{l}")).bind(&self.splat, binds).uses(arguments).record(|cmd| {
+        f.pass(&format!("splat{tag}.light{l}")).bind(&self.splat, binds).uses(arguments).record(|cmd| {
             cmd.push(&ComputeSplatConstants { photon_texels: texels, light: l })?;
             match indirect {
                 Some((args, offset)) => cmd.dispatch_indirect(args, offset),
@@ -226,6 +253,9 @@ impl ComputeSplat {
             }
             Ok(())
         })?;
+        if !batch.last {
+            return Ok(());
+        }
         let resolve = [Bind::Storage(cmap), Bind::BufferRead(&self.accumulated)];
         f.pass(&format!("splat.resolve.light{l}")).bind(&self.resolve, resolve).record(|cmd| {
             cmd.dispatch(self.side.div_ceil(8), self.side.div_ceil(8), self.layers);

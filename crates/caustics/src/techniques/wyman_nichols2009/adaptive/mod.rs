@@ -19,17 +19,21 @@
 //!
 //! Storage: each level's pending clusters are a list of packed u32 cells; the output is one list
 //! of 32-byte [`AdaptivePhoton`]s (position, cell, power, solid angle) that every step appends
-//! to, splatted by the point splat (or the compute splat) as a vertex array.
+//! to, splatted by the point splat (or the compute splat) as a vertex array. Under a memory
+//! limit the traversal is split into batches, each splatted before the next ([`batches`],
+//! Sec. 4.3).
 
+pub mod batches;
 pub mod photon;
 mod splat;
 mod traversal;
 
+pub use batches::BatchPlan;
 pub use photon::{pack_cell, unpack_cell, AdaptivePhoton};
-pub use traversal::{lists_image, Inputs};
+pub use traversal::{lists_image, Inputs, Splat};
 
 use super::geometry_buffers::LightGeometryBuffers;
-use super::settings::{tests_convergence, Metric, TOP_PHOTONS};
+use super::settings::{Metric, TOP_PHOTONS};
 use crate::techniques::shared::pipelines::point_splat_desc;
 use crate::techniques::wyman2008::TraversalPath;
 use crate::techniques::CausticSettings;
@@ -67,21 +71,28 @@ pub struct AdaptiveCaustics {
     /// The last level L (photons on the (64 × 2^L)² grid).
     pub finest: u32,
     pub geometry: LightGeometryBuffers,
+    /// How the traversal is split into batches (one batch without a memory limit).
+    pub plan: BatchPlan,
     /// clusters[k]: the pending clusters of level k; clusters[0], the 32² clusters of the 64²
-    /// coarse grid, is uploaded once.
+    /// coarse grid, is uploaded once. Below the breadth-first levels, one batch's.
     clusters: Vec<CompactStream>,
+    /// A batch's clusters of level B (batched traversals only).
+    batch_input: Option<CompactStream>,
     /// What the last step's children would be written to (nothing is).
     spare: CompactStream,
     /// Max-error on the xfb path: the hits of one step's clusters.
     hits: Option<CompactStream>,
     /// Every output photon of the light traversed last.
     pub photons: CompactStream,
-    /// Per light: each level's cluster count, then the photon count after each step (u32;
-    /// bytes on the xfb path).
+    /// Per light: each level's cluster count, then the photon count after each step, summed
+    /// over the batches (u32 elements).
     counts: Buffer,
     lights: u32,
     kernels: Kernels,
     splat: Pipeline,
+    /// The batch input's copy and the per-level counts (`adaptive_batch.comp`, `adaptive_counts.comp`).
+    batch_select: Pipeline,
+    count: Pipeline,
 }
 
 /// The traversal's bindings 0-7 (`adaptive.glsl`): uniforms, the trace's back faces and
@@ -109,28 +120,24 @@ impl AdaptiveCaustics {
             )
         })?;
         let n = TOP_PHOTONS << finest;
-        // Worst cases: every cluster of level k pending, every photon of level L output.
-        let clusters_at = |k: u32| ((TOP_PHOTONS / 2) << k) * ((TOP_PHOTONS / 2) << k);
-        let photon_bytes = n as u64 * n as u64 * PHOTON_BYTES;
-        let converging = (0..=finest).any(|k| tests_convergence(s.metric, k));
-        let hits_bytes = clusters_at(finest) as u64 * HITS_BYTES;
-        let limit = match path {
+        let xfb = path == CompactionPath::TransformFeedback;
+        let limit = (s.photon_memory_limit > 0).then(|| s.photon_memory_limit as u64 * 1024 * 1024);
+        let plan = batches::plan(finest, s.metric, xfb, limit, lights)
+            .map_err(|e| crate::input_error!("caustics.photon_memory_limit: {e}"))?;
+        // Every list is one buffer: the device must address the largest.
+        let largest = (plan.photons as u64 * PHOTON_BYTES).max(plan.hits as u64 * HITS_BYTES);
+        let device = match path {
             CompactionPath::TransformFeedback => {
                 ("maxTransformFeedbackBufferSize", ctx.info().max_transform_feedback_buffer_size)
             }
             CompactionPath::Compute => ("maxStorageBufferRange", ctx.info().max_storage_buffer_range as u64),
         };
-        let largest = if converging && path == CompactionPath::TransformFeedback {
-            photon_bytes.max(hits_bytes)
-        } else {
-            photon_bytes
-        };
-        if largest > limit.1 {
+        if largest > device.1 {
             return Err(crate::input_error!(
-                "caustics.photons: technique `adaptive` at {n}² photons needs a photon list of up to {largest} bytes, \
-                 more than this device's {} ({}); use fewer photons",
-                limit.0,
-                limit.1
+                "caustics.photons: technique `adaptive` at {n}² photons needs a list of up to {largest} bytes, more \
+                 than this device's {} ({}); use fewer photons, or a photon_memory_limit to split it into batches",
+                device.0,
+                device.1
             )
             .into());
         }
@@ -138,25 +145,35 @@ impl AdaptiveCaustics {
         let stream =
             |name: &str, capacity: u32, bytes: u64| CompactStream::with_element_bytes(ctx, name, path, capacity, bytes);
         let mut clusters = vec![];
-        for k in 0..=finest {
-            clusters.push(stream(&format!("adaptive clusters level {k}"), clusters_at(k), CLUSTER_BYTES)?);
+        for (k, &capacity) in plan.clusters.iter().enumerate() {
+            clusters.push(stream(&format!("adaptive clusters level {k}"), capacity, CLUSTER_BYTES)?);
         }
         let side = TOP_PHOTONS / 2;
         let seed: Vec<u32> = (0..side * side).map(|i| pack_cell([i % side, i / side, 0])).collect();
         ctx.upload_buffer(&clusters[0].data, bytemuck::cast_slice(&seed))?;
         let count = seed.len() as u32;
         // The compute path's counter (vkcore/compact_counter.glsl): count, capacity, the dispatch
-        // over 64-wide groups, the draw.
-        // On the xfb path its first word is the byte count, as transform feedback writes it.
-        let first = if path == CompactionPath::TransformFeedback { count * CLUSTER_BYTES as u32 } else { count };
+        // over 64-wide groups, the draw. On the xfb path its first word is the byte count, as
+        // transform feedback writes it.
+        let first = if xfb { count * CLUSTER_BYTES as u32 } else { count };
         let header: [u32; 12] = [first, count, 0, 0, count.div_ceil(64), 1, 1, 0, count, 1, 0, 0];
         ctx.upload_buffer(&clusters[0].counter, bytemuck::cast_slice(&header))?;
         let spare = stream("adaptive spare clusters", 1, CLUSTER_BYTES)?;
-        let hits = (converging && path == CompactionPath::TransformFeedback)
-            .then(|| stream("adaptive cluster hits", clusters_at(finest), HITS_BYTES))
-            .transpose()?;
-        let photons = stream("adaptive photons", n * n, PHOTON_BYTES)?;
+        let batch_input =
+            plan.batched().then(|| stream("adaptive batch clusters", plan.batch, CLUSTER_BYTES)).transpose()?;
+        let hits = (plan.hits > 0).then(|| stream("adaptive cluster hits", plan.hits, HITS_BYTES)).transpose()?;
+        let photons = stream("adaptive photons", plan.photons, PHOTON_BYTES)?;
         let counts = Buffer::new(ctx, "adaptive counts", (lights.max(1) * 2 * (finest + 1)) as u64 * 4, Memory::Gpu)?;
+        let storage = |name: &str, kinds: &[K]| -> Result<Pipeline> {
+            Ok(Pipeline::compute(
+                ctx,
+                &format!("adaptive.{name}"),
+                &sh.compile(&format!("wyman_nichols2009/adaptive_{name}.comp"), &[])?,
+                kinds,
+            )?)
+        };
+        let batch_select = storage("batch", &[K::StorageBuffer; 4])?;
+        let count = storage("counts", &[K::StorageBuffer; 3])?;
         let kernels = match path {
             CompactionPath::TransformFeedback => Kernels::Xfb(Box::new(XfbKernels {
                 subdivide: xfb_kernel(ctx, sh, "SUBDIVIDE")?,
@@ -197,7 +214,9 @@ impl AdaptiveCaustics {
             metric: s.metric,
             finest,
             geometry,
+            plan,
             clusters,
+            batch_input,
             spare,
             hits,
             photons,
@@ -205,7 +224,17 @@ impl AdaptiveCaustics {
             lights,
             kernels,
             splat: Pipeline::graphics(ctx, &splat)?,
+            batch_select,
+            count,
         })
+    }
+
+    /// The photon storage allocated (bytes): every list of pending clusters, the batch input,
+    /// the hits and the output photons, with their counters ([`BatchPlan::storage_bytes`]).
+    pub fn photon_storage_bytes(&self) -> u64 {
+        let streams =
+            self.clusters.iter().chain([&self.spare, &self.photons]).chain(&self.batch_input).chain(&self.hits);
+        streams.map(|s| s.data.size() + s.counter.size()).sum()
     }
 }
 
