@@ -4,9 +4,7 @@
 #ifndef MESH_CONSTANTS_GLSL
 #define MESH_CONSTANTS_GLSL
 
-#define MATERIAL_DIFFUSE 0u
-#define MATERIAL_REFRACTIVE 1u
-#define MATERIAL_REFLECTIVE 2u
+#include "common/materials.glsl"
 
 layout(push_constant) uniform MeshConstants {
     vec4 colour;          // diffuse albedo / transmission colour / specular colour
@@ -14,6 +12,7 @@ layout(push_constant) uniform MeshConstants {
     uint material;        // MATERIAL_*
     uint light;           // the light a pass from a light (or the shadow map) renders for
     uint first_photon;    // vertex photons: this mesh's first photon
+    uint object;          // the mesh's index in the scene (light-space geometry buffers)
 } mesh;
 
 #endif

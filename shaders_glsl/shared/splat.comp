@@ -1,8 +1,8 @@
 // Compute splat: the modern path beside the point splat (photons/splat.vert + splat.frag). One
-// invocation per photon (a photon-buffer texel, or an entry of the hierarchical traversal's
-// final list with HIERARCHY) adds its kernel, weighted as the point splat's fragments are, to
-// a float buffer with atomics; photons/splat_resolve.comp then stores the buffer in the caustic
-// map. The texels, weights and layers are those of the point splat (shared/splat_photon.glsl),
+// invocation per photon (a photon-buffer texel, an entry of the hierarchical traversal's final
+// list with HIERARCHY, or an output photon of the adaptive traversal with ADAPTIVE_PHOTONS) adds
+// its kernel, weighted as the point splat's fragments are, to a float buffer with atomics;
+// photons/splat_resolve.comp then stores the buffer in the caustic map. The texels, weights and layers are those of the point splat (shared/splat_photon.glsl),
 // so both give the same caustic map up to the order of the float additions.
 #version 450
 #extension GL_EXT_shader_atomic_float : require
@@ -16,20 +16,29 @@ layout(push_constant) uniform ComputeSplatConstants {
     uint light;
 } constants;
 // Layers x M x M texels of (power rgb, photon count), zeroed before the dispatch.
-#ifdef HIERARCHY
+#if defined(HIERARCHY)
 layout(std430, binding = 6) buffer Accumulated { float texels[]; };
 layout(std430, binding = 7) readonly buffer Entries { uint entries[]; };   // packed (hierarchy/entry.glsl)
+#define LIST_COUNTER_BINDING 8
+#elif defined(ADAPTIVE_PHOTONS)
+#include "wyman_nichols2009/adaptive_photon.glsl"
+layout(std430, binding = 4) buffer Accumulated { float texels[]; };
+// The adaptive traversal's output photons (Wyman & Nichols 2009 Sec. 3.2).
+layout(std430, binding = 5) readonly buffer Records { AdaptivePhoton records[]; };
+#define LIST_COUNTER_BINDING 6
+#else
+layout(std430, binding = 4) buffer Accumulated { float texels[]; };
+#endif
+#ifdef LIST_COUNTER_BINDING
 // The list's counter: transform feedback's byte count (XFB) or vkcore's append counter.
 #ifdef XFB
-layout(std430, binding = 8) readonly buffer Counter { uint bytes; };
+layout(std430, binding = LIST_COUNTER_BINDING) readonly buffer Counter { uint bytes; };
 uint entry_count() { return bytes / ENTRY_BYTES; }
 #else
 #include "vkcore/compact_counter.glsl"
-layout(std430, binding = 8) readonly buffer Counter { CompactCounter counter; };
+layout(std430, binding = LIST_COUNTER_BINDING) readonly buffer Counter { CompactCounter counter; };
 uint entry_count() { return min(counter.count, counter.capacity); }
 #endif
-#else
-layout(std430, binding = 4) buffer Accumulated { float texels[]; };
 #endif
 
 void deposit(int layer, ivec2 t, int m, vec4 v) {
@@ -45,10 +54,15 @@ void main() {
     CausticLight cl = caustics.lights[constants.light];
     vec4 pos;
     vec3 power;
-#ifdef HIERARCHY
+#if defined(HIERARCHY)
     if (i >= entry_count()) return;
     uvec4 entry = unpack_entry(entries[i]);
     if (!photon_of_entry(entry, pos, power)) return;
+#elif defined(ADAPTIVE_PHOTONS)
+    if (i >= entry_count()) return;
+    uvec4 entry = uvec4(0u);
+    pos = vec4(records[i].position, 1.0);
+    power = records[i].power;
 #else
     uvec4 entry = uvec4(0u);
     if (i >= constants.photon_texels || !photon_of_texel(i, pos, power)) return;

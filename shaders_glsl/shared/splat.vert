@@ -7,7 +7,9 @@
 //   vertex array"): the photon buffer was copied into a vertex array (positions) and a buffer
 //   (power), one vertex per photon;
 // - HIERARCHY: one vertex per entry of the hierarchical traversal's final list (Wyman 2008
-//   Sec. 3.1-3.2), each picking its layer of the multi-resolution map (Sec. 3.3) with gl_Layer.
+//   Sec. 3.1-3.2), each picking its layer of the multi-resolution map (Sec. 3.3) with gl_Layer;
+// - ADAPTIVE_PHOTONS: one vertex per photon the adaptive traversal output (Wyman & Nichols 2009
+//   Sec. 3.2, step 3), its position and power read as vertex attributes.
 // shared/splat.comp deposits the same splats from a compute shader.
 #version 450
 #ifdef HIERARCHY
@@ -33,6 +35,15 @@ vec3 photon_power_of(uint id) { return powers[id].rgb; }
 bool fetch_photon(out vec4 pos, out vec3 power) {
     pos = a_position;
     power = photon_power_of(gl_VertexIndex);
+    return true;
+}
+uvec4 entry() { return uvec4(0u); }
+#elif defined(ADAPTIVE_PHOTONS)
+layout(location = 0) in vec3 a_position;                    // AdaptivePhoton (adaptive_photon.glsl)
+layout(location = 1) in vec3 a_power;
+bool fetch_photon(out vec4 pos, out vec3 power) {
+    pos = vec4(a_position, 1.0);
+    power = a_power;
     return true;
 }
 uvec4 entry() { return uvec4(0u); }

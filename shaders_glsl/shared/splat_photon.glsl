@@ -3,12 +3,13 @@
 // photon lands in the caustic map, its radius and layer, and its power divided by the kernel's
 // sum over the texel centres it covers (a photon deposits exactly its power).
 // Needs common/caustics.glsl; binds photon_position and photon_power at 2-3 and, with
-// HIERARCHY, the photon hierarchy at 4-5 (PHOTON_VERTEX_ARRAY brings its own photons).
+// HIERARCHY, the photon hierarchy at 4-5 (PHOTON_VERTEX_ARRAY and ADAPTIVE_PHOTONS bring their
+// own photons).
 #ifndef SPLAT_PHOTON_GLSL
 #define SPLAT_PHOTON_GLSL
 #include "shared/splat_kernel.glsl"
 
-#ifndef PHOTON_VERTEX_ARRAY
+#if !defined(PHOTON_VERTEX_ARRAY) && !defined(ADAPTIVE_PHOTONS)
 layout(binding = 2) uniform sampler2D photon_position;
 layout(binding = 3) uniform sampler2D photon_power;
 

@@ -1,124 +1,20 @@
-// Tracing one photon from the light through a specular surface, shared by the photon buffer
-// (a photon per light-space texel: Wyman & Davis 2006 Sec. 3.1, Shah's refractive vertex grid)
-// and the vertex-photon pass (a photon per mesh vertex: Shah's original first pass).
+// Tracing one photon from the light through a specular surface of the mesh being drawn, shared
+// by the photon buffer (a photon per light-space texel: Wyman & Davis 2006 Sec. 3.1, Shah's
+// refractive vertex grid) and the vertex-photon pass (a photon per mesh vertex: Shah's original
+// first pass). The tracing itself is shared/trace_surface.glsl.
 // Needs bindings: 0 frame, 1 caustics, 2 light-space back faces, 3 receiver positions.
 #ifndef TRACE_GLSL
 #define TRACE_GLSL
-#define CAUSTICS_BINDING 1
-#include "common/caustics.glsl"
+#include "shared/trace_surface.glsl"
 #include "common/mesh_constants.glsl"
-#include "common/fresnel.glsl"
-layout(binding = 2) uniform sampler2D light_back_faces;
-layout(binding = 3) uniform sampler2DArray receiver_positions;
 
-// Why a photon carries nothing (direction.w), so the photon-buffer dump explains losses.
-#define PHOTON_LOST_TIR 1.0
-#define PHOTON_LOST_NO_RECEIVER 2.0
-
-struct Photon {
-    vec4 position;   // xyz where it lands on the first diffuse surface; w = 1 if it lands
-    vec4 direction;  // xyz incident direction at the receiver; w: 0, or why it was lost
-    vec4 power;      // rgb W (also kept for lost photons, to account for them)
-};
-
-vec2 project_ndc(mat4 m, vec3 p, out bool inside) {
-    vec4 c = m * vec4(p, 1.0);
-    vec2 ndc = c.xy / c.w;
-    inside = c.w > 0.0 && all(lessThanEqual(abs(ndc), vec2(1.0)));
-    return ndc;
-}
-
-vec4 receiver_at(uint l, vec3 p, out bool inside) {
-    vec2 ndc = project_ndc(caustics.lights[l].caustic_view_proj, p, inside);
-    return texture(receiver_positions, vec3(ndc * 0.5 + 0.5, float(l)));
-}
-
-#include "shah2007/ray_geo.glsl"
-#include "wyman_davis2006/depth_search.glsl"
-
-bool find_receiver(uint l, vec3 o, vec3 d, out vec3 hit) {
-    if ((caustics.settings.w & CAUSTIC_WD_DEPTH_SEARCH) != 0u) return depth_search(l, o, d, hit);
-    return ray_geo(l, o, d, hit);
+// The material of the mesh being drawn.
+SpecularMaterial mesh_material() {
+    return SpecularMaterial(mesh.material, mesh.colour.rgb, dot(mesh.ior.rgb, vec3(1.0 / 3.0)));
 }
 
 // Photon through the surface point p1 (normal n1, thickness d_n) with solid angle `omega`.
 Photon trace_photon(uint l, vec3 p1, vec3 n1, float d_n, float omega) {
-    Photon ph;
-    ph.position = vec4(0.0);
-    ph.direction = vec4(0.0);
-    ph.power = vec4(0.0);
-    CausticLight cl = caustics.lights[l];
-    vec3 v = normalize(p1 - cl.position.xyz);
-    if (dot(n1, v) > 0.0) n1 = -n1;
-    vec3 power = frame.lights[l].intensity.rgb * omega;
-    // A spot light emits nothing outside its cone (its projected texture is not applied to
-    // photons, as in the CPU reference).
-    if (frame.lights[l].position.w > 0.5 && dot(v, frame.lights[l].spot.xyz) < frame.lights[l].spot.w) power = vec3(0.0);
-    vec3 o, d;
-    if (mesh.material == MATERIAL_REFLECTIVE) {
-        o = p1;
-        d = reflect(v, n1);
-        power *= mesh.colour.rgb;
-    } else {
-        float ior = dot(mesh.ior.rgb, vec3(1.0 / 3.0));
-        float cos_i = dot(-v, n1);
-        vec3 t1 = refract(v, n1, 1.0 / ior);
-        bool inside;
-        vec2 ndc = project_ndc(cl.photon_view_proj, p1, inside);
-        vec4 back = texture(light_back_faces, ndc * 0.5 + 0.5);
-        float d_v = max(back.w - distance(p1, cl.position.xyz), 0.0);
-        float theta_i = acos(clamp(cos_i, -1.0, 1.0));
-        float theta_t = acos(clamp(dot(-t1, n1), -1.0, 1.0));
-        float ratio = theta_i > 1e-4 ? theta_t / theta_i : 1.0;
-        float dist = ratio * d_v + (1.0 - ratio) * d_n;     // Wyman 2005, Eq. 2
-        vec3 p2 = p1 + dist * t1;
-        // Beyond the paper (caustics.back_face_iterations > 0): refine the exit point against
-        // the back faces the light sees, rayGeo's iteration applied to the back-face distances.
-        // Wyman's d estimate alone falls short near the silhouette, where the chord is long but
-        // d_V is ~0, and the wrong back-face normal then reports total internal reflection.
-        for (uint k = 0u; k < uint(caustics.splat.z); ++k) {
-            vec3 dir_l = normalize(p2 - cl.position.xyz);
-            vec2 nk = project_ndc(cl.photon_view_proj, p2, inside);
-            vec4 bk = texture(light_back_faces, nk * 0.5 + 0.5);
-            if (bk.w <= 0.0) break;
-            p2 = p1 + distance(p1, cl.position.xyz + dir_l * bk.w) * t1;
-        }
-        vec2 ndc2 = project_ndc(cl.photon_view_proj, p2, inside);
-        vec3 n2 = texture(light_back_faces, ndc2 * 0.5 + 0.5).xyz;
-        if (dot(n2, n2) < 0.5) n2 = -n1;
-        n2 = normalize(n2);
-        vec3 t2 = refract(t1, -n2, ior);
-        if (dot(t2, t2) < 0.5) {                        // total internal reflection: lost
-            ph.power = vec4(power, 0.0);
-            ph.direction.w = PHOTON_LOST_TIR;
-            return ph;
-        }
-        if ((caustics.settings.w & CAUSTIC_FRESNEL) != 0u) {
-            power *= (1.0 - dielectric_fresnel(cos_i, 1.0 / ior)) * (1.0 - dielectric_fresnel(dot(-t1, -n2), ior));
-        }
-        power *= mesh.colour.rgb;
-        o = p2;
-        d = normalize(t2);
-    }
-    vec3 hit;
-    bool found;
-    if (mesh.material == MATERIAL_REFLECTIVE && (caustics.settings.w & CAUSTIC_REFLECTION_PLANE) != 0u) {
-        // Wyman & Davis 2006 Sec. 4: "we reflect about the surface normal and perform a ray-plane
-        // intersection with a single background plane".
-        float t = (caustics.background_plane.x - o.y) / d.y;
-        found = d.y != 0.0 && t > 0.0;
-        hit = o + t * d;
-    } else {
-        found = find_receiver(l, o, d, hit);
-    }
-    if (!found) {
-        ph.power = vec4(power, 0.0);
-        ph.direction.w = PHOTON_LOST_NO_RECEIVER;
-        return ph;
-    }
-    ph.position = vec4(hit, 1.0);
-    ph.direction = vec4(d, 0.0);
-    ph.power = vec4(power, 1.0);
-    return ph;
+    return trace_photon_through(l, p1, n1, d_n, omega, mesh_material());
 }
 #endif

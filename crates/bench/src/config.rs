@@ -176,6 +176,7 @@ pub const METRIC_KINDS: &[&str] = &[
     "valid_fraction",
     "rel_rmse",
     "flux_ratio",
+    "photon_storage",
 ];
 
 #[derive(Debug, Clone, Deserialize, Serialize)]

@@ -22,6 +22,7 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         // A share of the photon buffer, as a percentage with three significant digits.
         "valid_fraction" => format!("{}%", significant(100.0 * v)),
         "rel_rmse" | "flux_ratio" => format!("{v:.4}"),
+        "photon_storage" => significant(v),
         _ => format!("{v}"),
     }
 }
@@ -57,6 +58,7 @@ pub fn unit(kind: &str) -> &'static str {
         "photons_emitted" => "photons",
         "splats_drawn" | "photons_processed" => "points",
         "valid_photons" => "photons",
+        "photon_storage" => "MiB",
         _ => "",
     }
 }

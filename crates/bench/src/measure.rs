@@ -26,8 +26,11 @@ pub struct CellRun {
     pub stats_frame: Option<FrameReport>,
     pub photons_emitted: u64,
     pub splats_drawn: u64,
-    /// `hcm`: per light, the traversal's list sizes from the 16² level down to the splatted list.
+    /// `hcm`: per light, the traversal's list sizes from the 16² level down to the splatted list;
+    /// `adaptive`: each level's pending clusters, then the splatted photons.
     pub hierarchy_sizes: Option<Vec<Vec<u64>>>,
+    /// `adaptive`: the photon storage it allocated, bytes (Wyman & Nichols 2009 Sec. 4.3).
+    pub photon_storage: Option<u64>,
     pub quality: Option<Comparison>,
     /// Photons of the last frame that met a specular object and a receiver (read back from the
     /// photon buffer, untimed); `None` without a photon buffer.
@@ -178,7 +181,8 @@ impl<'a> Runner<'a> {
             stats_frame,
             photons_emitted: renderer.photons_emitted(),
             splats_drawn: renderer.splats_drawn()?,
-            hierarchy_sizes: renderer.hierarchy().map(|h| h.list_sizes(self.ctx)).transpose()?,
+            hierarchy_sizes: renderer.list_sizes()?,
+            photon_storage: renderer.adaptive().map(|a| a.photon_storage_bytes()),
             quality,
             valid_photons,
             lights: scene.lights.len() as u64,

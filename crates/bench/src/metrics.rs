@@ -86,7 +86,8 @@ fn wall_ms(run: &CellRun, exclude: &[String]) -> Vec<f64> {
 
 /// Photons (points) a frame pushes through the pipeline after the photon buffer: every texel
 /// for the dense techniques; for `hcm` every entry each traversal level reads plus the splatted
-/// list (Wyman & Nichols 2009 Table 1 counts the splatted ones: `splats_drawn`).
+/// list, for `adaptive` every pending cluster of every level plus the splatted photons (Wyman &
+/// Nichols 2009 Table 1 counts the splatted ones: `splats_drawn`).
 fn photons_processed(run: &CellRun) -> u64 {
     match &run.hierarchy_sizes {
         Some(lights) => lights.iter().flatten().sum(),
@@ -121,6 +122,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
                 run.valid_photons.map(|v| v as f64 / (run.caustics.photons as f64).powi(2) / run.lights.max(1) as f64),
             ),
             "rel_rmse" => exact(k, run.quality.as_ref().map(|q| q.rel_rmse)),
+            "photon_storage" => exact(k, run.photon_storage.map(|b| b as f64 / (1024.0 * 1024.0))),
             "flux_ratio" => exact(k, run.quality.as_ref().map(|q| q.caustic_flux_ratio)),
             _ => exact(k, None),
         };

@@ -90,6 +90,11 @@ pub struct CellResult {
     /// ran (Linux steal time; absent where unknown, and in results written before it was kept).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cpu_steal: Option<f64>,
+    /// Per light, the traversal's list sizes of the last frame: `hcm`'s from its 16² level down
+    /// to the splatted list; `adaptive`'s pending clusters of each level (64² photons first),
+    /// then the photons splatted (Wyman & Nichols 2009 Table 1, Fig. 7). Absent otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub list_sizes: Option<Vec<Vec<u64>>>,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -127,5 +132,6 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         wall_ms: run.wall_ms.clone(),
         passes,
         cpu_steal: run.cpu_steal,
+        list_sizes: run.hierarchy_sizes.clone(),
     }
 }

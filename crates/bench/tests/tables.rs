@@ -82,6 +82,7 @@ fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: &[f6
         wall_ms: samples.to_vec(),
         passes: vec![],
         cpu_steal: None,
+        list_sizes: None,
     }
 }
 

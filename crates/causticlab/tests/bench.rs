@@ -550,6 +550,50 @@ fn quick_hierarchical_tables_count_and_time_every_cell() {
 }
 
 #[test]
+fn quick_adaptive_table_counts_both_metrics_and_keeps_each_levels_list() {
+    // Wyman & Nichols 2009 Table 1's adaptive columns and Fig. 7: max-traversal splats what the
+    // hierarchy would (the valid photons, up to the geometry buffers' interpolation), max-error
+    // fewer once it tests convergence (512²), the same below; every cell keeps its per-level
+    // list sizes, whose last entry is the splatted count.
+    let (dir, r) = quick_run("wyman_nichols2009_adaptive.toml");
+    let md = std::fs::read_to_string(dir.join("wyman_nichols2009_adaptive.md")).expect("md");
+    assert!(md.contains("## Ratios"), "no Fig. 7 ratio grid:\n{md}");
+    for scene in ["bunny_in_room", "sphere_in_room"] {
+        for photons in [128u64, 512] {
+            let find = |t: &str| {
+                r["cells"]
+                    .as_array()
+                    .expect("cells")
+                    .iter()
+                    .find(|c| {
+                        c["cell"]["scene"].as_str().is_some_and(|s| s.contains(scene))
+                            && c["cell"]["technique_label"] == t
+                            && c["cell"]["photons"].as_u64() == Some(photons)
+                    })
+                    .unwrap_or_else(|| panic!("no cell {scene} {t} {photons}"))
+            };
+            let (hier, traversal, error) =
+                (find("Hier. Caustic Maps"), find("Adaptive Max Traversal"), find("Adaptive Max Error"));
+            let s = |c: &Value| metric(c, "splatted").unwrap_or(f64::NAN);
+            assert!(s(traversal) > 0.0, "{scene} {photons}: nothing splatted");
+            assert!((s(traversal) / s(hier) - 1.0).abs() < 0.1, "{scene} {photons}: {} vs {}", s(traversal), s(hier));
+            if photons < 512 {
+                assert_eq!(s(error), s(traversal), "{scene} {photons}: max-error clustered above 512²");
+            } else {
+                assert!(s(error) < s(traversal), "{scene} {photons}: max-error splatted no fewer");
+            }
+            for c in [traversal, error] {
+                let sizes = c["list_sizes"][0].as_array().expect("list sizes");
+                let levels = (photons / 64).trailing_zeros() as usize + 1;
+                assert_eq!(sizes.len(), levels + 1, "{scene} {photons}: {sizes:?}");
+                assert_eq!(sizes[0].as_u64(), Some(32 * 32), "{scene} {photons}: the coarse grid's clusters");
+                assert_eq!(sizes[levels].as_f64(), Some(s(c)), "{scene} {photons}: the splatted count");
+            }
+        }
+    }
+}
+
+#[test]
 fn quick_photon_view_times_every_view_and_the_fitted_one_wastes_least() {
     // V1: every view is timed, and the fitted view spends the largest share of its photons on
     // the object.

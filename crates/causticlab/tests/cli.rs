@@ -207,6 +207,48 @@ fn hierarchy_settings_need_technique_hcm() {
     assert_eq!(run.code, Some(0), "a scene's cluster key with --technique hcm: {}", run.describe());
 }
 
+/// `adaptive`'s settings (Wyman & Nichols 2009 Sec. 3.2, 4.3): the photon grid must be 64 × 2^L
+/// (beyond 4096² only under a memory limit that can hold its batches), the geometry buffers a
+/// sane fraction of the caustic map, `max_level` within range and agreeing with `photons`; its
+/// keys are refused for other techniques; `--max-level` alone sets the grid.
+#[test]
+fn adaptive_settings_are_checked() {
+    let s = scene("sphere_on_plane");
+    let adaptive = |extra: &[&str]| -> Vec<String> {
+        let mut v: Vec<String> =
+            ["render", "--scene", &s, "--technique", "adaptive"].iter().map(|x| x.to_string()).collect();
+        v.extend(extra.iter().map(|x| x.to_string()));
+        v
+    };
+    let cases: [(&[&str], &[&str]); 8] = [
+        (&["--photons", "16384"], &["--photons", "4096", "16384"]),
+        (&["--photons", "16384", "--photon-memory-limit", "1"], &["--photon-memory-limit", "at least", "16384²"]),
+        (&["--photons", "200"], &["--photons", "64 × 2^L", "200"]),
+        (&["--gbuffer-scale", "0"], &["--gbuffer-scale", "(0, 4]"]),
+        (&["--gbuffer-scale", "nan"], &["--gbuffer-scale", "(0, 4]"]),
+        (&["--gbuffer-scale", "0.001"], &["--gbuffer-scale", "16 to 8192"]),
+        (&["--max-level", "9"], &["--max-level", "between 0 and 6", "9"]),
+        (&["--photons", "256", "--max-level", "4"], &["--max-level", "1024²", "256"]),
+    ];
+    for (extra, want) in cases {
+        let args = adaptive(extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        expect_input_error(&args, want);
+    }
+    expect_input_error(
+        &["render", "--scene", &s, "--technique", "wd-points", "--metric", "max-error"],
+        &["metric", "max-error", "adaptive", "wd-points"],
+    );
+    let out = scratch("adaptive-max-level").join("out");
+    let out = out.display().to_string();
+    let args = adaptive(&["--max-level", "0", "--caustic-map-resolution", "256", "--out", &out]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let run = causticlab(&args);
+    assert_eq!(run.code, Some(0), "--max-level 0 alone: {}", run.describe());
+    let timings = std::fs::read_to_string(std::path::Path::new(&out).join("timings.json")).expect("timings.json");
+    assert!(timings.contains("\"photons\": 64"), "--max-level 0 should give 64² photons: {timings}");
+}
+
 #[test]
 fn unknown_feature_name() {
     let s = scene("sphere_on_plane");
@@ -515,8 +557,8 @@ fn render_help_lists_every_enumerated_value_under_its_group() {
         assert!(run.stdout.contains(heading), "no `{heading}` group in\n{}", run.stdout);
     }
     // Each enumerated flag with the names the enum accepts (read from the enums, not copied).
-    use caustics::techniques::{trendall_stewart2000, wyman2008, Intersect, SplatKernel, SplatPath, Technique};
-    let flags: [(&str, &[&str]); 9] = [
+    use caustics::techniques::{trendall_stewart2000, wyman2008, Intersect, Metric, SplatKernel, SplatPath, Technique};
+    let flags: [(&str, &[&str]); 10] = [
         ("--technique", Technique::NAMES),
         ("--splat-kernel", SplatKernel::NAMES),
         ("--intersect", Intersect::NAMES),
@@ -526,6 +568,7 @@ fn render_help_lists_every_enumerated_value_under_its_group() {
         ("--varying-radius", wyman2008::VaryingRadius::NAMES),
         ("--splat-path", SplatPath::NAMES),
         ("--precision", trendall_stewart2000::Precision::NAMES),
+        ("--metric", Metric::NAMES),
     ];
     for (flag, names) in flags {
         let at = run.stdout.find(&format!("{flag} ")).unwrap_or_else(|| panic!("{flag} missing"));

@@ -3,7 +3,8 @@
 //! accuracy), on both sphere scenes, validation layer on:
 //! - renders with no validation message;
 //! - conserves caustic power: the caustic map holds the power of the photons that landed (read
-//!   from the photon buffer dump), within the technique's stated tolerance;
+//!   from the photon buffer dump; `adaptive`: from its output photons), within the technique's
+//!   stated tolerance;
 //! - stays within its stated error of the exact CPU photon reference (relative RMSE and caustic
 //!   flux ratio of the receiver map, `caustics::compare`);
 //! - writes every dump it declares (`render::dumps_for`) and no other.
@@ -60,6 +61,10 @@ fn stated(t: Technique) -> Option<Stated> {
         // Wyman & Davis' depth search lands every photon on the map: drift < 1e-7, RMSE 0.108,
         // flux 0.962-0.991; hcm splats the same photons (no clustering by default).
         Technique::WdPoints | Technique::Hcm => Some(Stated { power: 1e-4, rel_rmse: 0.13, flux: 0.95..=1.01 }),
+        // Photons created by deferred shading from geometry buffers at a quarter of the caustic
+        // map's resolution (128² for 256² photons: positions and normals interpolated), landing
+        // as wd-points': drift < 3e-8, RMSE 0.112, flux 0.962-0.992.
+        Technique::Adaptive => Some(Stated { power: 1e-4, rel_rmse: 0.135, flux: 0.95..=1.01 }),
         // Each photon lit in the pixel it lands in, over the pixel's area from world positions:
         // drift < 2e-8, RMSE 0.149 (oblique), flux 0.992-0.993.
         Technique::WdEyePoints => Some(Stated { power: 1e-4, rel_rmse: 0.18, flux: 0.95..=1.02 }),
@@ -109,6 +114,17 @@ fn power(img: &ImageF32, layer: &str, valid: Option<&str>) -> f64 {
     (0..(img.width * img.height) as usize)
         .filter(|&i| v.is_none_or(|v| v.data[i * v.channels.len() + 3] > 0.5))
         .map(|i| (l.data[i * nc] as f64 + l.data[i * nc + 1] as f64 + l.data[i * nc + 2] as f64) / 3.0)
+        .sum()
+}
+
+/// The power (mean of R, G, B, in W) of the adaptive traversal's output photons, from the
+/// `adaptive_lists` dump: the photons that landed.
+fn adaptive_landed(lists: &ImageF32) -> f64 {
+    let l = lists.layer(Some("light0.photons")).expect("photons layer");
+    l.data
+        .chunks_exact(l.channels.len())
+        .filter(|r| r[10] > 0.5)
+        .map(|r| (r[6] as f64 + r[7] as f64 + r[8] as f64) / 3.0)
         .sum()
 }
 
@@ -172,6 +188,8 @@ fn check(techniques: &[Technique], space: Space) -> Vec<String> {
             let get = |name: &str| &dumps.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("{name}")).1;
             let (landed, held) = if scene.caustics.eye_space() {
                 (landed_on_receiver(get("photon_buffer"), &scene), receiver_flux(receiver, &scene))
+            } else if t == Technique::Adaptive {
+                (adaptive_landed(get("adaptive_lists")), power(get("caustic_map"), "light0", None))
             } else {
                 (
                     power(get("photon_buffer"), "light0.power", Some("light0.position")),

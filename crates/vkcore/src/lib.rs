@@ -41,7 +41,7 @@ pub use pass::Pass;
 pub use pipeline::{
     BindingKind, Blend, Cull, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout, PUSH_CONSTANT_BYTES,
 };
-pub use profiler::{FrameReport, PassSummary, PassTiming, PipelineStats, Profiler};
+pub use profiler::{FrameReport, PassSummary, PassTiming, PipelineStats, Profiler, MAX_PASSES};
 pub use push::{check_push_constants, PushConstants};
 pub use query::QueryPool;
 pub use recorder::{Cmd, Targets};

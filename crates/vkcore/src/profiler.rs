@@ -8,8 +8,9 @@ use crate::Feature;
 use ash::vk;
 use std::collections::BTreeMap;
 
-/// Most passes one frame can profile.
-pub const MAX_PASSES: u32 = 512;
+/// Most passes one frame can profile (adaptive caustic maps' photon batches record a few per
+/// level per batch).
+pub const MAX_PASSES: u32 = 4096;
 
 /// Counters from a pipeline-statistics query (None where the device has no such counter).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -17,6 +17,9 @@ push_constants! {
         pub light: u32,
         /// Vertex photons: the mesh's first photon.
         pub first_photon: u32,
+        /// The mesh's index in the scene (which object covers a texel of the light-space
+        /// geometry buffers of adaptive caustic maps).
+        pub object: u32,
     }
 }
 
@@ -66,6 +69,51 @@ push_constants! {
         /// Entries in the traversal's final list.
         pub entries: u32,
         pub light: u32,
+    }
+}
+
+push_constants! {
+    /// One level of the coverage pyramid of adaptive caustic maps' geometry buffers
+    /// (`wyman_nichols2009/coverage.comp`).
+    pub struct CoverageConstants {
+        /// m: 0 from the geometry buffers, else from level m - 1.
+        pub level: u32,
+    }
+}
+
+push_constants! {
+    /// One kernel of a step of the adaptive traversal (`wyman_nichols2009/adaptive.glsl`).
+    pub struct AdaptiveConstants {
+        pub light: u32,
+        /// k: the step's photons lie on the (64 2^k)² grid.
+        pub level: u32,
+        /// L: the last level (64 2^L photons per side).
+        pub finest: u32,
+        /// 1 when the step tests convergence (max-error metric, from the 512² level on).
+        pub converge: u32,
+    }
+}
+
+push_constants! {
+    /// A batch's input of the adaptive traversal (`wyman_nichols2009/adaptive_batch.comp`).
+    pub struct BatchConstants {
+        /// The batch's first cluster of level B.
+        pub first: u32,
+        /// Clusters per batch.
+        pub size: u32,
+        /// 1 on the transform-feedback path (byte counts).
+        pub xfb: u32,
+    }
+}
+
+push_constants! {
+    /// The adaptive traversal's per-level counts (`wyman_nichols2009/adaptive_counts.comp`).
+    pub struct CountConstants {
+        /// The next level's slot (u32::MAX: none).
+        pub cluster_slot: u32,
+        pub photon_slot: u32,
+        /// 1 on the transform-feedback path (byte counts).
+        pub xfb: u32,
     }
 }
 
@@ -127,6 +175,8 @@ mod tests {
             ("shared/back_faces.frag", &[]),
             ("shared/photon_buffer.frag", &[]),
             ("shah2007/vertex_photons.vert", &[]),
+            ("wyman_nichols2009/light_geometry.geom", &[]),
+            ("wyman_nichols2009/light_geometry.frag", &[]),
         ]);
     }
 
@@ -137,6 +187,7 @@ mod tests {
             ("shared/splat.vert", &[("PHOTON_VERTEX_ARRAY", "1")]),
             ("shared/splat.vert", &[("PHOTON_VERTEX_ARRAY", "1"), ("PHOTON_HALF", "1")]),
             ("shared/splat.vert", &[("HIERARCHY", "1")]),
+            ("shared/splat.vert", &[("ADAPTIVE_PHOTONS", "1")]),
         ]);
     }
 
@@ -146,6 +197,8 @@ mod tests {
             ("shared/splat.comp", &[("ENTRY_BYTES", "4")]),
             ("shared/splat.comp", &[("ENTRY_BYTES", "4"), ("HIERARCHY", "1")]),
             ("shared/splat.comp", &[("ENTRY_BYTES", "4"), ("HIERARCHY", "1"), ("XFB", "1")]),
+            ("shared/splat.comp", &[("ENTRY_BYTES", "32"), ("ADAPTIVE_PHOTONS", "1")]),
+            ("shared/splat.comp", &[("ENTRY_BYTES", "32"), ("ADAPTIVE_PHOTONS", "1"), ("XFB", "1")]),
         ]);
     }
 
@@ -162,6 +215,23 @@ mod tests {
     #[test]
     fn footprint_constants() {
         check::<FootprintConstants>(&[("wyman2008/splat_footprints.comp", &[])]);
+    }
+
+    #[test]
+    fn adaptive_constants() {
+        let mut variants: Vec<(&str, &[(&str, &str)])> = vec![("wyman_nichols2009/adaptive_traverse.comp", &[])];
+        let kernels: [&[(&str, &str)]; 5] = [
+            &[("SUBDIVIDE", "1")],
+            &[("EMIT", "1")],
+            &[("HITS", "1")],
+            &[("FROM_HITS", "1"), ("CONVERGED", "1")],
+            &[("FROM_HITS", "1"), ("REFINE", "1")],
+        ];
+        variants.extend(kernels.iter().map(|d| ("wyman_nichols2009/adaptive_step.geom", *d)));
+        check::<AdaptiveConstants>(&variants);
+        check::<CoverageConstants>(&[("wyman_nichols2009/coverage.comp", &[])]);
+        check::<BatchConstants>(&[("wyman_nichols2009/adaptive_batch.comp", &[])]);
+        check::<CountConstants>(&[("wyman_nichols2009/adaptive_counts.comp", &[])]);
     }
 
     #[test]

@@ -56,7 +56,7 @@ pub fn mesh_uses(meshes: &[GpuMesh]) -> Vec<Use<'_>> {
 
 pub fn upload_meshes(ctx: &Context, scene: &Scene) -> Result<Vec<GpuMesh>> {
     let mut out = vec![];
-    for obj in &scene.objects {
+    for (object, obj) in scene.objects.iter().enumerate() {
         let m = &obj.mesh;
         let (kind, colour, ior) = match &scene.material_of(obj).kind {
             MaterialKind::Diffuse { albedo } => (MATERIAL_DIFFUSE, *albedo, Vec3::ONE),
@@ -85,6 +85,7 @@ pub fn upload_meshes(ctx: &Context, scene: &Scene) -> Result<Vec<GpuMesh>> {
                 colour: colour.extend(1.0).to_array(),
                 ior: ior.extend(1.0).to_array(),
                 material: kind,
+                object: object as u32,
                 ..Default::default()
             },
         });

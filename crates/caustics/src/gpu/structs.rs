@@ -95,11 +95,9 @@ mod tests {
         ];
         assert_eq!(frame, want_frame.map(|(a, b)| (a.to_string(), b.to_string())).to_vec());
         assert!(src.contains(&format!("#define MAX_LIGHTS {}", super::MAX_LIGHTS)));
-        let mesh = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../shaders_glsl/common/mesh_constants.glsl"
-        ))
-        .unwrap();
+        let mesh =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/materials.glsl"))
+                .unwrap();
         for (name, value) in [
             ("MATERIAL_DIFFUSE", super::MATERIAL_DIFFUSE),
             ("MATERIAL_REFRACTIVE", super::MATERIAL_REFRACTIVE),

@@ -104,6 +104,23 @@ impl<'c> Renderer<'c> {
         }
     }
 
+    /// The adaptive caustic maps of `adaptive` (None for the other techniques).
+    pub fn adaptive(&self) -> Option<&crate::techniques::AdaptiveCaustics> {
+        match self {
+            Renderer::Mesh(r) => r.adaptive(),
+            Renderer::Pool(_) => None,
+        }
+    }
+
+    /// Per light, the traversal's list sizes of `hcm` or `adaptive` (see
+    /// `MeshRenderer::list_sizes`; None for the other techniques).
+    pub fn list_sizes(&self) -> Result<Option<Vec<Vec<u64>>>> {
+        match self {
+            Renderer::Mesh(r) => r.list_sizes(),
+            Renderer::Pool(_) => Ok(None),
+        }
+    }
+
     /// Points drawn per frame over all lights (a pool draws none).
     pub fn splats_drawn(&self) -> Result<u64> {
         match self {

@@ -34,8 +34,15 @@ pub const EYE_DUMPS: &[&str] = &[
 
 /// The light-space buffers that serve every light in turn (dumped light by light, layers
 /// `light<l>.<layer>`; see `Renderer::dumps`).
-pub const LIGHT_SPACE_DUMPS: &[&str] =
-    &["photon_back_faces", "photon_buffer", "hierarchy", "hierarchy_lists", "splats"];
+pub const LIGHT_SPACE_DUMPS: &[&str] = &[
+    "photon_back_faces",
+    "photon_buffer",
+    "hierarchy",
+    "hierarchy_lists",
+    "splats",
+    "adaptive_geometry",
+    "adaptive_lists",
+];
 
 /// Whether the eye-render buffer `name` belongs to the other refraction than `refraction`.
 pub(crate) fn other_refractions(name: &str, refraction: Refraction) -> bool {
@@ -103,8 +110,8 @@ pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
         &format!("refraction `{}` (a geometry shader routes each face to the front or back layer)", c.refraction),
         c.refraction.required_features(),
     )?;
-    if c.technique == Technique::Hcm {
-        ctx.require(&format!("technique `hcm` with --path {}", c.path), c.path.features())?;
+    if matches!(c.technique, Technique::Hcm | Technique::Adaptive) {
+        ctx.require(&format!("technique `{}` with --path {}", c.technique, c.path), c.path.features())?;
     }
     if c.technique.has_caustics() && c.splat_path == SplatPath::Compute {
         ctx.require(

@@ -7,10 +7,13 @@ use crate::gpu::{self, setup};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::shah2007::VertexPhotons;
+use crate::techniques::shared::ListKind;
 use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
 use crate::techniques::wyman2008::{self, Hierarchy};
 use crate::techniques::wyman_davis2006::{EyeView, ImageSpace};
-use crate::techniques::wyman_nichols2009::{deferred_refraction, DeferredRefraction, Refraction};
+use crate::techniques::wyman_nichols2009::{
+    self as wn2009, deferred_refraction, AdaptiveCaustics, DeferredRefraction, Refraction,
+};
 use crate::techniques::{self, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
 use anyhow::{Context as _, Result};
 use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler, Use};
@@ -42,6 +45,8 @@ struct CausticResources {
     copy: Option<PhotonCopy>,
     vertex_photons: Option<VertexPhotons>,
     hierarchy: Option<Hierarchy>,
+    /// Wyman & Nichols 2009's adaptive caustic maps.
+    adaptive: Option<AdaptiveCaustics>,
     /// What the `splats` dump reads the hierarchy's splats with (built by the first such dump).
     footprints: Option<SplatFootprints>,
     compute_splat: Option<techniques::ComputeSplat>,
@@ -127,8 +132,13 @@ impl<'c> MeshRenderer<'c> {
             .map(|m| (m.vertices.size() / std::mem::size_of::<gpu::MeshVertex>() as u64) as u32)
             .sum();
         let caustic = if active {
-            let photon_side =
-                if vertex_photons { (specular_vertices as f64).sqrt().ceil() as u32 } else { settings.photons };
+            let adaptive = technique == Technique::Adaptive;
+            let photon_side = match () {
+                _ if vertex_photons => (specular_vertices as f64).sqrt().ceil() as u32,
+                // No photon buffer: its targets are placeholders.
+                _ if adaptive => 1,
+                _ => settings.photons,
+            };
             let vertex_areas = if vertex_photons {
                 setup::vertex_areas(ctx, scene)?
             } else {
@@ -145,9 +155,18 @@ impl<'c> MeshRenderer<'c> {
             } else {
                 None
             };
+            let adaptive = if adaptive {
+                Some(AdaptiveCaustics::new(ctx, shaders, settings, scene.lights.len() as u32)?)
+            } else {
+                None
+            };
             let compute_splat = if settings.splat_path == SplatPath::Compute {
                 let (side, layers) = (settings.caustic_map_resolution, settings.caustic_levels());
-                let list = hierarchy.as_ref().map(|h| (h.path, wyman2008::ENTRY_BYTES));
+                let list = match (&hierarchy, &adaptive) {
+                    (Some(h), _) => Some((ListKind::HierarchyEntries, h.path)),
+                    (None, Some(a)) => Some((ListKind::AdaptivePhotons, a.path)),
+                    (None, None) => None,
+                };
                 Some(techniques::ComputeSplat::new(ctx, shaders, side, layers, list)?)
             } else {
                 None
@@ -155,13 +174,18 @@ impl<'c> MeshRenderer<'c> {
             Some(CausticResources {
                 pipelines: techniques::CausticPipelines::new(ctx, shaders)?,
                 vertex_photons: if vertex_photons { Some(VertexPhotons::new(ctx, shaders)?) } else { None },
-                photons: techniques::PhotonTargets::new(ctx, settings.photons, photon_side)?,
+                photons: techniques::PhotonTargets::new(
+                    ctx,
+                    if adaptive.is_some() { 1 } else { settings.photons },
+                    photon_side,
+                )?,
                 vertex_areas,
                 splat_vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
                 instance_vertices: settings.instance_vertices,
                 copy,
                 footprints: None,
                 hierarchy,
+                adaptive,
                 compute_splat,
                 image_space: ImageSpace::new(ctx, shaders, scene)?,
             })
@@ -337,6 +361,7 @@ impl<'c> MeshRenderer<'c> {
             copy: c.copy.as_ref(),
             vertex_photons: c.vertex_photons.as_ref(),
             hierarchy: c.hierarchy.as_ref(),
+            adaptive: c.adaptive.as_ref(),
             compute_splat: c.compute_splat.as_ref(),
             image_space: None,
         }
@@ -360,9 +385,14 @@ impl<'c> MeshRenderer<'c> {
             }
         }
         let light_space = |n: &str| super::LIGHT_SPACE_DUMPS.contains(&n);
-        let has = |n: &str| match wyman2008::DUMPS.contains(&n) {
-            true => self.hierarchy().is_some(),
-            false => self.caustic.is_some(),
+        let declared = super::dumps_for(&self.scene.caustics);
+        let has = |n: &str| {
+            declared.contains(&n)
+                && match (wyman2008::DUMPS.contains(&n), wn2009::settings::ADAPTIVE_DUMPS.contains(&n)) {
+                    (true, _) => self.hierarchy().is_some(),
+                    (_, true) => self.adaptive().is_some(),
+                    _ => self.caustic.is_some(),
+                }
         };
         let wanted: Vec<&str> = unique.iter().map(|n| n.as_str()).filter(|n| light_space(n) && has(n)).collect();
         anyhow::ensure!(
@@ -373,7 +403,7 @@ impl<'c> MeshRenderer<'c> {
             c.footprints = Some(SplatFootprints::new(self.ctx, self.shaders)?);
         }
         let mut per_light: Vec<Option<ImageF32>> = vec![None; wanted.len()];
-        let (mut lists, mut splats) = (vec![], vec![]);
+        let (mut lists, mut splats, mut adaptive_lists) = (vec![], vec![], vec![]);
         let lights = self.targets.shadow.lights;
         for l in 0..if wanted.is_empty() { 0 } else { lights } {
             if lights > 1 {
@@ -382,6 +412,16 @@ impl<'c> MeshRenderer<'c> {
             let Some(c) = &self.caustic else { break };
             for (i, name) in wanted.iter().enumerate() {
                 let img = match (*name, &c.hierarchy) {
+                    ("adaptive_geometry", _) => match &c.adaptive {
+                        Some(a) => a.geometry.dump(self.ctx)?,
+                        None => continue,
+                    },
+                    ("adaptive_lists", _) => {
+                        if let Some(a) = &c.adaptive {
+                            adaptive_lists.push((a.read_clusters(self.ctx)?, a.read_photons(self.ctx)?));
+                        }
+                        continue;
+                    }
                     ("hierarchy", Some(h)) => h.dump_levels(self.ctx)?,
                     ("hierarchy_lists", Some(h)) => {
                         lists.push(h.read_lists(self.ctx)?);
@@ -402,6 +442,7 @@ impl<'c> MeshRenderer<'c> {
         for name in unique {
             let img = match wanted.iter().position(|w| w == name) {
                 Some(_) if name == "hierarchy_lists" => Some(wyman2008::lists_image(&lists)),
+                Some(_) if name == "adaptive_lists" => Some(wn2009::adaptive::lists_image(&adaptive_lists)),
                 Some(_) if name == "splats" => Some(splat_footprints::splats_image(&splats)),
                 Some(i) => per_light[i].take(),
                 None if light_space(name) => None,
@@ -470,13 +511,38 @@ impl<'c> MeshRenderer<'c> {
         self.caustic.as_ref().and_then(|c| c.hierarchy.as_ref())
     }
 
+    /// The adaptive caustic maps of `adaptive` (None for the other techniques).
+    pub fn adaptive(&self) -> Option<&AdaptiveCaustics> {
+        self.caustic.as_ref().and_then(|c| c.adaptive.as_ref())
+    }
+
+    /// Per light, the sizes of the traversal's lists of the last frame: `hcm`'s from its 16²
+    /// level down to the splatted list; `adaptive`'s pending clusters of each level (0 to L),
+    /// then the photons it splatted. None for the other techniques.
+    pub fn list_sizes(&self) -> Result<Option<Vec<Vec<u64>>>> {
+        if let Some(h) = self.hierarchy() {
+            return Ok(Some(h.list_sizes(self.ctx)?));
+        }
+        let Some(a) = self.adaptive() else { return Ok(None) };
+        let counts = a.level_counts(self.ctx)?;
+        Ok(Some(
+            counts
+                .into_iter()
+                .map(|(mut clusters, emitted)| {
+                    clusters.push(emitted.iter().sum());
+                    clusters
+                })
+                .collect(),
+        ))
+    }
+
     /// Points drawn (or compute-splat invocations) per frame over all lights: every
     /// photon-buffer texel for the dense techniques (invalid ones are culled in the vertex
     /// shader; the instanced draw rounds up to whole instances), the final list
-    /// of the last traversal for `hcm` (read back from the GPU).
+    /// of the last traversal for `hcm` and the output photons for `adaptive` (read back from
+    /// the GPU: Wyman & Nichols 2009 Table 1's "photons splatted").
     pub fn splats_drawn(&self) -> Result<u64> {
-        if let Some(h) = self.hierarchy() {
-            let sizes = h.list_sizes(self.ctx)?;
+        if let Some(sizes) = self.list_sizes()? {
             return Ok(sizes.iter().map(|s| s.last().copied().unwrap_or(0)).sum());
         }
         Ok(match &self.caustic {

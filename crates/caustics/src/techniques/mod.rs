@@ -6,6 +6,7 @@
 //! | `shah`, `shah-vertex` | Shah, Konttinen & Pattanaik, caustics mapping | [`shah2007`] |
 //! | `wd-points` | Wyman & Davis 2006, the photon buffer as points | [`wyman_davis2006`] |
 //! | `hcm` | Wyman 2008, hierarchical caustic maps | [`wyman2008`] |
+//! | `adaptive` | Wyman & Nichols 2009 Sec. 3.2-4.2, adaptive caustic maps | [`wyman_nichols2009`] |
 //! | (`--refraction deferred`, any technique) | Wyman & Nichols 2009 Sec. 3.1, deferred refraction | [`wyman_nichols2009`] |
 //! | `pool-convolution` | Trendall & Stewart 2000, pool caustics as convolutions | [`trendall_stewart2000`] |
 //!
@@ -34,4 +35,4 @@ pub use shared::{
 };
 pub use technique::Technique;
 pub use wyman2008::photon_copy::{CopyType, PhotonCopy};
-pub use wyman_nichols2009::Refraction;
+pub use wyman_nichols2009::{AdaptiveCaustics, Metric, Refraction};

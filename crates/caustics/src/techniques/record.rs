@@ -1,6 +1,7 @@
 //! Records the caustic passes of one frame, light after light: the light-space work (receiver
 //! positions, the refractors' back faces, the photon buffer or vertex photons, and the copy or
-//! the hierarchy that read it), then the splat into the light's caustic-map layer, by the
+//! the hierarchy that read it; or the adaptive traversal's geometry buffers and photons), then
+//! the splat into the light's caustic-map layer, by the
 //! technique's path (points, the hierarchy's list, or the compute splat).
 
 use super::shah2007::VertexPhotons;
@@ -9,6 +10,7 @@ use super::shared::{photon_buffer, splat};
 use super::wyman2008::photon_copy::PhotonCopy;
 use super::wyman2008::Hierarchy;
 use super::wyman_davis2006::{EyeView, ImageSpace};
+use super::wyman_nichols2009::adaptive::{self, AdaptiveCaustics};
 use anyhow::Result;
 use vkcore::Frame;
 
@@ -28,6 +30,9 @@ pub struct CausticFrame<'a> {
     pub vertex_photons: Option<&'a VertexPhotons>,
     /// Traverse the photon hierarchy and splat its final list (Wyman 2008 Sec. 3.1-3.2).
     pub hierarchy: Option<&'a Hierarchy>,
+    /// Create photons adaptively from geometry buffers and splat them (Wyman & Nichols 2009
+    /// Sec. 3.2), instead of a photon buffer.
+    pub adaptive: Option<&'a AdaptiveCaustics>,
     /// Splat with a compute shader instead of points (`splat_path = compute`).
     pub compute_splat: Option<&'a ComputeSplat>,
     /// Wyman & Davis 2006's eye-space points, quads or gathers instead of a splat, with the
@@ -41,6 +46,11 @@ pub struct CausticFrame<'a> {
 /// light's back.
 pub fn record_light_space(f: &mut Frame, c: &CausticPasses, l: u32, frame: CausticFrame) -> Result<()> {
     let (pt, inp) = (c.photons, c.inputs);
+    if let Some(a) = frame.adaptive {
+        // No photon buffer and no back-face pass: the geometry buffers hold the back faces.
+        photon_buffer::record_receiver_positions(f, c, l)?;
+        return a.record_traversal(f, &adaptive_inputs(c), l, None);
+    }
     photon_buffer::record_light_views(f, c, l)?;
     match frame.vertex_photons {
         Some(vp) => vp.record(f, c, l)?,
@@ -60,6 +70,19 @@ pub fn record_light_space(f: &mut Frame, c: &CausticPasses, l: u32, frame: Caust
 pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: CausticFrame) -> Result<()> {
     let (ct, pt, inp) = (c.targets, c.photons, c.inputs);
     for l in 0..lights {
+        if let Some(a) = frame.adaptive {
+            // Adaptive caustic maps splat batch after batch inside their traversal (Sec. 4.3).
+            let cmap = &ct.per_light[l as usize].0;
+            let splat =
+                adaptive::Splat { passes: inp.pass_inputs(), compute: frame.compute_splat, photon_targets: pt, cmap };
+            if frame.reuse_photons && !a.plan.batched() {
+                a.record_splat_batch(f, &splat, l, "", true, true)?;
+            } else {
+                photon_buffer::record_receiver_positions(f, c, l)?;
+                a.record_traversal(f, &adaptive_inputs(c), l, Some(&splat))?;
+            }
+            continue;
+        }
         if !frame.reuse_photons {
             record_light_space(f, c, l, frame)?;
         }
@@ -81,4 +104,16 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
         is.record_after_lights(f, c, eye, frame.reuse_photons)?;
     }
     Ok(())
+}
+
+/// What the adaptive traversal reads of the caustic passes' inputs.
+fn adaptive_inputs<'a>(c: &CausticPasses<'a>) -> adaptive::Inputs<'a> {
+    let inp = c.inputs;
+    adaptive::Inputs {
+        frame_uniforms: inp.frame_uniforms,
+        caustic_uniforms: inp.caustic_uniforms,
+        meshes: inp.meshes,
+        receiver_positions: &c.targets.receiver_positions.view,
+        nearest: inp.nearest,
+    }
 }

@@ -11,7 +11,8 @@ use super::technique::Technique;
 use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNEL};
 use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
 use super::wyman_davis2006::settings::{GatherLighting, QuadLighting, Reflection, Space, TemporalFilter};
-use super::wyman_nichols2009::settings::Refraction;
+use super::wyman_nichols2009::adaptive::batches as wn2009_batches;
+use super::wyman_nichols2009::settings::{self as wn2009, Metric, Refraction};
 use super::{shared, wyman2008, wyman_davis2006};
 use serde::{Deserialize, Serialize};
 
@@ -47,6 +48,7 @@ macro_rules! caustic_settings {
             /// Writes every set override over `s` (not checked: see [`CausticSettings::validate`]).
             pub fn apply(&self, s: &mut CausticSettings) {
                 $( if let Some(v) = &self.$field { s.$field = v.clone(); } )+
+                self.apply_derived(s);
             }
 
             /// The keys that are set, in declaration order.
@@ -69,7 +71,7 @@ macro_rules! caustic_settings {
                 let mut out = vec![];
                 $( $(
                     if self.$field != d.$field && ![$(Technique::$owner),+].contains(&self.technique) {
-                        out.push((stringify!($field), self.$field.to_string()));
+                        out.push((stringify!($field), shown(&self.$field)));
                     }
                 )? )+
                 out
@@ -107,8 +109,9 @@ caustic_settings! {
     /// Ray/receiver intersection; unset: the technique's own (wd-depth-search for wd-points and
     /// hcm, shah-iterative otherwise).
     intersect: Option<Intersect> = None;
-    /// hcm: the hierarchy's traversal path (Wyman 2008 Sec. 3.1); default xfb.
-    path: TraversalPath = TraversalPath::Xfb, only Hcm;
+    /// hcm, adaptive: the traversal path (Wyman 2008 Sec. 3.1; Wyman & Nichols 2009 Sec. 4):
+    /// transform feedback (the papers') or compute; default xfb.
+    path: TraversalPath = TraversalPath::Xfb, only Hcm | Adaptive;
     /// hcm: converging-photon clustering (Wyman 2008 Sec. 3.2); default none.
     cluster: Cluster = Cluster::None, only Hcm;
     /// hcm: splat sizes (Wyman 2008 Sec. 3.3); default fixed.
@@ -139,6 +142,21 @@ caustic_settings! {
     /// The eye render's refraction, whatever the technique: forward (Wyman 2005, the default)
     /// or deferred (Wyman & Nichols 2009 Sec. 3.1, several refractors back to front).
     refraction: Refraction = Refraction::Forward;
+    /// adaptive: when the traversal stops refining (Wyman & Nichols 2009 Sec. 3.2.1-3.2.2):
+    /// max-traversal or max-error; default max-traversal.
+    metric: Metric = Metric::MaxTraversal, only Adaptive;
+    /// adaptive: the traversal's last level L, 0..=6: photons on a (64 × 2^L)² grid, the
+    /// "maximal traversal level" of both metrics. Unset: from `photons` (which must then be
+    /// 64 × 2^L); set without `photons` in the same table or command line, it sets `photons`.
+    max_level: Option<u32> = None, only Adaptive;
+    /// adaptive: the light-space geometry buffers' resolution as a fraction of the caustic map's
+    /// (Wyman & Nichols 2009 Sec. 3.2: 0.25, the default), (0, 4], 16..=8192 texels.
+    gbuffer_scale: f32 = wn2009::DEFAULT_GBUFFER_SCALE, only Adaptive;
+    /// adaptive: the photon storage allowed, MiB (Wyman & Nichols 2009 Sec. 4.3): the traversal
+    /// goes breadth-first as deep as it fits, then splits the pending clusters into batches, each
+    /// refined and splatted before the next; 0 (the default) is no limit. With a limit, photons
+    /// may go up to 16384 (max_level 8).
+    photon_memory_limit: u32 = 0, only Adaptive;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.
     precision: Precision = Precision::Float, only PoolConvolution;
@@ -147,7 +165,34 @@ caustic_settings! {
     kernel: u32 = DEFAULT_KERNEL, only PoolConvolution;
 }
 
+/// A setting's value as the scene file writes it (`last`, `4`, `0.5`), for messages.
+fn shown<T: Serialize>(value: &T) -> String {
+    match toml::Value::try_from(value) {
+        Ok(toml::Value::String(s)) => s,
+        Ok(v) => v.to_string(),
+        Err(_) => "(unset)".into(),
+    }
+}
+
+impl CausticOverrides {
+    /// Settings that follow from others set in the same table or command line: `max_level`
+    /// without `photons` sets `photons` to 64 × 2^max_level.
+    fn apply_derived(&self, s: &mut CausticSettings) {
+        if let (Some(Some(level)), None) = (self.max_level, self.photons) {
+            if level <= wn2009::MAX_LEVEL {
+                s.photons = wn2009::TOP_PHOTONS << level;
+            }
+        }
+    }
+}
+
 impl CausticSettings {
+    /// The geometry buffers' side for technique `adaptive`: gbuffer_scale × the caustic map's
+    /// resolution (Wyman & Nichols 2009 Sec. 3.2).
+    pub fn gbuffer_side(&self) -> u32 {
+        (self.gbuffer_scale as f64 * self.caustic_map_resolution as f64).round() as u32
+    }
+
     /// Caustic-map layers per light: 4 for the multi-resolution map (levels 0-3, Wyman 2008
     /// Sec. 3.3), else 1.
     pub fn caustic_levels(&self) -> u32 {
@@ -177,6 +222,8 @@ impl CausticSettings {
             Technique::PoolConvolution => super::trendall_stewart2000::settings::DUMPS.to_vec(),
             _ if self.eye_space() => wyman_davis2006::settings::EYE_DUMPS.to_vec(),
             Technique::Hcm => [shared::settings::DUMPS, wyman2008::settings::DUMPS].concat(),
+            // No photon buffer: photons come from the geometry buffers (Wyman & Nichols 2009 Sec. 3.2).
+            Technique::Adaptive => [&["receiver_positions", "caustic_map"], wn2009::ADAPTIVE_DUMPS].concat(),
             _ => shared::settings::DUMPS.to_vec(),
         }
     }
@@ -223,8 +270,9 @@ impl CausticSettings {
             let k = if key == "--" { k.replace('_', "-") } else { k.to_string() };
             Err(crate::input_error!("{origin}: key `{key}{k}`: {msg}").into())
         };
-        if !(64..=4096).contains(&self.photons) {
-            bad("photons", format!("must be between 64 and 4096 (photons per side), got {}", self.photons))?;
+        let most = self.most_photons();
+        if !(64..=most).contains(&self.photons) {
+            bad("photons", format!("must be between 64 and {most} (photons per side), got {}", self.photons))?;
         }
         if !(self.splat_radius > 0.0 && self.splat_radius <= 32.0) {
             bad("splat_radius", format!("must be in (0, 32] caustic-map texels, got {}", self.splat_radius))?;
@@ -250,9 +298,95 @@ impl CausticSettings {
                 format!("must be an odd number between 3 and {MAX_KERNEL} (taps per side), got {}", self.kernel),
             )?;
         }
+        if !(self.gbuffer_scale > 0.0 && self.gbuffer_scale <= 4.0) {
+            bad(
+                "gbuffer_scale",
+                format!(
+                    "must be a fraction of the caustic-map resolution in (0, 4] (the paper's 0.25), got {}",
+                    self.gbuffer_scale
+                ),
+            )?;
+        }
+        if !(16..=8192).contains(&self.gbuffer_side()) {
+            bad(
+                "gbuffer_scale",
+                format!(
+                    "{} × caustic_map_resolution {} gives geometry buffers {} texels wide; they must be 16 to 8192",
+                    self.gbuffer_scale,
+                    self.caustic_map_resolution,
+                    self.gbuffer_side()
+                ),
+            )?;
+        }
+        if let Some(level) = self.max_level {
+            let deepest = wn2009::finest_level(most).unwrap_or(0);
+            if level > deepest {
+                bad("max_level", format!("must be between 0 and {deepest} (64² to {most}² photons), got {level}"))?;
+            }
+        }
+        if self.photon_memory_limit > 1 << 20 {
+            bad(
+                "photon_memory_limit",
+                format!("must be at most 1048576 MiB (0: no limit), got {}", self.photon_memory_limit),
+            )?;
+        }
+        if self.technique == Technique::Adaptive {
+            self.validate_adaptive(&bad)?;
+        }
         if !(1..=64).contains(&self.iterations) {
             bad("iterations", format!("must be between 1 and 64, got {}", self.iterations))?;
         }
         Ok(())
+    }
+}
+
+impl CausticSettings {
+    /// Technique `adaptive`'s photon grid: 64 × 2^L per side (Wyman & Nichols 2009 Sec. 3.2),
+    /// agreeing with `max_level` when it is set.
+    fn validate_adaptive(&self, bad: &dyn Fn(&str, String) -> anyhow::Result<()>) -> anyhow::Result<()> {
+        let Some(level) = wn2009::finest_level(self.photons) else {
+            return bad(
+                "photons",
+                format!(
+                    "technique `adaptive` refines a 64² grid of photons by halving its cells, so photons must be \
+                     64 × 2^L (64, 128, 256, ..., 4096; up to 16384 with a photon_memory_limit), got {}",
+                    self.photons
+                ),
+            );
+        };
+        if self.photon_memory_limit > 0 {
+            let xfb = self.path == TraversalPath::Xfb;
+            let limit = self.photon_memory_limit as u64 * 1024 * 1024;
+            if let Err(e) = wn2009_batches::plan(level, self.metric, xfb, Some(limit), 1) {
+                bad("photon_memory_limit", e)?;
+            }
+        }
+        match self.max_level {
+            Some(max) if max != level => bad(
+                "max_level",
+                format!(
+                    "{max} means {}² photons, but photons is {} (level {level}); set one of them, or both to agree",
+                    wn2009::TOP_PHOTONS << max.min(wn2009::MAX_LEVEL),
+                    self.photons
+                ),
+            ),
+            _ => Ok(()),
+        }
+    }
+
+    /// The most photons per side: 16384 for `adaptive` under a memory limit (its batches need no
+    /// buffer of them all), else 4096.
+    fn most_photons(&self) -> u32 {
+        if self.technique == Technique::Adaptive && self.photon_memory_limit > 0 {
+            wn2009::TOP_PHOTONS << wn2009::MAX_LEVEL
+        } else {
+            4096
+        }
+    }
+
+    /// Technique `adaptive`'s last traversal level L (64 × 2^L = photons); None when photons is
+    /// no such size (`validate` refuses it).
+    pub fn adaptive_level(&self) -> Option<u32> {
+        wn2009::finest_level(self.photons)
     }
 }

@@ -5,7 +5,7 @@
 use super::settings::CausticSettings;
 use super::shared::settings::Intersect;
 use super::wyman_davis2006::settings::Space;
-use super::{shah2007, trendall_stewart2000, value_enum, wyman2008, wyman_davis2006};
+use super::{shah2007, trendall_stewart2000, value_enum, wyman2008, wyman_davis2006, wyman_nichols2009};
 use vkcore::Feature;
 
 value_enum::value_enum! {
@@ -28,6 +28,9 @@ value_enum::value_enum! {
         WdGather = "wd-gather",
         /// Wyman 2008: hierarchical caustic maps over the photon buffer.
         Hcm = "hcm",
+        /// Wyman & Nichols 2009: adaptive caustic maps, photons created by deferred shading from
+        /// light-space geometry buffers while traversing a virtual photon hierarchy.
+        Adaptive = "adaptive",
         /// Trendall & Stewart 2000: pool caustics as three convolutions (pool scenes only).
         PoolConvolution = "pool-convolution",
     }
@@ -43,6 +46,7 @@ impl Technique {
                 wyman_davis2006::PAPER
             }
             Technique::Hcm => wyman2008::settings::PAPER,
+            Technique::Adaptive => wyman_nichols2009::settings::PAPER,
             Technique::PoolConvolution => trendall_stewart2000::settings::PAPER,
         }
     }
@@ -53,7 +57,8 @@ impl Technique {
     }
 
     /// Whether its photons are the texels of a light-space photon buffer (rendered in the
-    /// `photon_view`), as opposed to the specular meshes' vertices or no photons at all.
+    /// `photon_view`), as opposed to the specular meshes' vertices, photons created adaptively
+    /// from geometry buffers (`adaptive`) or no photons at all.
     pub fn has_photon_buffer(self) -> bool {
         match self {
             Technique::Shah
@@ -62,7 +67,7 @@ impl Technique {
             | Technique::WdQuads
             | Technique::WdGather
             | Technique::Hcm => true,
-            Technique::None | Technique::ShahVertex | Technique::PoolConvolution => false,
+            Technique::None | Technique::ShahVertex | Technique::Adaptive | Technique::PoolConvolution => false,
         }
     }
 
@@ -79,7 +84,8 @@ impl Technique {
             | Technique::WdEyePoints
             | Technique::WdQuads
             | Technique::WdGather
-            | Technique::Hcm => Intersect::WdDepthSearch,
+            | Technique::Hcm
+            | Technique::Adaptive => Intersect::WdDepthSearch,
             Technique::None | Technique::Shah | Technique::ShahVertex | Technique::PoolConvolution => {
                 Intersect::ShahIterative
             }
@@ -102,6 +108,9 @@ impl Technique {
                 &[Feature::ShaderOutputLayer, Feature::LargePoints]
             }
             Technique::ShahVertex => shah2007::settings::VERTEX_PHOTON_FEATURES,
+            // The splats, and the geometry shader that routes each face to the front or back
+            // geometry buffer (Wyman & Nichols 2009 Sec. 3.2).
+            Technique::Adaptive => &[Feature::ShaderOutputLayer, Feature::LargePoints, Feature::GeometryShader],
             // Points of one pixel and triangles.
             Technique::WdEyePoints | Technique::WdQuads | Technique::WdGather => &[Feature::ShaderOutputLayer],
             // Fragment passes into RGBA8 or RGBA32F targets and compute passes: core Vulkan.
@@ -130,7 +139,9 @@ impl Technique {
             | Technique::WdEyePoints
             | Technique::WdQuads
             | Technique::WdGather
-            | Technique::Hcm => settings.photons as u64 * settings.photons as u64,
+            | Technique::Hcm
+            // Adaptive: the photon grid's, those of the dense buffer it stands in for.
+            | Technique::Adaptive => settings.photons as u64 * settings.photons as u64,
         }
     }
 }

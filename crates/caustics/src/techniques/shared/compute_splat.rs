@@ -6,8 +6,8 @@
 //! of the float additions (`tests/compute_splat.rs`).
 //!
 //! Passes per light, all named `splat.*` so that the tables' Gather columns count them:
-//! `splat.clear` (zero the buffer), `splat.arguments` (hcm on the xfb path: the dispatch over
-//! the traversal's final list, from its byte count, nothing read back), `splat` and
+//! `splat.clear` (zero the buffer), `splat.arguments` (hcm and adaptive on the xfb path: the
+//! dispatch over the traversal's final list, from its byte count, nothing read back), `splat` and
 //! `splat.resolve`.
 
 use super::targets::PhotonTargets;
@@ -35,9 +35,37 @@ pub enum Photons<'a> {
         position: &'a ImageView,
         list: &'a CompactStream,
     },
+    /// The adaptive traversal's output photons (Wyman & Nichols 2009 Sec. 3.2).
+    Adaptive { list: &'a CompactStream },
+}
+
+/// Which traversal's list a compute splat reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ListKind {
+    /// Packed entries of Wyman 2008's hierarchy (`wyman2008::ENTRY_BYTES` each).
+    HierarchyEntries,
+    /// Adaptive photons (32 bytes each).
+    AdaptivePhotons,
+}
+
+impl ListKind {
+    fn element_bytes(self) -> u64 {
+        match self {
+            ListKind::HierarchyEntries => crate::techniques::wyman2008::ENTRY_BYTES,
+            ListKind::AdaptivePhotons => crate::techniques::wyman_nichols2009::adaptive::photon::PHOTON_BYTES,
+        }
+    }
 }
 
 pub use super::PassInputs as Inputs;
+
+/// One batch of a splat made in batches: its pass-name tag, and whether it is the first (the
+/// sum is cleared) and the last (the sum is stored in the caustic map).
+pub struct Batch<'a> {
+    pub tag: &'a str,
+    pub first: bool,
+    pub last: bool,
+}
 
 /// Where the dispatch over the traversal's final list finds its work groups.
 enum ListDispatch {
@@ -51,8 +79,9 @@ enum ListDispatch {
 pub struct ComputeSplat {
     /// One light's caustic-map layers as (power rgb, photon count) floats, layer by layer.
     accumulated: Buffer,
-    /// hcm: what the dispatch over the traversal's final list reads its work groups from.
-    list: Option<ListDispatch>,
+    /// hcm, adaptive: what the dispatch over the traversal's final list reads its work groups
+    /// from, and which list it is.
+    list: Option<(ListDispatch, ListKind)>,
     splat: Pipeline,
     resolve: Pipeline,
     side: u32,
@@ -60,15 +89,15 @@ pub struct ComputeSplat {
 }
 
 impl ComputeSplat {
-    /// A splat into `layers` caustic-map layers of `side`² texels; `list` is the traversal path
-    /// whose final list it splats and the bytes of one entry there (hcm), None for the dense
-    /// photon texture.
+    /// A splat into `layers` caustic-map layers of `side`² texels; `list` is the kind of list it
+    /// splats and the traversal path that wrote it (hcm, adaptive), None for the dense photon
+    /// texture.
     pub fn new(
         ctx: &Context,
         sh: &ShaderCompiler,
         side: u32,
         layers: u32,
-        list: Option<(CompactionPath, u64)>,
+        list: Option<(ListKind, CompactionPath)>,
     ) -> Result<ComputeSplat> {
         ctx.require("splat_path `compute` (float atomics in shared/splat.comp)", FEATURES)?;
         let bytes = side as u64 * side as u64 * layers as u64 * 16;
@@ -82,7 +111,7 @@ impl ComputeSplat {
             .into());
         }
         let accumulated = Buffer::new(ctx, "compute splat accumulation", bytes, Memory::Gpu)?;
-        let entry_bytes = list.map_or(4, |(_, bytes)| bytes).to_string();
+        let entry_bytes = list.map_or(4, |(kind, _)| kind.element_bytes()).to_string();
         let mut defines = vec![("ENTRY_BYTES", entry_bytes.as_str())];
         let mut bindings = vec![K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
         let list = match list {
@@ -91,17 +120,18 @@ impl ComputeSplat {
                 bindings.push(K::StorageBuffer);
                 None
             }
-            // Bindings 4-8: the hierarchy, the accumulation buffer, the list and its counter.
-            Some((path, _)) => {
-                defines.push(("HIERARCHY", "1"));
-                bindings.extend([
-                    K::SampledImage,
-                    K::SampledImage,
-                    K::StorageBuffer,
-                    K::StorageBuffer,
-                    K::StorageBuffer,
-                ]);
-                Some(match path {
+            Some((kind, path)) => {
+                match kind {
+                    // Bindings 4-8: the hierarchy, the accumulation buffer, the list and its counter.
+                    ListKind::HierarchyEntries => {
+                        defines.push(("HIERARCHY", "1"));
+                        bindings.extend([K::SampledImage, K::SampledImage]);
+                    }
+                    // Bindings 4-6: the accumulation buffer, the photons and their counter.
+                    ListKind::AdaptivePhotons => defines.push(("ADAPTIVE_PHOTONS", "1")),
+                }
+                bindings.extend([K::StorageBuffer, K::StorageBuffer, K::StorageBuffer]);
+                let dispatch = match path {
                     CompactionPath::Compute => ListDispatch::AppendCounter,
                     CompactionPath::TransformFeedback => {
                         defines.push(("XFB", "1"));
@@ -116,7 +146,8 @@ impl ComputeSplat {
                             Buffer::new(ctx, "compute splat arguments", 16, Memory::Gpu)?,
                         )))
                     }
-                })
+                };
+                Some((dispatch, kind))
             }
         };
         let splat = Pipeline::compute(ctx, "splat.compute", &sh.compile("shared/splat.comp", &defines)?, &bindings)?;
@@ -139,19 +170,42 @@ impl ComputeSplat {
         cmap: &ImageView,
         l: u32,
     ) -> Result<()> {
+        self.record_batch(f, inp, pt, photons, cmap, l, &Batch { tag: "", first: true, last: true })
+    }
+
+    /// [`Self::record`] for one batch of photons (adaptive caustic maps' batches, Wyman &
+    /// Nichols 2009 Sec. 4.3): the first clears the sum, the last stores it in `cmap`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_batch(
+        &self,
+        f: &mut Frame,
+        inp: &Inputs,
+        pt: &PhotonTargets,
+        photons: &Photons,
+        cmap: &ImageView,
+        l: u32,
+        batch: &Batch,
+    ) -> Result<()> {
+        let tag = batch.tag;
         let texels = pt.width * pt.width;
         // Check before recording anything.
-        match (photons, &self.list) {
-            (Photons::Dense, None) | (Photons::List { .. }, Some(_)) => {}
-            (Photons::Dense, Some(_)) => anyhow::bail!("compute splat: built for a hierarchy's list, given photons"),
-            (Photons::List { .. }, None) => anyhow::bail!("compute splat: built for the photon texture, given a list"),
+        let kind = self.list.as_ref().map(|(_, kind)| *kind);
+        match (photons, kind) {
+            (Photons::Dense, None)
+            | (Photons::List { .. }, Some(ListKind::HierarchyEntries))
+            | (Photons::Adaptive { .. }, Some(ListKind::AdaptivePhotons)) => {}
+            (_, kind) => {
+                anyhow::bail!("compute splat: built for {kind:?} (None: the photon texture), given other photons")
+            }
         }
-        f.pass(&format!("splat.clear.light{l}"))
-            .uses([Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)])
-            .record(|cmd| {
-                cmd.fill_buffer(&self.accumulated, 0);
-                Ok(())
-            })?;
+        if batch.first {
+            f.pass(&format!("splat.clear.light{l}"))
+                .uses([Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)])
+                .record(|cmd| {
+                    cmd.fill_buffer(&self.accumulated, 0);
+                    Ok(())
+                })?;
+        }
         let mut binds = vec![
             Bind::Uniform(inp.frame_uniforms),
             Bind::Uniform(inp.caustic_uniforms),
@@ -162,11 +216,11 @@ impl ComputeSplat {
         let mut indirect = None;
         match photons {
             Photons::Dense => binds.push(Bind::Buffer(&self.accumulated)),
-            Photons::List { power, position, list } => {
+            Photons::List { list, .. } | Photons::Adaptive { list } => {
                 match &self.list {
-                    Some(ListDispatch::ByteCount(b)) => {
+                    Some((ListDispatch::ByteCount(b), _)) => {
                         let (pipeline, args) = &**b;
-                        f.pass(&format!("splat.arguments.light{l}"))
+                        f.pass(&format!("splat.arguments{tag}.light{l}"))
                             .bind(pipeline, [Bind::BufferRead(&list.counter), Bind::Buffer(args)])
                             .record(|cmd| {
                                 cmd.dispatch(1, 1, 1);
@@ -177,9 +231,10 @@ impl ComputeSplat {
                     // The dispatch arguments of compact_counter.glsl start at byte 16.
                     _ => indirect = Some((&list.counter, 16)),
                 }
+                if let Photons::List { power, position, .. } = photons {
+                    binds.extend([Bind::Sampled(power, inp.nearest), Bind::Sampled(position, inp.nearest)]);
+                }
                 binds.extend([
-                    Bind::Sampled(power, inp.nearest),
-                    Bind::Sampled(position, inp.nearest),
                     Bind::Buffer(&self.accumulated),
                     Bind::BufferRead(&list.data),
                     Bind::BufferRead(&list.counter),
@@ -187,7 +242,7 @@ impl ComputeSplat {
             }
         }
         let arguments = indirect.map(|(args, _)| Use::buffer(args, Access::INDIRECT));
-        f.pass(&format!("splat.light{l}")).bind(&self.splat, binds).uses(arguments).record(|cmd| {
+        f.pass(&format!("splat{tag}.light{l}")).bind(&self.splat, binds).uses(arguments).record(|cmd| {
             cmd.push(&ComputeSplatConstants { photon_texels: texels, light: l })?;
             match indirect {
                 Some((args, offset)) => cmd.dispatch_indirect(args, offset),
@@ -198,6 +253,9 @@ impl ComputeSplat {
             }
             Ok(())
         })?;
+        if !batch.last {
+            return Ok(());
+        }
         let resolve = [Bind::Storage(cmap), Bind::BufferRead(&self.accumulated)];
         f.pass(&format!("splat.resolve.light{l}")).bind(&self.resolve, resolve).record(|cmd| {
             cmd.dispatch(self.side.div_ceil(8), self.side.div_ceil(8), self.layers);

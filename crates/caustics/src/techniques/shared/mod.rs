@@ -10,7 +10,7 @@ pub mod settings;
 pub mod splat;
 pub mod targets;
 
-pub use compute_splat::ComputeSplat;
+pub use compute_splat::{ComputeSplat, ListKind};
 pub use pipelines::CausticPipelines;
 pub use settings::{Intersect, PhotonView, SplatKernel, SplatPath, DUMPS};
 pub use targets::{CausticTargets, PhotonTargets};

@@ -13,7 +13,13 @@ use vkcore::{Access, Bind, Frame, Targets, Use};
 /// The light's views before photons are traced, for light `l`: the receiver positions (its
 /// render of the diffuse surfaces) and the refractors' back faces.
 pub(crate) fn record_light_views(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
-    let (p, ct, pt, inp) = (c.pipelines, c.targets, c.photons, c.inputs);
+    record_receiver_positions(f, c, l)?;
+    record_back_faces(f, c, l)
+}
+
+/// Light `l`'s render of the diffuse surfaces (Shah step 1): where photons land.
+pub(crate) fn record_receiver_positions(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+    let (p, ct, inp) = (c.pipelines, c.targets, c.inputs);
     let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
     let (_, rpos, rdepth) = &ct.per_light[l as usize];
     f.pass(&format!("receiver_positions.light{l}"))
@@ -28,7 +34,13 @@ pub(crate) fn record_light_views(f: &mut Frame, c: &CausticPasses, l: u32) -> Re
             cmd.end_rendering();
             Ok(())
         })?;
+    Ok(())
+}
 
+/// The refractors' back faces from light `l` (Wyman 2005's exit estimate).
+fn record_back_faces(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+    let (p, pt, inp) = (c.pipelines, c.photons, c.inputs);
+    let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
     f.pass(&format!("photon_back_faces.light{l}"))
         .bind(&p.back_faces, ubo_binds())
         .uses([

@@ -1,6 +1,7 @@
 //! The settings of Wyman & Nichols 2009 as the scene's `[caustics]`, the bench configs and the
 //! command line name them, and the buffers they add (a leaf module: the scene description
-//! reads it).
+//! reads it): the eye's refraction (Sec. 3.1) and the adaptive caustic maps' metric and
+//! geometry-buffer resolution (Sec. 3.2).
 
 use super::super::value_enum::value_enum;
 use vkcore::Feature;
@@ -38,5 +39,68 @@ impl Refraction {
             // The geometry shader that routes each face to the front or back layer (gl_Layer).
             Refraction::Deferred => &[Feature::GeometryShader],
         }
+    }
+}
+
+/// The buffers only technique `adaptive` has (`--dump` names): the light-space geometry buffers
+/// and their coverage pyramid (Sec. 3.2), the traversal's lists and its photons.
+pub const ADAPTIVE_DUMPS: &[&str] = &["adaptive_geometry", "adaptive_lists"];
+
+/// Sec. 3.2: "We used a 64² grid for this coarse sampling": the photons per side of level 0.
+pub const TOP_PHOTONS: u32 = 64;
+
+/// The deepest level the packed cells address (x, y < 2^14: 16384² photons, the paper's
+/// deepest traversal, Fig. 8).
+pub const MAX_LEVEL: u32 = 8;
+
+/// Sec. 4.2: "We begin checking for convergence once we reach the 512² subdivision level."
+pub const CONVERGENCE_FROM_PHOTONS: u32 = 512;
+
+/// Sec. 3.2: "sampling the refractor positions and normals at a quarter the final caustic map's
+/// resolution provided a good speed-quality tradeoff".
+pub const DEFAULT_GBUFFER_SCALE: f32 = 0.25;
+
+value_enum! {
+    /// When the adaptive traversal stops refining a cluster (Sec. 3.2.1-3.2.2;
+    /// `caustics.metric`, `--metric`).
+    pub enum Metric {
+        /// Sec. 3.2.1: refine every cluster that touches the refractor down to the last level,
+        /// where its photons are emitted (one kernel per traversal step).
+        MaxTraversal = "max-traversal",
+        /// Sec. 3.2.2: also emit a cluster whose four photons land in one caustic-map texel as one
+        /// photon with their summed power, tested from the 512² level on (Sec. 4.2); the last
+        /// level caps the traversal (three kernels per step on the xfb path, Sec. 4.1).
+        MaxError = "max-error",
+    }
+}
+
+/// The last level L of the adaptive traversal for `photons` per side: 64 × 2^L = photons, or
+/// None when `photons` is no such size.
+pub fn finest_level(photons: u32) -> Option<u32> {
+    let ratio = photons / TOP_PHOTONS;
+    (photons.is_multiple_of(TOP_PHOTONS) && ratio.is_power_of_two() && ratio.trailing_zeros() <= MAX_LEVEL)
+        .then(|| ratio.trailing_zeros())
+}
+
+/// Whether the step at level `level` (photons on the (64 × 2^level)² grid) tests convergence
+/// under `metric`.
+pub fn tests_convergence(metric: Metric, level: u32) -> bool {
+    metric == Metric::MaxError && (TOP_PHOTONS << level) >= CONVERGENCE_FROM_PHOTONS
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_of_photon_grids() {
+        assert_eq!(finest_level(64), Some(0));
+        assert_eq!(finest_level(256), Some(2));
+        assert_eq!(finest_level(16384), Some(8));
+        for bad in [0, 32, 100, 192, 320, 32768] {
+            assert_eq!(finest_level(bad), None, "{bad}");
+        }
+        assert!(!tests_convergence(Metric::MaxError, 2) && tests_convergence(Metric::MaxError, 3));
+        assert!(!tests_convergence(Metric::MaxTraversal, 5));
     }
 }

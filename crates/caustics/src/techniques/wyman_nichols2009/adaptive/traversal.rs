@@ -1,0 +1,407 @@
+//! The adaptive traversal of one light (Wyman & Nichols 2009 Sec. 3.2-4.3): its geometry
+//! buffers, then one step per level from the 64² coarse grid down to the last level, each
+//! step reading the pending clusters of its level (drawn or dispatched from the previous step's
+//! counter: nothing is read back) and writing the next level's and the output photons; under a
+//! memory limit, breadth-first to level B, then batch after batch below it, each splatted
+//! before the next (Sec. 4.3).
+
+use super::photon::{unpack_cell, AdaptivePhoton, CLUSTER_BYTES, HITS_BYTES};
+use super::{AdaptiveCaustics, Kernels};
+use crate::gpu::{AdaptiveConstants, BatchConstants, CountConstants, GpuMesh};
+use crate::image_io::ImageF32;
+use crate::techniques::shared::compute_splat::{groups, ComputeSplat};
+use crate::techniques::shared::targets::PhotonTargets;
+use crate::techniques::shared::PassInputs;
+use crate::techniques::wyman_nichols2009::geometry_buffers::Uniforms;
+use crate::techniques::wyman_nichols2009::settings::tests_convergence;
+use anyhow::Result;
+use vkcore::{
+    Access, Bind, Buffer, CompactStream, CompactionPath, Context, Frame, ImageView, Pipeline, Sampler, Targets, Use,
+};
+
+/// What the traversal reads besides its own buffers.
+pub struct Inputs<'a> {
+    pub frame_uniforms: &'a Buffer,
+    pub caustic_uniforms: &'a Buffer,
+    pub meshes: &'a [GpuMesh],
+    /// Every light's receiver positions (the photon trace's receivers).
+    pub receiver_positions: &'a ImageView,
+    pub nearest: &'a Sampler,
+}
+
+/// Where each batch's photons are splatted (none: the traversal alone, for the dumps).
+pub struct Splat<'a> {
+    pub passes: PassInputs<'a>,
+    /// The compute splat, else the point splat.
+    pub compute: Option<&'a ComputeSplat>,
+    pub photon_targets: &'a PhotonTargets,
+    /// The light's caustic-map layer.
+    pub cmap: &'a ImageView,
+}
+
+/// What a transform-feedback kernel reads: a stream of elements of `stride` bytes (clusters or
+/// cluster hits); `seeded`: the coarse grid's clusters, drawn by their number.
+struct Xfb<'a> {
+    input: &'a CompactStream,
+    seeded: bool,
+    stride: u64,
+}
+
+/// Where a transform-feedback kernel writes.
+enum XfbOut<'a> {
+    /// A list whose capture starts at offset 0.
+    List(&'a CompactStream),
+    /// The output photons, appended after what earlier steps wrote.
+    Photons,
+}
+
+impl AdaptiveCaustics {
+    /// Light `l`'s geometry buffers and traversal, and with `splat` the splat of its photons:
+    /// breadth-first down to level B, then batch after batch below it, each splatted before the
+    /// next (Sec. 4.3; one batch without a memory limit). Afterwards `photons` holds the last
+    /// batch's output.
+    pub fn record_traversal(&self, f: &mut Frame, inp: &Inputs, l: u32, splat: Option<&Splat>) -> Result<()> {
+        let u = Uniforms { frame: inp.frame_uniforms, caustics: inp.caustic_uniforms };
+        self.geometry.record(f, &u, inp.meshes, inp.nearest, l)?;
+        let b = self.plan.breadth;
+        self.record_reset(f, &format!("adaptive.reset.light{l}"), 1, Some(l))?;
+        for k in 0..b {
+            self.record_step(f, inp, l, k, &self.clusters[k as usize], k == 0, "")?;
+            self.record_counts(f, l, k, "")?;
+        }
+        let mut splatted = false;
+        if self.plan.batched() && (0..b).any(|k| tests_convergence(self.metric, k)) {
+            // Clusters converged above level B: splatted before the batches reuse the photons.
+            self.record_finalize_photons(f, l, ".breadth")?;
+            if let Some(s) = splat {
+                self.record_splat_batch(f, s, l, ".breadth", true, false)?;
+            }
+            splatted = true;
+        }
+        for batch in 0..self.plan.batches {
+            let tag = if self.plan.batched() { format!(".batch{batch}") } else { String::new() };
+            let input = match &self.batch_input {
+                Some(input) => {
+                    self.record_batch_input(f, l, batch, input, &tag)?;
+                    self.record_reset(f, &format!("adaptive.reset{tag}.light{l}"), b as usize + 1, None)?;
+                    input
+                }
+                None => &self.clusters[b as usize],
+            };
+            for k in b..=self.finest {
+                let input = if k == b { input } else { &self.clusters[k as usize] };
+                let seeded = k == 0 && self.batch_input.is_none();
+                self.record_step(f, inp, l, k, input, seeded, &tag)?;
+                self.record_counts(f, l, k, &tag)?;
+            }
+            self.record_finalize_photons(f, l, &tag)?;
+            if let Some(s) = splat {
+                let (first, last) = (!splatted && batch == 0, batch + 1 == self.plan.batches);
+                self.record_splat_batch(f, s, l, &tag, first, last)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The compute path's draw (or dispatch) over the output photons, for the splat.
+    fn record_finalize_photons(&self, f: &mut Frame, l: u32, tag: &str) -> Result<()> {
+        if let Kernels::Compute { finalize, .. } = &self.kernels {
+            f.pass(&format!("adaptive.finalize.photons{tag}.light{l}"))
+                .bind(finalize, [Bind::Buffer(&self.photons.counter)])
+                .record(|cmd| {
+                    cmd.dispatch(1, 1, 1);
+                    Ok(())
+                })?;
+        }
+        Ok(())
+    }
+
+    /// Batch `batch`'s clusters of level B, copied from level B's list (`adaptive_batch.comp`).
+    fn record_batch_input(&self, f: &mut Frame, l: u32, batch: u32, input: &CompactStream, tag: &str) -> Result<()> {
+        let pending = &self.clusters[self.plan.breadth as usize];
+        let binds = [
+            Bind::BufferRead(&pending.data),
+            Bind::BufferRead(&pending.counter),
+            Bind::Buffer(&input.data),
+            Bind::Buffer(&input.counter),
+        ];
+        let push = BatchConstants {
+            first: batch * self.plan.batch,
+            size: self.plan.batch,
+            xfb: (self.path == CompactionPath::TransformFeedback) as u32,
+        };
+        f.pass(&format!("adaptive.select{tag}.light{l}")).bind(&self.batch_select, binds).record(|cmd| {
+            cmd.push(&push)?;
+            let (x, y) = groups(self.plan.batch);
+            cmd.dispatch(x, y, 1);
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// After step k: the next level's pending clusters and the photons so far, added to light
+    /// `l`'s counts (`adaptive_counts.comp`).
+    fn record_counts(&self, f: &mut Frame, l: u32, k: u32, tag: &str) -> Result<()> {
+        let base = l.min(self.lights.max(1) - 1) * 2 * (self.finest + 1);
+        let next = self.clusters.get(k as usize + 1);
+        let binds = [
+            Bind::BufferRead(&next.unwrap_or(&self.spare).counter),
+            Bind::BufferRead(&self.photons.counter),
+            Bind::Buffer(&self.counts),
+        ];
+        let push = CountConstants {
+            cluster_slot: if next.is_some() { base + k + 1 } else { u32::MAX },
+            photon_slot: base + self.finest + 1 + k,
+            xfb: (self.path == CompactionPath::TransformFeedback) as u32,
+        };
+        f.pass(&format!("adaptive.counts.level{k}{tag}.light{l}")).bind(&self.count, binds).record(|cmd| {
+            cmd.push(&push)?;
+            cmd.dispatch(1, 1, 1);
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// Zeroes the counters of the lists of levels `from`.. and of the hits and the photons
+    /// (both paths); with `light`, also that light's counts.
+    fn record_reset(&self, f: &mut Frame, name: &str, from: usize, light: Option<u32>) -> Result<()> {
+        let written: Vec<&CompactStream> =
+            self.clusters[from..].iter().chain([&self.photons, &self.spare]).chain(self.hits.as_ref()).collect();
+        let mut uses: Vec<Use> = written.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_WRITE)).collect();
+        if light.is_some() {
+            uses.push(Use::buffer(&self.counts, Access::TRANSFER_WRITE));
+        }
+        f.pass(name).uses(uses).record(|cmd| {
+            for s in &written {
+                match self.path {
+                    CompactionPath::TransformFeedback => cmd.fill_buffer(&s.counter, 0),
+                    CompactionPath::Compute => {
+                        let header: Vec<u8> = [0u32, s.capacity, 0, 0].iter().flat_map(|x| x.to_le_bytes()).collect();
+                        cmd.update_buffer(&s.counter, 0, &header)?;
+                    }
+                }
+            }
+            if let Some(l) = light {
+                let slots = 2 * (self.finest + 1);
+                let at = (l.min(self.lights.max(1) - 1) * slots) as u64 * 4;
+                cmd.update_buffer(&self.counts, at, &vec![0u8; slots as usize * 4])?;
+            }
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// Bindings 0-7 of every traversal kernel (`adaptive.glsl`).
+    fn textures<'a>(&'a self, inp: &Inputs<'a>) -> Vec<Bind<'a>> {
+        let g = &self.geometry;
+        vec![
+            Bind::Uniform(inp.frame_uniforms),
+            Bind::Uniform(inp.caustic_uniforms),
+            Bind::Sampled(&g.back_faces, inp.nearest),
+            Bind::Sampled(inp.receiver_positions, inp.nearest),
+            Bind::Sampled(&g.position_layers, inp.nearest),
+            Bind::Sampled(&g.normal_layers, inp.nearest),
+            Bind::Sampled(&g.material_layers, inp.nearest),
+            Bind::Sampled(&g.coverage_levels, inp.nearest),
+        ]
+    }
+
+    /// The step at level k over `input`, the pending clusters of level k (`seeded`: the coarse
+    /// grid's, drawn by their number on the xfb path): refined, discarded or output.
+    #[allow(clippy::too_many_arguments)]
+    fn record_step(
+        &self,
+        f: &mut Frame,
+        inp: &Inputs,
+        l: u32,
+        k: u32,
+        input: &CompactStream,
+        seeded: bool,
+        tag: &str,
+    ) -> Result<()> {
+        let last = k == self.finest;
+        let out = self.clusters.get(k as usize + 1).unwrap_or(&self.spare);
+        let converge = tests_convergence(self.metric, k);
+        let push = AdaptiveConstants { light: l, level: k, finest: self.finest, converge: converge as u32 };
+        let name = |kernel: &str| format!("adaptive.{kernel}.level{k}{tag}.light{l}");
+        match &self.kernels {
+            Kernels::Compute { traverse, finalize } => {
+                let mut binds = self.textures(inp);
+                binds.extend([
+                    Bind::BufferRead(&input.data),
+                    Bind::BufferRead(&input.counter),
+                    Bind::Buffer(&out.data),
+                    Bind::Buffer(&out.counter),
+                    Bind::Buffer(&self.photons.data),
+                    Bind::Buffer(&self.photons.counter),
+                ]);
+                // The input's count is read as dispatch arguments too.
+                let arguments = [Use::buffer(&input.counter, Access::INDIRECT)];
+                f.pass(&name("traverse")).bind(traverse, binds).uses(arguments).record(|cmd| {
+                    cmd.push(&push)?;
+                    cmd.dispatch_indirect(&input.counter, 16);
+                    Ok(())
+                })?;
+                if !last {
+                    f.pass(&name("finalize")).bind(finalize, [Bind::Buffer(&out.counter)]).record(|cmd| {
+                        cmd.dispatch(1, 1, 1);
+                        Ok(())
+                    })?;
+                }
+            }
+            Kernels::Xfb(x) => {
+                let clusters = Xfb { input, seeded, stride: CLUSTER_BYTES };
+                match (converge, last) {
+                    (false, false) => {
+                        self.record_xfb(f, &name("subdivide"), &x.subdivide, inp, &push, &clusters, XfbOut::List(out))?
+                    }
+                    (false, true) => {
+                        self.record_xfb(f, &name("emit"), &x.emit, inp, &push, &clusters, XfbOut::Photons)?
+                    }
+                    (true, _) => {
+                        let hits = self.hits.as_ref().ok_or_else(|| anyhow::anyhow!("no hits stream"))?;
+                        let from_hits = Xfb { input: hits, seeded: false, stride: HITS_BYTES };
+                        // Sec. 4.1's three kernels: hit positions, the converged stream, subdivision.
+                        self.record_xfb(f, &name("hits"), &x.hits, inp, &push, &clusters, XfbOut::List(hits))?;
+                        let converged = &x.converged;
+                        self.record_xfb(f, &name("converged"), converged, inp, &push, &from_hits, XfbOut::Photons)?;
+                        if !last {
+                            let refine = &x.refine;
+                            self.record_xfb(f, &name("refine"), refine, inp, &push, &from_hits, XfbOut::List(out))?;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// One transform-feedback kernel: a point per element of `from` (clusters as vertices, or
+    /// cluster hits read by index), drawn from its byte count, writing `to`.
+    #[allow(clippy::too_many_arguments)]
+    fn record_xfb(
+        &self,
+        f: &mut Frame,
+        name: &str,
+        pipeline: &Pipeline,
+        inp: &Inputs,
+        push: &AdaptiveConstants,
+        from: &Xfb,
+        to: XfbOut,
+    ) -> Result<()> {
+        let input = from.input;
+        let from_hits = from.stride == HITS_BYTES;
+        let mut binds = self.textures(inp);
+        let mut uses = vec![];
+        if from_hits {
+            binds.push(Bind::BufferRead(&input.data));
+        } else {
+            uses.push(Use::buffer(&input.data, Access::VERTEX_INPUT));
+        }
+        if !from.seeded {
+            uses.push(Use::buffer(&input.counter, Access::INDIRECT));
+        }
+        let out = match to {
+            XfbOut::List(s) => s,
+            XfbOut::Photons => &self.photons,
+        };
+        uses.push(Use::buffer(&out.data, Access::XFB_WRITE));
+        uses.push(Use::buffer(&out.counter, Access::XFB_COUNTER));
+        f.pass(name).bind(pipeline, binds).uses(uses).record(|cmd| {
+            cmd.begin_rendering(&Targets::none())?;
+            cmd.push(push)?;
+            if !from_hits {
+                cmd.bind_vertex_buffer(&input.data, 0);
+            }
+            cmd.bind_xfb_buffers(&[&out.data])?;
+            match to {
+                // The photons are appended to what earlier steps wrote (their counter was zeroed
+                // for this light or batch).
+                XfbOut::Photons => cmd.begin_xfb(&[&out.counter], true)?,
+                XfbOut::List(_) => cmd.begin_xfb(&[], false)?,
+            }
+            if from.seeded {
+                cmd.draw(input.capacity, 1, 0, 0);
+            } else {
+                cmd.draw_indirect_byte_count(1, &input.counter, from.stride as u32)?;
+            }
+            cmd.end_xfb(&[&out.counter])?;
+            cmd.end_rendering();
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// Per light: each level's pending clusters (level 0 to L), then the photons output at each
+    /// step (0 to L), summed over the batches, after the last traversal.
+    pub fn level_counts(&self, ctx: &Context) -> Result<Vec<(Vec<u64>, Vec<u64>)>> {
+        let raw: Vec<u32> = ctx.read_buffer_as(&self.counts)?;
+        let levels = (self.finest + 1) as usize;
+        let b = self.plan.breadth as usize;
+        Ok((0..self.lights.max(1) as usize)
+            .map(|l| {
+                let at = |i: usize| raw.get(l * 2 * levels + i).copied().unwrap_or(0) as u64;
+                let mut clusters = vec![self.clusters[0].capacity as u64];
+                clusters.extend((1..levels).map(at));
+                // Photons so far after each step; each batch starts from none at level B.
+                let so_far = |k: usize| at(levels + k);
+                let emitted = (0..levels)
+                    .map(|k| {
+                        let before = if k == 0 || (self.plan.batched() && k == b) { 0 } else { so_far(k - 1) };
+                        so_far(k).saturating_sub(before)
+                    })
+                    .collect();
+                (clusters, emitted)
+            })
+            .collect())
+    }
+
+    /// The output photons of the light traversed last (with batches, of its last batch).
+    pub fn read_photons(&self, ctx: &Context) -> Result<Vec<AdaptivePhoton>> {
+        Ok(self.photons.read_as(ctx)?)
+    }
+
+    /// The pending clusters of each level (0 to L), (x, y, level), of the light traversed last
+    /// (with batches, below level B those of its last batch).
+    pub fn read_clusters(&self, ctx: &Context) -> Result<Vec<Vec<[u32; 3]>>> {
+        let read = |s: &CompactStream| -> vkcore::Result<Vec<[u32; 3]>> {
+            Ok(s.read_as::<u32>(ctx)?.into_iter().map(unpack_cell).collect())
+        };
+        Ok(self.clusters.iter().map(read).collect::<vkcore::Result<_>>()?)
+    }
+}
+
+/// One light's traversal as read back: the pending clusters of each level, the output photons.
+pub type LightLists = (Vec<Vec<[u32; 3]>>, Vec<AdaptivePhoton>);
+
+/// `adaptive_lists.exr` from each light's clusters and photons: layer `light<l>.clusters<k>`
+/// holds the pending clusters of level k (x, y, level; the cluster of photons (2x + i, 2y + j)
+/// of level k), layer `light<l>.photons` the output photons (x, y, level of their cell, where
+/// they land X, Y, Z, power R, G, B, solid angle omega); a record per pixel in row-major order,
+/// valid = 1 for a record (the rest of the image is padding).
+pub fn lists_image(per_light: &[LightLists]) -> ImageF32 {
+    let mut lists = vec![];
+    for (l, (clusters, photons)) in per_light.iter().enumerate() {
+        for (k, list) in clusters.iter().enumerate() {
+            let records = list
+                .iter()
+                .map(|c| vec![c[0] as f32, c[1] as f32, c[2] as f32, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0])
+                .collect();
+            lists.push((format!("light{l}.clusters{k}"), records));
+        }
+        let records = photons
+            .iter()
+            .map(|p| {
+                let c = p.cell();
+                let [x, y, z] = p.position;
+                let [r, g, b] = p.power;
+                vec![c[0] as f32, c[1] as f32, c[2] as f32, x, y, z, r, g, b, p.omega, 1.0]
+            })
+            .collect();
+        lists.push((format!("light{l}.photons"), records));
+    }
+    crate::techniques::shared::records_image(
+        lists,
+        &["x", "y", "level", "X", "Y", "Z", "R", "G", "B", "omega", "valid"],
+    )
+}

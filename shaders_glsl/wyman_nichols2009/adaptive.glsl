@@ -1,0 +1,174 @@
+// One step of the adaptive photon traversal (Wyman & Nichols 2009 Sec. 3.2-4.2), shared by the
+// compute path (adaptive_traverse.comp) and the transform-feedback kernels (adaptive_step.geom).
+// A step takes the pending 2x2 clusters of level k (their photons on the (64 2^k)^2 grid over the
+// photon frustum, Sec. 3.2: "we used a 64^2 grid for this coarse sampling") and for each:
+// - discards it when it misses the refractor (Sec. 3.2.1 / 3.2.2, condition 1);
+// - creates its four photons by deferred shading where they are needed: the geometry buffers
+//   sampled at the photons' cell centres, traced by the same code as the dense photon buffer
+//   (shared/trace_surface.glsl) with the cell's solid angle;
+// - max-error metric (Sec. 3.2.2, condition 2), where tested: emits one photon for a cluster
+//   whose photons converge to one caustic-map texel, with the summed power and solid angle;
+// - at the last level L (condition 2 of Sec. 3.2.1, condition 3 of Sec. 3.2.2) emits the
+//   photons that landed; otherwise refines the cluster into four clusters of level k + 1, one
+//   per photon, "generating new photons on a finer grid" at the next step.
+//
+// The miss test, a deviation from the paper: "all photons in the current 2x2 cluster miss the
+// refractor" tests four points, and a thin part of the refractor between them would be lost
+// with every photon below. Here a cluster is discarded only when no geometry-buffer texel that
+// any of its photons or their descendants can sample is covered: a conservative max-mip query
+// of the coverage pyramid (wyman_nichols2009/coverage.comp) over the cluster's footprint. The
+// last level's photons are then exactly those a dense photon buffer at that resolution holds.
+// Convergence is likewise tested only where it cannot drop power: all four photons land, and
+// the refractor covers the whole footprint (so the one photon stands for all its descendants).
+#ifndef ADAPTIVE_GLSL
+#define ADAPTIVE_GLSL
+#include "shared/trace_surface.glsl"   // bindings 0-3: frame, caustics, the back faces, receiver positions
+#include "wyman_nichols2009/adaptive_photon.glsl"
+layout(binding = 4) uniform sampler2DArray geometry_position;  // front: position, d_N
+layout(binding = 5) uniform sampler2DArray geometry_normal;    // front: normal, object + 1 (0: none)
+layout(binding = 6) uniform sampler2DArray geometry_material;  // front: colour, mean ior (0: mirror)
+layout(binding = 7) uniform sampler2D coverage;                // mip m: any (r) and all (g) covered below
+
+// Mirrored by `AdaptiveConstants` in crates/caustics/src/gpu/push.rs.
+layout(push_constant) uniform AdaptiveConstants {
+    uint light;
+    uint level;      // k: this step's photons lie on the (64 2^k)^2 grid
+    uint finest;     // L: the last level (64 2^L = caustics.photons)
+    uint converge;   // 1: test convergence at this step (max-error, from the 512^2 level on)
+} constants;
+
+// The coarse sampling's photons per side (Sec. 3.2, 4.2).
+#define TOP_PHOTONS 64u
+
+// Light-space texture coordinates of the centre of cell p of a grid of `side` cells.
+vec2 cell_uv(uvec2 p, float side) { return (vec2(p) + 0.5) / side; }
+
+// The cluster's footprint on the geometry buffers: (any, all) of the texels its photons and
+// their descendants sample (the texels their cell centres lie in) covered by a front surface.
+// The smallest pyramid level at which the footprint spans at most 2x2 texels answers for a
+// superset of it (any: conservative; all: stricter than needed).
+vec2 footprint_coverage(uvec3 c) {
+    uint clusters = (TOP_PHOTONS / 2u) << c.z;
+    uint g = uint(textureSize(geometry_normal, 0).x);
+    uvec2 lo = (c.xy * g) / clusters;
+    uvec2 hi = ((c.xy + 1u) * g - 1u) / clusters;
+    uint m = 0u;
+    while (any(greaterThan((hi >> m) - (lo >> m), uvec2(1u)))) m += 1u;
+    vec2 result = vec2(0.0, 1.0);
+    for (uint y = lo.y >> m; y <= hi.y >> m; ++y) {
+        for (uint x = lo.x >> m; x <= hi.x >> m; ++x) {
+            vec4 v = texelFetch(coverage, ivec2(x, y), int(m));
+            result = vec2(max(result.x, v.r), min(result.y, v.g));
+        }
+    }
+    return result;
+}
+
+struct Surface {
+    vec3 position;
+    vec3 normal;
+    float thickness;
+    SpecularMaterial material;
+};
+
+// Sec. 3.2: "geometry buffers store object positions and normals. Interpolating these
+// quantities is straightforward, allowing dynamic sampling at arbitrary locations". The
+// refractor at light-space texture coordinates uv: there is one when the texel uv lies in is
+// covered; its position, normal and thickness are interpolated bilinearly among the 2x2 texels
+// around uv that the same object covers (weights renormalised), its material is that texel's.
+bool surface_at(vec2 uv, out Surface s) {
+    int g = textureSize(geometry_normal, 0).x;
+    vec2 t = uv * float(g);
+    ivec2 c = clamp(ivec2(floor(t)), ivec2(0), ivec2(g - 1));
+    vec4 here = texelFetch(geometry_normal, ivec3(c, 0), 0);
+    s = Surface(vec3(0.0), vec3(0.0), 0.0, SpecularMaterial(0u, vec3(0.0), 0.0));
+    if (here.w < 0.5) return false;
+    vec4 m = texelFetch(geometry_material, ivec3(c, 0), 0);
+    s.material = SpecularMaterial(m.a > 0.0 ? MATERIAL_REFRACTIVE : MATERIAL_REFLECTIVE, m.rgb, m.a);
+    vec2 f = t - 0.5;
+    ivec2 i0 = ivec2(floor(f));
+    vec2 w = f - vec2(i0);
+    vec4 position = vec4(0.0);
+    vec3 normal = vec3(0.0);
+    float total = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 q = i0 + o;
+        float wk = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
+        if (wk == 0.0 || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(g)))) continue;
+        vec4 n = texelFetch(geometry_normal, ivec3(q, 0), 0);
+        if (n.w != here.w) continue;    // no surface there, or another object's
+        position += wk * texelFetch(geometry_position, ivec3(q, 0), 0);
+        normal += wk * n.xyz;
+        total += wk;
+    }
+    // The texel uv lies in weighs at least 1/4: total > 0.
+    position /= total;
+    s.position = position.xyz;
+    s.thickness = position.w;
+    s.normal = normalize(normal / total);
+    return true;
+}
+
+// Photon p of level k (a cell of the (64 2^k)^2 grid), created by deferred shading (Sec. 3.2):
+// traced from the surface at its cell's centre as the photon buffer's fragment there would be
+// (shared/photon_buffer.frag), with its cell's solid angle. False if it misses the refractor or
+// does not land (total internal reflection, no receiver).
+bool create_photon(uvec2 p, uint level, out AdaptivePhoton ph) {
+    CausticLight cl = caustics.lights[constants.light];
+    float side = float(TOP_PHOTONS << level);
+    vec2 uv = cell_uv(p, side);
+    ph = AdaptivePhoton(vec3(0.0), NO_CELL, vec3(0.0), 0.0);
+    Surface s;
+    if (!surface_at(uv, s)) return false;
+    float omega = texel_solid_angle(uv * 2.0 - 1.0, vec4(cl.photon_plane.x, side, 0.0, 0.0));
+    Photon t = trace_photon_through(constants.light, s.position, s.normal, s.thickness, omega, s.material);
+    if (t.position.w < 0.5) return false;
+    ph = AdaptivePhoton(t.position.xyz, pack_cell(uvec3(p, level)), t.power.rgb, omega);
+    return true;
+}
+
+// Photon i of cluster c: (2x + (i & 1), 2y + (i >> 1)) of level k.
+uvec2 photon_of(uvec3 c, uint i) { return 2u * c.xy + uvec2(i & 1u, i >> 1u); }
+
+// The cluster's four photons; returns the mask of those that landed.
+uint cluster_photons(uvec3 c, out AdaptivePhoton p[4]) {
+    uint landed = 0u;
+    for (uint i = 0u; i < 4u; ++i) {
+        if (create_photon(photon_of(c, i), c.z, p[i])) landed |= 1u << i;
+    }
+    return landed;
+}
+
+// Sec. 3.2.2, condition 2: "all photons in the cluster converge to a single caustic map
+// texel" (on the map). Only where no power can be lost: all four landed and the cluster's
+// footprint is all refractor.
+bool converges(AdaptivePhoton p[4], uint landed, bool all_covered) {
+    if (landed != 15u || !all_covered) return false;
+    CausticLight cl = caustics.lights[constants.light];
+    float m = cl.caustic_plane.y;
+    vec2 first = vec2(-1.0);
+    for (int i = 0; i < 4; ++i) {
+        vec4 clip = cl.caustic_view_proj * vec4(p[i].position, 1.0);
+        if (clip.w <= 0.0) return false;
+        vec2 t = floor((clip.xy / clip.w * 0.5 + 0.5) * m);
+        if (any(lessThan(t, vec2(0.0))) || any(greaterThanEqual(t, vec2(m)))) return false;
+        if (i > 0 && t != first) return false;
+        first = t;
+    }
+    return true;
+}
+
+// "One photon is output with intensity based upon the solid angle of all cluster photons": the
+// four photons' summed power and solid angle at their mean position, as the cluster's cell
+// (its parent at level k - 1).
+AdaptivePhoton merged(uvec3 c, AdaptivePhoton p[4]) {
+    AdaptivePhoton m = AdaptivePhoton(vec3(0.0), pack_cell(uvec3(c.xy, c.z - 1u)), vec3(0.0), 0.0);
+    for (int i = 0; i < 4; ++i) {
+        m.position += 0.25 * p[i].position;
+        m.power += p[i].power;
+        m.omega += p[i].omega;
+    }
+    return m;
+}
+#endif
