@@ -145,7 +145,8 @@ caustic_settings! {
     /// adaptive: when the traversal stops refining (Wyman & Nichols 2009 Sec. 3.2.1-3.2.2):
     /// max-traversal or max-error; default max-traversal.
     metric: Metric = Metric::MaxTraversal, only Adaptive;
-    /// adaptive: the traversal's last level L, 0..=6: photons on a (64 × 2^L)² grid, the
+    /// adaptive: the traversal's last level L, 0..=8 (7 and 8, 8192² and 16384², only with a
+    /// photon_memory_limit): photons on a (64 × 2^L)² grid, the
     /// "maximal traversal level" of both metrics. Unset: from `photons` (which must then be
     /// 64 × 2^L); set without `photons` in the same table or command line, it sets `photons`.
     max_level: Option<u32> = None, only Adaptive;
