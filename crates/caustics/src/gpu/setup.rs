@@ -138,14 +138,11 @@ pub fn frame_uniforms(scene: &Scene) -> FrameUniforms {
         if let LightKind::Spot { direction, cone_angle_deg, texture } = &light.kind {
             u.position[3] = 1.0;
             u.intensity[3] = if texture.is_some() { 1.0 } else { 0.0 };
-            let half = cone_angle_deg.to_radians();
-            u.spot = direction.extend(half.cos()).to_array();
-            let helper = if direction.y.abs() > 0.9 { Vec3::Z } else { Vec3::Y };
-            let right = direction.cross(helper).normalize();
-            let upv = right.cross(*direction).normalize();
-            let t = half.tan().max(1e-4);
-            u.spot_u = (right / t).extend(0.0).to_array();
-            u.spot_v = (upv / t).extend(0.0).to_array();
+            // The axes the reference projects the texture with too (scene::spot_projector).
+            let (axis_u, axis_v, cos_cone) = crate::scene::spot_projector::cone_axes(*direction, *cone_angle_deg);
+            u.spot = direction.extend(cos_cone).to_array();
+            u.spot_u = axis_u.extend(0.0).to_array();
+            u.spot_v = axis_v.extend(0.0).to_array();
         }
     }
     let (receiver, range) = match &scene.receiver_map {

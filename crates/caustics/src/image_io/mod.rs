@@ -336,16 +336,7 @@ pub fn write_png_tonemapped(path: &Path, width: u32, height: u32, rgb: &[f32], e
         .iter()
         .map(|&v| if v.is_finite() && v > 0.0 { tonemap_to_srgb8((v * exposure).min(f32::MAX)) } else { 0 })
         .collect();
-    write_atomically(path, |w| {
-        let mut encoder = png::Encoder::new(w, width, height);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-        let mut writer = encoder.write_header()?;
-        writer.write_image_data(&bytes)?;
-        writer.finish()?;
-        Ok(())
-    })
+    write_rgb8_png(path, width, height, &bytes)
 }
 
 /// Writes 8-bit sRGB pixels (`width*height*3` bytes, row 0 = top) as a PNG. Atomic.

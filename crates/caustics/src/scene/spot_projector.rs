@@ -32,16 +32,12 @@ impl SpotProjector {
     /// The projector of `light`; None for a point light.
     pub fn of(light: &Light) -> Result<Option<SpotProjector>> {
         let LightKind::Spot { direction, cone_angle_deg, texture } = &light.kind else { return Ok(None) };
-        let half = cone_angle_deg.to_radians();
-        let helper = if direction.y.abs() > 0.9 { Vec3::Z } else { Vec3::Y };
-        let right = direction.cross(helper).normalize();
-        let up = right.cross(*direction).normalize();
-        let t = half.tan().max(1e-4);
+        let (u, v, cos_cone) = cone_axes(*direction, *cone_angle_deg);
         let texels = match texture {
             Some(path) => Some(resample(path)?),
             None => None,
         };
-        Ok(Some(SpotProjector { direction: *direction, u: right / t, v: up / t, cos_cone: half.cos(), texels }))
+        Ok(Some(SpotProjector { direction: *direction, u, v, cos_cone, texels }))
     }
 
     /// The RGB factor on the light's intensity towards unit direction `d`: 0 outside the cone,
@@ -55,6 +51,17 @@ impl SpotProjector {
         let uv = [d.dot(self.u.as_dvec3()) / c * 0.5 + 0.5, d.dot(self.v.as_dvec3()) / c * 0.5 + 0.5];
         bilinear(texels, uv)
     }
+}
+
+/// A spot cone's side axes over tan(half-angle) (`u`, `v`: `uv = (d·u, d·v) / (d·dir)` in
+/// [-1, 1] across the cone) and the cosine of its half-angle.
+pub fn cone_axes(direction: Vec3, cone_angle_deg: f32) -> (Vec3, Vec3, f32) {
+    let half = cone_angle_deg.to_radians();
+    let helper = if direction.y.abs() > 0.9 { Vec3::Z } else { Vec3::Y };
+    let right = direction.cross(helper).normalize();
+    let up = right.cross(direction).normalize();
+    let t = half.tan().max(1e-4);
+    (right / t, up / t, half.cos())
 }
 
 /// The PNG at `path` resampled (nearest) to SIZE² RGBA (linear values).

@@ -154,16 +154,19 @@ impl ImageSpace {
         self.receiver.as_ref().and_then(|r| r.buffers.caustic.as_ref()).map(|t| &t.view)
     }
 
+    /// Light `l`'s constants: its photons have their own history layers, from `l * layers`
+    /// (eye and light space alike), so that each light is gathered from its own photons.
     fn constants(&self, base: ImageSpaceConstants, c: &CausticPasses, l: u32, radius: u32) -> ImageSpaceConstants {
+        let history_base = l * self.history.layers();
         ImageSpaceConstants {
             light: l,
             lighting: self.lighting,
-            slot: self.history.slot(),
+            slot: history_base + self.history.slot(),
             frames: self.history.frames(),
             radius,
             min_photons: if radius > 0 { gather::MIN_PHOTONS } else { 0 },
             photon_side: c.photons.width,
-            history_base: 0,
+            history_base,
             ..base
         }
     }
@@ -195,14 +198,11 @@ impl ImageSpace {
                 targets.push(("receiver", &r.buffers, (&r.position.view, &r.normal.view), base));
             }
             for (view, buffers, geometry, base) in targets {
-                let mut k = self.constants(base, c, l, 0);
+                let k = self.constants(base, c, l, 0);
                 match (&self.points, &self.quads) {
                     (Some(p), _) => {
-                        // Light l's own history layers, gathered at once into the view's
-                        // caustic (lights after the first add to it: gather.comp).
-                        let layers = self.history.layers();
-                        k.history_base = l * layers;
-                        k.slot = l * layers + self.history.slot();
+                        // Light l's photons, gathered at once into the view's caustic (lights
+                        // after the first add to it: gather.comp).
                         let into = points::PointsInto {
                             name: format!("wd.photons.{view}.light{l}"),
                             buffers,
@@ -213,11 +213,7 @@ impl ImageSpace {
                         points::record(f, c, p, into, k)?;
                         let g = self.gather.as_ref().context("no gather pipeline")?;
                         let radius = if self.method == Method::EyePoints { 0 } else { gather::RADIUS };
-                        let kg = ImageSpaceConstants {
-                            radius,
-                            min_photons: self.constants(base, c, l, radius).min_photons,
-                            ..k
-                        };
+                        let kg = self.constants(base, c, l, radius);
                         let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
                         gather::record(f, &format!("wd.gather.{view}.light{l}"), c, g, buffers, geometry, out, kg)?;
                     }
@@ -238,10 +234,7 @@ impl ImageSpace {
         let base = ImageSpaceConstants::default();
         match (&self.points, &self.gather, &self.quads, &self.light) {
             (Some(p), Some(g), _, Some(buffers)) => {
-                let layers = self.history.layers();
-                let mut k = self.constants(base, c, l, gather::RADIUS);
-                k.history_base = l * layers;
-                k.slot = l * layers + self.history.slot();
+                let k = self.constants(base, c, l, gather::RADIUS);
                 let into = points::PointsInto {
                     name: format!("wd.photons.light_space.light{l}"),
                     buffers,
