@@ -1,7 +1,9 @@
 //! What a table's plot shows, independent of how it is drawn: one panel of values per metric
 //! (ours solid, the paper's dashed in the same colour), against photon count where photons is a
 //! row axis, else as grouped bars over the rows (Table 5's scenes); then, where the config
-//! compares against a baseline, a panel of ratios against it per metric.
+//! compares against a baseline, a panel of ratios against it per metric. A panel with more
+//! series than its legend can list (W&D 2006 Table 1: 6 scenes × 8 columns, each with the
+//! paper's) becomes small multiples: one panel per row group (scene), its series the columns.
 
 use crate::config::Config;
 use crate::format::{display, unit};
@@ -39,6 +41,10 @@ pub struct Series {
     /// (x index, value).
     pub points: Vec<(usize, f64)>,
 }
+
+/// The most series a panel's legend lists readably (rows of at least 12 px in a 420 px panel);
+/// a panel with more is split by row group.
+pub const MAX_SERIES: usize = 28;
 
 /// Colour indices by series name, in first-seen order over the whole figure.
 #[derive(Default)]
@@ -96,75 +102,115 @@ pub fn figure(config: &Config, results: &Results, g: &Grid) -> Figure {
     let kind_of = |m: &Option<String>| {
         config.metrics.iter().find(|x| Some(&x.label) == m.as_ref()).map(|x| x.kind.clone()).unwrap_or_default()
     };
-    // Series: one per column and row group; `value` picks what each entry contributes.
-    let mut series_of = |cols: &[usize], value: &dyn Fn(usize, usize) -> (Option<f64>, Option<f64>)| {
-        let mut out: Vec<Series> = vec![];
-        for &ci in cols {
-            for ri in 0..g.rows.len() {
-                let name = match (photons.is_some(), group_of(ri)) {
-                    (true, grp) if !grp.is_empty() => format!("{grp} · {}", g.cols[ci].header),
-                    _ => g.cols[ci].header.clone(),
-                };
-                let colour = palette.of(&name);
-                let (ours, paper) = value(ri, ci);
-                let x = x_index(ri);
-                for (is_paper, v) in [(false, ours), (true, paper)] {
-                    let label = if is_paper { format!("{name} (paper)") } else { name.clone() };
-                    let s = match out.iter_mut().position(|s| s.label == label) {
-                        Some(i) => &mut out[i],
-                        None => {
-                            out.push(Series { label, colour, paper: is_paper, points: vec![] });
-                            out.last_mut().expect("just pushed")
-                        }
+    // Row groups (the rows' labels other than photons), in first-seen order.
+    let mut groups: Vec<String> = vec![];
+    for ri in 0..g.rows.len() {
+        let grp = group_of(ri);
+        if !groups.contains(&grp) {
+            groups.push(grp);
+        }
+    }
+    // Series: one per column and row group of the rows in `group` (None: all rows); `value`
+    // picks what each entry contributes. Within one group's panel a series is its column.
+    let mut series_of =
+        |cols: &[usize], group: Option<&str>, value: &dyn Fn(usize, usize) -> (Option<f64>, Option<f64>)| {
+            let mut out: Vec<Series> = vec![];
+            for &ci in cols {
+                for ri in (0..g.rows.len()).filter(|&ri| group.is_none_or(|grp| group_of(ri) == grp)) {
+                    let name = match (photons.is_some() && group.is_none(), group_of(ri)) {
+                        (true, grp) if !grp.is_empty() => format!("{grp} · {}", g.cols[ci].header),
+                        _ => g.cols[ci].header.clone(),
                     };
-                    if let Some(v) = v.filter(|v| v.is_finite()) {
-                        s.points.push((x, v));
+                    let colour = palette.of(&name);
+                    let (ours, paper) = value(ri, ci);
+                    let x = x_index(ri);
+                    for (is_paper, v) in [(false, ours), (true, paper)] {
+                        let label = if is_paper { format!("{name} (paper)") } else { name.clone() };
+                        let s = match out.iter_mut().position(|s| s.label == label) {
+                            Some(i) => &mut out[i],
+                            None => {
+                                out.push(Series { label, colour, paper: is_paper, points: vec![] });
+                                out.last_mut().expect("just pushed")
+                            }
+                        };
+                        if let Some(v) = v.filter(|v| v.is_finite()) {
+                            s.points.push((x, v));
+                        }
                     }
                 }
             }
-        }
-        // Paper series the paper has no value for are left out; ours stay (a gap says so).
-        out.retain(|s| !s.paper || !s.points.is_empty());
-        out
-    };
+            // Paper series the paper has no value for are left out; ours stay (a gap says so).
+            out.retain(|s| !s.paper || !s.points.is_empty());
+            out
+        };
     let bars = photons.is_none();
+    // What each panel shows: its title, y label, log scale, line at 1, columns, and whether its
+    // values are ratios against the compared baseline.
+    struct Spec {
+        title: String,
+        y_label: String,
+        log_y: bool,
+        ratio: bool,
+        cols: Vec<usize>,
+    }
+    let mut specs = vec![];
     for (metric, cs) in &cols {
-        let kind = kind_of(metric);
-        let series = series_of(cs, &|ri, ci| {
-            let e = &g.entries[ri][ci];
-            (e.ours, e.paper.as_ref().map(|p| p.value))
-        });
-        let u = unit(&kind);
-        panels.push(Panel {
+        let u = unit(&kind_of(metric));
+        specs.push(Spec {
             title: metric.clone().unwrap_or_default(),
             y_label: if u.is_empty() { metric.clone().unwrap_or_else(|| "value".into()) } else { u.to_string() },
             log_y: config.table.plot_log_y,
-            x_labels: x_labels.clone(),
-            bars,
-            unit_line: false,
-            series,
+            ratio: false,
+            cols: cs.clone(),
         });
     }
-    if let Some(cmp) = &config.layout.compare {
+    let cmp = config.layout.compare.as_ref();
+    if let Some(cmp) = cmp {
         let base = display(&cmp.axis, &cmp.baseline);
         for (metric, cs) in &cols {
             if !cmp.metrics.is_empty() && !metric.as_ref().is_some_and(|m| cmp.metrics.contains(m)) {
                 continue;
             }
             let not_base = |ci: usize| !g.entries.iter().all(|r| r[ci].keys.get(&cmp.axis) == Some(&cmp.baseline));
-            let cs: Vec<usize> = cs.iter().copied().filter(|&ci| not_base(ci)).collect();
-            let series = series_of(&cs, &|ri, ci| ratio(g, &g.entries[ri][ci], &cmp.axis, &cmp.baseline));
-            if series.iter().all(|s| s.points.is_empty()) {
-                continue;
-            }
             let what = metric.as_ref().map(|m| format!("{m}: ")).unwrap_or_default();
-            panels.push(Panel {
+            specs.push(Spec {
                 title: format!("{what}ratio against {base}"),
                 y_label: format!("÷ {base}"),
                 log_y: true,
+                ratio: true,
+                cols: cs.iter().copied().filter(|&ci| not_base(ci)).collect(),
+            });
+        }
+    }
+    let value = |ratio: bool, ri: usize, ci: usize| -> (Option<f64>, Option<f64>) {
+        let e = &g.entries[ri][ci];
+        match (ratio, cmp) {
+            (true, Some(c)) => self::ratio(g, e, &c.axis, &c.baseline),
+            _ => (e.ours, e.paper.as_ref().map(|p| p.value)),
+        }
+    };
+    // Small multiples when a panel of every row group would list more series than fit.
+    let split = photons.is_some()
+        && groups.len() > 1
+        && specs.iter().any(|sp| sp.cols.len() * (g.rows.len() / xs.len().max(1)) * 2 > MAX_SERIES);
+    let panel_groups: Vec<Option<&str>> =
+        if split { groups.iter().map(|grp| Some(grp.as_str())).collect() } else { vec![None] };
+    for group in panel_groups {
+        for sp in &specs {
+            let series = series_of(&sp.cols, group, &|ri, ci| value(sp.ratio, ri, ci));
+            if sp.ratio && series.iter().all(|s| s.points.is_empty()) {
+                continue;
+            }
+            panels.push(Panel {
+                title: match group {
+                    Some(grp) => format!("{grp} · {}", sp.title),
+                    None => sp.title.clone(),
+                },
+                y_label: sp.y_label.clone(),
+                log_y: sp.log_y,
                 x_labels: x_labels.clone(),
                 bars,
-                unit_line: true,
+                unit_line: sp.ratio,
                 series,
             });
         }

@@ -258,3 +258,50 @@ fn rows_without_photons_plot_as_grouped_bars() {
     let plot = bench::plot::render(&fig).expect("plot");
     assert!(plot.svg.contains("<rect"), "bars");
 }
+
+/// A result with `scenes` scenes as a row axis beside photons, both techniques in every cell.
+fn by_scene(scenes: usize) -> (Config, Results) {
+    let names: Vec<String> = (0..scenes).map(|i| format!("../scenes/s{i}.toml")).collect();
+    let list = names.iter().map(|n| format!("\"{n}\"")).collect::<Vec<_>>().join(", ");
+    let text = CONFIG
+        .replace("scenes = [\"../scenes/sphere_on_plane.toml\"]", &format!("scenes = [{list}]"))
+        .replace("rows = [\"photons\"]", "rows = [\"scene\", \"photons\"]");
+    let text = &text[..text.find("[[paper]]").expect("paper")];
+    let config: Config = toml::from_str(text).expect("parses");
+    let mut cells = vec![];
+    for name in &names {
+        for (t, label) in ["base", "fast"].iter().enumerate() {
+            for photons in [256, 512] {
+                let mut c = cell(cells.len(), t, label, photons, &STEADY);
+                c.cell.scene = name.clone();
+                cells.push(c);
+            }
+        }
+    }
+    let r = results(&config, cells);
+    (config, r)
+}
+
+#[test]
+fn a_plot_with_more_series_than_a_legend_lists_becomes_one_panel_per_scene() {
+    // 2 scenes: 2 columns × 2 scenes, with the paper's, fit one legend: values and ratios.
+    let (config, r) = by_scene(2);
+    let fig = bench::figure::figure(&config, &r, &bench::table::grid(&config, &r));
+    assert_eq!(fig.panels.len(), 2, "{:?}", fig.panels.iter().map(|p| &p.title).collect::<Vec<_>>());
+    assert!(fig.panels[0].series.iter().any(|s| s.label == "s1 · fast"), "series name their scene");
+    // 9 scenes: 2 × 9 × 2 = 36 series would not fit, so each scene gets its two panels.
+    let (config, r) = by_scene(9);
+    let fig = bench::figure::figure(&config, &r, &bench::table::grid(&config, &r));
+    assert_eq!(fig.panels.len(), 18);
+    for (i, p) in fig.panels.iter().enumerate() {
+        assert!(p.title.starts_with(&format!("s{} · ", i / 2)), "panel {i}: {}", p.title);
+        assert!(p.series.len() <= bench::figure::MAX_SERIES, "panel {i}: {} series", p.series.len());
+        assert!(p.series.iter().all(|s| s.label.starts_with("base") || s.label.starts_with("fast")));
+        assert!(p.series.iter().all(|s| s.points.len() == 2 || s.paper), "panel {i}: a point per photon count");
+    }
+    // A column keeps its colour from scene to scene.
+    let colour = |p: &bench::figure::Panel| p.series.iter().find(|s| s.label == "fast").map(|s| s.colour);
+    assert_eq!(colour(&fig.panels[0]), colour(&fig.panels[16]));
+    let plot = bench::plot::render(&fig).expect("plot");
+    assert!(plot.png.starts_with(b"\x89PNG"), "not a PNG");
+}
