@@ -60,7 +60,7 @@ void main() {
     if (!photon_of_entry(entry, pos, power)) return;
 #elif defined(ADAPTIVE_PHOTONS)
     if (i >= entry_count()) return;
-    uvec4 entry = uvec4(0u);
+    uvec4 entry = uvec4(floatBitsToUint(records[i].footprint), 0u, 0u, 0u);
     pos = vec4(records[i].position, 1.0);
     power = records[i].power;
 #else

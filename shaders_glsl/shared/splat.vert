@@ -9,10 +9,11 @@
 // - HIERARCHY: one vertex per entry of the hierarchical traversal's final list (Wyman 2008
 //   Sec. 3.1-3.2), each picking its layer of the multi-resolution map (Sec. 3.3) with gl_Layer;
 // - ADAPTIVE_PHOTONS: one vertex per photon the adaptive traversal output (Wyman & Nichols 2009
-//   Sec. 3.2, step 3), its position and power read as vertex attributes.
+//   Sec. 3.2, step 3), its position, power and varying splat radius read as vertex attributes,
+//   picking its layer of the multi-resolution map as HIERARCHY's entries do.
 // shared/splat.comp deposits the same splats from a compute shader.
 #version 450
-#ifdef HIERARCHY
+#if defined(HIERARCHY) || defined(ADAPTIVE_PHOTONS)
 #extension GL_ARB_shader_viewport_layer_array : require
 #endif
 #define CAUSTICS_BINDING 1
@@ -41,12 +42,13 @@ uvec4 entry() { return uvec4(0u); }
 #elif defined(ADAPTIVE_PHOTONS)
 layout(location = 0) in vec3 a_position;                    // AdaptivePhoton (adaptive_photon.glsl)
 layout(location = 1) in vec3 a_power;
+layout(location = 2) in float a_footprint;
 bool fetch_photon(out vec4 pos, out vec3 power) {
     pos = vec4(a_position, 1.0);
     power = a_power;
     return true;
 }
-uvec4 entry() { return uvec4(0u); }
+uvec4 entry() { return uvec4(floatBitsToUint(a_footprint), 0u, 0u, 0u); }
 #elif defined(HIERARCHY)
 layout(location = 0) in uint a_entry;                       // packed (x, y, level, final)
 bool fetch_photon(out vec4 pos, out vec3 power) { return photon_of_entry(unpack_entry(a_entry), pos, power); }
@@ -76,7 +78,7 @@ void main() {
     vec3 power;
     Splat s;
     if (!fetch_photon(pos, power) || !splat_of(pos, power, entry(), cl, s)) return;
-#ifdef HIERARCHY
+#if defined(HIERARCHY) || defined(ADAPTIVE_PHOTONS)
     gl_Layer = s.layer;
 #endif
     v_power = s.power;

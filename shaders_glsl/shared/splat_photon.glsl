@@ -4,7 +4,7 @@
 // sum over the texel centres it covers (a photon deposits exactly its power).
 // Needs common/caustics.glsl; binds photon_position and photon_power at 2-3 and, with
 // HIERARCHY, the photon hierarchy at 4-5 (PHOTON_VERTEX_ARRAY and ADAPTIVE_PHOTONS bring their
-// own photons).
+// own photons). Varying splats (caustics.splat.w) with HIERARCHY and ADAPTIVE_PHOTONS.
 #ifndef SPLAT_PHOTON_GLSL
 #define SPLAT_PHOTON_GLSL
 #include "shared/splat_kernel.glsl"
@@ -50,6 +50,13 @@ bool photon_of_entry(uvec4 entry, out vec4 pos, out vec3 power) {
 }
 
 #include "wyman2008/varying_splat.glsl"
+float splat_radius_of(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) { return varying_radius(entry, p, centre, cl); }
+#define VARYING_SPLATS
+#elif defined(ADAPTIVE_PHOTONS)
+// An adaptive photon's varying splat radius came with it (entry.x: its footprint's bits, Wyman &
+// Nichols 2009 Sec. 3.2.2, wyman_nichols2009/adaptive.glsl `with_footprints`): 1 texel at least.
+float splat_radius_of(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) { return max(uintBitsToFloat(entry.x), 1.0); }
+#define VARYING_SPLATS
 #endif
 
 struct Splat {
@@ -65,7 +72,7 @@ struct Splat {
 // it would have had, where it has them, for the `splats` dump)
 // (no photon, behind the light, centred off the map, or a varying splat too wide for the last
 // map level).
-// `entry` is the hierarchy entry (HIERARCHY only).
+// `entry` is the hierarchy entry (HIERARCHY) or the adaptive photon's footprint (ADAPTIVE_PHOTONS).
 bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
     s = Splat(vec4(0.0), vec2(0.0), 0.0, 1.0, 0);
     if (pos.w < 0.5) return false;
@@ -74,9 +81,9 @@ bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
     float m = cl.caustic_plane.y;
     vec2 centre = (clip.xy / clip.w * 0.5 + 0.5) * m;
     float r = caustics.splat.x;
-#ifdef HIERARCHY
+#ifdef VARYING_SPLATS
     if (caustics.splat.w != SPLAT_FIXED) {
-        r = varying_radius(entry, pos.xyz, centre, cl);
+        r = splat_radius_of(entry, pos.xyz, centre, cl);
         // photonMipLevel = trunc(log2(max(1, D / 5))); splats needing level 4 or beyond are
         // discarded (D >= 80 by this formula: radius >= 40 texels; the paper's text says "a
         // diameter of more than 40 pixels", which its formula puts at level 3), in the single map

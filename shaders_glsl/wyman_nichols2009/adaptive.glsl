@@ -124,8 +124,16 @@ bool create_photon(uvec2 p, uint level, out AdaptivePhoton ph) {
     float omega = texel_solid_angle(uv * 2.0 - 1.0, vec4(cl.photon_plane.x, side, 0.0, 0.0));
     Photon t = trace_photon_through(constants.light, s.position, s.normal, s.thickness, omega, s.material);
     if (t.position.w < 0.5) return false;
-    ph = AdaptivePhoton(t.position.xyz, pack_cell(uvec3(p, level)), t.power.rgb, omega);
+    ph = AdaptivePhoton(t.position.xyz, pack_cell(uvec3(p, level)), t.power.rgb, 0.0);
     return true;
+}
+
+// Where photon `ph` lands in light l's caustic map, in texels; false behind the light.
+bool caustic_map_texel(AdaptivePhoton ph, out vec2 t) {
+    CausticLight cl = caustics.lights[constants.light];
+    vec4 clip = cl.caustic_view_proj * vec4(ph.position, 1.0);
+    t = (clip.xy / max(clip.w, 1e-30) * 0.5 + 0.5) * cl.caustic_plane.y;
+    return clip.w > 0.0;
 }
 
 // Photon i of cluster c: (2x + (i & 1), 2y + (i >> 1)) of level k.
@@ -160,15 +168,53 @@ bool converges(AdaptivePhoton p[4], uint landed, bool all_covered) {
 }
 
 // "One photon is output with intensity based upon the solid angle of all cluster photons": the
-// four photons' summed power and solid angle at their mean position, as the cluster's cell
-// (its parent at level k - 1).
+// four photons' summed power (each its cell's solid angle's) at their mean position, as the
+// cluster's cell (its parent at level k - 1). Its photons all landed in one caustic-map texel,
+// so a varying splat gives it one texel, as Wyman 2008's converged clusters get.
 AdaptivePhoton merged(uvec3 c, AdaptivePhoton p[4]) {
-    AdaptivePhoton m = AdaptivePhoton(vec3(0.0), pack_cell(uvec3(c.xy, c.z - 1u)), vec3(0.0), 0.0);
+    bool sized = caustics.splat.w != SPLAT_FIXED;
+    AdaptivePhoton m = AdaptivePhoton(vec3(0.0), pack_cell(uvec3(c.xy, c.z - 1u)), vec3(0.0), sized ? 1.0 : 0.0);
     for (int i = 0; i < 4; ++i) {
         m.position += 0.25 * p[i].position;
         m.power += p[i].power;
-        m.omega += p[i].omega;
     }
     return m;
+}
+
+// Varying splats for the photons a last-level cluster outputs ("remaining noise is eliminated by
+// rendering to a multi-resolution caustic map, splatting into lower resolution maps for
+// diverging photons [WD08]", Sec. 3.2.2): each landed photon's footprint is Wyman 2008's
+// max-distance radius (wyman2008/varying_splat.glsl), the largest caustic-map distance to its
+// four adjacent photons on the same grid that landed. Two of them are its cluster's own; the
+// other two belong to neighbouring clusters and are created here by deferred shading, as any
+// photon can be (Sec. 4.3: "deferred shading allows computations in any order"). With geometry
+// buffers as fine as the grid these are the dense photon buffer's neighbours, so the splats are
+// those of the hierarchical caustic map's varying splats. Fixed splats: nothing to do.
+void with_footprints(uvec3 c, inout AdaptivePhoton p[4], uint landed) {
+    if (caustics.splat.w == SPLAT_FIXED) return;
+    const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+    int side = int(TOP_PHOTONS << c.z);
+    for (uint i = 0u; i < 4u; ++i) {
+        vec2 centre;
+        if ((landed & (1u << i)) == 0u || !caustic_map_texel(p[i], centre)) continue;
+        ivec2 q = ivec2(photon_of(c, i));
+        float dmax = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            ivec2 n = q + offsets[k];
+            ivec2 local = n - 2 * ivec2(c.xy);
+            AdaptivePhoton a;
+            if (all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(2)))) {
+                uint j = uint(local.x + 2 * local.y);    // a photon of this cluster
+                if ((landed & (1u << j)) == 0u) continue;
+                a = p[j];
+            } else if (any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, ivec2(side)))
+                       || !create_photon(uvec2(n), c.z, a)) {
+                continue;
+            }
+            vec2 t;
+            if (caustic_map_texel(a, t)) dmax = max(dmax, distance(t, centre));
+        }
+        p[i].footprint = dmax;
+    }
 }
 #endif

@@ -5,8 +5,8 @@
 //   a cluster of the traversal's lists is the 2x2 photons (2x + i, 2y + j) of level k, stored
 //   as the cell (x, y) with level k (its parent's index on the coarser grid);
 // - an adaptive photon (32 bytes): where it lands, its cell (a photon of level k, or a
-//   converged cluster of level k stored as its parent cell at level k - 1), its power and the
-//   solid angle it stands for;
+//   converged cluster of level k stored as its parent cell at level k - 1), its power and, with
+//   varying splats, its splat radius (the solid angle it stands for follows from its cell);
 // - a cluster's hits (144 bytes, the transform-feedback path's first kernel of a max-error step,
 //   Sec. 4.1): the cluster, which photons landed, whether its footprint is all refractor, and
 //   its four photons.
@@ -24,7 +24,7 @@ struct AdaptivePhoton {
     vec3 position;   // where it lands on the first diffuse surface
     uint cell;       // pack_cell(x, y, level)
     vec3 power;      // W
-    float omega;     // the solid angle it stands for (sr)
+    float footprint; // varying splats (Wyman 2008 Sec. 3.3): the splat radius, caustic-map texels; 0 with fixed splats
 };
 
 struct ClusterHits {
@@ -34,5 +34,5 @@ struct ClusterHits {
 
 // The photon's two 16-byte words as a transform-feedback output writes them (bit for bit).
 uvec4 photon_word0(AdaptivePhoton p) { return uvec4(floatBitsToUint(p.position), p.cell); }
-uvec4 photon_word1(AdaptivePhoton p) { return uvec4(floatBitsToUint(p.power), floatBitsToUint(p.omega)); }
+uvec4 photon_word1(AdaptivePhoton p) { return uvec4(floatBitsToUint(p.power), floatBitsToUint(p.footprint)); }
 #endif

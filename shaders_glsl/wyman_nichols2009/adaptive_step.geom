@@ -60,8 +60,10 @@ void main() {
     if (converged) {
         emit(merged(c, h.photons));
     } else if (c.z == constants.finest) {
+        AdaptivePhoton p[4] = h.photons;
+        with_footprints(c, p, h.header.y);
         for (uint k = 0u; k < 4u; ++k) {
-            if ((h.header.y & (1u << k)) != 0u) emit(h.photons[k]);
+            if ((h.header.y & (1u << k)) != 0u) emit(p[k]);
         }
     }
 #else   // REFINE
@@ -76,6 +78,7 @@ void main() {
 #elif defined(EMIT)
     AdaptivePhoton p[4];
     uint landed = cluster_photons(c, p);
+    with_footprints(c, p, landed);
     for (uint k = 0u; k < 4u; ++k) {
         if ((landed & (1u << k)) != 0u) emit(p[k]);
     }

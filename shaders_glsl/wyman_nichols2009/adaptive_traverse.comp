@@ -50,6 +50,7 @@ void main() {
         refine(c);
         return;
     }
+    with_footprints(c, p, landed);
     for (uint k = 0u; k < 4u; ++k) {
         if ((landed & (1u << k)) != 0u) emit(p[k]);
     }

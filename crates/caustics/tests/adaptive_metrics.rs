@@ -108,7 +108,7 @@ fn both_paths_emit_the_same_photons_and_maps_for_both_metrics_and_splats() {
                 let dp = (0..3).map(|i| (p.position[i] - q.position[i]).abs()).fold(0.0f32, f32::max);
                 let dw = (0..3).map(|i| (p.power[i] - q.power[i]).abs() / p.power[i].max(1e-30)).fold(0.0f32, f32::max);
                 assert!(
-                    dp < 1e-4 && dw < 1e-5 && (p.omega - q.omega).abs() <= 1e-6 * p.omega,
+                    dp < 1e-4 && dw < 1e-5 && (p.footprint - q.footprint).abs() <= 1e-4 * p.footprint.max(1.0),
                     "{label}: {p:?} vs {q:?}"
                 );
             }

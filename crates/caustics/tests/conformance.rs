@@ -9,6 +9,9 @@
 //!   flux ratio of the receiver map, `caustics::compare`);
 //! - writes every dump it declares (`render::dumps_for`) and no other.
 //!
+//! `conformance_light_space` runs Wyman & Davis' quads and gathers in light space, and
+//! `conformance_varying_splats` hcm and adaptive with varying multi-resolution splats.
+//!
 //! `pool-convolution` renders pool scenes only (and refuses the sphere scenes, checked here);
 //! its own suite is `tests/pool.rs`.
 //!
@@ -79,6 +82,18 @@ fn stated(t: Technique) -> Option<Stated> {
     }
 }
 
+/// hcm and adaptive with varying splats into the multi-resolution map (Wyman 2008 Sec. 3.3;
+/// Wyman & Nichols 2009 Sec. 3.2.2). Splats of 40 texels or more are dropped (the map's level
+/// 4: the rim's most diverging photons), and wider kernels blur the rim: measured on lavapipe
+/// (printed by `conformance_varying_splats`), drift -2.0e-2 (hcm) and -2.2e-2 (adaptive), RMSE
+/// 0.122 and 0.135, flux 0.946-0.990, all worst on sphere_on_plane.
+fn stated_varying(t: Technique) -> Option<Stated> {
+    match t {
+        Technique::Hcm | Technique::Adaptive => Some(Stated { power: 2.6e-2, rel_rmse: 0.16, flux: 0.93..=1.01 }),
+        _ => None,
+    }
+}
+
 const SCENES: [&str; 2] = ["sphere_on_plane", "sphere_oblique"];
 
 fn load(name: &str, technique: Technique) -> Scene {
@@ -115,6 +130,19 @@ fn power(img: &ImageF32, layer: &str, valid: Option<&str>) -> f64 {
         .filter(|&i| v.is_none_or(|v| v.data[i * v.channels.len() + 3] > 0.5))
         .map(|i| (l.data[i * nc] as f64 + l.data[i * nc + 1] as f64 + l.data[i * nc + 2] as f64) / 3.0)
         .sum()
+}
+
+/// Light 0's caustic-map power: its layer, or the levels of its multi-resolution map
+/// (`light0_level<i>`).
+fn light0_power(cmap: &ImageF32) -> f64 {
+    let names: Vec<&str> = cmap
+        .layers
+        .iter()
+        .filter_map(|l| l.name.as_deref())
+        .filter(|n| *n == "light0" || n.starts_with("light0_level"))
+        .collect();
+    assert!(!names.is_empty(), "no light0 layer in the caustic map");
+    names.iter().map(|n| power(cmap, n, None)).sum()
 }
 
 /// The power (mean of R, G, B, in W) of the adaptive traversal's output photons, from the
@@ -156,6 +184,11 @@ fn receiver_flux(receiver: &ImageF32, scene: &Scene) -> f64 {
 
 /// Runs `techniques` (in `space` where they have one) on both scenes; returns the failures.
 fn check(techniques: &[Technique], space: Space) -> Vec<String> {
+    check_with(techniques, space, None)
+}
+
+/// [`check`], with `splat` (hcm, adaptive: splat sizes) set when given.
+fn check_with(techniques: &[Technique], space: Space, splat: Option<&str>) -> Vec<String> {
     let (ctx, sh) = context();
     let mut failures = vec![];
     for scene_name in SCENES {
@@ -163,7 +196,10 @@ fn check(techniques: &[Technique], space: Space) -> Vec<String> {
         let opts = ReferenceOptions { photons: 2_000_000, fresnel: false, ..Default::default() };
         let reference = trace_reference(&reference_scene, &opts).expect("reference").image;
         for &t in techniques {
-            let scene = load_in(scene_name, t, space);
+            let mut scene = load_in(scene_name, t, space);
+            if let Some(s) = splat {
+                scene.caustics.splat = s.parse().expect("a known name");
+            }
             if !t.renders_meshes() {
                 let err = Renderer::new(&ctx, &sh, &scene, &RendererOptions::default()).err().map(|e| e.to_string());
                 assert!(err.as_deref().is_some_and(|e| e.contains("[pool]")), "{t} on {scene_name}: {err:?}");
@@ -180,7 +216,7 @@ fn check(techniques: &[Technique], space: Space) -> Vec<String> {
 
             let receiver = &dumps.iter().find(|(n, _)| n == "receiver").expect("a receiver map").1;
             let (c, _) = compare(receiver, &reference).expect("compare");
-            let Some(want) = stated(t) else {
+            let Some(want) = (if splat.is_some() { stated_varying(t) } else { stated(t) }) else {
                 // No caustics: the receiver map is the direct light alone, flux ratio 0.
                 assert_eq!(c.caustic_flux_ratio, 0.0, "{t} on {scene_name}: {c:?}");
                 continue;
@@ -189,12 +225,9 @@ fn check(techniques: &[Technique], space: Space) -> Vec<String> {
             let (landed, held) = if scene.caustics.eye_space() {
                 (landed_on_receiver(get("photon_buffer"), &scene), receiver_flux(receiver, &scene))
             } else if t == Technique::Adaptive {
-                (adaptive_landed(get("adaptive_lists")), power(get("caustic_map"), "light0", None))
+                (adaptive_landed(get("adaptive_lists")), light0_power(get("caustic_map")))
             } else {
-                (
-                    power(get("photon_buffer"), "light0.power", Some("light0.position")),
-                    power(get("caustic_map"), "light0", None),
-                )
+                (power(get("photon_buffer"), "light0.power", Some("light0.position")), light0_power(get("caustic_map")))
             };
             let drift = held / landed - 1.0;
             let spaced = matches!(t, Technique::WdQuads | Technique::WdGather);
@@ -224,5 +257,12 @@ fn every_technique_renders_clean_conserves_power_and_meets_its_stated_error() {
 #[test]
 fn conformance_light_space() {
     let failures = check(&[Technique::WdQuads, Technique::WdGather], Space::Light);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// hcm and adaptive with varying splats into the multi-resolution caustic map.
+#[test]
+fn conformance_varying_splats() {
+    let failures = check_with(&[Technique::Hcm, Technique::Adaptive], Space::Eye, Some("varying-multires"));
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -73,8 +73,13 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
         if let Some(a) = frame.adaptive {
             // Adaptive caustic maps splat batch after batch inside their traversal (Sec. 4.3).
             let cmap = &ct.per_light[l as usize].0;
-            let splat =
-                adaptive::Splat { passes: inp.pass_inputs(), compute: frame.compute_splat, photon_targets: pt, cmap };
+            let splat = adaptive::Splat {
+                passes: inp.pass_inputs(),
+                compute: frame.compute_splat,
+                photon_targets: pt,
+                cmap,
+                layers: ct.levels,
+            };
             if frame.reuse_photons && !a.plan.batched() {
                 a.record_splat_batch(f, &splat, l, "", true, true)?;
             } else {

@@ -114,8 +114,9 @@ caustic_settings! {
     path: TraversalPath = TraversalPath::Xfb, only Hcm | Adaptive;
     /// hcm: converging-photon clustering (Wyman 2008 Sec. 3.2); default none.
     cluster: Cluster = Cluster::None, only Hcm;
-    /// hcm: splat sizes (Wyman 2008 Sec. 3.3); default fixed.
-    splat: SplatMode = SplatMode::Fixed, only Hcm;
+    /// hcm, adaptive: splat sizes (Wyman 2008 Sec. 3.3; for adaptive, its photons' divergence
+    /// into the multi-resolution map, Wyman & Nichols 2009 Sec. 3.2.2); default fixed.
+    splat: SplatMode = SplatMode::Fixed, only Hcm | Adaptive;
     /// hcm with varying splats: the radius estimator (Wyman 2008 Sec. 3.3); default max-distance.
     varying_radius: VaryingRadius = VaryingRadius::MaxDistance, only Hcm;
     /// How photons are splatted: points (raster, the papers') or a compute shader with float
@@ -197,7 +198,7 @@ impl CausticSettings {
     /// Caustic-map layers per light: 4 for the multi-resolution map (levels 0-3, Wyman 2008
     /// Sec. 3.3), else 1.
     pub fn caustic_levels(&self) -> u32 {
-        if self.technique == Technique::Hcm && self.splat == SplatMode::VaryingMultires {
+        if matches!(self.technique, Technique::Hcm | Technique::Adaptive) && self.splat == SplatMode::VaryingMultires {
             4
         } else {
             1

@@ -18,7 +18,7 @@
 //! between steps. The GLSL is `shaders_glsl/wyman_nichols2009/adaptive*.{glsl,comp,geom,vert}`.
 //!
 //! Storage: each level's pending clusters are a list of packed u32 cells; the output is one list
-//! of 32-byte [`AdaptivePhoton`]s (position, cell, power, solid angle) that every step appends
+//! of 32-byte [`AdaptivePhoton`]s (position, cell, power, varying splat radius) that every step appends
 //! to, splatted by the point splat (or the compute splat) as a vertex array. Under a memory
 //! limit the traversal is split into batches, each splatted before the next ([`batches`],
 //! Sec. 4.3).
@@ -207,6 +207,7 @@ impl AdaptiveCaustics {
             attributes: vec![
                 VertexAttribute { location: 0, format: Format::R32G32B32_SFLOAT, offset: 0 },
                 VertexAttribute { location: 1, format: Format::R32G32B32_SFLOAT, offset: 16 },
+                VertexAttribute { location: 2, format: Format::R32_SFLOAT, offset: 28 },
             ],
         });
         Ok(AdaptiveCaustics {

@@ -38,8 +38,11 @@ pub struct AdaptivePhoton {
     pub cell: u32,
     /// Power, W.
     pub power: [f32; 3],
-    /// The solid angle it stands for, sr.
-    pub omega: f32,
+    /// With varying splats (Wyman 2008 Sec. 3.3; Sec. 3.2.2 here): its splat radius in
+    /// caustic-map texels, the largest distance to its adjacent photons that landed (1 for a
+    /// converged cluster); 0 with fixed splats. (The solid angle it stands for, folded into its
+    /// power, follows from its cell.)
+    pub footprint: f32,
 }
 
 const _: () = assert!(std::mem::size_of::<AdaptivePhoton>() as u64 == PHOTON_BYTES);
@@ -77,7 +80,7 @@ mod tests {
             .filter_map(|l| l.split("//").next()?.trim().strip_suffix(';'))
             .map(|l| l.split_whitespace().nth(1).unwrap_or(""))
             .collect();
-        assert_eq!(members, ["position", "cell", "power", "omega"]);
+        assert_eq!(members, ["position", "cell", "power", "footprint"]);
         // The deepest level's last cell fits.
         let last = super::super::super::settings::MAX_LEVEL;
         let side = super::super::super::settings::TOP_PHOTONS << last;

@@ -37,7 +37,7 @@ impl AdaptiveCaustics {
             Use::view(s.cmap, Access::COLOR_ATTACHMENT),
         ];
         f.pass(&format!("splat{tag}.light{l}")).bind(&self.splat, binds).uses(uses).record(|cmd| {
-            cmd.begin_rendering(&Targets::color(s.cmap, first.then_some([0.0; 4])))?;
+            cmd.begin_rendering(&Targets::color(s.cmap, first.then_some([0.0; 4])).layered(s.layers))?;
             cmd.push(&SplatConstants { light: l, vertices_per_instance: 0 })?;
             cmd.bind_vertex_buffer(&list.data, 0);
             match self.path {

@@ -35,8 +35,10 @@ pub struct Splat<'a> {
     /// The compute splat, else the point splat.
     pub compute: Option<&'a ComputeSplat>,
     pub photon_targets: &'a PhotonTargets,
-    /// The light's caustic-map layer.
+    /// The light's caustic-map layers.
     pub cmap: &'a ImageView,
+    /// How many: 4 for the multi-resolution map (varying-multires splats), else 1.
+    pub layers: u32,
 }
 
 /// What a transform-feedback kernel reads: a stream of elements of `stride` bytes (clusters or
@@ -377,7 +379,7 @@ pub type LightLists = (Vec<Vec<[u32; 3]>>, Vec<AdaptivePhoton>);
 /// `adaptive_lists.exr` from each light's clusters and photons: layer `light<l>.clusters<k>`
 /// holds the pending clusters of level k (x, y, level; the cluster of photons (2x + i, 2y + j)
 /// of level k), layer `light<l>.photons` the output photons (x, y, level of their cell, where
-/// they land X, Y, Z, power R, G, B, solid angle omega); a record per pixel in row-major order,
+/// they land X, Y, Z, power R, G, B, varying splat radius `footprint`); a record per pixel in row-major order,
 /// valid = 1 for a record (the rest of the image is padding).
 pub fn lists_image(per_light: &[LightLists]) -> ImageF32 {
     let mut lists = vec![];
@@ -395,13 +397,13 @@ pub fn lists_image(per_light: &[LightLists]) -> ImageF32 {
                 let c = p.cell();
                 let [x, y, z] = p.position;
                 let [r, g, b] = p.power;
-                vec![c[0] as f32, c[1] as f32, c[2] as f32, x, y, z, r, g, b, p.omega, 1.0]
+                vec![c[0] as f32, c[1] as f32, c[2] as f32, x, y, z, r, g, b, p.footprint, 1.0]
             })
             .collect();
         lists.push((format!("light{l}.photons"), records));
     }
     crate::techniques::shared::records_image(
         lists,
-        &["x", "y", "level", "X", "Y", "Z", "R", "G", "B", "omega", "valid"],
+        &["x", "y", "level", "X", "Y", "Z", "R", "G", "B", "footprint", "valid"],
     )
 }
