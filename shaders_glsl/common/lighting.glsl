@@ -1,12 +1,12 @@
 // Direct light from point and spot lights: irradiance I cos(theta) / r^2 (inverse-square law)
 // and shadow-map visibility. Needs bindings SHADOW_BINDING (sampler2DArray of distances) and
-// SPOT_BINDING (sampler2DArray of projected textures).
+// SPOT_BINDING (sampler2DArray of projected textures, common/spot_texture.glsl).
 #ifndef LIGHTING_GLSL
 #define LIGHTING_GLSL
 #include "common/frame.glsl"
+#include "common/spot_texture.glsl"
 
 layout(binding = SHADOW_BINDING) uniform sampler2DArray shadow_map;
-layout(binding = SPOT_BINDING) uniform sampler2DArray spot_textures;
 
 // Irradiance at `p` with normal `n` from light `l`, ignoring occluders (E0's term), W/m^2.
 vec3 unoccluded_irradiance(uint l, vec3 p, vec3 n) {
@@ -15,17 +15,7 @@ vec3 unoccluded_irradiance(uint l, vec3 p, vec3 n) {
     float r2 = max(dot(to_light, to_light), 1e-12);
     vec3 w = to_light * inversesqrt(r2);
     float cos_theta = max(dot(n, w), 0.0);
-    vec3 e = light.intensity.rgb * cos_theta / r2;
-    if (light.position.w > 0.5) {
-        vec3 d = -w;
-        float c = dot(d, light.spot.xyz);
-        if (c < light.spot.w) return vec3(0.0);
-        if (light.intensity.w > 0.5) {
-            vec2 uv = vec2(dot(d, light.spot_u.xyz), dot(d, light.spot_v.xyz)) / c * 0.5 + 0.5;
-            e *= texture(spot_textures, vec3(uv, float(l))).rgb;
-        }
-    }
-    return e;
+    return light.intensity.rgb * spot_emission(l, -w) * cos_theta / r2;
 }
 
 // The cube face whose 90-degree frustum contains direction d (+X -X +Y -Y +Z -Z).

@@ -5,10 +5,10 @@
 #version 450
 #include "shared/trace.glsl"
 #include "common/mesh_vertex.glsl"
-layout(std430, binding = 7) readonly buffer Areas { float areas[]; };   // a third of each vertex's triangles' area
-layout(binding = 4, rgba32f) uniform writeonly image2D photon_position;
-layout(binding = 5, rgba32f) uniform writeonly image2D photon_direction;
-layout(binding = 6, rgba32f) uniform writeonly image2D photon_power;
+layout(std430, binding = 8) readonly buffer Areas { float areas[]; };   // a third of each vertex's triangles' area
+layout(binding = 5, rgba32f) uniform writeonly image2D photon_position;
+layout(binding = 6, rgba32f) uniform writeonly image2D photon_direction;
+layout(binding = 7, rgba32f) uniform writeonly image2D photon_power;
 
 void main() {
     uint l = mesh.light;

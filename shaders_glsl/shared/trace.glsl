@@ -2,7 +2,7 @@
 // by the photon buffer (a photon per light-space texel: Wyman & Davis 2006 Sec. 3.1, Shah's
 // refractive vertex grid) and the vertex-photon pass (a photon per mesh vertex: Shah's original
 // first pass). The tracing itself is shared/trace_surface.glsl.
-// Needs bindings: 0 frame, 1 caustics, 2 light-space back faces, 3 receiver positions.
+// Needs bindings 0-4 (shared/trace_surface.glsl).
 #ifndef TRACE_GLSL
 #define TRACE_GLSL
 #include "shared/trace_surface.glsl"

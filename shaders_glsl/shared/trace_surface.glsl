@@ -4,11 +4,14 @@
 // caustic maps from the light-space geometry buffers they create photons from by deferred
 // shading (Wyman & Nichols 2009 Sec. 3.2, wyman_nichols2009/adaptive.glsl), so that dense and
 // adaptive photons are the same computation.
-// Needs bindings: 0 frame, 1 caustics, 2 light-space back faces, 3 receiver positions.
+// Needs bindings: 0 frame, 1 caustics, 2 light-space back faces, 3 receiver positions, 4 the
+// spot lights' projected textures (common/spot_texture.glsl).
 #ifndef TRACE_SURFACE_GLSL
 #define TRACE_SURFACE_GLSL
 #define CAUSTICS_BINDING 1
+#define SPOT_BINDING 4
 #include "common/caustics.glsl"
+#include "common/spot_texture.glsl"
 #include "common/materials.glsl"
 #include "common/fresnel.glsl"
 layout(binding = 2) uniform sampler2D light_back_faces;
@@ -61,10 +64,10 @@ Photon trace_photon_through(uint l, vec3 p1, vec3 n1, float d_n, float omega, Sp
     CausticLight cl = caustics.lights[l];
     vec3 v = normalize(p1 - cl.position.xyz);
     if (dot(n1, v) > 0.0) n1 = -n1;
-    vec3 power = frame.lights[l].intensity.rgb * omega;
-    // A spot light emits nothing outside its cone (its projected texture is not applied to
-    // photons, as in the CPU reference).
-    if (frame.lights[l].position.w > 0.5 && dot(v, frame.lights[l].spot.xyz) < frame.lights[l].spot.w) power = vec3(0.0);
+    // A spot light's cone and projected texture shape the photons as they shape the direct
+    // light (and the CPU reference's photons): the power is weighted by the texture's colour in
+    // the photon's direction, zero outside the cone.
+    vec3 power = frame.lights[l].intensity.rgb * spot_emission(l, v) * omega;
     vec3 o, d;
     if (m.kind == MATERIAL_REFLECTIVE) {
         o = p1;

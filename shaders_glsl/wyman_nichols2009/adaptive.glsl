@@ -22,12 +22,12 @@
 // the refractor covers the whole footprint (so the one photon stands for all its descendants).
 #ifndef ADAPTIVE_GLSL
 #define ADAPTIVE_GLSL
-#include "shared/trace_surface.glsl"   // bindings 0-3: frame, caustics, the back faces, receiver positions
+#include "shared/trace_surface.glsl"   // bindings 0-4: frame, caustics, the back faces, receiver positions, spot textures
 #include "wyman_nichols2009/adaptive_photon.glsl"
-layout(binding = 4) uniform sampler2DArray geometry_position;  // front: position, d_N
-layout(binding = 5) uniform sampler2DArray geometry_normal;    // front: normal, object + 1 (0: none)
-layout(binding = 6) uniform sampler2DArray geometry_material;  // front: colour, mean ior (0: mirror)
-layout(binding = 7) uniform sampler2D coverage;                // mip m: any (r) and all (g) covered below
+layout(binding = 5) uniform sampler2DArray geometry_position;  // front: position, d_N
+layout(binding = 6) uniform sampler2DArray geometry_normal;    // front: normal, object + 1 (0: none)
+layout(binding = 7) uniform sampler2DArray geometry_material;  // front: colour, mean ior (0: mirror)
+layout(binding = 8) uniform sampler2D coverage;                // mip m: any (r) and all (g) covered below
 
 // Mirrored by `AdaptiveConstants` in crates/caustics/src/gpu/push.rs.
 layout(push_constant) uniform AdaptiveConstants {

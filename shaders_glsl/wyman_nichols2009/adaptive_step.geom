@@ -22,7 +22,7 @@ layout(points, max_vertices = 4) out;
 
 #ifdef FROM_HITS
 layout(location = 0) flat in uint v_index[];
-layout(std430, binding = 8) readonly buffer Hits { ClusterHits hits[]; };
+layout(std430, binding = 9) readonly buffer Hits { ClusterHits hits[]; };
 #else
 layout(location = 0) flat in uint v_cluster[];
 #endif

@@ -8,12 +8,12 @@
 #include "wyman_nichols2009/adaptive.glsl"
 #include "vkcore/compact_counter.glsl"
 layout(local_size_x = 64) in;
-layout(std430, binding = 8) readonly buffer Input { uint in_entries[]; };
-layout(std430, binding = 9) readonly buffer InputCounter { CompactCounter in_counter; };
-layout(std430, binding = 10) writeonly buffer Output { uint out_entries[]; };
-layout(std430, binding = 11) buffer OutputCounter { CompactCounter out_counter; };
-layout(std430, binding = 12) writeonly buffer Photons { AdaptivePhoton photons[]; };
-layout(std430, binding = 13) buffer PhotonCounter { CompactCounter photon_counter; };
+layout(std430, binding = 9) readonly buffer Input { uint in_entries[]; };
+layout(std430, binding = 10) readonly buffer InputCounter { CompactCounter in_counter; };
+layout(std430, binding = 11) writeonly buffer Output { uint out_entries[]; };
+layout(std430, binding = 12) buffer OutputCounter { CompactCounter out_counter; };
+layout(std430, binding = 13) writeonly buffer Photons { AdaptivePhoton photons[]; };
+layout(std430, binding = 14) buffer PhotonCounter { CompactCounter photon_counter; };
 
 void emit(AdaptivePhoton p) {
     uint slot = atomicAdd(photon_counter.count, 1u);

@@ -352,6 +352,8 @@ impl<'c> MeshRenderer<'c> {
             splat_vertices: &c.splat_vertices,
             instance_vertices: c.instance_vertices,
             nearest: &self.nearest,
+            spot_textures: &self.targets.spot_textures.view,
+            linear: &self.linear,
         }
     }
 

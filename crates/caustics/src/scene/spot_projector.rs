@@ -1,8 +1,9 @@
 //! A spot light's cone and projected texture as one emission function, shared by the renderer
-//! (which uploads [`SpotProjector::texels`] and samples them in `common/lighting.glsl` and the
-//! photon trace) and the exact CPU reference (which samples them here the same way): the
-//! texture shapes the direct light and the photons alike, as Wyman & Nichols 2009's elephant
-//! under a textured spotlight (Fig. 12).
+//! (which uploads the same resampled texels and samples them in `spot_emission`,
+//! `shaders_glsl/common/spot_texture.glsl`, for the direct light and every photon) and the exact
+//! CPU reference (which samples them here the same way): the texture shapes the direct light
+//! and the photons alike, as Wyman & Nichols 2009's elephant under a textured spotlight
+//! (Fig. 12).
 //!
 //! The texture is resampled (nearest) to [`SIZE`]² texels; a direction `d` inside the cone maps
 //! to `uv = (d·u, d·v) / (d·dir) · ½ + ½`, with `u`, `v` the cone's side axes over

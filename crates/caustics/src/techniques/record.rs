@@ -120,5 +120,7 @@ fn adaptive_inputs<'a>(c: &CausticPasses<'a>) -> adaptive::Inputs<'a> {
         meshes: inp.meshes,
         receiver_positions: &c.targets.receiver_positions.view,
         nearest: inp.nearest,
+        spot_textures: inp.spot_textures,
+        linear: inp.linear,
     }
 }

@@ -13,6 +13,7 @@ pub mod settings;
 pub use settings::{PAPER, VERTEX_PHOTON_FEATURES};
 
 use super::shared::photon_buffer::trace_binds;
+use super::shared::pipelines::TRACE_BINDINGS;
 use super::shared::CausticPasses;
 use crate::gpu::mesh_pipeline::mesh_layout;
 use crate::gpu::{mesh_uses, MeshConstants, MATERIAL_DIFFUSE};
@@ -30,9 +31,8 @@ impl VertexPhotons {
     /// The vertex-photon pipeline: a point per vertex, rasterization discarded, each photon
     /// stored into the photon buffer's images.
     pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<VertexPhotons> {
-        let trace = [K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
         let mut d = GraphicsDesc::new("vertex_photons", sh.compile("shah2007/vertex_photons.vert", &[])?, None);
-        let mut b = trace.to_vec();
+        let mut b = TRACE_BINDINGS.to_vec();
         b.extend([K::StorageImage, K::StorageImage, K::StorageImage, K::StorageBuffer]);
         d.bindings = b;
         d.vertex_layout = Some(mesh_layout());

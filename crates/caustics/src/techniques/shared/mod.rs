@@ -16,7 +16,7 @@ pub use settings::{Intersect, PhotonView, SplatKernel, SplatPath, DUMPS};
 pub use targets::{CausticTargets, PhotonTargets};
 
 use crate::gpu::GpuMesh;
-use vkcore::{Buffer, Sampler};
+use vkcore::{Buffer, ImageView, Sampler};
 
 /// What the light-space passes read besides their own buffers: the frame and caustic uniforms
 /// and the nearest sampler.
@@ -39,6 +39,10 @@ pub struct CausticInputs<'a> {
     /// Vertices per instance of the instanced fetch (Wyman 2008 Sec. 4).
     pub instance_vertices: u32,
     pub nearest: &'a Sampler,
+    /// The spot lights' projected textures (one layer per light) and the linear sampler they
+    /// are read with (`common/spot_texture.glsl`): they weight every photon's power.
+    pub spot_textures: &'a ImageView,
+    pub linear: &'a Sampler,
 }
 
 /// What every caustic pass of a light records with: the technique's pipelines, the caustic-map

@@ -61,7 +61,8 @@ fn record_back_faces(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
     Ok(())
 }
 
-/// What tracing a photon reads (`shared/trace.glsl`, bindings 0-3), in binding order.
+/// What tracing a photon reads (`shared/trace_surface.glsl`, bindings 0-4,
+/// [`TRACE_BINDINGS`](super::pipelines::TRACE_BINDINGS)), in binding order.
 pub(crate) fn trace_binds<'a>(c: &CausticPasses<'a>) -> Vec<Bind<'a>> {
     let (ct, pt, inp) = (c.targets, c.photons, c.inputs);
     vec![
@@ -69,6 +70,7 @@ pub(crate) fn trace_binds<'a>(c: &CausticPasses<'a>) -> Vec<Bind<'a>> {
         Bind::Uniform(inp.caustic_uniforms),
         Bind::Sampled(&pt.back_faces.view, inp.nearest),
         Bind::Sampled(&ct.receiver_positions.view, inp.nearest),
+        Bind::Sampled(inp.spot_textures, inp.linear),
     ]
 }
 

@@ -15,6 +15,12 @@ pub struct CausticPipelines {
     pub splat: Pipeline,
 }
 
+/// What tracing a photon reads (`shared/trace_surface.glsl`, bindings 0-4): the frame and
+/// caustic uniforms, the light-space back faces, the receiver positions and the spot lights'
+/// projected textures. Every pipeline that creates photons starts with these.
+pub const TRACE_BINDINGS: [K; 5] =
+    [K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage, K::SampledImage];
+
 /// The point splat's pipeline description (`shared/splat.vert`, `shared/splat.frag`): points
 /// blended additively into the caustic map, each vertex a photon index.
 pub fn point_splat_desc(sh: &ShaderCompiler) -> Result<GraphicsDesc> {
@@ -39,7 +45,6 @@ const LIGHT_MESH_VERT: &str = "shared/light_mesh.vert";
 impl CausticPipelines {
     pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<CausticPipelines> {
         let ubo2 = vec![K::UniformBuffer, K::UniformBuffer];
-        let trace = vec![K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
         Ok(CausticPipelines {
             receiver_positions: mesh_pipeline(
                 ctx,
@@ -75,7 +80,7 @@ impl CausticPipelines {
                     vert: LIGHT_MESH_VERT,
                     vert_defines: PHOTON_VIEW,
                     frag: "shared/photon_buffer.frag",
-                    bindings: trace,
+                    bindings: TRACE_BINDINGS.to_vec(),
                     colors: vec![COLOR, COLOR, COLOR],
                     cull: Cull::Back,
                 },

@@ -34,7 +34,7 @@ pub use traversal::{lists_image, Inputs, Splat};
 
 use super::geometry_buffers::LightGeometryBuffers;
 use super::settings::{Metric, TOP_PHOTONS};
-use crate::techniques::shared::pipelines::point_splat_desc;
+use crate::techniques::shared::pipelines::{point_splat_desc, TRACE_BINDINGS};
 use crate::techniques::wyman2008::TraversalPath;
 use crate::techniques::CausticSettings;
 use anyhow::Result;
@@ -95,18 +95,12 @@ pub struct AdaptiveCaustics {
     count: Pipeline,
 }
 
-/// The traversal's bindings 0-7 (`adaptive.glsl`): uniforms, the trace's back faces and
-/// receiver positions, the geometry buffers and their coverage pyramid.
-const TEXTURES: [K; 8] = [
-    K::UniformBuffer,
-    K::UniformBuffer,
-    K::SampledImage,
-    K::SampledImage,
-    K::SampledImage,
-    K::SampledImage,
-    K::SampledImage,
-    K::SampledImage,
-];
+/// The traversal's bindings 0-8 (`adaptive.glsl`): the trace's (uniforms, back faces, receiver
+/// positions, spot textures: [`TRACE_BINDINGS`]), the geometry buffers and their coverage pyramid.
+const TEXTURES: [K; 9] = {
+    let t = TRACE_BINDINGS;
+    [t[0], t[1], t[2], t[3], t[4], K::SampledImage, K::SampledImage, K::SampledImage, K::SampledImage]
+};
 
 impl AdaptiveCaustics {
     pub fn new(ctx: &Context, sh: &ShaderCompiler, s: &CausticSettings, lights: u32) -> Result<AdaptiveCaustics> {

@@ -27,6 +27,10 @@ pub struct Inputs<'a> {
     /// Every light's receiver positions (the photon trace's receivers).
     pub receiver_positions: &'a ImageView,
     pub nearest: &'a Sampler,
+    /// The spot lights' projected textures and their (linear) sampler: they weight the power
+    /// of every photon created (`common/spot_texture.glsl`).
+    pub spot_textures: &'a ImageView,
+    pub linear: &'a Sampler,
 }
 
 /// Where each batch's photons are splatted (none: the traversal alone, for the dumps).
@@ -193,7 +197,7 @@ impl AdaptiveCaustics {
         Ok(())
     }
 
-    /// Bindings 0-7 of every traversal kernel (`adaptive.glsl`).
+    /// Bindings 0-8 of every traversal kernel (`adaptive.glsl`).
     fn textures<'a>(&'a self, inp: &Inputs<'a>) -> Vec<Bind<'a>> {
         let g = &self.geometry;
         vec![
@@ -201,6 +205,7 @@ impl AdaptiveCaustics {
             Bind::Uniform(inp.caustic_uniforms),
             Bind::Sampled(&g.back_faces, inp.nearest),
             Bind::Sampled(inp.receiver_positions, inp.nearest),
+            Bind::Sampled(inp.spot_textures, inp.linear),
             Bind::Sampled(&g.position_layers, inp.nearest),
             Bind::Sampled(&g.normal_layers, inp.nearest),
             Bind::Sampled(&g.material_layers, inp.nearest),
