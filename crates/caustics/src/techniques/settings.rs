@@ -234,7 +234,9 @@ impl CausticSettings {
             _ => shared::settings::DUMPS.to_vec(),
         };
         if self.technique.has_photon_buffer() && self.photon_refraction == Refraction::Deferred {
-            dumps.push(super::wyman_nichols2009::deferred_photons::DUMP);
+            // After the photon buffer and its caustic map, where `render::all_dump_names` has it.
+            let last = ["caustic_map", "photon_buffer"].iter().find_map(|n| dumps.iter().position(|d| d == n));
+            dumps.insert(last.map_or(dumps.len(), |i| i + 1), super::wyman_nichols2009::deferred_photons::DUMP);
         }
         dumps
     }
