@@ -168,8 +168,12 @@ Photon through_further_refractors(uint l, Photon ph, vec3 p1, uint object) {
         vec3 o = hit + d * dot(entry - hit, d);   // on the landing ray, inside the object just left
         float nearest = distance(o, hit);
         int next = -1;
+        ivec2 t_entry;
+        layer_texel_of(l, entry, t_entry);
         for (int k = 0; k < REFRACTORS; ++k) {
-            // A layer holds one object: skip the one the photon just left.
+            // A layer holds one object: skip the one the photon just left (its own layer
+            // covers its entry point's texel).
+            if (uint(layer_texel(k, 1, t_entry, 0).w) == object + 1u) continue;
             float s = enter_layer(l, k, o, d, nearest);
             if (s <= 0.0) continue;
             ivec2 te;

@@ -153,5 +153,9 @@ fn photons_through_two_refractors_approach_the_reference() {
     );
     assert!(deferred.rel_rmse < 0.3, "deferred photons: relative RMSE {}", deferred.rel_rmse);
     assert!((0.9..=1.1).contains(&deferred.peak_ratio), "deferred photons: peak ratio {}", deferred.peak_ratio);
-    assert!(forward.peak_ratio < 0.5, "forward photons: peak ratio {} (the test scene lost its point)", forward.peak_ratio);
+    assert!(
+        forward.peak_ratio < 0.5,
+        "forward photons: peak ratio {} (the test scene lost its point)",
+        forward.peak_ratio
+    );
 }

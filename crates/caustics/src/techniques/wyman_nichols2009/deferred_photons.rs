@@ -57,8 +57,7 @@ impl DeferredPhotons {
             specular.len()
         );
         let layered = if specular.len() > 1 { specular.len() } else { 0 };
-        let refractors =
-            (0..layered).map(|_| LightGeometryBuffers::new(ctx, sh, side)).collect::<Result<Vec<_>>>()?;
+        let refractors = (0..layered).map(|_| LightGeometryBuffers::new(ctx, sh, side)).collect::<Result<Vec<_>>>()?;
         let refractor_count = layered.max(1).to_string();
         let mut d = GraphicsDesc::new(
             "deferred_photons",
