@@ -32,6 +32,13 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             )
             .into());
         }
+        if n == caustics::techniques::wyman_nichols2009::deferred_photons::DUMP && technique.has_photon_buffer() {
+            return Err(input_error!(
+                "--dump: `{n}` is a buffer of --photon-refraction deferred, not of `{}`",
+                scene.caustics.photon_refraction
+            )
+            .into());
+        }
         if technique.dumps().contains(&n.as_str()) {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of `{technique}` with --space {}, not with --space {}",

@@ -100,8 +100,10 @@ fn every_photon_technique_weights_its_photons_by_the_spot_texture() {
     // texture), 0.9997-1.0 to the untextured reference; relative RMSE 0.076-0.080 (shah-vertex:
     // 0.157, within its conformance bound, 0.16); flux ratio 0.975-0.986. With the texture ignored by
     // the photons (the cone only): distance 0.97-0.99, relative RMSE 1.03-1.18, flux ratio 1.95.
-    let cases: [(&str, &[&str], &str, f64); 7] = [
+    let cases: [(&str, &[&str], &str, f64); 8] = [
         ("wd-points", &["--technique", "wd-points"], PHOTONS, 0.10),
+        // The photon buffer by deferred shading (Wyman & Nichols 2009's deferred caustic maps).
+        ("wd-points-deferred", &["--technique", "wd-points", "--photon-refraction", "deferred"], PHOTONS, 0.10),
         ("shah", &["--technique", "shah"], PHOTONS, 0.10),
         ("hcm", &["--technique", "hcm", "--cluster", "last", "--splat", "fixed"], PHOTONS, 0.10),
         ("shah-vertex", &["--technique", "shah-vertex"], PHOTONS, 0.19),

@@ -32,7 +32,7 @@ use caustics::reference::{trace_reference, ReferenceOptions};
 use caustics::render::{all_dump_names, dumps_for, FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
 use caustics::techniques::wyman_davis2006::settings::{GatherLighting, QuadLighting, Space};
-use caustics::techniques::Technique;
+use caustics::techniques::{Refraction, Technique};
 use std::path::PathBuf;
 
 mod common;
@@ -97,10 +97,10 @@ fn stated_varying(t: Technique) -> Option<Stated> {
 const SCENES: [&str; 2] = ["sphere_on_plane", "sphere_oblique"];
 
 fn load(name: &str, technique: Technique) -> Scene {
-    load_in(name, technique, Space::Eye)
+    load_in(name, technique, Space::Eye, Refraction::Forward)
 }
 
-fn load_in(name: &str, technique: Technique, space: Space) -> Scene {
+fn load_in(name: &str, technique: Technique, space: Space, photon_refraction: Refraction) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{name}.toml"));
     let mut s = Scene::load(&p).expect("shipped scene");
     s.caustics.technique = technique;
@@ -114,6 +114,9 @@ fn load_in(name: &str, technique: Technique, space: Space) -> Scene {
     }
     if matches!(technique, Technique::WdQuads | Technique::WdGather) {
         s.caustics.space = space;
+    }
+    if technique.has_photon_buffer() {
+        s.caustics.photon_refraction = photon_refraction;
     }
     s.camera.width = 128;
     s.camera.height = 128;
@@ -183,12 +186,17 @@ fn receiver_flux(receiver: &ImageF32, scene: &Scene) -> f64 {
 }
 
 /// Runs `techniques` (in `space` where they have one) on both scenes; returns the failures.
-fn check(techniques: &[Technique], space: Space) -> Vec<String> {
-    check_with(techniques, space, None)
+fn check(techniques: &[Technique], space: Space, photon_refraction: Refraction) -> Vec<String> {
+    check_with(techniques, space, photon_refraction, None)
 }
 
 /// [`check`], with `splat` (hcm, adaptive: splat sizes) set when given.
-fn check_with(techniques: &[Technique], space: Space, splat: Option<&str>) -> Vec<String> {
+fn check_with(
+    techniques: &[Technique],
+    space: Space,
+    photon_refraction: Refraction,
+    splat: Option<&str>,
+) -> Vec<String> {
     let (ctx, sh) = context();
     let mut failures = vec![];
     for scene_name in SCENES {
@@ -196,7 +204,7 @@ fn check_with(techniques: &[Technique], space: Space, splat: Option<&str>) -> Ve
         let opts = ReferenceOptions { photons: 2_000_000, fresnel: false, ..Default::default() };
         let reference = trace_reference(&reference_scene, &opts).expect("reference").image;
         for &t in techniques {
-            let mut scene = load_in(scene_name, t, space);
+            let mut scene = load_in(scene_name, t, space, photon_refraction);
             if let Some(s) = splat {
                 scene.caustics.splat = s.parse().expect("a known name");
             }
@@ -231,7 +239,10 @@ fn check_with(techniques: &[Technique], space: Space, splat: Option<&str>) -> Ve
             };
             let drift = held / landed - 1.0;
             let spaced = matches!(t, Technique::WdQuads | Technique::WdGather);
-            let label = if spaced { format!(" ({} space)", scene.caustics.space) } else { String::new() };
+            let mut label = if spaced { format!(" ({} space)", scene.caustics.space) } else { String::new() };
+            if t.has_photon_buffer() && photon_refraction == Refraction::Deferred {
+                label += " (deferred photons)";
+            }
             println!(
                 "{scene_name:16} {t:12}{label} power drift {drift:+.2e}  rel. RMSE {:.4}  flux ratio {:.4}",
                 c.rel_rmse, c.caustic_flux_ratio
@@ -249,20 +260,31 @@ fn check_with(techniques: &[Technique], space: Space, splat: Option<&str>) -> Ve
 
 #[test]
 fn every_technique_renders_clean_conserves_power_and_meets_its_stated_error() {
-    let failures = check(Technique::ALL, Space::Eye);
+    let failures = check(Technique::ALL, Space::Eye, Refraction::Forward);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// Wyman & Davis 2006's quads and gather in light space (the suite above runs them in eye space).
 #[test]
 fn conformance_light_space() {
-    let failures = check(&[Technique::WdQuads, Technique::WdGather], Space::Light);
+    let failures = check(&[Technique::WdQuads, Technique::WdGather], Space::Light, Refraction::Forward);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Every photon-buffer technique with its photon buffer created by deferred shading (Wyman &
+/// Nichols 2009's deferred caustic maps, `photon_refraction = deferred`): the same photons, so
+/// the same stated accuracy.
+#[test]
+fn conformance_deferred_photons() {
+    let photon_buffer: Vec<Technique> = Technique::ALL.iter().copied().filter(|t| t.has_photon_buffer()).collect();
+    let failures = check(&photon_buffer, Space::Eye, Refraction::Deferred);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// hcm and adaptive with varying splats into the multi-resolution caustic map.
 #[test]
 fn conformance_varying_splats() {
-    let failures = check_with(&[Technique::Hcm, Technique::Adaptive], Space::Eye, Some("varying-multires"));
+    let failures =
+        check_with(&[Technique::Hcm, Technique::Adaptive], Space::Eye, Refraction::Forward, Some("varying-multires"));
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -42,6 +42,7 @@ pub const LIGHT_SPACE_DUMPS: &[&str] = &[
     "splats",
     "adaptive_geometry",
     "adaptive_lists",
+    crate::techniques::wyman_nichols2009::deferred_photons::DUMP,
 ];
 
 /// Whether the eye-render buffer `name` belongs to the other refraction than `refraction`.
@@ -110,6 +111,15 @@ pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
         &format!("refraction `{}` (a geometry shader routes each face to the front or back layer)", c.refraction),
         c.refraction.required_features(),
     )?;
+    if c.technique.has_photon_buffer() {
+        ctx.require(
+            &format!(
+                "photon_refraction `{}` (a geometry shader routes each face to the front or back layer)",
+                c.photon_refraction
+            ),
+            c.photon_refraction.required_features(),
+        )?;
+    }
     if matches!(c.technique, Technique::Hcm | Technique::Adaptive) {
         ctx.require(&format!("technique `{}` with --path {}", c.technique, c.path), c.path.features())?;
     }

@@ -12,7 +12,7 @@ use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
 use crate::techniques::wyman2008::{self, Hierarchy};
 use crate::techniques::wyman_davis2006::{EyeView, ImageSpace};
 use crate::techniques::wyman_nichols2009::{
-    self as wn2009, deferred_refraction, AdaptiveCaustics, DeferredRefraction, Refraction,
+    self as wn2009, deferred_refraction, AdaptiveCaustics, DeferredPhotons, DeferredRefraction, Refraction,
 };
 use crate::techniques::{self, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
 use anyhow::{Context as _, Result};
@@ -47,6 +47,8 @@ struct CausticResources {
     hierarchy: Option<Hierarchy>,
     /// Wyman & Nichols 2009's adaptive caustic maps.
     adaptive: Option<AdaptiveCaustics>,
+    /// Wyman & Nichols 2009's deferred caustic maps (`photon_refraction = deferred`).
+    deferred_photons: Option<DeferredPhotons>,
     /// What the `splats` dump reads the hierarchy's splats with (built by the first such dump).
     footprints: Option<SplatFootprints>,
     compute_splat: Option<techniques::ComputeSplat>,
@@ -160,6 +162,12 @@ impl<'c> MeshRenderer<'c> {
             } else {
                 None
             };
+            let deferred_photons = match settings.photon_refraction {
+                Refraction::Deferred if technique.has_photon_buffer() => {
+                    Some(DeferredPhotons::new(ctx, shaders, settings.photons, &meshes)?)
+                }
+                _ => None,
+            };
             let compute_splat = if settings.splat_path == SplatPath::Compute {
                 let (side, layers) = (settings.caustic_map_resolution, settings.caustic_levels());
                 let list = match (&hierarchy, &adaptive) {
@@ -186,6 +194,7 @@ impl<'c> MeshRenderer<'c> {
                 footprints: None,
                 hierarchy,
                 adaptive,
+                deferred_photons,
                 compute_splat,
                 image_space: ImageSpace::new(ctx, shaders, scene)?,
             })
@@ -364,6 +373,7 @@ impl<'c> MeshRenderer<'c> {
             vertex_photons: c.vertex_photons.as_ref(),
             hierarchy: c.hierarchy.as_ref(),
             adaptive: c.adaptive.as_ref(),
+            deferred_photons: c.deferred_photons.as_ref(),
             compute_splat: c.compute_splat.as_ref(),
             image_space: None,
         }
@@ -414,6 +424,14 @@ impl<'c> MeshRenderer<'c> {
             let Some(c) = &self.caustic else { break };
             for (i, name) in wanted.iter().enumerate() {
                 let img = match (*name, &c.hierarchy) {
+                    (wn2009::deferred_photons::DUMP, _) => match &c.deferred_photons {
+                        Some(d) => d.dump(self.ctx)?,
+                        None => continue,
+                    },
+                    // Deferred photons: the back faces are the geometry buffers' back layer.
+                    ("photon_back_faces", _) if c.deferred_photons.is_some() => {
+                        c.deferred_photons.as_ref().context("deferred photons")?.dump_back_faces(self.ctx)?
+                    }
                     ("adaptive_geometry", _) => match &c.adaptive {
                         Some(a) => a.geometry.dump(self.ctx)?,
                         None => continue,

@@ -11,6 +11,7 @@ use super::wyman2008::photon_copy::PhotonCopy;
 use super::wyman2008::Hierarchy;
 use super::wyman_davis2006::{EyeView, ImageSpace};
 use super::wyman_nichols2009::adaptive::{self, AdaptiveCaustics};
+use super::wyman_nichols2009::DeferredPhotons;
 use anyhow::Result;
 use vkcore::Frame;
 
@@ -33,6 +34,9 @@ pub struct CausticFrame<'a> {
     /// Create photons adaptively from geometry buffers and splat them (Wyman & Nichols 2009
     /// Sec. 3.2), instead of a photon buffer.
     pub adaptive: Option<&'a AdaptiveCaustics>,
+    /// Create the photon buffer by deferred shading (`photon_refraction = deferred`, Wyman &
+    /// Nichols 2009 Sec. 3.2, 3.1.1) instead of rasterizing the specular objects.
+    pub deferred_photons: Option<&'a DeferredPhotons>,
     /// Splat with a compute shader instead of points (`splat_path = compute`).
     pub compute_splat: Option<&'a ComputeSplat>,
     /// Wyman & Davis 2006's eye-space points, quads or gathers instead of a splat, with the
@@ -51,10 +55,20 @@ pub fn record_light_space(f: &mut Frame, c: &CausticPasses, l: u32, frame: Caust
         photon_buffer::record_receiver_positions(f, c, l)?;
         return a.record_traversal(f, &adaptive_inputs(c), l, None);
     }
-    photon_buffer::record_light_views(f, c, l)?;
-    match frame.vertex_photons {
-        Some(vp) => vp.record(f, c, l)?,
-        None => photon_buffer::record_photon_buffer(f, c, l)?,
+    match (frame.vertex_photons, frame.deferred_photons) {
+        (Some(vp), _) => {
+            photon_buffer::record_light_views(f, c, l)?;
+            vp.record(f, c, l)?
+        }
+        // Wyman & Nichols 2009 Sec. 3.2: the geometry buffers hold the back faces.
+        (None, Some(dp)) => {
+            photon_buffer::record_receiver_positions(f, c, l)?;
+            dp.record(f, c, l)?
+        }
+        (None, None) => {
+            photon_buffer::record_light_views(f, c, l)?;
+            photon_buffer::record_photon_buffer(f, c, l)?
+        }
     }
     // The copied vertex arrays and the traversal's list stay valid as long as the photon
     // buffer does.

@@ -143,6 +143,12 @@ caustic_settings! {
     /// The eye render's refraction, whatever the technique: forward (Wyman 2005, the default)
     /// or deferred (Wyman & Nichols 2009 Sec. 3.1, several refractors back to front).
     refraction: Refraction = Refraction::Forward;
+    /// Photon-buffer techniques: how the dense photon buffer is made, forward (the specular
+    /// objects' front faces rasterized from the light, each fragment a photon: Wyman & Davis
+    /// 2006, the default) or deferred (Wyman & Nichols 2009's "deferred caustic maps", Fig. 10:
+    /// light-space geometry buffers, then one full-screen pass; with several specular objects,
+    /// photons through each in turn, Sec. 3.1.1); independent of the eye's `refraction`.
+    photon_refraction: Refraction = Refraction::Forward, only Shah | WdPoints | WdEyePoints | WdQuads | WdGather | Hcm;
     /// adaptive: when the traversal stops refining (Wyman & Nichols 2009 Sec. 3.2.1-3.2.2):
     /// max-traversal or max-error; default max-traversal.
     metric: Metric = Metric::MaxTraversal, only Adaptive;
@@ -219,7 +225,7 @@ impl CausticSettings {
     /// The intermediate buffers this render's technique adds to the eye render's (`--dump`
     /// names).
     pub fn dumps(&self) -> Vec<&'static str> {
-        match self.technique {
+        let mut dumps = match self.technique {
             Technique::None => vec![],
             Technique::PoolConvolution => super::trendall_stewart2000::settings::DUMPS.to_vec(),
             _ if self.eye_space() => wyman_davis2006::settings::EYE_DUMPS.to_vec(),
@@ -227,7 +233,13 @@ impl CausticSettings {
             // No photon buffer: photons come from the geometry buffers (Wyman & Nichols 2009 Sec. 3.2).
             Technique::Adaptive => [&["receiver_positions", "caustic_map"], wn2009::ADAPTIVE_DUMPS].concat(),
             _ => shared::settings::DUMPS.to_vec(),
+        };
+        if self.technique.has_photon_buffer() && self.photon_refraction == Refraction::Deferred {
+            // After the photon buffer and its caustic map, where `render::all_dump_names` has it.
+            let last = ["caustic_map", "photon_buffer"].iter().find_map(|n| dumps.iter().position(|d| d == n));
+            dumps.insert(last.map_or(dumps.len(), |i| i + 1), super::wyman_nichols2009::deferred_photons::DUMP);
         }
+        dumps
     }
 
     /// The ray/receiver intersection in effect: the one asked for, else the technique's own.

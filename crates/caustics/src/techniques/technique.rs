@@ -122,6 +122,10 @@ impl Technique {
     /// any of its settings (see [`CausticSettings::dumps`] for those of one render).
     pub fn dumps(self) -> Vec<&'static str> {
         let mut all = CausticSettings { technique: self, ..Default::default() }.dumps();
+        if self.has_photon_buffer() {
+            // With photon_refraction `deferred`.
+            all.push(super::wyman_nichols2009::deferred_photons::DUMP);
+        }
         if matches!(self, Technique::WdQuads | Technique::WdGather) {
             let light = CausticSettings { technique: self, space: Space::Light, ..Default::default() }.dumps();
             all.extend(light.into_iter().filter(|d| !all.contains(d)).collect::<Vec<_>>());

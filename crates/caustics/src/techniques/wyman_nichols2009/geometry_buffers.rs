@@ -126,14 +126,30 @@ impl LightGeometryBuffers {
     /// Records light `l`'s geometry buffers (one pass over the specular meshes) and their
     /// coverage pyramid.
     pub fn record(&self, f: &mut Frame, u: &Uniforms, meshes: &[GpuMesh], nearest: &Sampler, l: u32) -> Result<()> {
-        let specular: Vec<&GpuMesh> = meshes.iter().filter(|m| m.kind() != MATERIAL_DIFFUSE).collect();
+        let specular: Vec<usize> = (0..meshes.len()).filter(|&i| meshes[i].kind() != MATERIAL_DIFFUSE).collect();
+        self.record_surfaces(f, u, meshes, &specular, "adaptive.geometry", l)?;
+        self.record_coverage(f, nearest, l)
+    }
+
+    /// Records light `l`'s geometry buffers of the meshes `objects` (indices into `meshes`) in
+    /// one pass named `<name>.light<l>`, without the coverage pyramid (deferred photons,
+    /// `deferred_photons.rs`, read texels, not footprints).
+    pub fn record_surfaces(
+        &self,
+        f: &mut Frame,
+        u: &Uniforms,
+        meshes: &[GpuMesh],
+        objects: &[usize],
+        name: &str,
+        l: u32,
+    ) -> Result<()> {
         let attachments = [
             Use::view(&self.position_layers, Access::COLOR_ATTACHMENT),
             Use::view(&self.normal_layers, Access::COLOR_ATTACHMENT),
             Use::view(&self.material_layers, Access::COLOR_ATTACHMENT),
             Use::view(&self.depth_layers, Access::DEPTH_ATTACHMENT),
         ];
-        f.pass(&format!("adaptive.geometry.light{l}"))
+        f.pass(&format!("{name}.light{l}"))
             .bind(&self.geometry, [Bind::Uniform(u.frame), Bind::Uniform(u.caustics)])
             .uses(attachments)
             .uses(mesh_uses(meshes))
@@ -144,12 +160,17 @@ impl LightGeometryBuffers {
                     (&self.material_layers, Some([0.0; 4])),
                 ]);
                 cmd.begin_rendering(&targets.with_depth(&self.depth_layers, Some(1.0)).layered(2))?;
-                for m in &specular {
-                    m.draw(cmd, 1, l)?;
+                for &i in objects {
+                    meshes[i].draw(cmd, 1, l)?;
                 }
                 cmd.end_rendering();
                 Ok(())
             })?;
+        Ok(())
+    }
+
+    /// Records the coverage pyramid of light `l`'s front layer.
+    fn record_coverage(&self, f: &mut Frame, nearest: &Sampler, l: u32) -> Result<()> {
         for (m, out) in self.coverage_level.iter().enumerate() {
             // Level 0 reads the geometry buffers; its `finer` binding is level 1, unused.
             let finer = &self.coverage_level[if m == 0 { 1 } else { m - 1 }];
@@ -171,14 +192,22 @@ impl LightGeometryBuffers {
     /// `back.normal` (NX, NY, NZ, distance) at G², and the coverage pyramid, level m in the
     /// top-left (P/2^m)² corner of layer `coverage.level<m>` (any, all), in an image of side P.
     pub fn dump(&self, ctx: &Context) -> Result<ImageF32> {
-        let (g, p) = (self.side as usize, self.padded as usize);
-        let place = |src: &[f32], s: usize, nc: usize| {
-            let mut out = vec![0.0f32; p * p * nc];
-            for y in 0..s {
-                out[y * p * nc..(y * p + s) * nc].copy_from_slice(&src[y * s * nc..(y + 1) * s * nc]);
-            }
-            out
-        };
+        let mut img = self.dump_surfaces(ctx, self.padded)?;
+        let p = self.padded as usize;
+        for m in 0..self.coverage_level.len() as u32 {
+            let s = (self.padded >> m).max(1) as usize;
+            let bytes = ctx.read_image(&self.coverage_pyramid, m, 0)?;
+            let texels: Vec<f32> =
+                bytes.chunks_exact(4).flat_map(|t| [t[0] as f32 / 255.0, t[1] as f32 / 255.0]).collect();
+            img.layers.push(Layer::new(Some(&format!("coverage.level{m}")), &["any", "all"], place(&texels, s, 2, p)));
+        }
+        Ok(img)
+    }
+
+    /// The front and back layers alone (see [`Self::dump`]), each in the top-left G² corner of
+    /// an image of side `p` (at least G).
+    pub fn dump_surfaces(&self, ctx: &Context, p: u32) -> Result<ImageF32> {
+        let (g, p) = (self.side as usize, p.max(self.side) as usize);
         let mut layers = vec![];
         let buffers: [(&Image, &str, [&str; 4]); 3] = [
             (&self.position, "position", ["X", "Y", "Z", "W"]),
@@ -197,16 +226,18 @@ impl LightGeometryBuffers {
                     _ => channels[3],
                 };
                 let texels = ctx.read_image_f32(image, 0, layer)?;
-                layers.push(Layer::new(Some(&format!("{face}.{what}")), &channels, place(&texels, g, 4)));
+                layers.push(Layer::new(Some(&format!("{face}.{what}")), &channels, place(&texels, g, 4, p)));
             }
-        }
-        for m in 0..self.coverage_level.len() as u32 {
-            let s = (self.padded >> m).max(1) as usize;
-            let bytes = ctx.read_image(&self.coverage_pyramid, m, 0)?;
-            let texels: Vec<f32> =
-                bytes.chunks_exact(4).flat_map(|t| [t[0] as f32 / 255.0, t[1] as f32 / 255.0]).collect();
-            layers.push(Layer::new(Some(&format!("coverage.level{m}")), &["any", "all"], place(&texels, s, 2)));
         }
         Ok(ImageF32 { width: p as u32, height: p as u32, layers })
     }
+}
+
+/// An `s`² image of `nc` channels in the top-left corner of a `p`² one.
+fn place(src: &[f32], s: usize, nc: usize, p: usize) -> Vec<f32> {
+    let mut out = vec![0.0f32; p * p * nc];
+    for y in 0..s {
+        out[y * p * nc..(y * p + s) * nc].copy_from_slice(&src[y * s * nc..(y + 1) * s * nc]);
+    }
+    out
 }
