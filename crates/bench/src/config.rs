@@ -7,8 +7,11 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-/// Largest photon buffer side a config may ask for (the renderer's own limit).
-pub const MAX_PHOTONS: u32 = 4096;
+/// Largest photon count (per side) a config may ask for: the most any technique takes
+/// (`adaptive` under a `photon_memory_limit`, Wyman & Nichols 2009 Sec. 4.3). A cell whose
+/// technique cannot run at its count is not run (see [`Config::runs`]).
+pub const MAX_PHOTONS: u32 = caustics::techniques::wyman_nichols2009::settings::TOP_PHOTONS
+    << caustics::techniques::wyman_nichols2009::settings::MAX_LEVEL;
 /// Largest output side.
 pub const MAX_RESOLUTION: u32 = 8192;
 /// Most frames a cell may measure (and warm up).
@@ -177,6 +180,7 @@ pub const METRIC_KINDS: &[&str] = &[
     "rel_rmse",
     "flux_ratio",
     "photon_storage",
+    "photon_batches",
 ];
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -257,6 +261,23 @@ impl FramePlan {
 }
 
 impl Config {
+    /// Technique entry `t`'s settings as the config gives them: the defaults, then `[caustics]`,
+    /// then the entry (the scene's own `[caustics]` comes in only when a cell runs).
+    pub fn technique_settings(&self, t: usize) -> caustics::scene::CausticSettings {
+        let mut s = caustics::scene::CausticSettings::default();
+        self.caustics.apply(&mut s);
+        self.techniques[t].settings.apply(&mut s);
+        s
+    }
+
+    /// Whether technique entry `t` can run at `photons` per side, by the renderer's own rule
+    /// (`CausticSettings::most_photons`: 16384 for `adaptive` under a memory limit, else 4096).
+    /// A cell that cannot is not run, and its table entry reads N/A (Wyman & Nichols 2009
+    /// Table 1: "previous techniques could not handle more than 4096² photons").
+    pub fn runs(&self, t: usize, photons: u32) -> bool {
+        photons <= self.technique_settings(t).most_photons()
+    }
+
     /// The frames of every cell: `[run]`, or `[quick]` under `--quick`.
     pub fn frame_plan(&self, quick: bool) -> FramePlan {
         let r = &self.run;

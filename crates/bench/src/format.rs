@@ -18,7 +18,9 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
     }
     match kind {
         "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" | "pass_fps" => significant(v),
-        "photons_emitted" | "splats_drawn" | "photons_processed" | "valid_photons" => thousands(v.round() as u64),
+        "photons_emitted" | "splats_drawn" | "photons_processed" | "valid_photons" | "photon_batches" => {
+            thousands(v.round() as u64)
+        }
         // A share of the photon buffer, as a percentage with three significant digits.
         "valid_fraction" => format!("{}%", significant(100.0 * v)),
         "rel_rmse" | "flux_ratio" => format!("{v:.4}"),
@@ -59,6 +61,7 @@ pub fn unit(kind: &str) -> &'static str {
         "splats_drawn" | "photons_processed" => "points",
         "valid_photons" => "photons",
         "photon_storage" => "MiB",
+        "photon_batches" => "batches",
         _ => "",
     }
 }

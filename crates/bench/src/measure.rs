@@ -31,6 +31,8 @@ pub struct CellRun {
     pub hierarchy_sizes: Option<Vec<Vec<u64>>>,
     /// `adaptive`: the photon storage it allocated, bytes (Wyman & Nichols 2009 Sec. 4.3).
     pub photon_storage: Option<u64>,
+    /// `adaptive`: the batches its traversal is split into per light (Sec. 4.3, Fig. 8).
+    pub photon_batches: Option<u32>,
     pub quality: Option<Comparison>,
     /// Photons of the last frame that met a specular object and a receiver (read back from the
     /// photon buffer, untimed); `None` without a photon buffer.
@@ -183,6 +185,7 @@ impl<'a> Runner<'a> {
             splats_drawn: renderer.splats_drawn()?,
             hierarchy_sizes: renderer.list_sizes()?,
             photon_storage: renderer.adaptive().map(|a| a.photon_storage_bytes()),
+            photon_batches: renderer.adaptive().map(|a| a.plan.batches),
             quality,
             valid_photons,
             lights: scene.lights.len() as u64,

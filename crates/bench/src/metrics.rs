@@ -123,6 +123,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
             ),
             "rel_rmse" => exact(k, run.quality.as_ref().map(|q| q.rel_rmse)),
             "photon_storage" => exact(k, run.photon_storage.map(|b| b as f64 / (1024.0 * 1024.0))),
+            "photon_batches" => exact(k, run.photon_batches.map(f64::from)),
             "flux_ratio" => exact(k, run.quality.as_ref().map(|q| q.caustic_flux_ratio)),
             _ => exact(k, None),
         };

@@ -104,12 +104,13 @@ impl Matrix {
         }
     }
 
-    /// Every cell, in index order.
+    /// Every cell, in index order: those whose technique can run at their photon count
+    /// ([`Config::runs`]; the others are N/A in the table and have no index).
     pub fn cells(&self, c: &Config) -> Vec<Cell> {
         let mut out = vec![];
         for scene in &self.scenes {
             for (t, spec) in c.techniques.iter().enumerate() {
-                for &photons in &self.photons {
+                for &photons in self.photons.iter().filter(|&&p| c.runs(t, p)) {
                     for &lights in &self.lights {
                         for &resolution in &self.resolution {
                             for lighting in &self.lighting {
@@ -230,6 +231,44 @@ mod tests {
             }
             assert!(seen.iter().all(|&k| k == 1), "n={n}: {seen:?}");
         }
+    }
+
+    /// A config whose second technique (adaptive with a memory limit) alone runs at 16384².
+    fn mixed() -> Config {
+        let text = r#"
+            [table]
+            paper = "p"
+            number = "1"
+            caption = "c"
+            [matrix]
+            scenes = ["s.toml"]
+            photons = [4096, 16384]
+            [[technique]]
+            label = "hier"
+            technique = "hcm"
+            [[technique]]
+            label = "adaptive"
+            technique = "adaptive"
+            photon_memory_limit = 96
+            [[metric]]
+            label = "splatted"
+            kind = "splats_drawn"
+            [layout]
+            rows = ["photons"]
+            columns = ["technique"]
+        "#;
+        toml::from_str(text).expect("a config")
+    }
+
+    #[test]
+    fn cells_a_technique_cannot_run_are_left_out() {
+        let c = mixed();
+        let cells = Matrix::new(&c, None).cells(&c);
+        let got: Vec<(String, u32, usize)> =
+            cells.iter().map(|x| (x.technique_label.clone(), x.photons, x.index)).collect();
+        let want = [("hier".to_string(), 4096, 0), ("adaptive".into(), 4096, 1), ("adaptive".into(), 16384, 2)];
+        assert_eq!(got, want);
+        assert!(!c.runs(0, 16384) && c.runs(0, 4096) && c.runs(1, 16384));
     }
 
     #[test]

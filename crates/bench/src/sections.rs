@@ -7,6 +7,9 @@ use crate::format::{format_value, paper_value, ratio};
 use crate::table::{Entry, Grid, Section};
 use crate::text_table::{Style, TextTable, WIDTH};
 
+/// An entry whose technique cannot run at its photon count (Wyman & Nichols 2009 Table 1's N/A).
+pub const NOT_RUN: &str = "N/A";
+
 /// Superscript markers of the "not comparable" footnotes.
 const MARKS: [&str; 9] = ["¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"];
 
@@ -38,7 +41,7 @@ impl Footnotes {
 /// `ours ±s% (paper)`: the spread for times, the paper's value where it has one, with its
 /// scene when that is not ours and a footnote mark when it is not comparable.
 pub fn cell_text(e: &Entry, notes: &mut Footnotes) -> String {
-    let mut s = format_value(&e.kind, e.ours);
+    let mut s = if e.not_run { NOT_RUN.to_string() } else { format_value(&e.kind, e.ours) };
     if let (Some(sp), Some(_)) = (e.spread, e.ours) {
         s.push(' ');
         s.push_str(&crate::stats::format_spread(sp));

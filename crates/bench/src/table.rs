@@ -23,6 +23,9 @@ pub struct Entry {
     pub spread: Option<f64>,
     pub paper: Option<PaperValue>,
     pub kind: String,
+    /// The cell's technique cannot run at its photon count ([`Config::runs`]): no cell was
+    /// measured, and the entry reads N/A.
+    pub not_run: bool,
 }
 
 impl Entry {
@@ -151,7 +154,10 @@ fn entry(config: &Config, results: &Results, keys: BTreeMap<String, String>) -> 
     let ours = value.and_then(|v| v.value);
     let spread = value.filter(|_| is_timing(&kind)).and_then(|v| crate::stats::relative_spread(&v.samples));
     let paper = crate::paper::value(config, &keys);
-    Entry { keys, ours, spread, paper, kind }
+    let technique = keys.get("technique").and_then(|l| config.techniques.iter().position(|t| t.label == *l));
+    let photons = keys.get("photons").and_then(|p| p.parse().ok());
+    let not_run = matches!((technique, photons), (Some(t), Some(p)) if !config.runs(t, p));
+    Entry { keys, ours, spread, paper, kind, not_run }
 }
 
 impl Grid {

@@ -146,12 +146,12 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                     .into(),
             ));
         }
-        let mut s = CausticSettings::default();
-        c.caustics.apply(&mut s);
-        t.settings.apply(&mut s);
+        let s = c.technique_settings(i);
         s.validate(&file, &format!("technique[{i}]."))?;
         s.validate_combination(&file, &format!("technique[{i}]."))?;
     }
+
+    check_runnable(c, &bad, "matrix.photons", &m.photons)?;
 
     if c.metrics.is_empty() {
         return Err(bad("metric", "no [[metric]] entries".into()));
@@ -180,6 +180,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
 
     let q = &c.quick;
     check_photons(&bad, "quick.photons", &q.photons)?;
+    check_runnable(c, &bad, "quick.photons", &q.photons)?;
     check_resolutions(&bad, "quick.resolution", &q.resolution)?;
     unique("quick.resolution", q.resolution.iter().map(|r| format!("{}x{}", r[0], r[1])).collect())?;
     if !(1..=MAX_FRAMES).contains(&q.measured_frames) {
@@ -245,11 +246,39 @@ fn check_photons(bad: &dyn Fn(&str, String) -> anyhow::Error, key: &str, v: &[u3
     }
     for &p in v {
         if !(64..=MAX_PHOTONS).contains(&p) {
-            return Err(bad(key, format!("{p}: photon buffer sides must be between 64 and {MAX_PHOTONS}")));
+            return Err(bad(key, format!("{p}: photon counts per side must be between 64 and {MAX_PHOTONS}")));
         }
     }
     if (1..v.len()).any(|i| v[..i].contains(&v[i])) {
         return Err(bad(key, "lists a photon count twice".into()));
+    }
+    Ok(())
+}
+
+/// Every photon count some technique can run at, and every technique at some photon count (by
+/// the renderer's rule, [`Config::runs`]); cells that cannot run are N/A. Checked after the
+/// techniques' own settings.
+fn check_runnable(c: &Config, bad: &dyn Fn(&str, String) -> anyhow::Error, key: &str, v: &[u32]) -> Result<()> {
+    let techniques = 0..c.techniques.len();
+    for &p in v {
+        if !techniques.clone().any(|t| c.runs(t, p)) {
+            return Err(bad(
+                key,
+                format!(
+                    "{p}: no technique of this config runs at {p}² photons (more than 4096 per side only \
+                     `adaptive` with a photon_memory_limit)"
+                ),
+            ));
+        }
+    }
+    for t in techniques {
+        if !v.iter().any(|&p| c.runs(t, p)) {
+            let most = c.technique_settings(t).most_photons();
+            return Err(bad(
+                key,
+                format!("technique `{}` runs at none of these counts (it takes at most {most})", c.techniques[t].label),
+            ));
+        }
     }
     Ok(())
 }

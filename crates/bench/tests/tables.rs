@@ -305,3 +305,29 @@ fn a_plot_with_more_series_than_a_legend_lists_becomes_one_panel_per_scene() {
     let plot = bench::plot::render(&fig).expect("plot");
     assert!(plot.png.starts_with(b"\x89PNG"), "not a PNG");
 }
+
+/// Wyman & Nichols 2009 Table 1's N/A: a technique that cannot run at a photon count (the
+/// renderer's rule: above 4096 only `adaptive` with a memory limit) has no cell, and its
+/// entry reads N/A, beside the paper's value where it has one; the others are measured.
+#[test]
+fn a_technique_that_cannot_run_at_a_photon_count_reads_na() {
+    let text = CONFIG
+        .replace("photons = [256, 512]", "photons = [4096, 16384]")
+        .replace("technique = \"hcm\"", "technique = \"adaptive\"\nphoton_memory_limit = 96")
+        .replace("photons = 256\n", "photons = 4096\n")
+        .replace("photons = 512\n", "photons = 16384\n");
+    let config: Config = toml::from_str(&text).expect("the test config parses");
+    let matrix = bench::plan::Matrix::new(&config, None);
+    let planned: Vec<(usize, u32)> = matrix.cells(&config).iter().map(|c| (c.technique, c.photons)).collect();
+    assert_eq!(planned, [(0, 4096), (1, 4096), (1, 16384)], "the plan skips wd-points at 16384²");
+    let cells =
+        vec![cell(0, 0, "base", 4096, &STEADY), cell(1, 1, "fast", 4096, &STEADY), cell(2, 1, "fast", 16384, &NOISY)];
+    let r = results(&config, cells);
+    let md = bench::report::markdown(&config, &r);
+    let big = row(&md, "16384²", 0);
+    assert!(big[1].starts_with("N/A (20.0"), "wd-points at 16384²: {big:?}\n{md}");
+    assert!(big[2].starts_with("10.0"), "adaptive at 16384² measured: {big:?}");
+    let small = row(&md, "4096²", 0);
+    assert!(!small.iter().any(|c| c.contains("N/A")), "{small:?}");
+    assert!(bench::report::summary(&config, &r).contains("N/A"));
+}

@@ -633,6 +633,58 @@ fn quick_fig9_times_each_refraction_by_its_own_passes() {
     }
 }
 
+#[test]
+fn quick_fig8_splits_into_the_batches_asked_for_and_splats_the_same_photons() {
+    // Wyman & Nichols 2009 Fig. 8: each column's batch count is the one its label asks for (the
+    // plan's, as recorded), more batches allocate less, and every cell splats the same photons.
+    let (_, r) = quick_run("wyman_nichols2009_fig8.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 10);
+    for photons in [128u64, 256] {
+        let mut storage = f64::INFINITY;
+        let one = cell(&r, "1 batch", photons);
+        for n in [1u32, 2, 4, 8, 16] {
+            let label = if n == 1 { "1 batch".to_string() } else { format!("{n} batches") };
+            let c = cell(&r, &label, photons);
+            assert_eq!(metric(c, "batches"), Some(n as f64), "{label} {photons}");
+            assert!(metric(c, "caustic map").unwrap_or(-1.0) > 0.0, "{label} {photons}: not timed");
+            let s = metric(c, "storage").expect("storage");
+            assert!(s < storage, "{label} {photons}: {s} MiB, not less than with fewer batches");
+            storage = s;
+            assert_eq!(c["list_sizes"], one["list_sizes"], "{label} {photons}: other photons than 1 batch");
+            let splats = c["passes"]
+                .as_array()
+                .expect("passes")
+                .iter()
+                .filter(|p| p["name"].as_str().is_some_and(|n| n.starts_with("splat.batch")));
+            assert_eq!(splats.count(), if n == 1 { 0 } else { n as usize }, "{label} {photons}: splats");
+        }
+    }
+}
+
+#[test]
+fn quick_fig11_times_every_step_of_the_levels_each_density_runs() {
+    // Wyman & Nichols 2009 Fig. 11: the fixed steps are timed at every density, a traversal
+    // level only where the density reaches it (64²: level 0; 128²: levels 0-1).
+    let (dir, r) = quick_run("wyman_nichols2009_fig11.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 4);
+    for c in cells {
+        let photons = c["cell"]["photons"].as_u64().expect("photons");
+        let finest = (photons / 64).trailing_zeros();
+        let fixed = ["shadow map", "receivers", "geometry buffers", "coverage pyramid", "splat", "eye render"];
+        for m in fixed.into_iter().chain(["batch bookkeeping", "fps"]) {
+            assert!(metric(c, m).unwrap_or(-1.0) > 0.0, "{}: {m} not timed", c["cell"]);
+        }
+        for k in 0..=6u32 {
+            let timed = metric(c, &format!("level {k}")).is_some();
+            assert_eq!(timed, k <= finest, "{}: level {k}", c["cell"]);
+        }
+    }
+    let md = std::fs::read_to_string(dir.join("wyman_nichols2009_fig11.md")).expect("md");
+    assert!(md.contains("level 6") && md.contains("eye render"), "{md}");
+}
+
 /// The cell of `r` with this technique label and photon count.
 fn cell<'a>(r: &'a Value, technique: &str, photons: u64) -> &'a Value {
     r["cells"]

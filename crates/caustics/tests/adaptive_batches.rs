@@ -3,8 +3,9 @@
 //! splats the pending clusters batch after batch; the photon storage it allocates is within the
 //! limit, and the caustic map, the per-level counts and the photons splatted are the unbatched
 //! traversal's, on both paths, for both metrics (including clusters that converge above the
-//! batches' level, splatted before them), with the point and the compute splat. A limit too
-//! small to make progress is an input error naming the setting.
+//! batches' level, splatted before them), with the point and the compute splat; the same with
+//! `photon_batches` = N, which gives N batches. A limit too small to make progress is an input
+//! error naming the setting.
 
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
@@ -86,6 +87,41 @@ fn batches_within_the_limit_splat_the_unbatched_map() {
         }
     }
     assert!(breadth_clusters_splatted, "no batched max-error run converged clusters above its batches: untested");
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}
+
+/// `photon_batches` (Fig. 8's sweep): the plan with N batches records N batches, with or without
+/// a memory limit, and they splat the unbatched map.
+#[test]
+fn photon_batches_give_that_many_batches_and_the_unbatched_map() {
+    let (ctx, sh) = context();
+    for (path, splat_path, metric) in [("compute", "raster", "max-traversal"), ("xfb", "compute", "max-error")] {
+        let whole = run(&ctx, &sh, &scene(path, metric, splat_path, 0));
+        let total: f64 = whole.map.iter().sum();
+        assert!(total > 0.0 && whole.splatted > 1000, "{path} {metric}: no caustic: a vacuous test");
+        for (n, limit) in [(2u32, 0u32), (5, 0), (16, 0), (8, 4)] {
+            let label = format!("{path} {metric} {n} batches, limit {limit} MiB");
+            let mut s = scene(path, metric, splat_path, limit);
+            s.caustics.photon_batches = n;
+            let b = run(&ctx, &sh, &s);
+            assert!(b.plan.1 >= n, "{label}: {} batches", b.plan.1);
+            if limit == 0 {
+                assert_eq!(b.plan, (4, n), "{label}: the last level's clusters in exactly {n} batches");
+            } else {
+                assert!(b.storage <= limit as u64 * 1024 * 1024, "{label}: {} bytes allocated", b.storage);
+            }
+            assert_eq!(b.counts, whole.counts, "{label}: per-level counts differ from unbatched");
+            assert_eq!(b.splatted, whole.splatted, "{label}: photons splatted");
+            let diff: f64 = b.map.iter().zip(&whole.map).map(|(x, y)| (x - y).abs()).sum();
+            assert!(diff <= 1e-5 * total, "{label}: maps differ by {diff} of {total}");
+        }
+    }
+    // Out of range: an input error naming the setting.
+    let mut s = scene("compute", "max-traversal", "raster", 0);
+    s.caustics.photon_batches = 0;
+    let err = s.caustics.validate("test", "--").expect_err("refused").to_string();
+    assert!(err.contains("--photon-batches"), "{err}");
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
 }

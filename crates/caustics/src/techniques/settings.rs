@@ -165,6 +165,10 @@ caustic_settings! {
     /// refined and splatted before the next; 0 (the default) is no limit. With a limit, photons
     /// may go up to 16384 (max_level 8).
     photon_memory_limit: u32 = 0, only Adaptive;
+    /// adaptive: the least number of batches the traversal is split into (Wyman & Nichols 2009
+    /// Sec. 4.3, Fig. 8's overhead of batches), 1..=256; default 1 (batches only where the
+    /// photon_memory_limit needs them). More are used where the limit needs more.
+    photon_batches: u32 = 1, only Adaptive;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.
     precision: Precision = Precision::Float, only PoolConvolution;
@@ -344,6 +348,12 @@ impl CausticSettings {
                 format!("must be at most 1048576 MiB (0: no limit), got {}", self.photon_memory_limit),
             )?;
         }
+        if !(1..=wn2009_batches::MAX_BATCHES).contains(&self.photon_batches) {
+            bad(
+                "photon_batches",
+                format!("must be between 1 and {} batches, got {}", wn2009_batches::MAX_BATCHES, self.photon_batches),
+            )?;
+        }
         if self.technique == Technique::Adaptive {
             self.validate_adaptive(&bad)?;
         }
@@ -368,11 +378,12 @@ impl CausticSettings {
                 ),
             );
         };
-        if self.photon_memory_limit > 0 {
+        if self.photon_memory_limit > 0 || self.photon_batches > 1 {
             let xfb = self.path == TraversalPath::Xfb;
-            let limit = self.photon_memory_limit as u64 * 1024 * 1024;
-            if let Err(e) = wn2009_batches::plan(level, self.metric, xfb, Some(limit), 1) {
-                bad("photon_memory_limit", e)?;
+            let limit = (self.photon_memory_limit > 0).then(|| self.photon_memory_limit as u64 * 1024 * 1024);
+            if let Err(e) = wn2009_batches::plan(level, self.metric, xfb, limit, self.photon_batches, 1) {
+                let key = if self.photon_memory_limit > 0 { "photon_memory_limit" } else { "photon_batches" };
+                bad(key, e)?;
             }
         }
         match self.max_level {
@@ -390,7 +401,7 @@ impl CausticSettings {
 
     /// The most photons per side: 16384 for `adaptive` under a memory limit (its batches need no
     /// buffer of them all), else 4096.
-    fn most_photons(&self) -> u32 {
+    pub fn most_photons(&self) -> u32 {
         if self.technique == Technique::Adaptive && self.photon_memory_limit > 0 {
             wn2009::TOP_PHOTONS << wn2009::MAX_LEVEL
         } else {

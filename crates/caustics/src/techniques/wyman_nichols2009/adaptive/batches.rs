@@ -117,26 +117,40 @@ fn with_batches(finest: u32, metric: Metric, xfb: bool, b: u32, s: u32) -> Batch
     }
 }
 
-/// The plan for photon storage of at most `limit` bytes (None: no limit) for `lights` lights:
-/// the deepest breadth-first level that leaves room for batches of at least one cluster, in no
-/// more batches than one frame can record (each light's share of `vkcore::MAX_PASSES`). An
-/// error (naming what it would take) when no plan fits.
-pub fn plan(finest: u32, metric: Metric, xfb: bool, limit: Option<u64>, lights: u32) -> Result<BatchPlan, String> {
+/// The most batches a traversal may be asked for (`photon_batches`); one frame records fewer
+/// (see [`plan`]).
+pub const MAX_BATCHES: u32 = 256;
+
+/// The plan for photon storage of at most `limit` bytes (None: no limit) in at least
+/// `least_batches` batches (`photon_batches`, Fig. 8) for `lights` lights: the deepest
+/// breadth-first level that leaves room for batches of at least one cluster, with the largest
+/// batch that fits and gives at least `least_batches` batches, in no more batches than one frame
+/// can record (each light's share of `vkcore::MAX_PASSES`). An error (naming what it would
+/// take) when no plan fits.
+pub fn plan(
+    finest: u32,
+    metric: Metric,
+    xfb: bool,
+    limit: Option<u64>,
+    least_batches: u32,
+    lights: u32,
+) -> Result<BatchPlan, String> {
     let budget = (vkcore::MAX_PASSES - OTHER_PASSES) as u64 / lights.max(1) as u64;
     let whole = unbatched(finest, metric, xfb);
-    let Some(limit) = limit else { return Ok(whole) };
-    if whole.storage_bytes() <= limit {
+    let least = least_batches.max(1);
+    if least == 1 && limit.is_none_or(|limit| whole.storage_bytes() <= limit) {
         return Ok(whole);
     }
+    let limit_or_max = limit.unwrap_or(u64::MAX);
     let mut smallest = u64::MAX;
     for b in (0..=finest).rev() {
-        let fits = |s: u32| with_batches(finest, metric, xfb, b, s).storage_bytes() <= limit;
+        let fits = |s: u32| with_batches(finest, metric, xfb, b, s).storage_bytes() <= limit_or_max;
         smallest = smallest.min(with_batches(finest, metric, xfb, b, 1).storage_bytes());
         if !fits(1) {
             continue;
         }
-        // The largest batch that fits (storage grows with the batch).
-        let (mut lo, mut hi) = (1u32, clusters_at(b) as u32);
+        // The largest batch that fits (storage grows with the batch), and gives `least` batches.
+        let (mut lo, mut hi) = (1u32, clusters_at(b).div_ceil(least as u64) as u32);
         while lo < hi {
             let mid = lo + (hi - lo).div_ceil(2);
             if fits(mid) {
@@ -146,16 +160,23 @@ pub fn plan(finest: u32, metric: Metric, xfb: bool, limit: Option<u64>, lights: 
             }
         }
         let p = with_batches(finest, metric, xfb, b, lo);
-        if passes(finest, b, p.batches) <= budget {
+        if p.batches >= least && passes(finest, b, p.batches) <= budget {
             return Ok(p);
         }
     }
+    let what = match limit {
+        Some(limit) => format!(
+            "{:.3} MiB cannot hold the traversal of {}² photons in at least {least} batch(es): batches of one cluster \
+             need at least {:.3} MiB, and",
+            limit as f64 / MIB,
+            TOP_PHOTONS << finest,
+            smallest as f64 / MIB,
+        ),
+        None => format!("{least} batches cannot split the traversal of {}² photons:", TOP_PHOTONS << finest),
+    };
     Err(format!(
-        "{:.3} MiB cannot hold the traversal of {}² photons: batches of one cluster need at least {:.3} MiB, and the \
-         worst case ({:.1} MiB unbatched) must fit in the batches one frame can record ({budget} passes per light)",
-        limit as f64 / MIB,
-        TOP_PHOTONS << finest,
-        smallest as f64 / MIB,
+        "{what} the worst case ({:.1} MiB unbatched) must fit in the batches one frame can record ({budget} passes \
+         per light)",
         whole.storage_bytes() as f64 / MIB
     ))
 }
@@ -173,11 +194,11 @@ mod tests {
                 for xfb in [false, true] {
                     let whole = unbatched(finest, *metric, xfb);
                     assert_eq!(whole.photons as u64, (64u64 << finest).pow(2), "every photon of the last level");
-                    assert_eq!(plan(finest, *metric, xfb, None, 1), Ok(whole.clone()));
-                    assert_eq!(plan(finest, *metric, xfb, Some(whole.storage_bytes()), 1), Ok(whole.clone()));
+                    assert_eq!(plan(finest, *metric, xfb, None, 1, 1), Ok(whole.clone()));
+                    assert_eq!(plan(finest, *metric, xfb, Some(whole.storage_bytes()), 1, 1), Ok(whole.clone()));
                     for divisor in [2u64, 3, 7, 50, 1000] {
                         let limit = whole.storage_bytes() / divisor;
-                        let Ok(p) = plan(finest, *metric, xfb, Some(limit), 2) else { continue };
+                        let Ok(p) = plan(finest, *metric, xfb, Some(limit), 1, 2) else { continue };
                         let label = format!("L {finest} {metric} xfb {xfb} limit {limit}");
                         assert!(p.storage_bytes() <= limit, "{label}: {p:?} needs {}", p.storage_bytes());
                         assert!(p.batched(), "{label}: not batched");
@@ -199,13 +220,41 @@ mod tests {
     }
 
     #[test]
+    fn least_batches_give_that_many_batches_of_every_cluster() {
+        for finest in [0u32, 2, 4, 6] {
+            for metric in Metric::ALL {
+                for xfb in [false, true] {
+                    let whole = unbatched(finest, *metric, xfb);
+                    for n in [1u32, 2, 3, 4, 8, 16, 17] {
+                        let label = format!("L {finest} {metric} xfb {xfb} {n} batches");
+                        let p = plan(finest, *metric, xfb, None, n, 1).expect(&label);
+                        // Exactly n: 32² clusters and more at level B, n ≤ 32 (n² < clusters + n).
+                        assert_eq!(p.batches, n, "{label}: {p:?}");
+                        assert_eq!(p.breadth, finest, "{label}: batches split the last level's clusters");
+                        let pending = (32u64 << p.breadth).pow(2);
+                        assert!(p.batch as u64 * n as u64 >= pending, "{label}: clusters left out");
+                        assert!((n as u64 - 1) * (p.batch as u64) < pending, "{label}: idle batch");
+                        // Under a limit that needs more, more.
+                        let limit = whole.storage_bytes() / 8;
+                        if let Ok(q) = plan(finest, *metric, xfb, Some(limit), n, 1) {
+                            assert!(q.batches >= n && q.storage_bytes() <= limit, "{label} under {limit} B: {q:?}");
+                        }
+                    }
+                }
+            }
+        }
+        let err = plan(0, Metric::MaxTraversal, false, None, 4096, 1).unwrap_err();
+        assert!(err.contains("4096 batches"), "{err}");
+    }
+
+    #[test]
     fn a_limit_too_small_is_an_error_naming_what_it_takes() {
-        let err = plan(8, Metric::MaxTraversal, false, Some(1024), 1).unwrap_err();
+        let err = plan(8, Metric::MaxTraversal, false, Some(1024), 1, 1).unwrap_err();
         assert!(err.contains("16384²") && err.contains("at least"), "{err}");
         // 16384² photons (8 GiB unbatched) within 64 MiB, batched (planned for the worst case:
         // the paper's 16 MiB held its data-dependent batches, Fig. 8).
-        let p = plan(8, Metric::MaxError, false, Some(64 << 20), 1).expect("a plan");
+        let p = plan(8, Metric::MaxError, false, Some(64 << 20), 1, 1).expect("a plan");
         assert!(p.batched() && p.storage_bytes() <= 64 << 20, "{p:?}");
-        assert!(plan(8, Metric::MaxError, false, Some(16 << 20), 1).is_err(), "16 MiB: too many worst-case batches");
+        assert!(plan(8, Metric::MaxError, false, Some(16 << 20), 1, 1).is_err(), "16 MiB: too many worst-case batches");
     }
 }

@@ -116,8 +116,10 @@ impl AdaptiveCaustics {
         let n = TOP_PHOTONS << finest;
         let xfb = path == CompactionPath::TransformFeedback;
         let limit = (s.photon_memory_limit > 0).then(|| s.photon_memory_limit as u64 * 1024 * 1024);
-        let plan = batches::plan(finest, s.metric, xfb, limit, lights)
-            .map_err(|e| crate::input_error!("caustics.photon_memory_limit: {e}"))?;
+        let plan = batches::plan(finest, s.metric, xfb, limit, s.photon_batches, lights).map_err(|e| {
+            let key = if limit.is_some() { "photon_memory_limit" } else { "photon_batches" };
+            crate::input_error!("caustics.{key}: {e}")
+        })?;
         // Every list is one buffer: the device must address the largest.
         let largest = (plan.photons as u64 * PHOTON_BYTES).max(plan.hits as u64 * HITS_BYTES);
         let device = match path {
