@@ -7,7 +7,7 @@
 //   sampled at the photons' cell centres, traced by the same code as the dense photon buffer
 //   (shared/trace_surface.glsl) with the cell's solid angle;
 // - max-error metric (Sec. 3.2.2, condition 2), where tested: emits one photon for a cluster
-//   whose photons converge to one caustic-map texel, with the summed power and solid angle;
+//   whose photons converge to one caustic-map texel, with their summed power;
 // - at the last level L (condition 2 of Sec. 3.2.1, condition 3 of Sec. 3.2.2) emits the
 //   photons that landed; otherwise refines the cluster into four clusters of level k + 1, one
 //   per photon, "generating new photons on a finer grid" at the next step.

@@ -11,7 +11,7 @@
 // 2. it refracts there into the object (the front buffer's interpolated normal, the object's
 //    index of refraction), leaves it by Wyman 2005's two-interface estimate through that object's
 //    back faces (Eq. 2, and the back-face refinement of shared/trace_surface.glsl), with the
-//    Fresnel transmittances and the object's colour (or reflects off a mirror);
+//    Fresnel transmittances and the object's colour;
 // 3. it lands where the receiver search (find_receiver) puts it.
 // Approximations, stated as the paper states its own ("the refraction angle is incorrect at
 // interfaces beyond the 2nd"): the back faces, d_V and d_N an object's buffers hold are those
@@ -19,7 +19,9 @@
 // exit point is taken as the point of the photon's landing ray nearest its entry point (the
 // ray itself, its direction and its power are the trace's); photons the first object loses
 // (total internal reflection, no receiver) stay lost; at most REFRACTORS - 1 further objects
-// are crossed, each object once after another.
+// are crossed, each object once after another. Further objects are refractors only: a mirror's
+// geometry buffers hold no back faces (light_geometry.geom routes refractors' alone), so the
+// march never finds one inside and the photon passes it (the first object may be a mirror).
 #ifndef DEFERRED_PHOTON_LAYERS_GLSL
 #define DEFERRED_PHOTON_LAYERS_GLSL
 #ifndef REFRACTORS
@@ -109,11 +111,7 @@ Photon through_layer(uint l, int layer, vec3 e, vec3 d, vec3 power) {
     vec3 n1 = normalize(layer_texel(layer, 1, t, 0).xyz);
     if (dot(n1, d) > 0.0) n1 = -n1;
     vec3 o, dir;
-    if (m.a <= 0.0) {                      // a mirror
-        o = e;
-        dir = reflect(d, n1);
-        power *= m.rgb;
-    } else {
+    {
         float ior = m.a;
         float cos_i = dot(-d, n1);
         vec3 t1 = refract(d, n1, 1.0 / ior);

@@ -149,8 +149,11 @@ pub fn plan(
         if !fits(1) {
             continue;
         }
-        // The largest batch that fits (storage grows with the batch), and gives `least` batches.
-        let (mut lo, mut hi) = (1u32, clusters_at(b).div_ceil(least as u64) as u32);
+        // The largest batch that fits (storage grows with the batch) and gives at least `least`
+        // batches: ceil(C / s) >= n exactly when s <= (C - 1) / (n - 1).
+        let c = clusters_at(b);
+        let most = if least > 1 { ((c - 1) / (least as u64 - 1)).max(1) } else { c };
+        let (mut lo, mut hi) = (1u32, most.min(u32::MAX as u64) as u32);
         while lo < hi {
             let mid = lo + (hi - lo).div_ceil(2);
             if fits(mid) {
@@ -242,6 +245,12 @@ mod tests {
                     }
                 }
             }
+        }
+        // More batches than the square root of the clusters: at least n, none idle.
+        for n in [33u32, 100, 200, 256] {
+            let p = plan(0, Metric::MaxTraversal, false, None, n, 1).unwrap_or_else(|e| panic!("{n} batches: {e}"));
+            assert!(p.batches >= n && (p.batches as u64 - 1) * (p.batch as u64) < 1024, "{n} batches: {p:?}");
+            assert!(p.batch as u64 * p.batches as u64 >= 1024, "{n} batches: clusters left out: {p:?}");
         }
         let err = plan(0, Metric::MaxTraversal, false, None, 4096, 1).unwrap_err();
         assert!(err.contains("4096 batches"), "{err}");
