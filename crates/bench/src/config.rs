@@ -58,6 +58,23 @@ pub struct TableSpec {
     pub plot_log_y: bool,
 }
 
+impl TableSpec {
+    /// "paper, Table number", or "paper, Fig. 10 (data)" for a figure's data.
+    pub fn title(&self) -> String {
+        title(&self.paper, &self.number)
+    }
+}
+
+/// A table's title from its paper and number: a number naming a figure ("Fig. 10 (data)") is
+/// not a table's.
+pub fn title(paper: &str, number: &str) -> String {
+    if number.starts_with("Fig") {
+        format!("{paper}, {number}")
+    } else {
+        format!("{paper}, Table {number}")
+    }
+}
+
 fn yes() -> bool {
     true
 }

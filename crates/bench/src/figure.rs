@@ -217,7 +217,7 @@ pub fn figure(config: &Config, results: &Results, g: &Grid) -> Figure {
     }
     let m = &results.meta;
     Figure {
-        title: format!("{}, Table {}", config.table.paper, config.table.number),
+        title: config.table.title(),
         subtitle: format!(
             "{} · {} · {}{}",
             m.device,

@@ -45,9 +45,8 @@ pub fn write_index(root: &Path) -> Result<PathBuf> {
             let folder = d.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
             let md = format!("{folder}/{}.md", r.config.name);
             let line = format!(
-                "| {}, Table {} | [{}]({md}) | {} ({}) | {} | {} | {} |",
-                r.config.paper,
-                r.config.table,
+                "| {} | [{}]({md}) | {} ({}) | {} | {} | {} |",
+                crate::config::title(&r.config.paper, &r.config.table),
                 r.config.name,
                 r.meta.device,
                 r.meta.driver_info,

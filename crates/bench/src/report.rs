@@ -16,7 +16,7 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     let m = &results.meta;
     let r = &results.run;
     let mut s = String::new();
-    let _ = writeln!(s, "# {}, Table {}\n", config.table.paper, config.table.number);
+    let _ = writeln!(s, "# {}\n", config.table.title());
     let _ = writeln!(s, "> {}\n", config.table.caption);
     if r.quick {
         let _ =
@@ -107,9 +107,8 @@ pub fn summary(config: &Config, results: &Results) -> String {
     let g = grid(config, results);
     let m = &results.meta;
     let mut s = format!(
-        "{}, Table {}{}\n{} ({}) · {} cells · {}\n\n",
-        config.table.paper,
-        config.table.number,
+        "{}{}\n{} ({}) · {} cells · {}\n\n",
+        config.table.title(),
         if results.run.quick { " (quick run: not a measurement)" } else { "" },
         m.device,
         m.driver_info,

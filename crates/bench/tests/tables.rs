@@ -331,3 +331,11 @@ fn a_technique_that_cannot_run_at_a_photon_count_reads_na() {
     assert!(!small.iter().any(|c| c.contains("N/A")), "{small:?}");
     assert!(bench::report::summary(&config, &r).contains("N/A"));
 }
+
+#[test]
+fn a_figures_data_is_not_titled_a_table() {
+    assert_eq!(bench::config::title("Wyman & Nichols 2009", "Fig. 10 (data)"), "Wyman & Nichols 2009, Fig. 10 (data)");
+    assert_eq!(bench::config::title("Wyman 2008", "3"), "Wyman 2008, Table 3");
+    let (config, r) = synthetic();
+    assert!(bench::report::markdown(&config, &r).starts_with("# Synthetic, Table S\n"));
+}
