@@ -964,3 +964,52 @@ fn every_committed_table_fits_its_paper_and_a_terminal() {
     assert!(checked >= 10, "only {checked} committed tables found under results/");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+#[test]
+fn quick_fig10_times_five_caustic_maps_each_with_its_own_passes() {
+    // Wyman & Nichols 2009 Fig. 10: simple and deferred photon buffers, the deferred hierarchy,
+    // adaptive with both metrics; each cell timed, each technique running the passes it names.
+    let (_, r) = quick_run("wyman_nichols2009_fig10.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 3 * 5 * 2, "3 scenes x 5 techniques x 2 photon counts");
+    for c in cells {
+        let label = c["cell"]["technique_label"].as_str().unwrap_or_default();
+        for m in ["fps", "caustic map"] {
+            assert!(metric(c, m).is_some_and(|v| v.is_finite() && v > 0.0), "{label}: {m}");
+        }
+        let passes: Vec<&str> =
+            c["passes"].as_array().expect("passes").iter().filter_map(|p| p["name"].as_str()).collect();
+        let has = |prefix: &str| passes.iter().any(|p| p.starts_with(prefix));
+        let expect = match label {
+            "Simple" => [true, false, false, false],
+            "Deferred" => [false, true, false, false],
+            "Deferred Hier." => [false, true, true, false],
+            _ => [false, false, false, true],
+        };
+        let got = [has("photon_buffer."), has("deferred_photons."), has("hierarchy."), has("adaptive.traverse")];
+        assert_eq!(got, expect, "{label}: {passes:?}");
+        assert!(has("deferred_refraction."), "{label}: the eye view is rendered deferred (Sec. 5)");
+    }
+}
+
+#[test]
+fn quick_quality_adaptive_compares_every_technique_with_the_reference() {
+    // Q3: adaptive caustic maps (max-error, fixed and varying multi-res splats) and the dense
+    // buffer against the exact reference: every cell has an error and a flux ratio, the metric
+    // splats fewer photons than the dense buffer, and varying splats the same photons.
+    let (_, r) = quick_run("quality_adaptive.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 2 * 3 * 2, "2 scenes x 3 techniques x 2 photon counts");
+    for c in cells {
+        let label = c["cell"]["technique_label"].as_str().unwrap_or_default();
+        let rmse = metric(c, "rel. RMSE").unwrap_or(-1.0);
+        let flux = metric(c, "flux ratio").unwrap_or(-1.0);
+        assert!(rmse > 0.0 && rmse < 0.5, "{label}: relative RMSE {rmse}");
+        assert!((0.8..1.2).contains(&flux), "{label}: flux ratio {flux}");
+    }
+    for photons in [128u64, 256] {
+        let splats = |t: &str| metric(cell(&r, t, photons), "splatted").expect("splatted");
+        assert!(splats("max-error") < splats("wd-points"), "{photons}: adaptive splats every texel");
+        assert_eq!(splats("max-error"), splats("max-error · varying multi-res"), "{photons}");
+    }
+}

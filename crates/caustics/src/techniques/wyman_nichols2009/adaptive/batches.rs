@@ -150,9 +150,13 @@ pub fn plan(
             continue;
         }
         // The largest batch that fits (storage grows with the batch) and gives at least `least`
-        // batches: ceil(C / s) >= n exactly when s <= (C - 1) / (n - 1).
+        // batches, as even as can be: C / n clusters each (rounded up), or, where that rounding
+        // leaves fewer than n batches (n beyond about the square root of C), the largest s with
+        // ceil(C / s) >= n, which is s <= (C - 1) / (n - 1).
         let c = clusters_at(b);
-        let most = if least > 1 { ((c - 1) / (least as u64 - 1)).max(1) } else { c };
+        let n = least as u64;
+        let even = c.div_ceil(n);
+        let most = if n == 1 || c.div_ceil(even) >= n { even } else { ((c - 1) / (n - 1)).max(1) };
         let (mut lo, mut hi) = (1u32, most.min(u32::MAX as u64) as u32);
         while lo < hi {
             let mid = lo + (hi - lo).div_ceil(2);
