@@ -54,6 +54,32 @@ struct SpecularMaterial {
     float ior;       // the mean of the rgb index of refraction (refractive)
 };
 
+// Wyman 2005, Eq. 2: how far the refracted ray t1 (entering at cos_i through normal n1) runs
+// to the exit point, d_V (along the light's ray) and d_N (along the normal) weighted by the
+// ratio of the refraction angle to the incidence angle.
+float wyman2005_distance(float cos_i, vec3 t1, vec3 n1, float d_v, float d_n) {
+    float theta_i = acos(clamp(cos_i, -1.0, 1.0));
+    float theta_t = acos(clamp(dot(-t1, n1), -1.0, 1.0));
+    float ratio = theta_i > 1e-4 ? theta_t / theta_i : 1.0;
+    return ratio * d_v + (1.0 - ratio) * d_n;
+}
+
+// The second interface: t1 leaves the refractor (index ior, entered at cos_i through n1) through
+// the back face of normal n2 (none there: -n1). False on total internal reflection, `power`
+// untouched; else t2, and `power` times both interfaces' Fresnel transmittance (when on) and
+// the material's colour.
+bool exit_refractor(vec3 t1, vec3 n1, vec3 n2, float cos_i, float ior, vec3 colour, inout vec3 power, out vec3 t2) {
+    n2 = dot(n2, n2) < 0.5 ? -n1 : normalize(n2);
+    t2 = refract(t1, -n2, ior);
+    if (dot(t2, t2) < 0.5) return false;
+    if ((caustics.settings.w & CAUSTIC_FRESNEL) != 0u) {
+        power *= (1.0 - dielectric_fresnel(cos_i, 1.0 / ior)) * (1.0 - dielectric_fresnel(dot(-t1, -n2), ior));
+    }
+    power *= colour;
+    t2 = normalize(t2);
+    return true;
+}
+
 // Photon through the surface point p1 (normal n1, thickness d_n) of material `m` with solid
 // angle `omega`.
 Photon trace_photon_through(uint l, vec3 p1, vec3 n1, float d_n, float omega, SpecularMaterial m) {
@@ -81,11 +107,7 @@ Photon trace_photon_through(uint l, vec3 p1, vec3 n1, float d_n, float omega, Sp
         vec2 ndc = project_ndc(cl.photon_view_proj, p1, inside);
         vec4 back = texture(light_back_faces, ndc * 0.5 + 0.5);
         float d_v = max(back.w - distance(p1, cl.position.xyz), 0.0);
-        float theta_i = acos(clamp(cos_i, -1.0, 1.0));
-        float theta_t = acos(clamp(dot(-t1, n1), -1.0, 1.0));
-        float ratio = theta_i > 1e-4 ? theta_t / theta_i : 1.0;
-        float dist = ratio * d_v + (1.0 - ratio) * d_n;     // Wyman 2005, Eq. 2
-        vec3 p2 = p1 + dist * t1;
+        vec3 p2 = p1 + wyman2005_distance(cos_i, t1, n1, d_v, d_n) * t1;
         // Beyond the paper (caustics.back_face_iterations > 0): refine the exit point against
         // the back faces the light sees, rayGeo's iteration applied to the back-face distances.
         // Wyman's d estimate alone falls short near the silhouette, where the chord is long but
@@ -99,20 +121,12 @@ Photon trace_photon_through(uint l, vec3 p1, vec3 n1, float d_n, float omega, Sp
         }
         vec2 ndc2 = project_ndc(cl.photon_view_proj, p2, inside);
         vec3 n2 = texture(light_back_faces, ndc2 * 0.5 + 0.5).xyz;
-        if (dot(n2, n2) < 0.5) n2 = -n1;
-        n2 = normalize(n2);
-        vec3 t2 = refract(t1, -n2, ior);
-        if (dot(t2, t2) < 0.5) {                        // total internal reflection: lost
+        if (!exit_refractor(t1, n1, n2, cos_i, ior, m.colour, power, d)) {   // total internal reflection: lost
             ph.power = vec4(power, 0.0);
             ph.direction.w = PHOTON_LOST_TIR;
             return ph;
         }
-        if ((caustics.settings.w & CAUSTIC_FRESNEL) != 0u) {
-            power *= (1.0 - dielectric_fresnel(cos_i, 1.0 / ior)) * (1.0 - dielectric_fresnel(dot(-t1, -n2), ior));
-        }
-        power *= m.colour;
         o = p2;
-        d = normalize(t2);
     }
     vec3 hit;
     bool found;

@@ -153,13 +153,12 @@ uint cluster_photons(uvec3 c, out AdaptivePhoton p[4]) {
 // footprint is all refractor.
 bool converges(AdaptivePhoton p[4], uint landed, bool all_covered) {
     if (landed != 15u || !all_covered) return false;
-    CausticLight cl = caustics.lights[constants.light];
-    float m = cl.caustic_plane.y;
+    float m = caustics.lights[constants.light].caustic_plane.y;
     vec2 first = vec2(-1.0);
     for (int i = 0; i < 4; ++i) {
-        vec4 clip = cl.caustic_view_proj * vec4(p[i].position, 1.0);
-        if (clip.w <= 0.0) return false;
-        vec2 t = floor((clip.xy / clip.w * 0.5 + 0.5) * m);
+        vec2 t;
+        if (!caustic_map_texel(p[i], t)) return false;
+        t = floor(t);
         if (any(lessThan(t, vec2(0.0))) || any(greaterThanEqual(t, vec2(m)))) return false;
         if (i > 0 && t != first) return false;
         first = t;

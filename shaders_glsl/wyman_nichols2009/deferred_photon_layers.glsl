@@ -110,42 +110,28 @@ Photon through_layer(uint l, int layer, vec3 e, vec3 d, vec3 power) {
     vec4 m = layer_texel(layer, 2, t, 0);
     vec3 n1 = normalize(layer_texel(layer, 1, t, 0).xyz);
     if (dot(n1, d) > 0.0) n1 = -n1;
-    vec3 o, dir;
-    {
-        float ior = m.a;
-        float cos_i = dot(-d, n1);
-        vec3 t1 = refract(d, n1, 1.0 / ior);
-        float d_v = max(layer_texel(layer, 0, t, 1).w - distance(e, light), 0.0);
-        float theta_i = acos(clamp(cos_i, -1.0, 1.0));
-        float theta_t = acos(clamp(dot(-t1, n1), -1.0, 1.0));
-        float ratio = theta_i > 1e-4 ? theta_t / theta_i : 1.0;
-        vec3 p2 = e + (ratio * d_v + (1.0 - ratio) * front.w) * t1;   // Wyman 2005, Eq. 2
-        for (uint k = 0u; k < uint(caustics.splat.z); ++k) {        // as shared/trace_surface.glsl
-            ivec2 tk;
-            layer_texel_of(l, p2, tk);
-            float bk = layer_texel(layer, 0, tk, 1).w;
-            if (bk <= 0.0) break;
-            p2 = e + distance(e, light + normalize(p2 - light) * bk) * t1;
-        }
-        ivec2 t2i;
-        layer_texel_of(l, p2, t2i);
-        vec3 n2 = layer_texel(layer, 1, t2i, 1).xyz;
-        n2 = dot(n2, n2) < 0.5 ? -n1 : normalize(n2);
-        vec3 t2 = refract(t1, -n2, ior);
-        if (dot(t2, t2) < 0.5) {
-            ph.power = vec4(power, 0.0);
-            ph.direction.w = PHOTON_LOST_TIR;
-            return ph;
-        }
-        if ((caustics.settings.w & CAUSTIC_FRESNEL) != 0u) {
-            power *= (1.0 - dielectric_fresnel(cos_i, 1.0 / ior)) * (1.0 - dielectric_fresnel(dot(-t1, -n2), ior));
-        }
-        power *= m.rgb;
-        o = p2;
-        dir = normalize(t2);
+    float ior = m.a;
+    float cos_i = dot(-d, n1);
+    vec3 t1 = refract(d, n1, 1.0 / ior);
+    float d_v = max(layer_texel(layer, 0, t, 1).w - distance(e, light), 0.0);
+    vec3 p2 = e + wyman2005_distance(cos_i, t1, n1, d_v, front.w) * t1;
+    for (uint k = 0u; k < uint(caustics.splat.z); ++k) {        // as shared/trace_surface.glsl
+        ivec2 tk;
+        layer_texel_of(l, p2, tk);
+        float bk = layer_texel(layer, 0, tk, 1).w;
+        if (bk <= 0.0) break;
+        p2 = e + distance(e, light + normalize(p2 - light) * bk) * t1;
+    }
+    ivec2 t2i;
+    layer_texel_of(l, p2, t2i);
+    vec3 dir;
+    if (!exit_refractor(t1, n1, layer_texel(layer, 1, t2i, 1).xyz, cos_i, ior, m.rgb, power, dir)) {
+        ph.power = vec4(power, 0.0);
+        ph.direction.w = PHOTON_LOST_TIR;
+        return ph;
     }
     vec3 hit;
-    if (!find_receiver(l, o, dir, hit)) {
+    if (!find_receiver(l, p2, dir, hit)) {
         ph.power = vec4(power, 0.0);
         ph.direction.w = PHOTON_LOST_NO_RECEIVER;
         return ph;
