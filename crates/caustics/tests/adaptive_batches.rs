@@ -7,8 +7,10 @@
 //! `photon_batches` = N, which gives N batches. A limit too small to make progress is an input
 //! error naming the setting.
 
+use caustics::image_io::ImageF32;
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
+use std::collections::BTreeSet;
 use std::path::PathBuf;
 use vkcore::{Context, ShaderCompiler};
 
@@ -122,6 +124,120 @@ fn photon_batches_give_that_many_batches_and_the_unbatched_map() {
     s.caustics.photon_batches = 0;
     let err = s.caustics.validate("test", "--").expect_err("refused").to_string();
     assert!(err.contains("--photon-batches"), "{err}");
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+}
+
+/// The records of one `adaptive_lists` layer: (x, y, level) of each.
+fn records(lists: &ImageF32, name: &str) -> Vec<[u32; 3]> {
+    let l = lists.layer(Some(name)).unwrap_or_else(|| panic!("no layer {name}"));
+    l.data.chunks_exact(11).filter(|r| r[10] > 0.5).map(|r| [r[0] as u32, r[1] as u32, r[2] as u32]).collect()
+}
+
+/// Whether two lists hold the same cells as often: on failure, their lengths and a few cells
+/// each holds more often (the lists are large; the assertion prints only this).
+fn same_cells(mut got: Vec<[u32; 3]>, mut want: Vec<[u32; 3]>) -> Result<(), String> {
+    got.sort();
+    want.sort();
+    if got == want {
+        return Ok(());
+    }
+    let count = |v: &[[u32; 3]]| {
+        let mut m = std::collections::BTreeMap::new();
+        v.iter().for_each(|c| *m.entry(*c).or_insert(0) += 1);
+        m
+    };
+    let (g, w) = (count(&got), count(&want));
+    let more = |a: &std::collections::BTreeMap<[u32; 3], i32>, b: &std::collections::BTreeMap<[u32; 3], i32>| {
+        a.iter().filter(|(c, n)| b.get(*c).copied().unwrap_or(0) < **n).map(|(c, _)| *c).take(6).collect::<Vec<_>>()
+    };
+    Err(format!(
+        "{} vs {} cells; more often in the first: {:?}; in the second: {:?}",
+        got.len(),
+        want.len(),
+        more(&g, &w),
+        more(&w, &g)
+    ))
+}
+
+/// Every batch is dumpable (Sec. 4.3): a batched traversal's `adaptive_lists` holds the
+/// breadth-first levels, the photons converged above them and each batch's clusters and
+/// photons. The batches' slices of level B partition level B's list; their photons, with those
+/// converged above B, are the unbatched traversal's photons, each once; every batch below
+/// level B is the unbatched list restricted to that batch's descendants. Both paths, both metrics.
+#[test]
+fn every_batch_is_dumped_and_together_they_are_the_unbatched_traversal() {
+    let (ctx, sh) = context();
+    let lists = |s: &Scene| -> (ImageF32, (u32, u32)) {
+        let mut r = Renderer::new(&ctx, &sh, s, &RendererOptions::default()).expect("renderer");
+        r.frame(FrameStep::default()).expect("frame");
+        let a = r.adaptive().expect("adaptive");
+        let plan = (a.plan.breadth, a.plan.batches);
+        (r.dump("adaptive_lists").expect("dump").expect("the lists"), plan)
+    };
+    for (path, metric) in
+        [("compute", "max-error"), ("xfb", "max-error"), ("compute", "max-traversal"), ("xfb", "max-traversal")]
+    {
+        let mut s = scene(path, metric, "raster", 0);
+        let (whole, _) = lists(&s);
+        let whole_photons = records(&whole, "light0.photons");
+        let distinct: BTreeSet<&[u32; 3]> = whole_photons.iter().collect();
+        assert_eq!(distinct.len(), whole_photons.len(), "{path} {metric}: unbatched, a photon output twice");
+        assert!(whole_photons.len() > 1000, "{path} {metric}: {} photons: a vacuous test", whole_photons.len());
+        s.caustics.photon_memory_limit = 1;
+        let (batched, (b, n)) = lists(&s);
+        let label = format!("{path} {metric}, breadth-first to level {b}, {n} batches");
+        assert!(n > 1 && b < 4, "{label}: not batched below a level");
+        // The breadth-first levels are the unbatched ones.
+        for k in 0..=b {
+            let name = format!("light0.clusters{k}");
+            if let Err(e) = same_cells(records(&batched, &name), records(&whole, &name)) {
+                panic!("{label}: {name}: {e}");
+            }
+        }
+        let mut photons = records(&batched, "light0.breadth.photons");
+        let (mut slices, mut filled) = (vec![], 0);
+        for i in 0..n {
+            let slice = records(&batched, &format!("light0.batch{i}.clusters{b}"));
+            // Batches are sized for the worst case (every cluster kept), so the last may be empty.
+            filled += !slice.is_empty() as u32;
+            // Below level B, the batch's lists are the unbatched ones restricted to its clusters.
+            let ancestors: BTreeSet<[u32; 3]> = slice.iter().copied().collect();
+            let of_batch = |c: [u32; 3], level: u32| ancestors.contains(&[c[0] >> (level - b), c[1] >> (level - b), b]);
+            for k in b + 1..=4 {
+                let got = records(&batched, &format!("light0.batch{i}.clusters{k}"));
+                let want = records(&whole, &format!("light0.clusters{k}")).into_iter().filter(|&c| of_batch(c, k));
+                if let Err(e) = same_cells(got, want.collect()) {
+                    panic!("{label}: batch {i}'s clusters of level {k}: {e}");
+                }
+            }
+            let batch_photons = records(&batched, &format!("light0.batch{i}.photons"));
+            // A photon of level l has the coordinates of a cluster of level l + 1 (a converged
+            // cluster of level k is stored as level k - 1): its ancestor of level B is l + 1 - B
+            // levels up.
+            for p in &batch_photons {
+                let [x, y, l] = *p;
+                let up = (l + 1)
+                    .checked_sub(b)
+                    .unwrap_or_else(|| panic!("{label}: batch {i}: photon {:?} above level {b}", *p));
+                assert!(
+                    ancestors.contains(&[x >> up, y >> up, b]),
+                    "{label}: batch {i}: photon {:?} of another batch",
+                    *p
+                );
+            }
+            photons.extend(batch_photons);
+            slices.extend(slice);
+        }
+        assert!(filled > 1, "{label}: {filled} batches hold clusters: a vacuous test");
+        if let Err(e) = same_cells(slices, records(&whole, &format!("light0.clusters{b}"))) {
+            panic!("{label}: the batches' slices of level {b} vs its list: {e}");
+        }
+        // Each photon once: the same cells as often as unbatched (where each cell is once).
+        if let Err(e) = same_cells(photons, whole_photons) {
+            panic!("{label}: the batches' photons vs the unbatched: {e}");
+        }
+    }
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
 }

@@ -151,11 +151,18 @@ fn light0_power(cmap: &ImageF32) -> f64 {
 }
 
 /// The power (mean of R, G, B, in W) of the adaptive traversal's output photons, from the
-/// `adaptive_lists` dump: the photons that landed.
+/// `adaptive_lists` dump: the photons that landed (with batches, those converged above the
+/// batches' level and every batch's).
 fn adaptive_landed(lists: &ImageF32) -> f64 {
-    let l = lists.layer(Some("light0.photons")).expect("photons layer");
-    l.data
-        .chunks_exact(l.channels.len())
+    let photons: Vec<_> = lists
+        .layers
+        .iter()
+        .filter(|l| l.name.as_deref().is_some_and(|n| n.starts_with("light0.") && n.ends_with("photons")))
+        .collect();
+    assert!(!photons.is_empty(), "no photons layer");
+    photons
+        .iter()
+        .flat_map(|l| l.data.chunks_exact(l.channels.len()))
         .filter(|r| r[10] > 0.5)
         .map(|r| (r[6] as f64 + r[7] as f64 + r[8] as f64) / 3.0)
         .sum()
@@ -234,15 +241,6 @@ fn check_with(
             let get = |name: &str| &dumps.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("{name}")).1;
             let (landed, held) = if scene.caustics.eye_space() {
                 (landed_on_receiver(get("photon_buffer"), &scene), receiver_flux(receiver, &scene))
-            } else if t == Technique::Adaptive && scene.caustics.photon_batches > 1 {
-                // The lists dump holds the last batch's photons: those that landed come from the
-                // same traversal unbatched (tests/adaptive_batches.rs: the same photons and map).
-                let mut whole = scene.clone();
-                whole.caustics.photon_batches = 1;
-                let mut r = Renderer::new(&ctx, &sh, &whole, &RendererOptions::default()).expect("renderer");
-                r.frame(FrameStep::default()).expect("frame");
-                let lists = r.dump("adaptive_lists").expect("dump").expect("adaptive lists");
-                (adaptive_landed(&lists), light0_power(get("caustic_map")))
             } else if t == Technique::Adaptive {
                 (adaptive_landed(get("adaptive_lists")), light0_power(get("caustic_map")))
             } else {

@@ -11,6 +11,7 @@ use crate::techniques::shared::ListKind;
 use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
 use crate::techniques::wyman2008::{self, Hierarchy};
 use crate::techniques::wyman_davis2006::{EyeView, ImageSpace};
+use crate::techniques::wyman_nichols2009::adaptive::Part;
 use crate::techniques::wyman_nichols2009::{
     self as wn2009, deferred_refraction, AdaptiveCaustics, DeferredPhotons, DeferredRefraction, Refraction,
 };
@@ -438,7 +439,7 @@ impl<'c> MeshRenderer<'c> {
                     },
                     ("adaptive_lists", _) => {
                         if let Some(a) = &c.adaptive {
-                            adaptive_lists.push((a.read_clusters(self.ctx)?, a.read_photons(self.ctx)?));
+                            adaptive_lists.push(self.adaptive_lists(c, a, l)?);
                         }
                         continue;
                     }
@@ -486,6 +487,33 @@ impl<'c> MeshRenderer<'c> {
             }
         }
         Ok(out)
+    }
+
+    /// Light `l`'s adaptive lists, after its light-space passes were recorded last. A batched
+    /// traversal leaves only its last batch's, so it is recorded again part by part, and each
+    /// part read back: the breadth-first levels, then batch after batch. Level B's list is
+    /// written once, so every batch selects its slice of the same list (the compute path
+    /// appends in no fixed order: a traversal recorded again per batch could slice another).
+    fn adaptive_lists(
+        &self,
+        c: &CausticResources,
+        a: &AdaptiveCaustics,
+        l: u32,
+    ) -> Result<wn2009::adaptive::LightLists> {
+        if !a.plan.batched() {
+            return a.read_lists(self.ctx, None);
+        }
+        let inputs = self.caustic_inputs(c);
+        let passes = self.caustic_passes(c, &inputs);
+        let mut lists = vec![];
+        let parts = std::iter::once(Part::Breadth).chain((0..a.plan.batches).map(Part::Batch));
+        for part in parts {
+            let mut f = self.ctx.frame(FrameOptions::default())?;
+            techniques::record_adaptive_part(&mut f, &passes, a, l, part)?;
+            f.submit()?;
+            lists.extend(a.read_lists(self.ctx, Some(part))?);
+        }
+        Ok(lists)
     }
 
     /// Records light `l`'s light-space passes (`techniques::record_light_space`) alone, as

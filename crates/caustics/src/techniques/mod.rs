@@ -28,7 +28,10 @@ pub mod wyman2008;
 pub mod wyman_davis2006;
 pub mod wyman_nichols2009;
 
-pub use record::{record_caustics, record_cleared, record_light_space, CausticFrame, CausticInputs, CausticPasses};
+pub use record::{
+    record_adaptive_part, record_caustics, record_cleared, record_light_space, CausticFrame, CausticInputs,
+    CausticPasses,
+};
 pub use settings::{CausticOverrides, CausticSettings};
 pub use shared::{
     CausticPipelines, CausticTargets, ComputeSplat, Intersect, PhotonTargets, PhotonView, SplatKernel, SplatPath,

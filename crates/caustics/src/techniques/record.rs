@@ -10,7 +10,7 @@ use super::shared::{photon_buffer, splat};
 use super::wyman2008::photon_copy::PhotonCopy;
 use super::wyman2008::Hierarchy;
 use super::wyman_davis2006::{EyeView, ImageSpace};
-use super::wyman_nichols2009::adaptive::{self, AdaptiveCaustics};
+use super::wyman_nichols2009::adaptive::{self, AdaptiveCaustics, Part};
 use super::wyman_nichols2009::DeferredPhotons;
 use anyhow::Result;
 use vkcore::Frame;
@@ -77,6 +77,20 @@ pub fn record_light_space(f: &mut Frame, c: &CausticPasses, l: u32, frame: Caust
     }
     if let Some(h) = frame.hierarchy {
         h.record_traversal(f, &inp.pass_inputs(), pt, l)?;
+    }
+    Ok(())
+}
+
+/// One part of light `l`'s batched adaptive traversal alone, without its splat: the
+/// breadth-first levels, or one batch after them (`Renderer::dumps` reads each batch's lists
+/// so; a frame's traversal leaves only the last batch's).
+pub fn record_adaptive_part(f: &mut Frame, c: &CausticPasses, a: &AdaptiveCaustics, l: u32, part: Part) -> Result<()> {
+    match part {
+        Part::Breadth => {
+            photon_buffer::record_receiver_positions(f, c, l)?;
+            a.record_breadth(f, &adaptive_inputs(c), l, None)?;
+        }
+        Part::Batch(b) => a.record_batch(f, &adaptive_inputs(c), l, b, None)?,
     }
     Ok(())
 }

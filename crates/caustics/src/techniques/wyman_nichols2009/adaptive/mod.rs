@@ -30,7 +30,7 @@ mod traversal;
 
 pub use batches::BatchPlan;
 pub use photon::{pack_cell, unpack_cell, AdaptivePhoton};
-pub use traversal::{lists_image, Inputs, Splat};
+pub use traversal::{lists_image, Inputs, LightLists, Listed, Part, Splat};
 
 use super::geometry_buffers::LightGeometryBuffers;
 use super::settings::{Metric, TOP_PHOTONS};

@@ -67,6 +67,18 @@ impl AdaptiveCaustics {
     /// next (Sec. 4.3; one batch without a memory limit). Afterwards `photons` holds the last
     /// batch's output.
     pub fn record_traversal(&self, f: &mut Frame, inp: &Inputs, l: u32, splat: Option<&Splat>) -> Result<()> {
+        let splatted = self.record_breadth(f, inp, l, splat)?;
+        for batch in 0..self.plan.batches {
+            self.record_batch(f, inp, l, batch, splat.map(|s| (s, !splatted && batch == 0)))?;
+        }
+        Ok(())
+    }
+
+    /// Light `l`'s geometry buffers and the breadth-first steps, levels 0 to B - 1, which write
+    /// level B's pending clusters (and, with max-error, the photons of clusters that converged
+    /// above it). Returns whether those photons were splatted (batched max-error traversals
+    /// only: the batches reuse the photon list).
+    pub fn record_breadth(&self, f: &mut Frame, inp: &Inputs, l: u32, splat: Option<&Splat>) -> Result<bool> {
         let u = Uniforms { frame: inp.frame_uniforms, caustics: inp.caustic_uniforms };
         self.geometry.record(f, &u, inp.meshes, inp.nearest, l)?;
         let b = self.plan.breadth;
@@ -75,36 +87,49 @@ impl AdaptiveCaustics {
             self.record_step(f, inp, l, k, &self.clusters[k as usize], k == 0, "")?;
             self.record_counts(f, l, k, "")?;
         }
-        let mut splatted = false;
-        if self.plan.batched() && (0..b).any(|k| tests_convergence(self.metric, k)) {
-            // Clusters converged above level B: splatted before the batches reuse the photons.
-            self.record_finalize_photons(f, l, ".breadth")?;
-            if let Some(s) = splat {
-                self.record_splat_batch(f, s, l, ".breadth", true, false)?;
-            }
-            splatted = true;
+        if !(self.plan.batched() && (0..b).any(|k| tests_convergence(self.metric, k))) {
+            return Ok(false);
         }
-        for batch in 0..self.plan.batches {
-            let tag = if self.plan.batched() { format!(".batch{batch}") } else { String::new() };
-            let input = match &self.batch_input {
-                Some(input) => {
-                    self.record_batch_input(f, l, batch, input, &tag)?;
-                    self.record_reset(f, &format!("adaptive.reset{tag}.light{l}"), b as usize + 1, None)?;
-                    input
-                }
-                None => &self.clusters[b as usize],
-            };
-            for k in b..=self.finest {
-                let input = if k == b { input } else { &self.clusters[k as usize] };
-                let seeded = k == 0 && self.batch_input.is_none();
-                self.record_step(f, inp, l, k, input, seeded, &tag)?;
-                self.record_counts(f, l, k, &tag)?;
+        // Clusters converged above level B: splatted before the batches reuse the photons.
+        self.record_finalize_photons(f, l, ".breadth")?;
+        if let Some(s) = splat {
+            self.record_splat_batch(f, s, l, ".breadth", true, false)?;
+        }
+        Ok(true)
+    }
+
+    /// Batch `batch` of light `l` after [`Self::record_breadth`]: its slice of level B's
+    /// pending clusters refined from level B to the last level, with `splat` (and whether it is
+    /// the first splat into the caustic map) splatted. Level B's list and the levels above are
+    /// only read, so batches can be recorded one at a time, in any frame after the breadth-first
+    /// steps (the dumps read each batch so).
+    pub fn record_batch(
+        &self,
+        f: &mut Frame,
+        inp: &Inputs,
+        l: u32,
+        batch: u32,
+        splat: Option<(&Splat, bool)>,
+    ) -> Result<()> {
+        let b = self.plan.breadth;
+        let tag = if self.plan.batched() { format!(".batch{batch}") } else { String::new() };
+        let input = match &self.batch_input {
+            Some(input) => {
+                self.record_batch_input(f, l, batch, input, &tag)?;
+                self.record_reset(f, &format!("adaptive.reset{tag}.light{l}"), b as usize + 1, None)?;
+                input
             }
-            self.record_finalize_photons(f, l, &tag)?;
-            if let Some(s) = splat {
-                let (first, last) = (!splatted && batch == 0, batch + 1 == self.plan.batches);
-                self.record_splat_batch(f, s, l, &tag, first, last)?;
-            }
+            None => &self.clusters[b as usize],
+        };
+        for k in b..=self.finest {
+            let input = if k == b { input } else { &self.clusters[k as usize] };
+            let seeded = k == 0 && self.batch_input.is_none();
+            self.record_step(f, inp, l, k, input, seeded, &tag)?;
+            self.record_counts(f, l, k, &tag)?;
+        }
+        self.record_finalize_photons(f, l, &tag)?;
+        if let Some((s, first)) = splat {
+            self.record_splat_batch(f, s, l, &tag, first, batch + 1 == self.plan.batches)?;
         }
         Ok(())
     }
@@ -368,44 +393,80 @@ impl AdaptiveCaustics {
         Ok(self.photons.read_as(ctx)?)
     }
 
-    /// The pending clusters of each level (0 to L), (x, y, level), of the light traversed last
-    /// (with batches, below level B those of its last batch).
-    pub fn read_clusters(&self, ctx: &Context) -> Result<Vec<Vec<[u32; 3]>>> {
-        let read = |s: &CompactStream| -> vkcore::Result<Vec<[u32; 3]>> {
-            Ok(s.read_as::<u32>(ctx)?.into_iter().map(unpack_cell).collect())
+    /// The lists of the light traversed last, named as `adaptive_lists.exr`'s layers under
+    /// `light<l>.` ([`lists_image`]). `part`: what was recorded last; `None`, the whole
+    /// traversal of an unbatched plan: every level's pending clusters `clusters<k>`, the
+    /// `photons`. [`Part::Breadth`] (batched plans): levels 0 to B's `clusters<k>`, the photons
+    /// of clusters converged above B, `breadth.photons`. [`Part::Batch`]: the batch's slice of
+    /// level B and its levels below, `batch<b>.clusters<k>`, its photons, `batch<b>.photons`.
+    pub fn read_lists(&self, ctx: &Context, part: Option<Part>) -> Result<Vec<(String, Listed)>> {
+        let read = |s: &CompactStream| -> Result<Listed> {
+            Ok(Listed::Clusters(s.read_as::<u32>(ctx)?.into_iter().map(unpack_cell).collect()))
         };
-        Ok(self.clusters.iter().map(read).collect::<vkcore::Result<_>>()?)
+        let b = self.plan.breadth as usize;
+        let (prefix, levels, photons) = match part {
+            None => (String::new(), 0..self.clusters.len(), "photons".to_string()),
+            Some(Part::Breadth) => (String::new(), 0..b + 1, "breadth.photons".to_string()),
+            Some(Part::Batch(i)) => (format!("batch{i}."), b..self.clusters.len(), format!("batch{i}.photons")),
+        };
+        let mut out = vec![];
+        for k in levels {
+            // A batch's level B is its slice, copied into the batch input.
+            let list = match (&part, &self.batch_input) {
+                (Some(Part::Batch(_)), Some(input)) if k == b => input,
+                _ => &self.clusters[k],
+            };
+            out.push((format!("{prefix}clusters{k}"), read(list)?));
+        }
+        out.push((photons, Listed::Photons(self.read_photons(ctx)?)));
+        Ok(out)
     }
 }
 
-/// One light's traversal as read back: the pending clusters of each level, the output photons.
-pub type LightLists = (Vec<Vec<[u32; 3]>>, Vec<AdaptivePhoton>);
+/// Which part of a batched traversal was recorded last, for [`AdaptiveCaustics::read_lists`].
+#[derive(Clone, Copy, Debug)]
+pub enum Part {
+    /// The geometry buffers and the breadth-first steps ([`AdaptiveCaustics::record_breadth`]).
+    Breadth,
+    /// One batch ([`AdaptiveCaustics::record_batch`]).
+    Batch(u32),
+}
 
-/// `adaptive_lists.exr` from each light's clusters and photons: layer `light<l>.clusters<k>`
-/// holds the pending clusters of level k (x, y, level; the cluster of photons (2x + i, 2y + j)
-/// of level k), layer `light<l>.photons` the output photons (x, y, level of their cell, where
-/// they land X, Y, Z, power R, G, B, varying splat radius `footprint`); a record per pixel in row-major order,
+/// One list read back: pending clusters (x, y, level) or output photons.
+pub enum Listed {
+    Clusters(Vec<[u32; 3]>),
+    Photons(Vec<AdaptivePhoton>),
+}
+
+/// One light's lists, named as their layers under `light<l>.`.
+pub type LightLists = Vec<(String, Listed)>;
+
+/// `adaptive_lists.exr` from each light's lists ([`AdaptiveCaustics::read_lists`]): a layer
+/// `light<l>.<name>` per list. Clusters: x, y, level of a pending cluster (the cluster of photons
+/// (2x + i, 2y + j) of level k); photons: x, y, level of their cell, where they land X, Y, Z,
+/// power R, G, B, varying splat radius `footprint`. A record per pixel in row-major order,
 /// valid = 1 for a record (the rest of the image is padding).
 pub fn lists_image(per_light: &[LightLists]) -> ImageF32 {
     let mut lists = vec![];
-    for (l, (clusters, photons)) in per_light.iter().enumerate() {
-        for (k, list) in clusters.iter().enumerate() {
-            let records = list
-                .iter()
-                .map(|c| vec![c[0] as f32, c[1] as f32, c[2] as f32, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0])
-                .collect();
-            lists.push((format!("light{l}.clusters{k}"), records));
+    for (l, named) in per_light.iter().enumerate() {
+        for (name, list) in named {
+            let records = match list {
+                Listed::Clusters(c) => c
+                    .iter()
+                    .map(|c| vec![c[0] as f32, c[1] as f32, c[2] as f32, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0])
+                    .collect(),
+                Listed::Photons(p) => p
+                    .iter()
+                    .map(|p| {
+                        let c = p.cell();
+                        let [x, y, z] = p.position;
+                        let [r, g, b] = p.power;
+                        vec![c[0] as f32, c[1] as f32, c[2] as f32, x, y, z, r, g, b, p.footprint, 1.0]
+                    })
+                    .collect(),
+            };
+            lists.push((format!("light{l}.{name}"), records));
         }
-        let records = photons
-            .iter()
-            .map(|p| {
-                let c = p.cell();
-                let [x, y, z] = p.position;
-                let [r, g, b] = p.power;
-                vec![c[0] as f32, c[1] as f32, c[2] as f32, x, y, z, r, g, b, p.footprint, 1.0]
-            })
-            .collect();
-        lists.push((format!("light{l}.photons"), records));
     }
     crate::techniques::shared::records_image(
         lists,
