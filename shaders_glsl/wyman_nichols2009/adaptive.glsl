@@ -28,6 +28,9 @@ layout(binding = 5) uniform sampler2DArray geometry_position;  // front: positio
 layout(binding = 6) uniform sampler2DArray geometry_normal;    // front: normal, object + 1 (0: none)
 layout(binding = 7) uniform sampler2DArray geometry_material;  // front: colour, mean ior (0: mirror)
 layout(binding = 8) uniform sampler2D coverage;                // mip m: any (r) and all (g) covered below
+// Several specular objects (REFRACTORS > 1): each one's own buffers from LAYER_BINDING on, and
+// photons followed through them (Sec. 3.1.1 for photons, as deferred photons are).
+#include "wyman_nichols2009/deferred_photon_layers.glsl"
 
 // Mirrored by `AdaptiveConstants` in crates/caustics/src/gpu/push.rs.
 layout(push_constant) uniform AdaptiveConstants {
@@ -69,6 +72,7 @@ struct Surface {
     vec3 normal;
     float thickness;
     SpecularMaterial material;
+    uint object;   // the scene's index of the object
 };
 
 // Sec. 3.2: "geometry buffers store object positions and normals. Interpolating these
@@ -81,8 +85,9 @@ bool surface_at(vec2 uv, out Surface s) {
     vec2 t = uv * float(g);
     ivec2 c = clamp(ivec2(floor(t)), ivec2(0), ivec2(g - 1));
     vec4 here = texelFetch(geometry_normal, ivec3(c, 0), 0);
-    s = Surface(vec3(0.0), vec3(0.0), 0.0, SpecularMaterial(0u, vec3(0.0), 0.0));
+    s = Surface(vec3(0.0), vec3(0.0), 0.0, SpecularMaterial(0u, vec3(0.0), 0.0), 0u);
     if (here.w < 0.5) return false;
+    s.object = uint(here.w) - 1u;
     vec4 m = texelFetch(geometry_material, ivec3(c, 0), 0);
     s.material = SpecularMaterial(m.a > 0.0 ? MATERIAL_REFRACTIVE : MATERIAL_REFLECTIVE, m.rgb, m.a);
     vec2 f = t - 0.5;
@@ -112,7 +117,8 @@ bool surface_at(vec2 uv, out Surface s) {
 
 // Photon p of level k (a cell of the (64 2^k)^2 grid), created by deferred shading (Sec. 3.2):
 // traced from the surface at its cell's centre as the photon buffer's fragment there would be
-// (shared/photon_buffer.frag), with its cell's solid angle. False if it misses the refractor or
+// (shared/photon_buffer.frag), with its cell's solid angle, and on through the further
+// refractors with several (deferred_photon_layers.glsl). False if it misses the refractor or
 // does not land (total internal reflection, no receiver).
 bool create_photon(uvec2 p, uint level, out AdaptivePhoton ph) {
     CausticLight cl = caustics.lights[constants.light];
@@ -123,6 +129,9 @@ bool create_photon(uvec2 p, uint level, out AdaptivePhoton ph) {
     if (!surface_at(uv, s)) return false;
     float omega = texel_solid_angle(uv * 2.0 - 1.0, vec4(cl.photon_plane.x, side, 0.0, 0.0));
     Photon t = trace_photon_through(constants.light, s.position, s.normal, s.thickness, omega, s.material);
+#if REFRACTORS > 1
+    t = through_further_refractors(constants.light, t, s.position, s.object);
+#endif
     if (t.position.w < 0.5) return false;
     ph = AdaptivePhoton(t.position.xyz, pack_cell(uvec3(p, level)), t.power.rgb, 0.0);
     return true;

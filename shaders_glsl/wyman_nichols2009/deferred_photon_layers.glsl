@@ -1,6 +1,9 @@
 // Photons through several refractors (Wyman & Nichols 2009 Sec. 3.1.1 applied to photons, Sec. 5
 // and Fig. 13): each specular object has its own light-space geometry buffers (layer k: front 0,
-// back 1), at bindings 8 + 3k (position), 9 + 3k (normal), 10 + 3k (material), k < REFRACTORS.
+// back 1), at bindings B + 3k (position), B + 1 + 3k (normal), B + 2 + 3k (material),
+// k < REFRACTORS, B = LAYER_BINDING (8 in deferred_photons.frag; after the traversal's own
+// bindings in the adaptive kernels). Deferred photons and adaptive caustic maps both call
+// through_further_refractors on the photon their first surface traced.
 // The photon leaves the first object it meets (traced by shared/trace.glsl from the buffers of
 // all objects, exactly as the forward photon buffer traces it); then, as long as another object
 // lies on its way to the receiver:
@@ -27,11 +30,14 @@
 #ifndef REFRACTORS
 #define REFRACTORS 1
 #endif
+#ifndef LAYER_BINDING
+#define LAYER_BINDING 8
+#endif
 #if REFRACTORS > 1
-#define LAYER_BINDINGS(k)                                                          \
-    layout(binding = 8 + 3 * k) uniform sampler2DArray layer##k##_position;      \
-    layout(binding = 9 + 3 * k) uniform sampler2DArray layer##k##_normal;        \
-    layout(binding = 10 + 3 * k) uniform sampler2DArray layer##k##_material;
+#define LAYER_BINDINGS(k)                                                                   \
+    layout(binding = LAYER_BINDING + 3 * k) uniform sampler2DArray layer##k##_position;   \
+    layout(binding = LAYER_BINDING + 1 + 3 * k) uniform sampler2DArray layer##k##_normal; \
+    layout(binding = LAYER_BINDING + 2 + 3 * k) uniform sampler2DArray layer##k##_material;
 LAYER_BINDINGS(0)
 LAYER_BINDINGS(1)
 #if REFRACTORS > 2
@@ -60,11 +66,12 @@ vec4 layer_texel(int layer, int what, ivec2 t, int face) {
     return vec4(0.0);
 }
 
-// The light-space texel of point p (photon frustum), and whether it is inside the buffers.
+// The light-space texel of point p (photon frustum), and whether it is inside the buffers
+// (all of one side: the photon buffer's, or the adaptive geometry buffers').
 bool layer_texel_of(uint l, vec3 p, out ivec2 t) {
     bool inside;
     vec2 ndc = project_ndc(caustics.lights[l].photon_view_proj, p, inside);
-    int g = int(caustics.lights[l].photon_plane.y);
+    int g = textureSize(layer0_position, 0).x;
     t = clamp(ivec2(floor((ndc * 0.5 + 0.5) * float(g))), ivec2(0), ivec2(g - 1));
     return inside;
 }

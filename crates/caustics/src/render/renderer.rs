@@ -159,7 +159,9 @@ impl<'c> MeshRenderer<'c> {
                 None
             };
             let adaptive = if adaptive {
-                Some(AdaptiveCaustics::new(ctx, shaders, settings, scene.lights.len() as u32)?)
+                let specular: Vec<usize> =
+                    (0..meshes.len()).filter(|&i| meshes[i].kind() != gpu::MATERIAL_DIFFUSE).collect();
+                Some(AdaptiveCaustics::new(ctx, shaders, settings, scene.lights.len() as u32, &specular)?)
             } else {
                 None
             };
@@ -434,7 +436,7 @@ impl<'c> MeshRenderer<'c> {
                         c.deferred_photons.as_ref().context("deferred photons")?.dump_back_faces(self.ctx)?
                     }
                     ("adaptive_geometry", _) => match &c.adaptive {
-                        Some(a) => a.geometry.dump(self.ctx)?,
+                        Some(a) => a.dump_geometry(self.ctx)?,
                         None => continue,
                     },
                     ("adaptive_lists", _) => {

@@ -15,7 +15,8 @@
 //!
 //! Each refractor keeps its own geometry buffers and result, so that every one is dumpable.
 //! Reflective objects are layers too (a reflection lookup instead of the refraction). Photons
-//! are not traced through several refractors this way (the light-space passes are unchanged).
+//! are followed through several refractors in light space, by deferred photons and adaptive
+//! caustic maps (`deferred_photon_layers.glsl`), not by these eye-view passes.
 
 use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::mesh_pipeline::mesh_layout;

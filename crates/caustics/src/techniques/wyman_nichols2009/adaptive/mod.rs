@@ -11,6 +11,12 @@
 //! 3. splat the output photons into the caustic map ([`splat`]);
 //! 4. the eye render projects the caustic map onto the scene (as for every technique).
 //!
+//! With several specular objects, each also gets its own geometry buffers, and every photon
+//! created is followed from the object it meets first through the others on its way to the
+//! receiver (Sec. 3.1.1's multi-layer refraction for photons, as deferred photons do:
+//! `deferred_photon_layers.glsl`, with its approximations); the traversal's coverage and
+//! convergence tests read the buffers of all objects together, as with one.
+//!
 //! Two traversal paths, as for Wyman 2008's hierarchy: transform feedback (the paper's: a
 //! geometry shader per kernel, the next kernel drawn with vkCmdDrawIndirectByteCountEXT; one
 //! kernel per step for max-traversal, three for max-error, Sec. 4.1) or compute (one kernel
@@ -32,6 +38,7 @@ pub use batches::BatchPlan;
 pub use photon::{pack_cell, unpack_cell, AdaptivePhoton};
 pub use traversal::{lists_image, Inputs, LightLists, Listed, Part, Splat};
 
+use super::deferred_photons::MAX_REFRACTORS;
 use super::geometry_buffers::LightGeometryBuffers;
 use super::settings::{Metric, TOP_PHOTONS};
 use crate::techniques::shared::pipelines::{point_splat_desc, TRACE_BINDINGS};
@@ -71,6 +78,9 @@ pub struct AdaptiveCaustics {
     /// The last level L (photons on the (64 × 2^L)² grid).
     pub finest: u32,
     pub geometry: LightGeometryBuffers,
+    /// With several specular objects, each one's own buffers, and its index among the
+    /// meshes (the scene's objects), in the scene's order; none with one.
+    pub refractors: Vec<(usize, LightGeometryBuffers)>,
     /// How the traversal is split into batches (one batch without a memory limit).
     pub plan: BatchPlan,
     /// clusters[k]: the pending clusters of level k; clusters[0], the 32² clusters of the 64²
@@ -103,7 +113,14 @@ const TEXTURES: [K; 9] = {
 };
 
 impl AdaptiveCaustics {
-    pub fn new(ctx: &Context, sh: &ShaderCompiler, s: &CausticSettings, lights: u32) -> Result<AdaptiveCaustics> {
+    /// `specular`: the indices of the specular meshes (the scene's specular objects).
+    pub fn new(
+        ctx: &Context,
+        sh: &ShaderCompiler,
+        s: &CausticSettings,
+        lights: u32,
+        specular: &[usize],
+    ) -> Result<AdaptiveCaustics> {
         let traversal: TraversalPath = s.path;
         ctx.require(&format!("technique `adaptive` with --path {traversal}"), traversal.features())?;
         let path = traversal.compaction();
@@ -138,6 +155,20 @@ impl AdaptiveCaustics {
             .into());
         }
         let geometry = LightGeometryBuffers::new(ctx, sh, s.gbuffer_side())?;
+        if specular.len() > MAX_REFRACTORS {
+            return Err(crate::input_error!(
+                "technique `adaptive`: the scene has {} specular objects; adaptive caustic maps follow photons \
+                 through at most {MAX_REFRACTORS}",
+                specular.len()
+            )
+            .into());
+        }
+        let layered = if specular.len() > 1 { specular } else { &[] };
+        let refractors = layered
+            .iter()
+            .map(|&i| Ok((i, LightGeometryBuffers::new(ctx, sh, s.gbuffer_side())?)))
+            .collect::<Result<Vec<_>>>()?;
+        let layers = Layers { refractors: refractors.len() };
         let stream =
             |name: &str, capacity: u32, bytes: u64| CompactStream::with_element_bytes(ctx, name, path, capacity, bytes);
         let mut clusters = vec![];
@@ -172,16 +203,18 @@ impl AdaptiveCaustics {
         let count = storage("counts", &[K::StorageBuffer; 3])?;
         let kernels = match path {
             CompactionPath::TransformFeedback => Kernels::Xfb(Box::new(XfbKernels {
-                subdivide: xfb_kernel(ctx, sh, "SUBDIVIDE")?,
-                emit: xfb_kernel(ctx, sh, "EMIT")?,
-                hits: xfb_kernel(ctx, sh, "HITS")?,
-                converged: xfb_kernel(ctx, sh, "CONVERGED")?,
-                refine: xfb_kernel(ctx, sh, "REFINE")?,
+                subdivide: xfb_kernel(ctx, sh, "SUBDIVIDE", layers)?,
+                emit: xfb_kernel(ctx, sh, "EMIT", layers)?,
+                hits: xfb_kernel(ctx, sh, "HITS", layers)?,
+                converged: xfb_kernel(ctx, sh, "CONVERGED", layers)?,
+                refine: xfb_kernel(ctx, sh, "REFINE", layers)?,
             })),
             CompactionPath::Compute => {
                 let mut b = TEXTURES.to_vec();
                 b.extend([K::StorageBuffer; 6]);
-                let spirv = sh.compile("wyman_nichols2009/adaptive_traverse.comp", &[])?;
+                let defines = layers.defines(b.len());
+                let spirv = sh.compile("wyman_nichols2009/adaptive_traverse.comp", &as_str(&defines))?;
+                b.extend(layers.bindings());
                 Kernels::Compute {
                     traverse: Pipeline::compute(ctx, "adaptive.traverse", &spirv, &b)?,
                     finalize: Pipeline::compute(
@@ -211,6 +244,7 @@ impl AdaptiveCaustics {
             metric: s.metric,
             finest,
             geometry,
+            refractors,
             plan,
             clusters,
             batch_input,
@@ -226,6 +260,21 @@ impl AdaptiveCaustics {
         })
     }
 
+    /// `adaptive_geometry.exr` for the light traversed last: the buffers of all specular objects
+    /// and their coverage pyramid ([`LightGeometryBuffers::dump`]), and with several objects
+    /// each one's own surfaces, prefixed `refractor<k>.` (k in the scene's order of its specular
+    /// objects), as `photon_geometry_buffers` names them.
+    pub fn dump_geometry(&self, ctx: &Context) -> Result<crate::image_io::ImageF32> {
+        let mut img = self.geometry.dump(ctx)?;
+        for (k, (_, b)) in self.refractors.iter().enumerate() {
+            for mut layer in b.dump_surfaces(ctx, self.geometry.padded)?.layers {
+                layer.name = layer.name.map(|n| format!("refractor{k}.{n}"));
+                img.layers.push(layer);
+            }
+        }
+        Ok(img)
+    }
+
     /// The photon storage allocated (bytes): every list of pending clusters, the batch input,
     /// the hits and the output photons, with their counters ([`BatchPlan::storage_bytes`]).
     pub fn photon_storage_bytes(&self) -> u64 {
@@ -235,13 +284,38 @@ impl AdaptiveCaustics {
     }
 }
 
-/// One transform-feedback kernel of `adaptive_step.geom` (`kernel`: its define).
-fn xfb_kernel(ctx: &Context, sh: &ShaderCompiler, kernel: &str) -> Result<Pipeline> {
-    let from_hits = matches!(kernel, "CONVERGED" | "REFINE");
-    let mut defines = vec![(kernel, "1")];
-    if from_hits {
-        defines.push(("FROM_HITS", "1"));
+/// The further refractors' buffers every traversal kernel binds after its own
+/// (`deferred_photon_layers.glsl`): three per specular object with several, none with one.
+#[derive(Clone, Copy)]
+struct Layers {
+    refractors: usize,
+}
+
+impl Layers {
+    /// The defines of a kernel whose own bindings are `0..first`.
+    fn defines(self, first: usize) -> Vec<(&'static str, String)> {
+        vec![("REFRACTORS", self.refractors.max(1).to_string()), ("LAYER_BINDING", first.to_string())]
     }
+
+    fn bindings(self) -> Vec<K> {
+        vec![K::SampledImage; 3 * self.refractors]
+    }
+}
+
+fn as_str<'a>(defines: &'a [(&'a str, String)]) -> Vec<(&'a str, &'a str)> {
+    defines.iter().map(|(k, v)| (*k, v.as_str())).collect()
+}
+
+/// One transform-feedback kernel of `adaptive_step.geom` (`kernel`: its define).
+fn xfb_kernel(ctx: &Context, sh: &ShaderCompiler, kernel: &str, layers: Layers) -> Result<Pipeline> {
+    let from_hits = matches!(kernel, "CONVERGED" | "REFINE");
+    let own = TEXTURES.len() + from_hits as usize;
+    let mut defines: Vec<(&str, String)> = vec![(kernel, "1".into())];
+    if from_hits {
+        defines.push(("FROM_HITS", "1".into()));
+    }
+    defines.extend(layers.defines(own));
+    let defines = as_str(&defines);
     let mut d = GraphicsDesc::new(
         &format!("adaptive.{}", kernel.to_lowercase()),
         sh.compile("wyman_nichols2009/adaptive_step.vert", &defines)?,
@@ -251,7 +325,9 @@ fn xfb_kernel(ctx: &Context, sh: &ShaderCompiler, kernel: &str) -> Result<Pipeli
     d.bindings = TEXTURES.to_vec();
     if from_hits {
         d.bindings.push(K::StorageBuffer);
-    } else {
+    }
+    d.bindings.extend(layers.bindings());
+    if !from_hits {
         d.vertex_layout = Some(VertexLayout {
             stride: CLUSTER_BYTES as u32,
             attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }],
