@@ -20,6 +20,10 @@
 // last level's photons are then exactly those a dense photon buffer at that resolution holds.
 // Convergence is likewise tested only where it cannot drop power: all four photons land, and
 // the refractor covers the whole footprint (so the one photon stands for all its descendants).
+// With several refractors that holds for the first surface only: the four photons are followed
+// through the further ones, but a descendant that a further refractor would turn elsewhere or
+// lose (its silhouette inside the cluster) is not tested, as the paper's four-photon test does
+// not test it either.
 #ifndef ADAPTIVE_GLSL
 #define ADAPTIVE_GLSL
 #include "shared/trace_surface.glsl"   // bindings 0-4: frame, caustics, the back faces, receiver positions, spot textures

@@ -17,9 +17,10 @@ use super::photon::{CLUSTER_BYTES, HITS_BYTES, PHOTON_BYTES};
 use crate::techniques::wyman_nichols2009::settings::{tests_convergence, Metric, TOP_PHOTONS};
 use vkcore::compaction::COUNTER_BYTES;
 
-/// Passes of a frame left to the rest of it (the eye render, shadow maps, a light's geometry
-/// buffers and coverage pyramid): the batches of every light share what remains of
-/// `vkcore::MAX_PASSES`.
+/// Passes of a frame left to the rest of it (the eye render, shadow maps, and per light its
+/// receiver positions, geometry buffers, up to four refractors' own and about a dozen coverage
+/// levels: under 20 per light, at most 4 lights): the batches of every light share what remains
+/// of `vkcore::MAX_PASSES`.
 const OTHER_PASSES: u32 = 160;
 
 /// Passes one light's traversal records with breadth-first levels 0..B (exclusive) and
