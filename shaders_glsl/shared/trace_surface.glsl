@@ -27,6 +27,16 @@ struct Photon {
     vec4 power;      // rgb W (also kept for lost photons, to account for them)
 };
 
+// A photon lost on its way (`why`: PHOTON_LOST_*), its power kept to account for it.
+Photon lost_photon(vec3 power, float why) {
+    return Photon(vec4(0.0), vec4(0.0, 0.0, 0.0, why), vec4(power, 0.0));
+}
+
+// A photon that landed at `hit`, arriving along `d`.
+Photon landed_photon(vec3 hit, vec3 d, vec3 power) {
+    return Photon(vec4(hit, 1.0), vec4(d, 0.0), vec4(power, 1.0));
+}
+
 vec2 project_ndc(mat4 m, vec3 p, out bool inside) {
     vec4 c = m * vec4(p, 1.0);
     vec2 ndc = c.xy / c.w;
@@ -83,10 +93,6 @@ bool exit_refractor(vec3 t1, vec3 n1, vec3 n2, float cos_i, float ior, vec3 colo
 // Photon through the surface point p1 (normal n1, thickness d_n) of material `m` with solid
 // angle `omega`.
 Photon trace_photon_through(uint l, vec3 p1, vec3 n1, float d_n, float omega, SpecularMaterial m) {
-    Photon ph;
-    ph.position = vec4(0.0);
-    ph.direction = vec4(0.0);
-    ph.power = vec4(0.0);
     CausticLight cl = caustics.lights[l];
     vec3 v = normalize(p1 - cl.position.xyz);
     if (dot(n1, v) > 0.0) n1 = -n1;
@@ -122,9 +128,7 @@ Photon trace_photon_through(uint l, vec3 p1, vec3 n1, float d_n, float omega, Sp
         vec2 ndc2 = project_ndc(cl.photon_view_proj, p2, inside);
         vec3 n2 = texture(light_back_faces, ndc2 * 0.5 + 0.5).xyz;
         if (!exit_refractor(t1, n1, n2, cos_i, ior, m.colour, power, d)) {   // total internal reflection: lost
-            ph.power = vec4(power, 0.0);
-            ph.direction.w = PHOTON_LOST_TIR;
-            return ph;
+            return lost_photon(power, PHOTON_LOST_TIR);
         }
         o = p2;
     }
@@ -139,14 +143,6 @@ Photon trace_photon_through(uint l, vec3 p1, vec3 n1, float d_n, float omega, Sp
     } else {
         found = find_receiver(l, o, d, hit);
     }
-    if (!found) {
-        ph.power = vec4(power, 0.0);
-        ph.direction.w = PHOTON_LOST_NO_RECEIVER;
-        return ph;
-    }
-    ph.position = vec4(hit, 1.0);
-    ph.direction = vec4(d, 0.0);
-    ph.power = vec4(power, 1.0);
-    return ph;
+    return found ? landed_photon(hit, d, power) : lost_photon(power, PHOTON_LOST_NO_RECEIVER);
 }
 #endif

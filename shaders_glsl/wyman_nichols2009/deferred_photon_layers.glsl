@@ -109,7 +109,6 @@ float enter_layer(uint l, int layer, vec3 o, vec3 d, float s_max) {
 
 // Step 2 and 3 for a photon of power `power` entering object `layer` at e along d.
 Photon through_layer(uint l, int layer, vec3 e, vec3 d, vec3 power) {
-    Photon ph = Photon(vec4(0.0), vec4(0.0), vec4(power, 0.0));
     vec3 light = caustics.lights[l].position.xyz;
     ivec2 t;
     layer_texel_of(l, e, t);
@@ -133,20 +132,11 @@ Photon through_layer(uint l, int layer, vec3 e, vec3 d, vec3 power) {
     layer_texel_of(l, p2, t2i);
     vec3 dir;
     if (!exit_refractor(t1, n1, layer_texel(layer, 1, t2i, 1).xyz, cos_i, ior, m.rgb, power, dir)) {
-        ph.power = vec4(power, 0.0);
-        ph.direction.w = PHOTON_LOST_TIR;
-        return ph;
+        return lost_photon(power, PHOTON_LOST_TIR);
     }
     vec3 hit;
-    if (!find_receiver(l, p2, dir, hit)) {
-        ph.power = vec4(power, 0.0);
-        ph.direction.w = PHOTON_LOST_NO_RECEIVER;
-        return ph;
-    }
-    ph.position = vec4(hit, 1.0);
-    ph.direction = vec4(dir, 0.0);
-    ph.power = vec4(power, 1.0);
-    return ph;
+    if (!find_receiver(l, p2, dir, hit)) return lost_photon(power, PHOTON_LOST_NO_RECEIVER);
+    return landed_photon(hit, dir, power);
 }
 
 // The photon `ph` that left object `object` (entered at p1) through the other objects on its way

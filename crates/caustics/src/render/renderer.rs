@@ -159,9 +159,7 @@ impl<'c> MeshRenderer<'c> {
                 None
             };
             let adaptive = if adaptive {
-                let specular: Vec<usize> =
-                    (0..meshes.len()).filter(|&i| meshes[i].kind() != gpu::MATERIAL_DIFFUSE).collect();
-                Some(AdaptiveCaustics::new(ctx, shaders, settings, scene.lights.len() as u32, &specular)?)
+                Some(AdaptiveCaustics::new(ctx, shaders, settings, scene.lights.len() as u32, &meshes)?)
             } else {
                 None
             };

@@ -22,16 +22,13 @@
 //! specular object there are only those.
 
 use super::geometry_buffers::{LightGeometryBuffers, Uniforms};
+use super::refractor_layers::{specular_objects, RefractorLayers, MAX_REFRACTORS};
 use crate::gpu::formats::COLOR;
-use crate::gpu::{GpuMesh, MeshConstants, MATERIAL_DIFFUSE};
+use crate::gpu::{GpuMesh, MeshConstants};
 use crate::image_io::ImageF32;
 use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use vkcore::{Access, Bind, BindingKind as K, Context, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Use};
-
-/// The most specular objects the multi-layer trace follows a photon through
-/// (`deferred_photon_layers.glsl` declares this many buffers at most).
-pub const MAX_REFRACTORS: usize = 4;
 
 /// The `--dump` name of the geometry buffers photons are created from.
 pub const DUMP: &str = "photon_geometry_buffers";
@@ -41,31 +38,33 @@ pub struct DeferredPhotons {
     specular: Vec<usize>,
     /// All specular objects' surfaces: the first one each photon meets.
     all: LightGeometryBuffers,
-    /// With several specular objects, each one's own (same order as `specular`).
-    refractors: Vec<LightGeometryBuffers>,
+    /// With several specular objects, each one's own.
+    refractors: RefractorLayers,
     photons: Pipeline,
 }
 
 impl DeferredPhotons {
     /// Buffers of `side`² texels (the photon buffer's) for the specular meshes of `meshes`.
     pub fn new(ctx: &Context, sh: &ShaderCompiler, side: u32, meshes: &[GpuMesh]) -> Result<DeferredPhotons> {
-        let specular: Vec<usize> = (0..meshes.len()).filter(|&i| meshes[i].kind() != MATERIAL_DIFFUSE).collect();
+        let specular = specular_objects(meshes);
         anyhow::ensure!(
             specular.len() <= MAX_REFRACTORS,
             "photon_refraction `deferred`: the scene has {} specular objects; deferred photons follow photons \
              through at most {MAX_REFRACTORS} (use photon_refraction `forward`)",
             specular.len()
         );
-        let layered = if specular.len() > 1 { specular.len() } else { 0 };
-        let refractors = (0..layered).map(|_| LightGeometryBuffers::new(ctx, sh, side)).collect::<Result<Vec<_>>>()?;
-        let refractor_count = layered.max(1).to_string();
+        let refractors = RefractorLayers::new(ctx, sh, side, &specular)?;
         let mut d = GraphicsDesc::new(
             "deferred_photons",
             sh.compile("wyman_nichols2009/full_screen.vert", &[])?,
-            Some(sh.compile("wyman_nichols2009/deferred_photons.frag", &[("REFRACTORS", &refractor_count)])?),
+            Some(sh.compile(
+                "wyman_nichols2009/deferred_photons.frag",
+                &[("REFRACTORS", &refractors.refractors_define())],
+            )?),
         );
         d.bindings = crate::techniques::shared::pipelines::TRACE_BINDINGS.to_vec();
-        d.bindings.extend(std::iter::repeat_n(K::SampledImage, 3 + 3 * layered));
+        d.bindings.extend([K::SampledImage; 3]);
+        d.bindings.extend(refractors.bindings());
         d.color_formats = vec![COLOR, COLOR, COLOR];
         Ok(DeferredPhotons {
             specular,
@@ -89,9 +88,7 @@ impl DeferredPhotons {
         let (inp, pt) = (c.inputs, c.photons);
         let u = Uniforms { frame: inp.frame_uniforms, caustics: inp.caustic_uniforms };
         self.all.record_surfaces(f, &u, inp.meshes, &self.specular, "deferred_photons.geometry", l)?;
-        for (k, (b, &object)) in self.refractors.iter().zip(&self.specular).enumerate() {
-            b.record_surfaces(f, &u, inp.meshes, &[object], &format!("deferred_photons.geometry.refractor{k}"), l)?;
-        }
+        self.refractors.record(f, &u, inp.meshes, "deferred_photons.geometry", l)?;
         let mut binds = vec![
             Bind::Uniform(inp.frame_uniforms),
             Bind::Uniform(inp.caustic_uniforms),
@@ -99,13 +96,8 @@ impl DeferredPhotons {
             Bind::Sampled(&c.targets.receiver_positions.view, inp.nearest),
             Bind::Sampled(inp.spot_textures, inp.linear),
         ];
-        for b in std::iter::once(&self.all).chain(&self.refractors) {
-            binds.extend([
-                Bind::Sampled(&b.position_layers, inp.nearest),
-                Bind::Sampled(&b.normal_layers, inp.nearest),
-                Bind::Sampled(&b.material_layers, inp.nearest),
-            ]);
-        }
+        binds.extend(self.all.surface_binds(inp.nearest));
+        binds.extend(self.refractors.binds(inp.nearest));
         let photons = [&pt.position, &pt.direction, &pt.power];
         f.pass(&format!("deferred_photons.light{l}"))
             .bind(&self.photons, binds)
@@ -126,12 +118,7 @@ impl DeferredPhotons {
     /// own, prefixed `refractor<k>.` (k in the scene's order of its specular objects).
     pub fn dump(&self, ctx: &Context) -> Result<ImageF32> {
         let mut img = self.all.dump_surfaces(ctx, self.all.side)?;
-        for (k, b) in self.refractors.iter().enumerate() {
-            for mut layer in b.dump_surfaces(ctx, b.side)?.layers {
-                layer.name = layer.name.map(|n| format!("refractor{k}.{n}"));
-                img.layers.push(layer);
-            }
-        }
+        self.refractors.dump_into(ctx, &mut img, self.all.side)?;
         Ok(img)
     }
 }

@@ -24,7 +24,7 @@
 
 use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::mesh_pipeline::mesh_layout;
-use crate::gpu::{mesh_uses, CoverageConstants, GpuMesh, MATERIAL_DIFFUSE};
+use crate::gpu::{mesh_uses, CoverageConstants, GpuMesh};
 use crate::image_io::{ImageF32, Layer};
 use anyhow::Result;
 use vkcore::{
@@ -126,7 +126,7 @@ impl LightGeometryBuffers {
     /// Records light `l`'s geometry buffers (one pass over the specular meshes) and their
     /// coverage pyramid.
     pub fn record(&self, f: &mut Frame, u: &Uniforms, meshes: &[GpuMesh], nearest: &Sampler, l: u32) -> Result<()> {
-        let specular: Vec<usize> = (0..meshes.len()).filter(|&i| meshes[i].kind() != MATERIAL_DIFFUSE).collect();
+        let specular = super::refractor_layers::specular_objects(meshes);
         self.record_surfaces(f, u, meshes, &specular, "adaptive.geometry", l)?;
         self.record_coverage(f, nearest, l)
     }
@@ -167,6 +167,16 @@ impl LightGeometryBuffers {
                 Ok(())
             })?;
         Ok(())
+    }
+
+    /// Both layers of the position, normal and material buffers, sampled as the photon-creating
+    /// shaders declare them (position, normal, material).
+    pub fn surface_binds<'a>(&'a self, nearest: &'a Sampler) -> [Bind<'a>; 3] {
+        [
+            Bind::Sampled(&self.position_layers, nearest),
+            Bind::Sampled(&self.normal_layers, nearest),
+            Bind::Sampled(&self.material_layers, nearest),
+        ]
     }
 
     /// Records the coverage pyramid of light `l`'s front layer.

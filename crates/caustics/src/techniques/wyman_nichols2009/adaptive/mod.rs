@@ -38,9 +38,10 @@ pub use batches::BatchPlan;
 pub use photon::{pack_cell, unpack_cell, AdaptivePhoton};
 pub use traversal::{lists_image, Inputs, LightLists, Listed, Part, Splat};
 
-use super::deferred_photons::MAX_REFRACTORS;
 use super::geometry_buffers::LightGeometryBuffers;
+use super::refractor_layers::{specular_objects, RefractorLayers, MAX_REFRACTORS};
 use super::settings::{Metric, TOP_PHOTONS};
+use crate::gpu::GpuMesh;
 use crate::techniques::shared::pipelines::{point_splat_desc, TRACE_BINDINGS};
 use crate::techniques::wyman2008::TraversalPath;
 use crate::techniques::CausticSettings;
@@ -78,9 +79,8 @@ pub struct AdaptiveCaustics {
     /// The last level L (photons on the (64 × 2^L)² grid).
     pub finest: u32,
     pub geometry: LightGeometryBuffers,
-    /// With several specular objects, each one's own buffers, and its index among the
-    /// meshes (the scene's objects), in the scene's order; none with one.
-    pub refractors: Vec<(usize, LightGeometryBuffers)>,
+    /// With several specular objects, each one's own buffers; none with one.
+    pub refractors: RefractorLayers,
     /// How the traversal is split into batches (one batch without a memory limit).
     pub plan: BatchPlan,
     /// clusters[k]: the pending clusters of level k; clusters[0], the 32² clusters of the 64²
@@ -113,13 +113,13 @@ const TEXTURES: [K; 9] = {
 };
 
 impl AdaptiveCaustics {
-    /// `specular`: the indices of the specular meshes (the scene's specular objects).
+    /// Adaptive caustic maps of the specular meshes among `meshes`.
     pub fn new(
         ctx: &Context,
         sh: &ShaderCompiler,
         s: &CausticSettings,
         lights: u32,
-        specular: &[usize],
+        meshes: &[GpuMesh],
     ) -> Result<AdaptiveCaustics> {
         let traversal: TraversalPath = s.path;
         ctx.require(&format!("technique `adaptive` with --path {traversal}"), traversal.features())?;
@@ -155,6 +155,7 @@ impl AdaptiveCaustics {
             .into());
         }
         let geometry = LightGeometryBuffers::new(ctx, sh, s.gbuffer_side())?;
+        let specular = specular_objects(meshes);
         if specular.len() > MAX_REFRACTORS {
             return Err(crate::input_error!(
                 "technique `adaptive`: the scene has {} specular objects; adaptive caustic maps follow photons \
@@ -163,12 +164,7 @@ impl AdaptiveCaustics {
             )
             .into());
         }
-        let layered = if specular.len() > 1 { specular } else { &[] };
-        let refractors = layered
-            .iter()
-            .map(|&i| Ok((i, LightGeometryBuffers::new(ctx, sh, s.gbuffer_side())?)))
-            .collect::<Result<Vec<_>>>()?;
-        let layers = Layers { refractors: refractors.len() };
+        let refractors = RefractorLayers::new(ctx, sh, s.gbuffer_side(), &specular)?;
         let stream =
             |name: &str, capacity: u32, bytes: u64| CompactStream::with_element_bytes(ctx, name, path, capacity, bytes);
         let mut clusters = vec![];
@@ -203,18 +199,20 @@ impl AdaptiveCaustics {
         let count = storage("counts", &[K::StorageBuffer; 3])?;
         let kernels = match path {
             CompactionPath::TransformFeedback => Kernels::Xfb(Box::new(XfbKernels {
-                subdivide: xfb_kernel(ctx, sh, "SUBDIVIDE", layers)?,
-                emit: xfb_kernel(ctx, sh, "EMIT", layers)?,
-                hits: xfb_kernel(ctx, sh, "HITS", layers)?,
-                converged: xfb_kernel(ctx, sh, "CONVERGED", layers)?,
-                refine: xfb_kernel(ctx, sh, "REFINE", layers)?,
+                subdivide: xfb_kernel(ctx, sh, "SUBDIVIDE", &refractors)?,
+                emit: xfb_kernel(ctx, sh, "EMIT", &refractors)?,
+                hits: xfb_kernel(ctx, sh, "HITS", &refractors)?,
+                converged: xfb_kernel(ctx, sh, "CONVERGED", &refractors)?,
+                refine: xfb_kernel(ctx, sh, "REFINE", &refractors)?,
             })),
             CompactionPath::Compute => {
                 let mut b = TEXTURES.to_vec();
                 b.extend([K::StorageBuffer; 6]);
-                let defines = layers.defines(b.len());
-                let spirv = sh.compile("wyman_nichols2009/adaptive_traverse.comp", &as_str(&defines))?;
-                b.extend(layers.bindings());
+                // The further refractors' buffers after the kernel's own bindings.
+                let (count, first) = (refractors.refractors_define(), b.len().to_string());
+                let defines = [("REFRACTORS", count.as_str()), ("LAYER_BINDING", first.as_str())];
+                let spirv = sh.compile("wyman_nichols2009/adaptive_traverse.comp", &defines)?;
+                b.extend(refractors.bindings());
                 Kernels::Compute {
                     traverse: Pipeline::compute(ctx, "adaptive.traverse", &spirv, &b)?,
                     finalize: Pipeline::compute(
@@ -266,12 +264,7 @@ impl AdaptiveCaustics {
     /// objects), as `photon_geometry_buffers` names them.
     pub fn dump_geometry(&self, ctx: &Context) -> Result<crate::image_io::ImageF32> {
         let mut img = self.geometry.dump(ctx)?;
-        for (k, (_, b)) in self.refractors.iter().enumerate() {
-            for mut layer in b.dump_surfaces(ctx, self.geometry.padded)?.layers {
-                layer.name = layer.name.map(|n| format!("refractor{k}.{n}"));
-                img.layers.push(layer);
-            }
-        }
+        self.refractors.dump_into(ctx, &mut img, self.geometry.padded)?;
         Ok(img)
     }
 
@@ -284,38 +277,15 @@ impl AdaptiveCaustics {
     }
 }
 
-/// The further refractors' buffers every traversal kernel binds after its own
-/// (`deferred_photon_layers.glsl`): three per specular object with several, none with one.
-#[derive(Clone, Copy)]
-struct Layers {
-    refractors: usize,
-}
-
-impl Layers {
-    /// The defines of a kernel whose own bindings are `0..first`.
-    fn defines(self, first: usize) -> Vec<(&'static str, String)> {
-        vec![("REFRACTORS", self.refractors.max(1).to_string()), ("LAYER_BINDING", first.to_string())]
-    }
-
-    fn bindings(self) -> Vec<K> {
-        vec![K::SampledImage; 3 * self.refractors]
-    }
-}
-
-fn as_str<'a>(defines: &'a [(&'a str, String)]) -> Vec<(&'a str, &'a str)> {
-    defines.iter().map(|(k, v)| (*k, v.as_str())).collect()
-}
-
-/// One transform-feedback kernel of `adaptive_step.geom` (`kernel`: its define).
-fn xfb_kernel(ctx: &Context, sh: &ShaderCompiler, kernel: &str, layers: Layers) -> Result<Pipeline> {
+/// One transform-feedback kernel of `adaptive_step.geom` (`kernel`: its define), the further
+/// refractors' buffers bound after its own.
+fn xfb_kernel(ctx: &Context, sh: &ShaderCompiler, kernel: &str, layers: &RefractorLayers) -> Result<Pipeline> {
     let from_hits = matches!(kernel, "CONVERGED" | "REFINE");
-    let own = TEXTURES.len() + from_hits as usize;
-    let mut defines: Vec<(&str, String)> = vec![(kernel, "1".into())];
+    let (count, first) = (layers.refractors_define(), (TEXTURES.len() + from_hits as usize).to_string());
+    let mut defines = vec![(kernel, "1"), ("REFRACTORS", count.as_str()), ("LAYER_BINDING", first.as_str())];
     if from_hits {
-        defines.push(("FROM_HITS", "1".into()));
+        defines.push(("FROM_HITS", "1"));
     }
-    defines.extend(layers.defines(own));
-    let defines = as_str(&defines);
     let mut d = GraphicsDesc::new(
         &format!("adaptive.{}", kernel.to_lowercase()),
         sh.compile("wyman_nichols2009/adaptive_step.vert", &defines)?,

@@ -81,9 +81,7 @@ impl AdaptiveCaustics {
     pub fn record_breadth(&self, f: &mut Frame, inp: &Inputs, l: u32, splat: Option<&Splat>) -> Result<bool> {
         let u = Uniforms { frame: inp.frame_uniforms, caustics: inp.caustic_uniforms };
         self.geometry.record(f, &u, inp.meshes, inp.nearest, l)?;
-        for (k, (object, b)) in self.refractors.iter().enumerate() {
-            b.record_surfaces(f, &u, inp.meshes, &[*object], &format!("adaptive.geometry.refractor{k}"), l)?;
-        }
+        self.refractors.record(f, &u, inp.meshes, "adaptive.geometry", l)?;
         let b = self.plan.breadth;
         self.record_reset(f, &format!("adaptive.reset.light{l}"), 1, Some(l))?;
         for k in 0..b {
@@ -241,21 +239,6 @@ impl AdaptiveCaustics {
         ]
     }
 
-    /// The further refractors' buffers, bound after each kernel's own (`deferred_photon_layers.glsl`).
-    fn layers<'a>(&'a self, inp: &Inputs<'a>) -> Vec<Bind<'a>> {
-        let nearest = inp.nearest;
-        self.refractors
-            .iter()
-            .flat_map(|(_, b)| {
-                [
-                    Bind::Sampled(&b.position_layers, nearest),
-                    Bind::Sampled(&b.normal_layers, nearest),
-                    Bind::Sampled(&b.material_layers, nearest),
-                ]
-            })
-            .collect()
-    }
-
     /// The step at level k over `input`, the pending clusters of level k (`seeded`: the coarse
     /// grid's, drawn by their number on the xfb path): refined, discarded or output.
     #[allow(clippy::too_many_arguments)]
@@ -285,7 +268,7 @@ impl AdaptiveCaustics {
                     Bind::Buffer(&self.photons.data),
                     Bind::Buffer(&self.photons.counter),
                 ]);
-                binds.extend(self.layers(inp));
+                binds.extend(self.refractors.binds(inp.nearest));
                 // The input's count is read as dispatch arguments too.
                 let arguments = [Use::buffer(&input.counter, Access::INDIRECT)];
                 f.pass(&name("traverse")).bind(traverse, binds).uses(arguments).record(|cmd| {
@@ -349,7 +332,7 @@ impl AdaptiveCaustics {
         } else {
             uses.push(Use::buffer(&input.data, Access::VERTEX_INPUT));
         }
-        binds.extend(self.layers(inp));
+        binds.extend(self.refractors.binds(inp.nearest));
         if !from.seeded {
             uses.push(Use::buffer(&input.counter, Access::INDIRECT));
         }
