@@ -76,9 +76,15 @@ pub fn cpu_model() -> String {
     format!("{model}, {threads} threads")
 }
 
-/// `git rev-parse --short HEAD` (with `-dirty` when tracked files other than `results/` and
-/// Markdown documents have changes: what was measured differs from the commit), or `unknown`.
+/// `$CAUSTICLAB_COMMIT` when set (a binary run away from its repository, as on the GPU machine,
+/// where `scripts/gpu_suite.sh` sets it from the pack's manifest: the commit the binary was built
+/// from); else `git rev-parse --short HEAD` (with `-dirty` when tracked files other than
+/// `results/` and Markdown documents have changes: what was measured differs from the commit), or
+/// `unknown`.
 pub fn commit() -> String {
+    if let Some(c) = std::env::var("CAUSTICLAB_COMMIT").ok().filter(|c| !c.trim().is_empty()) {
+        return c.trim().to_string();
+    }
     let git = |args: &[&str]| {
         std::process::Command::new("git")
             .args(args)

@@ -74,6 +74,18 @@ pub struct BenchArgs {
     /// uncommitted changes (the tables record the commit as `<hash>-dirty`).
     #[arg(long)]
     pub allow_dirty: bool,
+    /// Cap each cell's time budget at SECONDS (the config's `[run].time_budget_s` when lower);
+    /// the frame counts still apply, and the tables record the budget used. For a run that must
+    /// fit a fixed amount of device time (`scripts/gpu_suite.sh`).
+    #[arg(long, value_name = "SECONDS", value_parser = parse_budget)]
+    pub max_time_budget: Option<f64>,
+}
+
+fn parse_budget(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && (0.0..=3600.0).contains(&v) => Ok(v),
+        _ => Err(format!("`{s}`: seconds from 0 to 3600")),
+    }
 }
 
 #[derive(Debug, Subcommand)]

@@ -17,7 +17,11 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     let Some(path) = &args.config else {
         return Err(caustics::input_error!("bench: give a config file (bench_configs/*.toml) or `merge`").into());
     };
-    let config = LoadedConfig::load(path)?;
+    let mut config = LoadedConfig::load(path)?;
+    if let Some(cap) = args.max_time_budget {
+        let run = &mut config.config.run;
+        run.time_budget_s = run.time_budget_s.min(cap);
+    }
     // The tables are written after every cell ran: a --results that cannot be a folder fails now.
     caustics::image_io::check_output_dir(&args.results).context("--results")?;
     // Committed tables come from committed code: a timing run from a tree with uncommitted changes

@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# Packs what a GPU run needs into .gpu/ (ignored by git), for a machine with no Rust toolchain, no
+# internet and no Vulkan loader: the stripped release binary, the Vulkan loader as Debian packages
+# (amd64), the font the plots are drawn with, the shared models the suite's configs need
+# (xz-compressed), and a manifest naming the commit the binary was built from (the .git folder
+# may not travel, so the tables take the commit from the pack). The step-by-step is in
+# docs/bench.md, "A GPU run".
+#
+#   bash scripts/gpu_pack.sh                     # build the release binary, then pack
+#   bash scripts/gpu_pack.sh --binary PATH       # pack this binary instead of building one
+#   bash scripts/gpu_pack.sh --dry-run --binary target/debug/causticlab   # CI: size check only
+#
+# It prints the pack's size and what would travel in all (the working tree that git does not
+# ignore, plus the pack), and fails if that exceeds the 64 MiB a device call may carry.
+# --dry-run packs into a temporary folder and leaves .gpu/ alone.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+limit_mib=64
+binary=""
+dry_run=0
+pack=.gpu
+models_dir=${CAUSTICLAB_MODELS_DIR:-../shared/models}
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --binary) binary=$2; shift 2 ;;
+        --dry-run) dry_run=1; shift ;;
+        --models) models_dir=$2; shift 2 ;;
+        -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+        *) echo "gpu_pack: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+    esac
+done
+
+# The configs scripts/gpu_suite.sh runs (its priority list is the one source of this list).
+mapfile -t configs < <(bash scripts/gpu_suite.sh --list-configs)
+
+if [ -z "$binary" ]; then
+    cargo build --release -p causticlab
+    binary=target/release/causticlab
+fi
+[ -x "$binary" ] || { echo "gpu_pack: no executable binary at $binary" >&2; exit 1; }
+
+if [ "$dry_run" -eq 1 ]; then
+    pack=$(mktemp -d)
+    trap 'rm -rf "$pack"' EXIT
+else
+    rm -rf "$pack"
+    mkdir -p "$pack"
+fi
+
+# 1. The binary, stripped (shaderc is linked statically; the rest is glibc and libstdc++).
+cp "$binary" "$pack/causticlab"
+strip "$pack/causticlab"
+
+# 2. The Vulkan loader and the GL vendor libraries the NVIDIA driver's ICD loads, for amd64, from
+#    this machine's apt sources (lists kept in a private folder: the system's are untouched).
+if [ "$dry_run" -eq 0 ]; then
+    lists=$(mktemp -d)
+    mkdir -p "$lists/partial" "$pack/debs"
+    apt=(-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 "-oDir::State::Lists=$lists")
+    apt-get "${apt[@]}" update >/dev/null
+    (cd "$pack/debs" && apt-get "${apt[@]}" download libvulkan1 libglvnd0 libgl1 libglx0 libegl1 libopengl0 libgles2 2>/dev/null)
+    rm -rf "$lists"
+else
+    mkdir -p "$pack/debs"   # the dry run counts the loader as its usual ~0.4 MB
+    head -c 400000 /dev/zero >"$pack/debs/placeholder"
+fi
+
+# 3. The plots' font (crates/bench/src/font.rs): the suite sets CAUSTICLAB_FONT to it, so the
+#    plots are drawn there as well as here.
+font=${CAUSTICLAB_FONT:-/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf}
+[ -f "$font" ] || { echo "gpu_pack: no font at $font (apt-get install fonts-dejavu-core)" >&2; exit 1; }
+cp "$font" "$pack/DejaVuSans.ttf"
+
+# 4. The models named by the scenes of the suite's configs (`file = "x.obj"`), compressed.
+models=()
+for c in "${configs[@]}"; do
+    for scene in $(sed -n '/^scenes *=/,/]/p' "bench_configs/$c.toml" | grep -o '"[^"]*\.toml"' | tr -d '"'); do
+        for m in $(grep -o '^file *= *"[^"]*\.obj"' "bench_configs/$scene" | grep -o '"[^"]*"' | tr -d '"'); do
+            models+=("$m")
+        done
+    done
+done
+mapfile -t models < <(printf '%s\n' "${models[@]}" | sort -u)
+missing=()
+present=()
+for m in "${models[@]}"; do
+    if [ -f "$models_dir/$m" ]; then present+=("$m"); else missing+=("$m"); fi
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+    echo "gpu_pack: models missing from $models_dir: ${missing[*]} (their cells would fail there)" >&2
+    exit 1
+fi
+tar -C "$models_dir" -cJf "$pack/models.tar.xz" "${present[@]}"
+
+# 5. The manifest: the commit the binary was built from (dirty if tracked code differs).
+commit=$(CAUSTICLAB_COMMIT= git rev-parse --short HEAD 2>/dev/null || echo unknown)
+if [ -n "$(git status --porcelain --untracked-files=no -- . ':(exclude)results' ':(exclude,glob)**/*.md' 2>/dev/null)" ]; then
+    commit="$commit-dirty"
+fi
+echo "$commit" >"$pack/COMMIT"
+{
+    echo "causticlab GPU pack"
+    echo "commit: $commit"
+    echo "packed: $(date -u +%Y-%m-%dT%H:%M:%SZ) on $(uname -srm)"
+    echo "binary: $(sha256sum "$pack/causticlab" | cut -c1-16) ($("$pack/causticlab" --version 2>/dev/null || echo '?'))"
+    echo "configs: ${configs[*]}"
+    echo "models: ${present[*]}"
+    echo "files:"
+    (cd "$pack" && find . -type f ! -name MANIFEST | sort | while read -r f; do
+        printf '  %-40s %10d bytes\n' "${f#./}" "$(stat -c %s "$f")"
+    done)
+} >"$pack/MANIFEST"
+
+# 6. What would travel: the files git does not ignore (tracked and untracked), plus the pack.
+tree_bytes=$(git ls-files -z --cached --others --exclude-standard | xargs -0 stat -c %s 2>/dev/null | awk '{s+=$1} END {print s+0}')
+pack_bytes=$(du -sb "$pack" | cut -f1)
+total=$((tree_bytes + pack_bytes))
+mib() { awk -v b="$1" 'BEGIN {printf "%.1f MiB", b / 1048576}'; }
+echo "gpu_pack: pack $(mib "$pack_bytes") (binary $(mib "$(stat -c %s "$pack/causticlab")"), models $(mib "$(stat -c %s "$pack/models.tar.xz")")); working tree $(mib "$tree_bytes"); transfer $(mib "$total") of $limit_mib MiB"
+if [ "$total" -gt $((limit_mib * 1048576)) ]; then
+    echo "gpu_pack: the transfer would exceed $limit_mib MiB" >&2
+    exit 1
+fi
+if [ "$dry_run" -eq 0 ]; then
+    echo "gpu_pack: wrote $pack/ (commit $commit); on the GPU machine: bash scripts/gpu_suite.sh BUDGET_SECONDS \$OUT (docs/bench.md)"
+fi

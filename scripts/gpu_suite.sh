@@ -1,0 +1,179 @@
+#!/usr/bin/env bash
+# Runs the most important bench configs on the GPU machine within a fixed time budget, from the
+# pack scripts/gpu_pack.sh wrote (.gpu/), and returns one archive. Step by step: docs/bench.md,
+# "A GPU run".
+#
+#   bash scripts/gpu_suite.sh [--quick] [--pack DIR] [--device NAME] BUDGET_SECONDS OUT_DIR
+#   bash scripts/gpu_suite.sh --list-configs      # the configs, in priority order
+#
+# 1. Unpacks the Vulkan loader (only where none is installed, and only as root), the models and
+#    the font; the tables name the commit in the pack's COMMIT file.
+# 2. Checks that the device is there (`causticlab devices`; --device, default `nvidia`, or the
+#    default device with --quick).
+# 3. Runs the configs below in priority order. Config i gets a share of the time left in
+#    proportion to its estimate (so time one config leaves over goes to those after it), and runs
+#    as shards, each a separate `causticlab bench --shard s/n` killed at the config's deadline: a
+#    cut-off config keeps its finished shards. After every finished shard, OUT_DIR/gpu_suite.tar.gz
+#    is rewritten with every part so far, the log and the manifest, so a run killed at any moment
+#    returns everything finished until then.
+# 4. Prints (and writes into the archive's SKIPPED) what it skipped or cut off for lack of time.
+#
+# Each cell's time budget is capped at SUITE_CELL_BUDGET seconds (default 0.3; the frame counts of
+# the configs still apply): a GPU frame takes milliseconds, so a cell still measures tens of frames.
+# Unpack the archive at home with scripts/gpu_unpack.sh.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+# config  shards  estimated seconds on an H100 (docs/bench.md: measured on the first run)
+suite=(
+    "wyman2008_table3 5 30"
+    "wyman2008_table4 5 25"
+    "hcm_paths 5 25"
+    "splat_paths 5 25"
+    "wyman_nichols2009_table1 2 15"
+    "wyman_nichols2009_fig10 5 60"
+    "wyman_davis2006_table1 6 110"
+    "wyman2008_table5 5 40"
+    "trendall_stewart2000_table1 3 20"
+    "quality 4 30"
+)
+
+if [ "${1:-}" = "--list-configs" ]; then
+    for entry in "${suite[@]}"; do echo "${entry%% *}"; done
+    exit 0
+fi
+
+quick=()
+pack=.gpu
+device=nvidia
+device_given=0
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --quick) quick=(--quick); shift ;;
+        --pack) pack=$2; shift 2 ;;
+        --device) device=$2; device_given=1; shift 2 ;;
+        -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
+        -*) echo "gpu_suite: unknown option '$1' (see --help)" >&2; exit 2 ;;
+        *) break ;;
+    esac
+done
+if [ $# -ne 2 ] || ! [[ "$1" =~ ^[0-9]+$ ]] || [ "$1" -lt 10 ]; then
+    echo "usage: bash scripts/gpu_suite.sh [--quick] [--pack DIR] [--device NAME] BUDGET_SECONDS(>=10) OUT_DIR" >&2
+    exit 2
+fi
+budget=$1
+out=$2
+start=$(date +%s)
+deadline=$((start + budget))
+mkdir -p "$out" || exit 1
+out=$(cd "$out" && pwd)
+[ -x "$pack/causticlab" ] || { echo "gpu_suite: no binary at $pack/causticlab: run scripts/gpu_pack.sh first" >&2; exit 1; }
+pack=$(cd "$pack" && pwd)
+bin=$pack/causticlab
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/gpu_suite.XXXXXX")
+stage=$work/stage   # what the archive holds
+mkdir -p "$stage/parts"
+log=$stage/suite.log
+exec > >(tee -a "$log") 2>&1
+
+archive() {
+    cp "$pack/MANIFEST" "$stage/MANIFEST" 2>/dev/null || true
+    tar -C "$stage" -czf "$out/gpu_suite.tar.gz.tmp" . && mv "$out/gpu_suite.tar.gz.tmp" "$out/gpu_suite.tar.gz"
+}
+now() { date +%s; }
+
+echo "gpu_suite: budget ${budget}s, pack $pack, out $out ${quick[*]}"
+
+# 1. The loader, the models, the font, the commit.
+if ! ldconfig -p 2>/dev/null | grep -q 'libvulkan\.so\.1'; then
+    if [ "$(id -u)" -ne 0 ]; then
+        echo "gpu_suite: no Vulkan loader and not root: install libvulkan1 or unpack $pack/debs/*.deb" >&2
+        exit 1
+    fi
+    for f in "$pack"/debs/*.deb; do dpkg -x "$f" /; done
+    ldconfig
+    echo "gpu_suite: unpacked the Vulkan loader from $pack/debs"
+fi
+nvidia_icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+if [ -z "${VK_DRIVER_FILES:-}" ] && [ -f "$nvidia_icd" ] && ! ls /usr/share/vulkan/icd.d/nvidia* /etc/vulkan/icd.d/nvidia* >/dev/null 2>&1; then
+    export VK_DRIVER_FILES=$nvidia_icd
+    echo "gpu_suite: VK_DRIVER_FILES=$nvidia_icd"
+fi
+mkdir -p "$work/models"
+if [ -f "$pack/models.tar.xz" ]; then
+    tar -C "$work/models" -xJf "$pack/models.tar.xz"
+fi
+export CAUSTICLAB_MODELS="$work/models${CAUSTICLAB_MODELS:+:$CAUSTICLAB_MODELS}"
+[ -f "$pack/DejaVuSans.ttf" ] && export CAUSTICLAB_FONT=$pack/DejaVuSans.ttf
+CAUSTICLAB_COMMIT=$(cat "$pack/COMMIT" 2>/dev/null || echo unknown)
+export CAUSTICLAB_COMMIT
+echo "gpu_suite: commit $CAUSTICLAB_COMMIT, models: $(ls "$work/models" | tr '\n' ' ')"
+
+# 2. The device.
+device_args=()
+if [ "${#quick[@]}" -eq 0 ] || [ "$device_given" -eq 1 ]; then
+    device_args=(--device "$device")
+fi
+if ! "$bin" "${device_args[@]}" devices >"$stage/devices.txt" 2>&1; then
+    cat "$stage/devices.txt"
+    echo "gpu_suite: no usable device ${device_args[*]} (see devices.txt above)" >&2
+    archive
+    exit 1
+fi
+cat "$stage/devices.txt"
+if [ "${#device_args[@]}" -gt 0 ] && ! grep -q 'selected by --device' "$stage/devices.txt"; then
+    echo "gpu_suite: no device matches --device $device" >&2
+    archive
+    exit 1
+fi
+archive
+
+# 3. The configs, in priority order.
+: >"$stage/SKIPPED"
+cell_budget=${SUITE_CELL_BUDGET:-0.3}
+total_weight=0
+for entry in "${suite[@]}"; do read -r _ _ w <<<"$entry"; total_weight=$((total_weight + w)); done
+left_weight=$total_weight
+for entry in "${suite[@]}"; do
+    read -r config shards weight <<<"$entry"
+    left=$((deadline - $(now)))
+    share=$((left * weight / left_weight))
+    left_weight=$((left_weight - weight))
+    config_deadline=$(($(now) + share))
+    [ "$left_weight" -eq 0 ] && config_deadline=$deadline
+    echo "gpu_suite: $config: ${share}s of ${left}s left, $shards shards"
+    t0=$(now)
+    for s in $(seq 1 "$shards"); do
+        remaining=$((config_deadline - $(now)))
+        if [ "$remaining" -lt 3 ]; then
+            echo "$config shard $s/$shards: not started (no time left)" | tee -a "$stage/SKIPPED"
+            continue
+        fi
+        results=$work/results
+        timeout -k 5 "$remaining" "$bin" "${device_args[@]}" bench "bench_configs/$config.toml" "${quick[@]}" \
+            --shard "$s/$shards" --max-time-budget "$cell_budget" --results "$results" >"$work/bench.out" 2>&1
+        rc=$?
+        tail -n 3 "$work/bench.out"
+        cat "$work/bench.out" >>"$stage/bench.log"
+        part=$(find "$results" -name "$config.shard-$s-of-$shards.json" | head -n 1)
+        if [ "$rc" -eq 0 ] && [ -n "$part" ]; then
+            mv "$part" "$stage/parts/"
+            archive
+        elif [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
+            echo "$config shard $s/$shards: cut off after ${remaining}s" | tee -a "$stage/SKIPPED"
+        else
+            echo "$config shard $s/$shards: failed (exit $rc; bench.log)" | tee -a "$stage/SKIPPED"
+        fi
+    done
+    echo "gpu_suite: $config took $(($(now) - t0))s" | tee -a "$stage/timings.txt"
+done
+
+echo "gpu_suite: done in $(($(now) - start))s of ${budget}s; $(ls "$stage/parts" | wc -l) parts"
+if [ -s "$stage/SKIPPED" ]; then
+    echo "gpu_suite: skipped or cut off for lack of time or by failure:"
+    cat "$stage/SKIPPED"
+fi
+archive
+rm -rf "$work"
+echo "gpu_suite: wrote $out/gpu_suite.tar.gz"
