@@ -9,24 +9,29 @@
 #   bash scripts/gpu_pack.sh                     # build the release binary, then pack
 #   bash scripts/gpu_pack.sh --binary PATH       # pack this binary instead of building one
 #   bash scripts/gpu_pack.sh --dry-run --binary target/debug/causticlab   # CI: size check only
+#   bash scripts/gpu_pack.sh --binary B --out DIR --no-loader   # a pack for a lavapipe dry run
 #
 # It prints the pack's size and what would travel in all (the working tree that git does not
 # ignore, plus the pack), and fails if that exceeds the 64 MiB a device call may carry.
-# --dry-run packs into a temporary folder and leaves .gpu/ alone.
+# --dry-run packs into a temporary folder and leaves .gpu/ alone; --no-loader leaves the Vulkan
+# loader out (for a machine that has one: the suite then uses it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 limit_mib=64
 binary=""
 dry_run=0
+loader=1
 pack=.gpu
 models_dir=${CAUSTICLAB_MODELS_DIR:-../shared/models}
 while [ $# -gt 0 ]; do
     case "$1" in
         --binary) binary=$2; shift 2 ;;
         --dry-run) dry_run=1; shift ;;
+        --out) pack=$2; shift 2 ;;
+        --no-loader) loader=0; shift ;;
         --models) models_dir=$2; shift 2 ;;
-        -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
         *) echo "gpu_pack: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -40,28 +45,38 @@ if [ -z "$binary" ]; then
 fi
 [ -x "$binary" ] || { echo "gpu_pack: no executable binary at $binary" >&2; exit 1; }
 
+work_bin=$(mktemp)
 if [ "$dry_run" -eq 1 ]; then
     pack=$(mktemp -d)
-    trap 'rm -rf "$pack"' EXIT
+    trap 'rm -rf "$pack" "$work_bin"' EXIT
 else
+    if [ -e "$pack" ] && [ ! -f "$pack/MANIFEST" ] && [ -n "$(ls -A "$pack" 2>/dev/null)" ]; then
+        echo "gpu_pack: $pack exists and is not a pack (no MANIFEST): refusing to replace it" >&2
+        exit 1
+    fi
     rm -rf "$pack"
     mkdir -p "$pack"
 fi
 
-# 1. The binary, stripped (shaderc is linked statically; the rest is glibc and libstdc++).
-cp "$binary" "$pack/causticlab"
-strip "$pack/causticlab"
+# 1. The binary, stripped and xz-compressed (shaderc is linked statically; the rest is glibc and
+#    libstdc++, which the GPU machine has).
+strip -o "$work_bin" "$binary"
+binary_bytes=$(stat -c %s "$work_bin")
+binary_sha=$(sha256sum "$work_bin" | cut -c1-16)
+binary_version=$("$work_bin" --version 2>/dev/null || echo '?')
+xz -T0 -6 -c "$work_bin" >"$pack/causticlab.xz"
+rm -f "$work_bin"
 
 # 2. The Vulkan loader and the GL vendor libraries the NVIDIA driver's ICD loads, for amd64, from
 #    this machine's apt sources (lists kept in a private folder: the system's are untouched).
-if [ "$dry_run" -eq 0 ]; then
+if [ "$dry_run" -eq 0 ] && [ "$loader" -eq 1 ]; then
     lists=$(mktemp -d)
     mkdir -p "$lists/partial" "$pack/debs"
     apt=(-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 "-oDir::State::Lists=$lists")
     apt-get "${apt[@]}" update >/dev/null
     (cd "$pack/debs" && apt-get "${apt[@]}" download libvulkan1 libglvnd0 libgl1 libglx0 libegl1 libopengl0 libgles2 2>/dev/null)
     rm -rf "$lists"
-else
+elif [ "$dry_run" -eq 1 ]; then
     mkdir -p "$pack/debs"   # the dry run counts the loader as its usual ~0.4 MB
     head -c 400000 /dev/zero >"$pack/debs/placeholder"
 fi
@@ -103,7 +118,7 @@ echo "$commit" >"$pack/COMMIT"
     echo "causticlab GPU pack"
     echo "commit: $commit"
     echo "packed: $(date -u +%Y-%m-%dT%H:%M:%SZ) on $(uname -srm)"
-    echo "binary: $(sha256sum "$pack/causticlab" | cut -c1-16) ($("$pack/causticlab" --version 2>/dev/null || echo '?'))"
+    echo "binary: causticlab.xz, $binary_bytes bytes unpacked, sha256 $binary_sha ($binary_version)"
     echo "configs: ${configs[*]}"
     echo "models: ${present[*]}"
     echo "files:"
@@ -117,7 +132,7 @@ tree_bytes=$(git ls-files -z --cached --others --exclude-standard | xargs -0 sta
 pack_bytes=$(du -sb "$pack" | cut -f1)
 total=$((tree_bytes + pack_bytes))
 mib() { awk -v b="$1" 'BEGIN {printf "%.1f MiB", b / 1048576}'; }
-echo "gpu_pack: pack $(mib "$pack_bytes") (binary $(mib "$(stat -c %s "$pack/causticlab")"), models $(mib "$(stat -c %s "$pack/models.tar.xz")")); working tree $(mib "$tree_bytes"); transfer $(mib "$total") of $limit_mib MiB"
+echo "gpu_pack: pack $(mib "$pack_bytes") (binary $(mib "$(stat -c %s "$pack/causticlab.xz")") xz, models $(mib "$(stat -c %s "$pack/models.tar.xz")")); working tree $(mib "$tree_bytes"); transfer $(mib "$total") of $limit_mib MiB"
 if [ "$total" -gt $((limit_mib * 1048576)) ]; then
     echo "gpu_pack: the transfer would exceed $limit_mib MiB" >&2
     exit 1

@@ -3,10 +3,14 @@
 # and the causticlab CLI tests that render scenes and check them against analytic answers.
 # The default test profile is used: the workspace builds dependencies with opt-level 3 and its
 # own crates with opt-level 1, so there is no need for --release here. --no-fail-fast runs
-# every test binary and still exits non-zero if any test failed.
+# every test binary and still exits non-zero if any test failed. A full run (no arguments) then
+# rehearses the GPU run's scripts on lavapipe with the test build (scripts/gpu_dry_run.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/setup.sh
 unset VK_LOADER_DEBUG
 cargo test --workspace --no-fail-fast "$@"
+if [ $# -eq 0 ]; then
+    bash scripts/gpu_dry_run.sh target/debug/causticlab
+fi

@@ -25,6 +25,9 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     if r.validation {
         let _ = writeln!(s, "**Validation layers were on: these times are not measurements.**\n");
     }
+    if let Some(line) = partial_line(results) {
+        let _ = writeln!(s, "**{line}**\n");
+    }
     let _ = writeln!(
         s,
         "- **Device:** {} ({}), driver {} {}, Vulkan {}\n- **CPU:** {}\n- **Commit:** {} · **date:** {} · \
@@ -115,6 +118,9 @@ pub fn summary(config: &Config, results: &Results) -> String {
         results.cells.len(),
         frames_line(results)
     );
+    if let Some(line) = partial_line(results) {
+        let _ = writeln!(s, "{line}\n");
+    }
     let mut notes = Footnotes::default();
     s.push_str(&value_tables(&g, Style::Plain, &mut notes));
     for line in units_line(config.metrics.iter().map(|m| (m.label.as_str(), m.kind.as_str())))
@@ -132,6 +138,18 @@ pub fn summary(config: &Config, results: &Results) -> String {
 
 /// `1 warm-up frame, then at least 3 measured frames and 1 s (at most 1000): 3 to 41 frames,
 /// median 5`.
+/// What a partial merge left out, or `None` for a whole table.
+fn partial_line(results: &Results) -> Option<String> {
+    let n = results.run.not_run.len();
+    (n > 0).then(|| {
+        format!(
+            "Partial table: {n} of {} cells were not run (cut off by a time budget, as in `scripts/gpu_suite.sh`, or \
+             failed); they read `not run` (`bench merge --partial`).",
+            results.run.total_cells
+        )
+    })
+}
+
 fn frames_line(results: &Results) -> String {
     let r = &results.run;
     let plural = |n: u32, what: &str| format!("{n} {what}{}", if n == 1 { "" } else { "s" });

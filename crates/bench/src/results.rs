@@ -53,6 +53,10 @@ pub struct RunInfo {
     pub shard: Option<Shard>,
     /// Cells in the full matrix (the table's size).
     pub total_cells: usize,
+    /// Indices of the cells no part had, in a table merged with `bench merge --partial` (a GPU
+    /// suite cut off by its time budget): they read `not run`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub not_run: Vec<usize>,
 }
 
 /// Where and when the numbers were taken.
@@ -133,5 +137,49 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         passes,
         cpu_steal: run.cpu_steal,
         list_sizes: run.hierarchy_sizes.clone(),
+    }
+}
+
+/// The results as JSON, one line per top-level key and one per cell, every number to 9
+/// significant digits (1 ns on a 1 s frame: below every timer's resolution here), so that a GPU
+/// table's thousands of per-frame samples stay small enough to travel (`scripts/gpu_pack.sh`).
+pub fn to_json(results: &Results) -> anyhow::Result<String> {
+    use anyhow::Context as _;
+    let value = round_numbers(serde_json::to_value(results).context("serialising the results")?);
+    let compact = |v: &serde_json::Value| serde_json::to_string(v).context("serialising the results");
+    let serde_json::Value::Object(top) = &value else { return compact(&value) };
+    let mut lines = vec![];
+    for (key, v) in top {
+        let k = compact(&serde_json::Value::String(key.clone()))?;
+        match v {
+            serde_json::Value::Array(items) if !items.is_empty() => {
+                let items: Vec<String> = items.iter().map(compact).collect::<anyhow::Result<_>>()?;
+                lines.push(format!("{k}: [\n{}\n]", items.join(",\n")));
+            }
+            _ => lines.push(format!("{k}: {}", compact(v)?)),
+        }
+    }
+    Ok(format!("{{\n{}\n}}\n", lines.join(",\n")))
+}
+
+/// The results exactly as their JSON will read back: every number to 9 significant digits, so
+/// that the CSV, the tables and the plots of a run equal those `bench merge` redraws from its JSON.
+pub fn rounded(results: &Results) -> anyhow::Result<Results> {
+    use anyhow::Context as _;
+    let value = round_numbers(serde_json::to_value(results).context("serialising the results")?);
+    serde_json::from_value(value).context("re-reading the rounded results")
+}
+
+fn round_numbers(v: serde_json::Value) -> serde_json::Value {
+    use serde_json::Value;
+    match v {
+        Value::Number(n) if n.is_f64() => {
+            let x = n.as_f64().unwrap_or(0.0);
+            let r: f64 = format!("{x:.8e}").parse().unwrap_or(x);
+            serde_json::Number::from_f64(r).map(Value::Number).unwrap_or(Value::Null)
+        }
+        Value::Array(a) => Value::Array(a.into_iter().map(round_numbers).collect()),
+        Value::Object(o) => Value::Object(o.into_iter().map(|(k, v)| (k, round_numbers(v))).collect()),
+        other => other,
     }
 }

@@ -107,6 +107,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
             filter: filter.clone(),
             shard,
             total_cells: all.len(),
+            not_run: vec![],
         },
         meta: crate::meta::meta(ctx.info()),
         cells: done,
@@ -124,6 +125,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         }
         let tag = tags.join(".");
         let part = dir.join("parts").join(format!("{}.{tag}.json", lc.name));
+        let results = crate::results::rounded(&results)?;
         write_json(&part, &results)?;
         let (markdown, summary) = (crate::report::markdown(c, &results), crate::report::summary(c, &results));
         Ok(Outcome { written: vec![part], markdown, summary })
@@ -141,22 +143,19 @@ fn device_dir(root: &Path, r: &Results) -> PathBuf {
 
 fn write_json(path: &Path, results: &Results) -> Result<()> {
     make_dir(path.parent().unwrap_or(Path::new(".")))?;
-    let json = serde_json::to_string_pretty(results).context("serialising the results")?;
-    write_file_atomically(path, json.as_bytes())
+    write_file_atomically(path, crate::results::to_json(results)?.as_bytes())
 }
 
 /// Writes `<name>.{json,csv,svg,png,md}` into `dir` (the markdown last: it links the others)
 /// and refreshes the index of `root`.
 pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Result<Outcome> {
+    let results = &crate::results::rounded(results)?;
     let name = &results.config.name;
     let md = crate::report::markdown(c, results);
     let plot = crate::plot::render(&crate::figure::figure(c, results, &crate::table::grid(c, results)))?;
     make_dir(dir)?;
     let files = [
-        (
-            dir.join(format!("{name}.json")),
-            serde_json::to_string_pretty(results).context("serialising the results")?.into_bytes(),
-        ),
+        (dir.join(format!("{name}.json")), crate::results::to_json(results)?.into_bytes()),
         (dir.join(format!("{name}.csv")), crate::report::csv(c, results).into_bytes()),
         (dir.join(format!("{name}.svg")), plot.svg.into_bytes()),
         (dir.join(format!("{name}.png")), plot.png),
@@ -172,8 +171,9 @@ pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Re
 }
 
 /// `bench merge`: the cells of every part (shards or filtered runs of one config on one device)
-/// into the table an unsharded run would have written.
-pub fn merge(parts: &[PathBuf], root: &Path) -> Result<Outcome> {
+/// into the table an unsharded run would have written. With `partial`, cells no part has are
+/// allowed: the table marks them `not run` and says how many (a suite cut off by its budget).
+pub fn merge(parts: &[PathBuf], root: &Path, partial: bool) -> Result<Outcome> {
     let mut loaded: Vec<(PathBuf, Results)> = vec![];
     for p in parts {
         let text =
@@ -219,12 +219,18 @@ pub fn merge(parts: &[PathBuf], root: &Path) -> Result<Outcome> {
     let config: Config = toml::from_str(&first.config.toml)
         .map_err(|e| input_error!("{}: the embedded config does not parse: {e}", first_path.display()))?;
     let all = Matrix::new(&config, first.run.quick.then_some(&config.quick)).cells(&config);
-    let missing: Vec<String> =
-        all.iter().filter(|a| !cells.iter().any(|c| c.cell.index == a.index)).map(|a| a.describe()).collect();
-    if !missing.is_empty() {
-        return Err(input_error!("bench merge: {} cell(s) missing, e.g. {}", missing.len(), missing[0]).into());
+    let missing: Vec<&crate::plan::Cell> =
+        all.iter().filter(|a| !cells.iter().any(|c| c.cell.index == a.index)).collect();
+    if !missing.is_empty() && !partial {
+        return Err(input_error!(
+            "bench merge: {} cell(s) missing, e.g. {} (--partial marks them `not run`)",
+            missing.len(),
+            missing[0].describe()
+        )
+        .into());
     }
     let mut results = first.clone();
+    results.run.not_run = missing.iter().map(|c| c.index).collect();
     results.cells = cells;
     results.run.filter = Filter::default();
     results.run.shard = None;

@@ -9,6 +9,8 @@ use crate::text_table::{Style, TextTable, WIDTH};
 
 /// An entry whose technique cannot run at its photon count (Wyman & Nichols 2009 Table 1's N/A).
 pub const NOT_RUN: &str = "N/A";
+/// An entry a partial merge has no cell for (`bench merge --partial`).
+pub const MISSING: &str = "not run";
 
 /// Superscript markers of the "not comparable" footnotes.
 const MARKS: [&str; 9] = ["¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"];
@@ -41,7 +43,13 @@ impl Footnotes {
 /// `ours ±s% (paper)`: the spread for times, the paper's value where it has one, with its
 /// scene when that is not ours and a footnote mark when it is not comparable.
 pub fn cell_text(e: &Entry, notes: &mut Footnotes) -> String {
-    let mut s = if e.not_run { NOT_RUN.to_string() } else { format_value(&e.kind, e.ours) };
+    let mut s = if e.not_run {
+        NOT_RUN.to_string()
+    } else if e.missing {
+        MISSING.to_string()
+    } else {
+        format_value(&e.kind, e.ours)
+    };
     if let (Some(sp), Some(_)) = (e.spread, e.ours) {
         s.push(' ');
         s.push_str(&crate::stats::format_spread(sp));

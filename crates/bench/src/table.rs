@@ -26,6 +26,9 @@ pub struct Entry {
     /// The cell's technique cannot run at its photon count ([`Config::runs`]): no cell was
     /// measured, and the entry reads N/A.
     pub not_run: bool,
+    /// The cell could run but is not in a table merged with `--partial` (the run was cut off
+    /// before it): the entry reads `not run`.
+    pub missing: bool,
 }
 
 impl Entry {
@@ -150,14 +153,16 @@ pub fn grid(config: &Config, results: &Results) -> Grid {
 fn entry(config: &Config, results: &Results, keys: BTreeMap<String, String>) -> Entry {
     let metric = keys.get("metric").cloned().unwrap_or_default();
     let kind = config.metrics.iter().find(|m| m.label == metric).map(|m| m.kind.clone()).unwrap_or_default();
-    let value = find(results, &keys).and_then(|cell| cell.metrics.get(&metric));
+    let found = find(results, &keys);
+    let value = found.and_then(|cell| cell.metrics.get(&metric));
     let ours = value.and_then(|v| v.value);
     let spread = value.filter(|_| is_timing(&kind)).and_then(|v| crate::stats::relative_spread(&v.samples));
     let paper = crate::paper::value(config, &keys);
     let technique = keys.get("technique").and_then(|l| config.techniques.iter().position(|t| t.label == *l));
     let photons = keys.get("photons").and_then(|p| p.parse().ok());
     let not_run = matches!((technique, photons), (Some(t), Some(p)) if !config.runs(t, p));
-    Entry { keys, ours, spread, paper, kind, not_run }
+    let missing = !not_run && found.is_none() && !results.run.not_run.is_empty();
+    Entry { keys, ours, spread, paper, kind, not_run, missing }
 }
 
 impl Grid {

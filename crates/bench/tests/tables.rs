@@ -111,6 +111,7 @@ fn results(config: &Config, cells: Vec<CellResult>) -> Results {
             validation: false,
             filter: Default::default(),
             shard: None,
+            not_run: vec![],
             total_cells: cells.len(),
         },
         meta: Meta {

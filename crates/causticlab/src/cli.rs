@@ -102,6 +102,10 @@ pub struct MergeArgs {
     /// Results folder; the table goes to <results>/<device-slug>/.
     #[arg(long, default_value = "results")]
     pub results: PathBuf,
+    /// Allow cells that no part has (a suite cut off by its time budget): the table marks them
+    /// `not run` and says how many, instead of failing.
+    #[arg(long)]
+    pub partial: bool,
 }
 
 #[derive(Debug, Args)]

@@ -10,7 +10,7 @@ use vkcore::{Context, ShaderCompiler, ValidationLog};
 pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<ValidationLog>>) -> Result<()> {
     if let Some(BenchCommand::Merge(m)) = &args.merge {
         caustics::image_io::check_output_dir(&m.results).context("--results")?;
-        let out = bench::merge(&m.parts, &m.results)?;
+        let out = bench::merge(&m.parts, &m.results, m.partial)?;
         report(&out);
         return Ok(());
     }

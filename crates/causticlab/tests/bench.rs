@@ -247,6 +247,28 @@ fn shards_merge_into_the_unsharded_table() {
     let r = bench(&["merge".as_ref(), parts[0].as_os_str(), "--results".as_ref(), sharded.as_os_str()]);
     assert_eq!(r.code, Some(2), "{}", r.describe());
     assert!(r.stderr.contains("missing"), "{}", r.describe());
+    // With --partial (a GPU suite cut off by its budget) they are marked `not run` instead.
+    let partial = dir.join("partial");
+    let r = bench(&[
+        "merge".as_ref(),
+        "--partial".as_ref(),
+        parts[0].as_os_str(),
+        "--results".as_ref(),
+        partial.as_os_str(),
+    ]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    let shard1 = json(&parts[0]);
+    let have: Vec<u64> =
+        shard1["cells"].as_array().expect("cells").iter().filter_map(|c| c["cell"]["index"].as_u64()).collect();
+    let merged = json(&device_dir(&partial).join("small.json"));
+    let not_run: Vec<u64> =
+        merged["run"]["not_run"].as_array().expect("run.not_run").iter().filter_map(|i| i.as_u64()).collect();
+    assert_eq!(have.len() + not_run.len(), 8, "{have:?} {not_run:?}");
+    assert!(not_run.iter().all(|i| !have.contains(i) && *i % 3 != 0), "shard 1/3 has the cells 0, 3, 6: {not_run:?}");
+    let md = std::fs::read_to_string(device_dir(&partial).join("small.md")).expect("small.md");
+    assert!(md.contains(&format!("**Partial table: {} of 8 cells were not run", not_run.len())), "{md}");
+    let rows_not_run = md.lines().filter(|l| l.starts_with('|') && l.contains("not run")).count();
+    assert!(rows_not_run > 0, "no table entry reads `not run`:\n{md}");
     let r = bench(&[
         "merge".as_ref(),
         parts[0].as_os_str(),
