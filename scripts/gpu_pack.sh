@@ -11,6 +11,9 @@
 #   bash scripts/gpu_pack.sh --dry-run --binary target/debug/causticlab   # CI: size check only
 #   bash scripts/gpu_pack.sh --binary B --out DIR --no-loader   # a pack for a lavapipe dry run
 #
+# It needs this machine's apt sources and network (it downloads the loader's .debs), and the
+# models in ../shared/models (--models DIR, or $CAUSTICLAB_MODELS_DIR); the font is
+# DejaVu Sans from fonts-dejavu-core (or $CAUSTICLAB_FONT).
 # It prints the pack's size and what would travel in all (the working tree that git does not
 # ignore, plus the pack), and fails if that exceeds the 64 MiB a device call may carry.
 # --dry-run packs into a temporary folder and leaves .gpu/ alone; --no-loader leaves the Vulkan
@@ -26,12 +29,13 @@ pack=.gpu
 models_dir=${CAUSTICLAB_MODELS_DIR:-../shared/models}
 while [ $# -gt 0 ]; do
     case "$1" in
+        --binary|--models|--out) [ $# -ge 2 ] || { echo "gpu_pack: $1 needs a value (see --help)" >&2; exit 2; } ;;&
         --binary) binary=$2; shift 2 ;;
         --dry-run) dry_run=1; shift ;;
         --out) pack=$2; shift 2 ;;
         --no-loader) loader=0; shift ;;
         --models) models_dir=$2; shift 2 ;;
-        -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+        -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
         *) echo "gpu_pack: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
 done

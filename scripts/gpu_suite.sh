@@ -6,11 +6,14 @@
 #   bash scripts/gpu_suite.sh [--quick] [--more | --only A,B] [--pack DIR] [--device NAME] BUDGET_SECONDS OUT_DIR
 #   bash scripts/gpu_suite.sh --list-configs      # the configs, in priority order
 #
+# BUDGET_SECONDS is a whole number of seconds, at least 10. --more runs the second list of
+# configs (every config not in the first), --only A,B the named ones.
+#
 # 1. Unpacks the Vulkan loader (only where none is installed, and only as root), the models and
 #    the font; the tables name the commit in the pack's COMMIT file.
 # 2. Checks that the device is there (`causticlab devices`; --device, default `nvidia`, or the
 #    default device with --quick).
-# 3. Runs the configs below in priority order. Config i gets a share of the time left in
+# 3. Runs the configs (listed in this script, with their shards and H100 times) in priority order. Config i gets a share of the time left in
 #    proportion to its estimate (so time one config leaves over goes to those after it), and runs
 #    as shards, each a separate `causticlab bench --shard s/n` killed at the config's deadline: a
 #    cut-off config keeps its finished shards. After every finished shard, OUT_DIR/gpu_suite.tar.gz
@@ -78,24 +81,26 @@ while [ $# -gt 0 ]; do
             done
             suite=("${only[@]}")
             shift 2 ;;
+        --pack|--device|--only) [ $# -ge 2 ] || { echo "gpu_suite: $1 needs a value (see --help)" >&2; exit 2; } ;;&
         --pack) pack=$2; shift 2 ;;
         --device) device=$2; device_given=1; shift 2 ;;
-        -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
+        -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
         -*) echo "gpu_suite: unknown option '$1' (see --help)" >&2; exit 2 ;;
         *) break ;;
     esac
 done
 if [ $# -ne 2 ] || ! [[ "$1" =~ ^[0-9]+$ ]] || [ "$1" -lt 10 ]; then
-    echo "usage: bash scripts/gpu_suite.sh [--quick] [--pack DIR] [--device NAME] BUDGET_SECONDS(>=10) OUT_DIR" >&2
+    echo "usage: bash scripts/gpu_suite.sh [--quick] [--more | --only A,B] [--pack DIR] [--device NAME] BUDGET_SECONDS OUT_DIR" >&2
+    echo "       (BUDGET_SECONDS: a whole number, at least 10; see --help)" >&2
     exit 2
 fi
 budget=$1
 out=$2
 start=$(date +%s)
 deadline=$((start + budget))
+[ -f "$pack/causticlab.xz" ] || { echo "gpu_suite: no $pack/causticlab.xz: run scripts/gpu_pack.sh first" >&2; exit 1; }
 mkdir -p "$out" || exit 1
 out=$(cd "$out" && pwd)
-[ -f "$pack/causticlab.xz" ] || { echo "gpu_suite: no $pack/causticlab.xz: run scripts/gpu_pack.sh first" >&2; exit 1; }
 pack=$(cd "$pack" && pwd)
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/gpu_suite.XXXXXX")

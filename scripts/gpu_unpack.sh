@@ -2,7 +2,7 @@
 # Back on a development machine: turns the archive scripts/gpu_suite.sh returned into tables.
 # Merges each config's parts (`causticlab bench merge --partial`: cells the suite had no time for
 # read `not run`), draws the tables and plots into <results>/<device-slug>/, rebuilds the index,
-# and keeps the suite's manifest, log, timings and skipped list in
+# and keeps the suite's manifest, log, device listing, timings and skipped list (not bench.log) in
 # <results>/<device-slug>/gpu_suite/<archive name>/.
 # The tables name the commit the binary was built from (the pack's COMMIT), not this checkout's.
 #
@@ -16,8 +16,8 @@ archive=""
 results=results
 while [ $# -gt 0 ]; do
     case "$1" in
-        --results) results=$2; shift 2 ;;
-        -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
+        --results) [ $# -ge 2 ] || { echo "gpu_unpack: --results needs a value" >&2; exit 2; }; results=$2; shift 2 ;;
+        -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
         -*) echo "gpu_unpack: unknown option '$1' (see --help)" >&2; exit 2 ;;
         *) [ -z "$archive" ] || { echo "gpu_unpack: one archive at a time" >&2; exit 2; }; archive=$1; shift ;;
     esac
@@ -33,7 +33,7 @@ fi
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-tar -xzf "$archive" -C "$work" || { echo "gpu_unpack: $archive: not a gpu_suite archive (tar failed)" >&2; exit 1; }
+tar -xzf "$archive" -C "$work" 2>/dev/null || { echo "gpu_unpack: $archive: not a gpu_suite archive (tar could not read it)" >&2; exit 1; }
 [ -d "$work/parts" ] || { echo "gpu_unpack: $archive has no parts/ folder: not a gpu_suite archive" >&2; exit 1; }
 
 mapfile -t configs < <(find "$work/parts" -name '*.shard-*-of-*.json' -printf '%f\n' | sed 's/\.shard-.*//' | sort -u)

@@ -40,6 +40,50 @@ pub struct Config {
     pub quality: QualitySpec,
     #[serde(default)]
     pub paper: Vec<PaperEntry>,
+    /// The plausibility rules' declarations (`crate::plausibility`).
+    #[serde(default)]
+    pub plausibility: PlausibilitySpec,
+}
+
+/// What the plausibility rules need to know about a table (`crate::plausibility`).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlausibilitySpec {
+    /// Axes along which the work grows, in the matrix's order of their values: `photons`,
+    /// `resolution`, `lights`, and `scene` where the config lists its scenes by model size.
+    #[serde(default = "default_grows")]
+    pub work_grows_with: Vec<String>,
+    /// Findings explained by a measurement: they are listed as explained, not marked `?`.
+    #[serde(default)]
+    pub explained: Vec<ExplainedSpec>,
+}
+
+fn default_grows() -> Vec<String> {
+    vec!["photons".into(), "resolution".into()]
+}
+
+impl Default for PlausibilitySpec {
+    fn default() -> Self {
+        PlausibilitySpec { work_grows_with: default_grows(), explained: vec![] }
+    }
+}
+
+/// One explained finding: the rule, the metric and the cell's labels on the axes given (axes not
+/// given match any value), and the explanation, which cites a measurement.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExplainedSpec {
+    pub rule: String,
+    pub metric: String,
+    #[serde(default)]
+    pub scene: Option<String>,
+    #[serde(default)]
+    pub technique: Option<String>,
+    #[serde(default)]
+    pub photons: Option<u32>,
+    #[serde(default)]
+    pub lighting: Option<String>,
+    pub why: String,
 }
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -104,6 +148,16 @@ pub struct RunSpec {
     /// Frames per loop of every path.
     #[serde(default = "default_period")]
     pub period_frames: u32,
+    /// Throughput metrics: frames per timed block (a cell measures at least
+    /// [`MIN_BLOCKS`] blocks).
+    #[serde(default = "default_block")]
+    pub block_frames: u32,
+}
+
+/// The fewest blocks of frames a throughput cell measures.
+pub const MIN_BLOCKS: u32 = 5;
+fn default_block() -> u32 {
+    2
 }
 
 fn default_warmup() -> u32 {
@@ -135,6 +189,7 @@ impl Default for RunSpec {
             camera_path: default_path(),
             object_path: default_path(),
             period_frames: default_period(),
+            block_frames: default_block(),
         }
     }
 }
@@ -213,7 +268,61 @@ pub struct MetricSpec {
     /// stand-in for a 16-bit photon buffer). `*` as in `passes`.
     #[serde(default)]
     pub exclude: Vec<String>,
+    /// The frame mode its frames run in: `per-pass` (default: one-shot frames, a timestamp pair
+    /// around every pass) or `throughput` (a ring of frames in flight, timed per block of frames
+    /// and per frame on the GPU; kinds fps, frame_ms and gpu_frame_ms). See
+    /// `caustics::render::frame_mode`.
+    #[serde(default)]
+    pub mode: Option<String>,
+    /// Why some cells may record no pass matching `passes` (or `exclude`), e.g. "the instanced
+    /// fetch copies nothing". Without it, a cell whose passes match none of the patterns is an
+    /// error naming the patterns and the passes recorded: a renamed pass cannot silently turn a
+    /// column into n/a. With it, such cells read n/a and the reason is listed under the table.
+    #[serde(default)]
+    pub absent: Option<String>,
+    /// Axes this metric's work does not depend on: a value that varies by more than 2x along one
+    /// is implausible (rule d). Its work is then also not taken to grow along them (rule a).
+    #[serde(default)]
+    pub independent_of: Vec<String>,
+    /// Rule a off for this metric: its work need not grow along `work_grows_with`, and why
+    /// (e.g. a per-level time whose level changes meaning with the photon count).
+    #[serde(default)]
+    pub not_monotonic: Option<String>,
+    /// Bytes a copy reads and writes per photon and light: one number, or one per technique
+    /// label. With the device's copy bandwidth (measured at the start of the run) a time that
+    /// would move them faster is implausible (rule c).
+    #[serde(default)]
+    pub bytes_per_photon: Option<BytesPerPhoton>,
 }
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum BytesPerPhoton {
+    All(f64),
+    ByTechnique(std::collections::BTreeMap<String, f64>),
+}
+
+impl BytesPerPhoton {
+    pub fn of(&self, technique: &str) -> Option<f64> {
+        match self {
+            BytesPerPhoton::All(b) => Some(*b),
+            BytesPerPhoton::ByTechnique(m) => m.get(technique).copied(),
+        }
+    }
+}
+
+impl MetricSpec {
+    /// `per-pass` or `throughput`.
+    pub fn mode(&self) -> &str {
+        self.mode.as_deref().unwrap_or("per-pass")
+    }
+    pub fn throughput(&self) -> bool {
+        self.mode() == "throughput"
+    }
+}
+
+/// Metric kinds a `throughput` metric may have.
+pub const THROUGHPUT_KINDS: &[&str] = &["fps", "frame_ms", "gpu_frame_ms"];
 
 /// The matrix axes a table can lay out.
 pub const AXES: &[&str] = &["scene", "technique", "photons", "lights", "resolution", "lighting", "metric"];

@@ -14,6 +14,7 @@ pub mod meta;
 pub mod metrics;
 pub mod paper;
 pub mod plan;
+pub mod plausibility;
 pub mod plot;
 pub mod progress;
 pub mod record;

@@ -9,19 +9,38 @@ use caustics::animation::{scene_at, Animation};
 use caustics::compare::{compare, Comparison};
 use caustics::image_io::ImageF32;
 use caustics::reference::{trace_reference, ReferenceOptions};
-use caustics::render::{FrameStep, Renderer, RendererOptions};
+use caustics::render::{FrameMode, FrameStep, Renderer, RendererOptions};
 use caustics::scene::{CausticSettings, Scene};
 use caustics::techniques::CopyType;
 use glam::{Mat3, Vec3};
 use std::collections::HashMap;
 use std::time::Instant;
-use vkcore::{Context, FrameReport, ShaderCompiler};
+use vkcore::{Context, Counters, FrameReport, ShaderCompiler};
+
+/// What one cell measured in the throughput frame mode.
+#[derive(Debug, Clone, Default)]
+pub struct ThroughputRun {
+    /// Host milliseconds per frame of each timed block (the block's wall time, from its first
+    /// frame's start to the next block's, over its frames).
+    pub block_ms: Vec<f64>,
+    pub block_frames: u32,
+    /// GPU milliseconds of each measured frame (its timestamp pair).
+    pub gpu_frame_ms: Vec<f64>,
+    /// What each measured frame (its pose update, recording and submit) asked of the driver.
+    pub counters: Vec<Counters>,
+    /// Passes each measured frame recorded.
+    pub passes: Vec<usize>,
+}
 
 /// What one cell measured.
 pub struct CellRun {
+    /// The per-pass frames (empty when no metric of the config is per-pass).
     pub frames: Vec<FrameReport>,
-    /// Host wall time of each measured frame (record, submit, wait), ms.
+    /// Host wall time of each measured per-pass frame (record, submit, wait), ms.
     pub wall_ms: Vec<f64>,
+    /// What each measured per-pass frame (pose update included) asked of the driver.
+    pub counters: Vec<Counters>,
+    pub throughput: Option<ThroughputRun>,
     /// The untimed statistics frame, where the device has pipeline statistics.
     pub stats_frame: Option<FrameReport>,
     pub photons_emitted: u64,
@@ -45,6 +64,8 @@ pub struct CellRun {
     /// Share of the host's CPU time stolen by the hypervisor over the warm-up and measured
     /// frames (see [`crate::steal`]); `None` where the OS does not say.
     pub cpu_steal: Option<f64>,
+    /// Cores' worth of CPU time other processes used while the cell ran (see [`crate::steal`]).
+    pub other_cores: Option<f64>,
 }
 
 /// Runs cells on one device, keeping CPU references between cells of the same scene.
@@ -129,7 +150,10 @@ impl<'a> Runner<'a> {
         let scene = self.cell_scene(cell)?;
         let t = &c.techniques[cell.technique];
         let copy = CopyType::parse(&t.photon_copy).flatten();
-        let mut renderer = Renderer::new(self.ctx, self.shaders, &scene, &RendererOptions { photon_copy: copy })?;
+        let per_pass_timing = c.metrics.iter().any(|m| !m.throughput() && crate::results::is_timing(&m.kind));
+        let throughput = c.metrics.iter().any(|m| m.throughput());
+        let opts = RendererOptions { photon_copy: copy, frame_mode: FrameMode::PerPass };
+        let mut renderer = Renderer::new(self.ctx, self.shaders, &scene, &opts)?;
         let static_lighting = cell.lighting == "static";
         let anim = Animation {
             light: c.run.light_path == "orbit" && !static_lighting,
@@ -137,7 +161,11 @@ impl<'a> Runner<'a> {
             object: c.run.object_path == "orbit" && !static_lighting,
             period_frames: c.run.period_frames,
         };
-        let plan = c.frame_plan(self.quick.is_some());
+        let mut plan = c.frame_plan(self.quick.is_some());
+        if !per_pass_timing {
+            // Only counts and quality come from per-pass frames: one frame after the warm-up.
+            plan = crate::config::FramePlan { min: 1, max: 1, budget_s: 0.0, ..plan };
+        }
         let step = FrameStep { reuse_photons: static_lighting, pipeline_statistics: false };
         if static_lighting {
             // Static lighting renders its photon buffer once, before any frame is timed.
@@ -145,6 +173,7 @@ impl<'a> Runner<'a> {
         }
         let mut frames = vec![];
         let mut wall_ms = vec![];
+        let mut counters = vec![];
         let cpu_before = crate::steal::sample();
         // Warm-up frames, then measured frames until the plan is met: at least `min` frames
         // and `budget_s` seconds of them (pose updates included), at most `max`.
@@ -153,10 +182,12 @@ impl<'a> Runner<'a> {
         loop {
             if f >= plan.warmup {
                 let since = *measuring_since.get_or_insert_with(Instant::now);
-                if plan.done(frames.len() as u32, since.elapsed().as_secs_f64()) {
+                let n = frames.len() as u32;
+                if plan.done(n, since.elapsed().as_secs_f64()) && whole_loops(&anim, n, plan.max) {
                     break;
                 }
             }
+            let before = self.ctx.counters();
             if f > 0 && !anim.is_static() {
                 renderer.set_pose(&scene_at(&scene, &anim, f))?;
             }
@@ -166,6 +197,7 @@ impl<'a> Runner<'a> {
             if f >= plan.warmup {
                 frames.push(report);
                 wall_ms.push(ms);
+                counters.push(self.ctx.counters().since(&before));
             }
             f += 1;
         }
@@ -177,22 +209,111 @@ impl<'a> Runner<'a> {
         };
         let valid_photons = if self.needs_valid_photons() { renderer.valid_photons()? } else { None };
         let quality = if self.needs_quality() { Some(self.quality(&mut renderer, &scene)?) } else { None };
+        let (photons_emitted, splats_drawn, hierarchy_sizes) =
+            (renderer.photons_emitted(), renderer.splats_drawn()?, renderer.list_sizes()?);
+        let (photon_storage, photon_batches) =
+            (renderer.adaptive().map(|a| a.photon_storage_bytes()), renderer.adaptive().map(|a| a.plan.batches));
+        let throughput = if throughput {
+            // One renderer at a time: the per-pass one's buffers go before the ring's are made.
+            drop(renderer);
+            let opts = RendererOptions { frame_mode: FrameMode::throughput(), ..opts };
+            let mut renderer = Renderer::new(self.ctx, self.shaders, &scene, &opts)?;
+            let t = self.measure_throughput(&mut renderer, &scene, &anim, static_lighting)?;
+            Some(t)
+        } else {
+            None
+        };
+        let other_cores = cpu_before.zip(crate::steal::sample()).and_then(|(a, b)| crate::steal::other_cores(a, b));
+        if !per_pass_timing {
+            frames.clear();
+            wall_ms.clear();
+            counters.clear();
+        }
         Ok(CellRun {
             frames,
             wall_ms,
+            counters,
+            throughput,
             stats_frame,
-            photons_emitted: renderer.photons_emitted(),
-            splats_drawn: renderer.splats_drawn()?,
-            hierarchy_sizes: renderer.list_sizes()?,
-            photon_storage: renderer.adaptive().map(|a| a.photon_storage_bytes()),
-            photon_batches: renderer.adaptive().map(|a| a.plan.batches),
+            photons_emitted,
+            splats_drawn,
+            hierarchy_sizes,
+            photon_storage,
+            photon_batches,
             quality,
             valid_photons,
             lights: scene.lights.len() as u64,
             caustics: scene.caustics.clone(),
             triangles: scene.triangle_count(),
             cpu_steal,
+            other_cores,
         })
+    }
+
+    /// The throughput frame mode: frames submitted back to back through the renderer's ring,
+    /// poses updated between them; after the warm-up (at least one frame per slot), blocks of
+    /// `run.block_frames` frames timed on the host from the start of one block to the start of
+    /// the next (the ring is full from the warm-up on, so each submit waits for the frame
+    /// `slots` before it: the submits are paced by the GPU), until there
+    /// are at least `MIN_BLOCKS` blocks, `measured_frames` frames and the time budget, and, along
+    /// an animation, whole loops of it.
+    fn measure_throughput(
+        &self,
+        renderer: &mut Renderer,
+        scene: &Scene,
+        anim: &Animation,
+        static_lighting: bool,
+    ) -> Result<ThroughputRun> {
+        let c = &self.config.config;
+        let plan = c.frame_plan(self.quick.is_some());
+        let block = c.run.block_frames.max(1);
+        let step = FrameStep { reuse_photons: static_lighting, pipeline_statistics: false };
+        if static_lighting {
+            renderer.frame(FrameStep::default())?;
+        }
+        let warmup = plan.warmup.max(FrameMode::SLOTS as u32);
+        let mut f = 0u32;
+        let submit = |renderer: &mut Renderer, f: u32, reports: &mut Vec<FrameReport>| -> Result<Counters> {
+            let before = self.ctx.counters();
+            if f > 0 && !anim.is_static() {
+                renderer.set_pose(&scene_at(scene, anim, f))?;
+            }
+            reports.extend(renderer.submit(step)?);
+            Ok(self.ctx.counters().since(&before))
+        };
+        let mut reports = vec![];
+        while f < warmup {
+            submit(renderer, f, &mut reports)?;
+            f += 1;
+        }
+        let first_measured = f as u64;
+        let mut out = ThroughputRun { block_frames: block, ..Default::default() };
+        let started = Instant::now();
+        let mut block_start = Instant::now();
+        loop {
+            for _ in 0..block {
+                out.counters.push(submit(renderer, f, &mut reports)?);
+                f += 1;
+            }
+            let now = Instant::now();
+            out.block_ms.push((now - block_start).as_secs_f64() * 1e3 / block as f64);
+            block_start = now;
+            let (blocks, frames) = (out.block_ms.len() as u32, out.block_ms.len() as u32 * block);
+            // A quick run smoke-tests two blocks.
+            let min_blocks = if self.quick.is_some() { 2 } else { crate::config::MIN_BLOCKS };
+            let enough = blocks >= min_blocks
+                && plan.done(frames, started.elapsed().as_secs_f64())
+                && whole_loops(anim, frames, plan.max);
+            if enough || frames >= plan.max.max(min_blocks * block) {
+                break;
+            }
+        }
+        reports.extend(renderer.finish()?);
+        let measured_end = first_measured + (out.block_ms.len() as u64) * block as u64;
+        let measured = || reports.iter().filter(|r| (first_measured..measured_end).contains(&r.index));
+        out.gpu_frame_ms = measured().filter_map(|r| r.frame_gpu_ms).collect();
+        out.passes = measured().map(|r| r.passes.len()).collect();
+        Ok(out)
     }
 
     /// The last frame's receiver map against the CPU reference of the same scene and lights.
@@ -211,6 +332,12 @@ impl<'a> Runner<'a> {
         let ours = renderer.dump("receiver")?.context("the render has no receiver map to compare")?;
         Ok(compare(&ours, reference)?.0)
     }
+}
+
+/// Along an animation, a cell measures whole loops of it (or stops at `max` frames), so that
+/// every cell of a config sees the same poses: a camera orbit's cost varies along the loop.
+fn whole_loops(anim: &Animation, frames: u32, max: u32) -> bool {
+    anim.is_static() || frames >= max || frames % anim.period_frames.max(1) == 0
 }
 
 /// Keeps the first `n` lights, or adds copies of the last one turned about the vertical axis

@@ -95,10 +95,26 @@ fn photons_processed(run: &CellRun) -> u64 {
     }
 }
 
+/// A throughput metric: from the timed blocks (host) or each frame's timestamp pair (GPU). fps
+/// is the median of the blocks' rates, its spread theirs.
+fn throughput(k: &str, run: &CellRun) -> Value {
+    let Some(t) = &run.throughput else { return exact(k, None) };
+    match k {
+        "fps" => of_samples(k, t.block_ms.iter().map(|ms| 1000.0 / ms).collect()),
+        "frame_ms" => of_samples(k, t.block_ms.clone()),
+        "gpu_frame_ms" => of_samples(k, t.gpu_frame_ms.clone()),
+        _ => exact(k, None),
+    }
+}
+
 pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> {
     let mut out = BTreeMap::new();
     for m in specs {
         let k = m.kind.as_str();
+        if m.throughput() {
+            out.insert(m.label.clone(), throughput(k, run));
+            continue;
+        }
         let v = match k {
             "pass_ms" => of_samples(k, pass_samples(run, &m.passes)),
             "pass_fps" => of_samples(k, pass_samples(run, &m.passes).iter().map(|ms| 1000.0 / ms).collect()),

@@ -18,10 +18,32 @@ pub struct Timings {
     /// Photons emitted per frame over all lights (0 for `none`).
     pub photons_emitted: u64,
     pub scene: String,
+    /// `per-pass` (one-shot frames, timestamps around every pass) or `throughput` (a ring of
+    /// frames in flight, one timestamp pair per frame): `caustics::render::frame_mode`.
+    pub frame_mode: String,
     pub frames: usize,
     pub validation: bool,
-    /// Passes in first-seen order; times are GPU milliseconds between the pass's timestamps.
+    /// Passes in first-seen order; times are GPU milliseconds between the pass's timestamps
+    /// (per-pass frames; throughput frames time only the whole frame, see `per_frame`).
     pub passes: Vec<Pass>,
+    /// Each frame: its GPU time where it was timed as a whole, and what recording and
+    /// submitting it asked of the driver.
+    pub per_frame: Vec<FrameEntry>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FrameEntry {
+    pub index: u64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slot: Option<usize>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gpu_frame_ms: Option<f64>,
+    pub passes: usize,
+    pub submits: u64,
+    pub barriers: u64,
+    pub timestamps: u64,
+    /// Vulkan objects created or allocated (zero for a warm throughput frame).
+    pub objects: u64,
 }
 
 #[derive(Debug, Serialize)]
@@ -83,6 +105,7 @@ impl Timings {
         photons_emitted: u64,
         scene: &Path,
         validation: bool,
+        frame_mode: &str,
         frames: &[FrameReport],
     ) -> Timings {
         let last_stats = |name: &str| frames.iter().rev().find_map(|f| f.pass(name).and_then(|p| p.stats));
@@ -103,9 +126,24 @@ impl Timings {
             intersect: caustics.intersect().to_string(),
             photons_emitted,
             scene: scene.display().to_string(),
+            frame_mode: frame_mode.to_string(),
             frames: frames.len(),
             validation,
             passes,
+            per_frame: frames
+                .iter()
+                .enumerate()
+                .map(|(i, f)| FrameEntry {
+                    index: if f.slot.is_some() { f.index } else { i as u64 },
+                    slot: f.slot,
+                    gpu_frame_ms: f.frame_gpu_ms,
+                    passes: f.passes.len(),
+                    submits: f.counters.submits,
+                    barriers: f.counters.barriers,
+                    timestamps: f.counters.timestamps,
+                    objects: f.counters.objects,
+                })
+                .collect(),
         }
     }
 }

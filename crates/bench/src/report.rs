@@ -53,6 +53,13 @@ pub fn markdown(config: &Config, results: &Results) -> String {
         r.object_path,
         r.period_frames
     );
+    let _ = writeln!(s, "{}", modes_line(config, results));
+    if let Some(gbs) = r.copy_bandwidth_gbs {
+        let _ = writeln!(s, "- **Device copy bandwidth:** {gbs:.1} GB/s (bytes read plus written by a buffer copy, measured at the start of the run)");
+    }
+    if let Some(line) = load_line(results) {
+        let _ = writeln!(s, "{line}");
+    }
     if !m.quirks.is_empty() {
         let _ = writeln!(s, "- **Device quirks worked around:** {}", m.quirks.join("; "));
     }
@@ -76,7 +83,13 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     if !ratios.is_empty() {
         let _ = writeln!(s, "{ratios}");
     }
+    s.push_str(&plausibility_section(results));
     let mut notes = config.table.notes.clone();
+    for m in &config.metrics {
+        if let Some(why) = &m.absent {
+            notes.push(format!("`{}` reads n/a where a cell recorded no pass it sums: {why}.", m.label));
+        }
+    }
     if m.driver_name.to_lowercase().contains("llvmpipe") || m.device.to_lowercase().contains("llvmpipe") {
         notes.push(
             "lavapipe runs every pass serially on the CPU: its times are CPU time, fine for ratios between \
@@ -138,6 +151,110 @@ pub fn summary(config: &Config, results: &Results) -> String {
 
 /// `1 warm-up frame, then at least 3 measured frames and 1 s (at most 1000): 3 to 41 frames,
 /// median 5`.
+/// Which frame mode each timed metric ran in, and what a frame of each mode asked of the driver
+/// (medians over the cells of their per-frame medians).
+fn modes_line(config: &Config, results: &Results) -> String {
+    let timed: Vec<&crate::config::MetricSpec> = config.metrics.iter().filter(|m| is_timing(&m.kind)).collect();
+    let names = |throughput: bool| -> Vec<String> {
+        timed.iter().filter(|m| m.throughput() == throughput).map(|m| format!("{}", m.label)).collect()
+    };
+    let mut parts = vec![];
+    for (mode, throughput, what) in [
+        (
+            "per-pass",
+            false,
+            "one-shot frames, a timestamp pair and a crash-marker barrier around every pass, each frame waited for".to_string(),
+        ),
+        (
+            "throughput",
+            true,
+            format!(
+                "a ring of {} frames in flight, no object made once warm, one timestamp pair per frame; fps and frame_ms \
+                 per block of {} frames, the median over at least {} blocks",
+                caustics::render::FrameMode::SLOTS,
+                config.run.block_frames,
+                crate::config::MIN_BLOCKS
+            ),
+        ),
+    ] {
+        let labels = names(throughput);
+        if labels.is_empty() {
+            continue;
+        }
+        let per_frame: Vec<&crate::results::FrameCounters> =
+            results.cells.iter().filter_map(|c| c.frame_counters.get(mode)).collect();
+        let median = |f: &dyn Fn(&crate::results::FrameCounters) -> f64| {
+            let v: Vec<f64> = per_frame.iter().map(|c| f(c)).collect();
+            crate::stats::quartiles(&v).map(|(_, m, _)| m)
+        };
+        let counts = match (median(&|c| c.submits), median(&|c| c.barriers), median(&|c| c.timestamps), median(&|c| c.objects)) {
+            (Some(s), Some(b), Some(t), Some(o)) => format!(
+                "; per frame {s} submit(s), {b} barriers, {t} timestamps, {o} Vulkan objects made (most in any frame: {})",
+                per_frame.iter().map(|c| c.most_objects).max().unwrap_or(0)
+            ),
+            _ => String::new(),
+        };
+        parts.push(format!("`{mode}` for {} ({what}{counts})", labels.join(", ")));
+    }
+    if parts.is_empty() {
+        return "- **Frame modes:** no timed metric".into();
+    }
+    format!("- **Frame modes:** {}.", parts.join("; "))
+}
+
+/// The plausibility rules' findings: the open ones (`?`), then the explained ones.
+fn plausibility_section(results: &Results) -> String {
+    let f = &results.plausibility;
+    let mut s = String::new();
+    if f.is_empty() {
+        return s;
+    }
+    let _ = writeln!(s, "## Plausibility\n");
+    let _ = writeln!(
+        s,
+        "Rules (bench_configs/README.md#plausibility): a) more work, less time; b) dynamic beats static; c) faster \
+         than the device's memory; d) varies along an axis it does not depend on.\n"
+    );
+    let row = |x: &crate::plausibility::Finding| {
+        let cell: Vec<String> = x.keys.iter().filter(|(_, v)| !v.is_empty()).map(|(k, v)| format!("{k}={v}")).collect();
+        format!("- ({}) {} [{}]", x.rule, x.text, cell.join(" "))
+    };
+    let open: Vec<String> = f.iter().filter(|x| x.explained.is_none()).map(row).collect();
+    if !open.is_empty() {
+        let _ = writeln!(s, "Implausible (`?`), {} entries:\n", open.len());
+        for r in open {
+            let _ = writeln!(s, "{r}");
+        }
+        let _ = writeln!(s);
+    }
+    let explained: Vec<String> =
+        f.iter().filter_map(|x| Some(format!("{}; explained: {}", row(x), x.explained.as_ref()?))).collect();
+    if !explained.is_empty() {
+        let _ = writeln!(s, "Explained, {} entries:\n", explained.len());
+        for r in explained {
+            let _ = writeln!(s, "{r}");
+        }
+        let _ = writeln!(s);
+    }
+    s
+}
+
+/// How busy the host was with other processes while the cells ran, where that was measured.
+fn load_line(results: &Results) -> Option<String> {
+    let mut v: Vec<f64> = results.cells.iter().filter_map(|c| c.other_cores).collect();
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let busy = results.cells.iter().filter(|c| c.busy).count();
+    Some(format!(
+        "- **Other processes on the host** (CPU time besides this run's, in cores, while a cell ran): median {:.2}, \
+         max {:.2}; {busy} busy cells (`~`)",
+        v[v.len() / 2],
+        v[v.len() - 1]
+    ))
+}
+
 /// What a partial merge left out, or `None` for a whole table.
 fn partial_line(results: &Results) -> Option<String> {
     let n = results.run.not_run.len();

@@ -18,6 +18,10 @@ pub struct Results {
     pub meta: Meta,
     /// In cell-index order.
     pub cells: Vec<CellResult>,
+    /// The plausibility rules' findings (`crate::plausibility`), recomputed whenever the table
+    /// is written.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub plausibility: Vec<crate::plausibility::Finding>,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -53,6 +57,10 @@ pub struct RunInfo {
     pub shard: Option<Shard>,
     /// Cells in the full matrix (the table's size).
     pub total_cells: usize,
+    /// The device's buffer copy bandwidth measured at the start of the run (GB/s read plus
+    /// written), for the plausibility rule on copies.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub copy_bandwidth_gbs: Option<f64>,
     /// Indices of the cells no part had, in a table merged with `bench merge --partial` (a GPU
     /// suite cut off by its time budget): they read `not run`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -94,11 +102,60 @@ pub struct CellResult {
     /// ran (Linux steal time; absent where unknown, and in results written before it was kept).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cpu_steal: Option<f64>,
+    /// Cores' worth of CPU time other processes on the host used while the cell ran.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_cores: Option<f64>,
+    /// The cell ran while other processes used more than the run's threshold, even after it was
+    /// measured again: its times are not a quiet machine's (`~` in the table).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub busy: bool,
     /// Per light, the traversal's list sizes of the last frame: `hcm`'s from its 16² level down
     /// to the splatted list; `adaptive`'s pending clusters of each level (64² photons first),
     /// then the photons splatted (Wyman & Nichols 2009 Table 1, Fig. 7). Absent otherwise.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub list_sizes: Option<Vec<Vec<u64>>>,
+    /// Per frame mode (`per-pass`, `throughput`): what its measured frames asked of the driver.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub frame_counters: BTreeMap<String, FrameCounters>,
+    /// Throughput frames: host ms per frame of each timed block.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub block_ms: Vec<f64>,
+}
+
+/// What the measured frames of one mode asked of the driver, per frame (medians, and the most
+/// objects any frame created: zero for warm throughput frames).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct FrameCounters {
+    pub frames: usize,
+    /// Passes recorded.
+    pub passes: f64,
+    pub submits: f64,
+    pub barriers: f64,
+    pub timestamps: f64,
+    pub objects: f64,
+    pub most_objects: u64,
+}
+
+impl FrameCounters {
+    pub fn of(counters: &[vkcore::Counters], passes: &[usize]) -> Option<FrameCounters> {
+        if counters.is_empty() {
+            return None;
+        }
+        let p: Vec<f64> = passes.iter().map(|&n| n as f64).collect();
+        let median = |f: &dyn Fn(&vkcore::Counters) -> u64| {
+            let v: Vec<f64> = counters.iter().map(|c| f(c) as f64).collect();
+            crate::stats::quartiles(&v).map(|(_, m, _)| m).unwrap_or(0.0)
+        };
+        Some(FrameCounters {
+            frames: counters.len(),
+            passes: crate::stats::quartiles(&p).map(|(_, m, _)| m).unwrap_or(0.0),
+            submits: median(&|c| c.submits),
+            barriers: median(&|c| c.barriers),
+            timestamps: median(&|c| c.timestamps),
+            objects: median(&|c| c.objects),
+            most_objects: counters.iter().map(|c| c.objects).max().unwrap_or(0),
+        })
+    }
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -136,7 +193,20 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         wall_ms: run.wall_ms.clone(),
         passes,
         cpu_steal: run.cpu_steal,
+        other_cores: run.other_cores,
+        busy: false,
         list_sizes: run.hierarchy_sizes.clone(),
+        frame_counters: [
+            (
+                "per-pass",
+                FrameCounters::of(&run.counters, &run.frames.iter().map(|f| f.passes.len()).collect::<Vec<_>>()),
+            ),
+            ("throughput", run.throughput.as_ref().and_then(|t| FrameCounters::of(&t.counters, &t.passes))),
+        ]
+        .into_iter()
+        .filter_map(|(k, v)| Some((k.to_string(), v?)))
+        .collect(),
+        block_ms: run.throughput.as_ref().map(|t| t.block_ms.clone()).unwrap_or_default(),
     }
 }
 

@@ -20,7 +20,16 @@ pub struct BenchOptions {
     pub shard: Option<String>,
     /// The results folder (`results/` by default); tables go to `<root>/<device-slug>/`.
     pub results_root: PathBuf,
+    /// A timing cell that ran while other processes used more than this many cores is measured
+    /// again (after a pause), up to `busy_retries` times, then marked busy.
+    pub busy_cores: f64,
+    pub busy_retries: u32,
+    /// Refuse to write a table with busy cells (a timing run into the repository's results/).
+    pub refuse_busy: bool,
 }
+
+/// Seconds to wait before measuring a busy cell again.
+const BUSY_PAUSE_S: u64 = 3;
 
 pub struct Outcome {
     pub written: Vec<PathBuf>,
@@ -59,6 +68,10 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         .collect();
     // The plots need a font: fail now rather than after the last cell.
     crate::font::load()?;
+    // The device's copy bandwidth, for the plausibility rule on copies (GPU memory: 256 MiB is
+    // beyond every cache; a quick run only smoke-tests it).
+    let bandwidth_bytes = if opts.quick { 16 << 20 } else { 256 << 20 };
+    let copy_bandwidth_gbs = ctx.copy_bandwidth(bandwidth_bytes).context("measuring the device's copy bandwidth")?;
     let mut progress = Progress::new(costs);
     let mut runner = Runner::new(ctx, shaders, lc, quick);
     // Everything that can be checked before the first cell is: every scene with every
@@ -76,12 +89,49 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
     let mut done = vec![];
     for cell in &cells {
         progress.start_cell(&cell.describe());
-        let run = runner.run(cell).with_context(|| format!("bench cell {}", cell.describe()))?;
+        let mut attempt = 0;
+        let (run, busy) = loop {
+            let run = runner.run(cell).with_context(|| format!("bench cell {}", cell.describe()))?;
+            let busy = !opts.quick && run.other_cores.is_some_and(|c| c > opts.busy_cores);
+            if !busy || attempt >= opts.busy_retries {
+                break (run, busy);
+            }
+            attempt += 1;
+            eprintln!(
+                "bench: cell {} ran while other processes used {:.2} cores (above {}); measuring it again in {BUSY_PAUSE_S} s \
+                 ({attempt}/{})",
+                cell.describe(),
+                run.other_cores.unwrap_or(0.0),
+                opts.busy_cores,
+                opts.busy_retries
+            );
+            std::thread::sleep(std::time::Duration::from_secs(BUSY_PAUSE_S));
+        };
+        check_patterns(lc, cell, &run)?;
         let metrics = crate::metrics::evaluate(&c.metrics, &run);
-        done.push(cell_result(cell, &run, metrics, &c.techniques[cell.technique].photon_copy));
+        let mut result = cell_result(cell, &run, metrics, &c.techniques[cell.technique].photon_copy);
+        result.busy = busy;
+        done.push(result);
         progress.finish_cell();
     }
     progress.finish();
+    let busy: Vec<String> = done
+        .iter()
+        .filter(|r| r.busy)
+        .map(|r| format!("{} ({:.2} cores)", r.cell.describe(), r.other_cores.unwrap_or(0.0)))
+        .collect();
+    if !busy.is_empty() && opts.refuse_busy {
+        return Err(input_error!(
+            "{}: {} of {} cells ran while other processes kept the machine busy, even when measured again: {}. \
+             A table for the repository's results/ comes from a quiet machine: stop the other work and run again, \
+             or write elsewhere with --results",
+            lc.path.display(),
+            busy.len(),
+            done.len(),
+            busy.join("; ")
+        )
+        .into());
+    }
     let results = Results {
         schema: SCHEMA,
         config: ConfigInfo {
@@ -107,10 +157,12 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
             filter: filter.clone(),
             shard,
             total_cells: all.len(),
+            copy_bandwidth_gbs,
             not_run: vec![],
         },
         meta: crate::meta::meta(ctx.info()),
         cells: done,
+        plausibility: vec![],
     };
     let dir = device_dir(&opts.results_root, &results);
     if filter.is_empty() && shard.is_none() {
@@ -132,6 +184,37 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
     }
 }
 
+/// Every pass pattern of a metric (its `passes`, or `exclude`) must match a pass the cell's
+/// per-pass frames recorded, unless the metric says why it may not (`absent`).
+fn check_patterns(lc: &LoadedConfig, cell: &crate::plan::Cell, run: &crate::measure::CellRun) -> Result<()> {
+    let Some(frame) = run.frames.first() else { return Ok(()) };
+    let names: Vec<&str> = frame.passes.iter().map(|p| p.name.as_str()).collect();
+    for (i, m) in lc.config.metrics.iter().enumerate() {
+        if m.absent.is_some() || m.throughput() {
+            continue;
+        }
+        for (key, patterns) in [("passes", &m.passes), ("exclude", &m.exclude)] {
+            if patterns.is_empty() {
+                continue;
+            }
+            let any = names.iter().any(|n| patterns.iter().any(|p| crate::metrics::glob(p, n)));
+            if !any {
+                return Err(input_error!(
+                    "{}: key `metric[{i}].{key}` of metric `{}`: no pass of cell {} matches {}; the cell recorded: {} \
+                     (if this metric may have no such pass, say why with `absent = \"...\"`)",
+                    lc.path.display(),
+                    m.label,
+                    cell.describe(),
+                    patterns.iter().map(|p| format!("`{p}`")).collect::<Vec<_>>().join(", "),
+                    names.join(", ")
+                )
+                .into());
+            }
+        }
+    }
+    Ok(())
+}
+
 fn device_dir(root: &Path, r: &Results) -> PathBuf {
     let d = root.join(&r.meta.device_slug);
     if r.run.quick {
@@ -149,7 +232,9 @@ fn write_json(path: &Path, results: &Results) -> Result<()> {
 /// Writes `<name>.{json,csv,svg,png,md}` into `dir` (the markdown last: it links the others)
 /// and refreshes the index of `root`.
 pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Result<Outcome> {
-    let results = &crate::results::rounded(results)?;
+    let mut results = crate::results::rounded(results)?;
+    results.plausibility = crate::plausibility::check(c, &results);
+    let results = &results;
     let name = &results.config.name;
     let md = crate::report::markdown(c, results);
     let plot = crate::plot::render(&crate::figure::figure(c, results, &crate::table::grid(c, results)))?;

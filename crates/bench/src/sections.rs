@@ -54,6 +54,12 @@ pub fn cell_text(e: &Entry, notes: &mut Footnotes) -> String {
         s.push(' ');
         s.push_str(&crate::stats::format_spread(sp));
     }
+    if e.busy {
+        s.push('~');
+    }
+    if e.implausible {
+        s.push('?');
+    }
     if let Some(p) = &e.paper {
         let mut inner = paper_value(&e.kind, Some(p.value));
         if let Some(r) = &p.not_comparable {
@@ -125,6 +131,22 @@ pub fn legend(g: &Grid, notes: &Footnotes) -> Vec<String> {
              the median, and `!` marks a spread over {:.0}% ({noisy} of {timed} timed cells): do not rank \
              techniques by such a median.",
             crate::stats::NOISY_SPREAD * 100.0
+        ));
+    }
+    let (busy, implausible) = (
+        g.entries.iter().flatten().filter(|e| e.busy).count(),
+        g.entries.iter().flatten().filter(|e| e.implausible).count(),
+    );
+    if busy > 0 {
+        lines.push(format!(
+            "`~` marks {busy} entries whose cell ran while other processes kept the machine busy, even when measured \
+             again: not a quiet machine's times."
+        ));
+    }
+    if implausible > 0 {
+        lines.push(format!(
+            "`?` marks {implausible} implausible entries (listed under *Plausibility*): not numbers to cite until \
+             fixed or explained."
         ));
     }
     if g.has_paper() {

@@ -29,6 +29,10 @@ pub struct Entry {
     /// The cell could run but is not in a table merged with `--partial` (the run was cut off
     /// before it): the entry reads `not run`.
     pub missing: bool,
+    /// A plausibility rule found this entry implausible and nothing explains it (`?`).
+    pub implausible: bool,
+    /// The cell ran while other processes kept the machine busy (`~`).
+    pub busy: bool,
 }
 
 impl Entry {
@@ -162,7 +166,11 @@ fn entry(config: &Config, results: &Results, keys: BTreeMap<String, String>) -> 
     let photons = keys.get("photons").and_then(|p| p.parse().ok());
     let not_run = matches!((technique, photons), (Some(t), Some(p)) if !config.runs(t, p));
     let missing = !not_run && found.is_none() && !results.run.not_run.is_empty();
-    Entry { keys, ours, spread, paper, kind, not_run, missing }
+    let implausible = found.is_some_and(|c| {
+        results.plausibility.iter().any(|f| f.cell == c.cell.index && f.metric == metric && f.explained.is_none())
+    });
+    let busy = found.is_some_and(|c| c.busy) && is_timing(&kind);
+    Entry { keys, ours, spread, paper, kind, not_run, missing, implausible, busy }
 }
 
 impl Grid {

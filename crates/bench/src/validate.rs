@@ -67,6 +67,9 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             return Err(bad(key, format!("unknown path `{p}`; expected one of {}", PATHS.join(", "))));
         }
     }
+    if !(1..=1000).contains(&r.block_frames) {
+        return Err(bad("run.block_frames", format!("must be between 1 and 1000, got {}", r.block_frames)));
+    }
     if !(1..=MAX_FRAMES).contains(&r.period_frames) {
         return Err(bad("run.period_frames", format!("must be between 1 and {MAX_FRAMES}, got {}", r.period_frames)));
     }
@@ -157,6 +160,48 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
         return Err(bad("metric", "no [[metric]] entries".into()));
     }
     unique("metric.label", c.metrics.iter().map(|m| m.label.clone()).collect())?;
+    // The plausibility rules' declarations.
+    let matrix_axes = ["scene", "technique", "photons", "lights", "resolution", "lighting"];
+    for (k, a) in c.plausibility.work_grows_with.iter().enumerate() {
+        if !["scene", "photons", "lights", "resolution"].contains(&a.as_str()) {
+            return Err(bad(
+                &format!("plausibility.work_grows_with[{k}]"),
+                format!("`{a}`: the work can grow along scene, photons, lights or resolution"),
+            ));
+        }
+    }
+    for (k, e) in c.plausibility.explained.iter().enumerate() {
+        if !["a", "b", "c", "d"].contains(&e.rule.as_str()) {
+            return Err(bad(
+                &format!("plausibility.explained[{k}].rule"),
+                format!("`{}`: rules are a, b, c and d", e.rule),
+            ));
+        }
+        if !c.metrics.iter().any(|m| m.label == e.metric) {
+            return Err(bad(
+                &format!("plausibility.explained[{k}].metric"),
+                format!("no metric is labelled `{}`", e.metric),
+            ));
+        }
+        if e.why.trim().is_empty() {
+            return Err(bad(&format!("plausibility.explained[{k}].why"), "say why, citing a measurement".into()));
+        }
+    }
+    for (i, mt) in c.metrics.iter().enumerate() {
+        for (k, a) in mt.independent_of.iter().enumerate() {
+            if !matrix_axes.contains(&a.as_str()) {
+                return Err(bad(
+                    &format!("metric[{i}].independent_of[{k}]"),
+                    format!("`{a}`: expected one of {}", matrix_axes.join(", ")),
+                ));
+            }
+        }
+        if let Some(crate::config::BytesPerPhoton::ByTechnique(m)) = &mt.bytes_per_photon {
+            if let Some(t) = m.keys().find(|t| !c.techniques.iter().any(|x| &x.label == *t)) {
+                return Err(bad(&format!("metric[{i}].bytes_per_photon"), format!("no technique is labelled `{t}`")));
+            }
+        }
+    }
     for (i, mt) in c.metrics.iter().enumerate() {
         if !METRIC_KINDS.contains(&mt.kind.as_str()) {
             return Err(bad(
@@ -172,6 +217,32 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                 "only kinds pass_ms and pass_fps take `passes`".to_string()
             };
             return Err(bad(&format!("metric[{i}].passes"), msg));
+        }
+        match mt.mode() {
+            "per-pass" => {}
+            "throughput" if !crate::config::THROUGHPUT_KINDS.contains(&mt.kind.as_str()) => {
+                return Err(bad(
+                    &format!("metric[{i}].mode"),
+                    format!(
+                        "kind `{}` needs per-pass timestamps; throughput metrics are {}",
+                        mt.kind,
+                        crate::config::THROUGHPUT_KINDS.join(", ")
+                    ),
+                ))
+            }
+            "throughput" if !mt.exclude.is_empty() => {
+                return Err(bad(
+                    &format!("metric[{i}].exclude"),
+                    "throughput frames time no pass alone: `exclude` needs mode = \"per-pass\"".into(),
+                ))
+            }
+            "throughput" => {}
+            other => {
+                return Err(bad(
+                    &format!("metric[{i}].mode"),
+                    format!("`{other}`: expected `per-pass` or `throughput`"),
+                ))
+            }
         }
         if !mt.exclude.is_empty() && mt.kind != "fps" && mt.kind != "frame_ms" {
             return Err(bad(&format!("metric[{i}].exclude"), "only kinds fps and frame_ms take `exclude`".into()));

@@ -3,10 +3,10 @@
 //! another scene or for other work is marked and gets no ratio; the ratios are one grid; every
 //! line fits a 120-column terminal; the plot has a ratio panel and draws as SVG and PNG.
 
+mod common;
 use bench::config::Config;
-use bench::plan::Cell;
-use bench::results::{CellResult, ConfigInfo, Meta, Results, RunInfo, Value, SCHEMA};
-use std::collections::BTreeMap;
+use bench::results::Results;
+use common::{cell, results};
 
 const CONFIG: &str = r#"
 [table]
@@ -50,88 +50,6 @@ not_comparable = "the paper's fast gather skips the copy"
 const STEADY: [f64; 5] = [10.0, 10.1, 9.9, 10.0, 10.05];
 const NOISY: [f64; 5] = [5.0, 10.0, 15.0, 6.0, 14.0];
 
-fn value(samples: &[f64]) -> Value {
-    let (q1, m, q3) = bench::stats::quartiles(samples).expect("samples");
-    Value {
-        kind: "pass_ms".into(),
-        value: Some(m),
-        min: samples.iter().copied().reduce(f64::min),
-        max: samples.iter().copied().reduce(f64::max),
-        q1: Some(q1),
-        q3: Some(q3),
-        samples: samples.to_vec(),
-    }
-}
-
-fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: &[f64]) -> CellResult {
-    CellResult {
-        cell: Cell {
-            index,
-            scene: "../scenes/sphere_on_plane.toml".into(),
-            technique,
-            technique_label: label.into(),
-            photons,
-            lights: 0,
-            resolution: [0, 0],
-            lighting: "dynamic".into(),
-        },
-        caustics: serde_json::Value::Null,
-        photon_copy: "none".into(),
-        triangles: 0,
-        metrics: BTreeMap::from([("Gather".to_string(), value(samples))]),
-        wall_ms: samples.to_vec(),
-        passes: vec![],
-        cpu_steal: None,
-        list_sizes: None,
-    }
-}
-
-fn results(config: &Config, cells: Vec<CellResult>) -> Results {
-    Results {
-        schema: SCHEMA,
-        config: ConfigInfo {
-            file: "synthetic.toml".into(),
-            name: "synthetic".into(),
-            hash: "0".into(),
-            paper: config.table.paper.clone(),
-            table: config.table.number.clone(),
-            caption: config.table.caption.clone(),
-            toml: CONFIG.into(),
-        },
-        run: RunInfo {
-            quick: false,
-            warmup_frames: 1,
-            measured_frames: 5,
-            time_budget_s: Some(1.0),
-            max_frames: Some(1000),
-            light_path: "static".into(),
-            camera_path: "static".into(),
-            object_path: "static".into(),
-            period_frames: 60,
-            validation: false,
-            filter: Default::default(),
-            shard: None,
-            not_run: vec![],
-            total_cells: cells.len(),
-        },
-        meta: Meta {
-            device: "synthetic device".into(),
-            device_type: "other".into(),
-            device_slug: "synthetic".into(),
-            driver_name: "none".into(),
-            driver_info: "none".into(),
-            vulkan_version: "1.3".into(),
-            timestamp_period_ns: 1.0,
-            cpu: "none".into(),
-            commit: "0000000".into(),
-            date: "2026-01-01T00:00:00Z".into(),
-            causticlab_version: "0".into(),
-            quirks: vec![],
-        },
-        cells,
-    }
-}
-
 fn synthetic() -> (Config, Results) {
     let config: Config = toml::from_str(CONFIG).expect("the test config parses");
     let cells = vec![
@@ -140,7 +58,7 @@ fn synthetic() -> (Config, Results) {
         cell(2, 1, "fast", 256, &NOISY),
         cell(3, 1, "fast", 512, &STEADY),
     ];
-    let r = results(&config, cells);
+    let r = results(&config, CONFIG, cells);
     (config, r)
 }
 
@@ -211,7 +129,7 @@ fn every_line_of_a_wide_table_fits_a_terminal() {
             cells.push(cell(t * 2 + k, t, &tech.label, p, &NOISY));
         }
     }
-    let r = results(&config, cells);
+    let r = results(&config, CONFIG, cells);
     for out in [bench::report::markdown(&config, &r), bench::report::summary(&config, &r)] {
         let table_lines =
             out.lines().filter(|l| l.starts_with('|') || l.starts_with("photons") || l.starts_with("256"));
@@ -251,7 +169,7 @@ fn rows_without_photons_plot_as_grouped_bars() {
         .replace("compare = { axis = \"technique\", baseline = \"base\" }\n", "");
     let text = &text[..text.find("[[paper]]").expect("paper")];
     let config: Config = toml::from_str(text).expect("parses");
-    let r = results(&config, vec![cell(0, 0, "base", 256, &STEADY), cell(1, 1, "fast", 256, &NOISY)]);
+    let r = results(&config, text, vec![cell(0, 0, "base", 256, &STEADY), cell(1, 1, "fast", 256, &NOISY)]);
     let fig = bench::figure::figure(&config, &r, &bench::table::grid(&config, &r));
     assert_eq!(fig.panels.len(), 1);
     assert!(fig.panels[0].bars, "categorical rows are bars");
@@ -279,7 +197,7 @@ fn by_scene(scenes: usize) -> (Config, Results) {
             }
         }
     }
-    let r = results(&config, cells);
+    let r = results(&config, CONFIG, cells);
     (config, r)
 }
 
@@ -323,7 +241,7 @@ fn a_technique_that_cannot_run_at_a_photon_count_reads_na() {
     assert_eq!(planned, [(0, 4096), (1, 4096), (1, 16384)], "the plan skips wd-points at 16384²");
     let cells =
         vec![cell(0, 0, "base", 4096, &STEADY), cell(1, 1, "fast", 4096, &STEADY), cell(2, 1, "fast", 16384, &NOISY)];
-    let r = results(&config, cells);
+    let r = results(&config, CONFIG, cells);
     let md = bench::report::markdown(&config, &r);
     let big = row(&md, "16384²", 0);
     assert!(big[1].starts_with("N/A (20.0"), "wd-points at 16384²: {big:?}\n{md}");

@@ -79,6 +79,24 @@ pub struct BenchArgs {
     /// fit a fixed amount of device time (`scripts/gpu_suite.sh`).
     #[arg(long, value_name = "SECONDS", value_parser = parse_budget)]
     pub max_time_budget: Option<f64>,
+    /// A timing cell that ran while other processes used more than this many cores (from
+    /// /proc/stat, less this process) is measured again after a pause, then marked busy (`~`).
+    #[arg(long, value_name = "CORES", default_value_t = 0.1, value_parser = parse_cores)]
+    pub busy_cores: f64,
+    /// How many times a busy cell is measured again before it is marked busy.
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=10))]
+    pub busy_retries: u32,
+    /// Write a table with busy cells into the repository's results/ anyway (it is refused:
+    /// committed tables come from a quiet machine).
+    #[arg(long)]
+    pub allow_busy: bool,
+}
+
+fn parse_cores(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && (0.0..=1024.0).contains(&v) => Ok(v),
+        _ => Err(format!("`{s}`: cores from 0 to 1024")),
+    }
 }
 
 fn parse_budget(s: &str) -> Result<f64, String> {
@@ -188,6 +206,10 @@ pub struct RenderArgs {
     /// Frames to render (timings are kept for each; the image is the last frame's).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=100_000), help_heading = "Output")]
     pub frames: u32,
+    /// `per-pass`: one-shot frames with a timestamp pair around every pass; `throughput`: a ring
+    /// of 2 frames in flight, timed per frame, creating nothing once warm (docs/bench.md).
+    #[arg(long, default_value = "per-pass", value_parser = ["per-pass", "throughput"], help_heading = "Output")]
+    pub frame_mode: String,
 }
 
 /// Writes the `render` flags that override the scene's `[caustics]` (`flags`) over `s`, the

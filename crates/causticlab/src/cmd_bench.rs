@@ -52,6 +52,9 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
         filter: args.filter.clone(),
         shard: args.shard.clone(),
         results_root: args.results.clone(),
+        busy_cores: args.busy_cores,
+        busy_retries: args.busy_retries,
+        refuse_busy: !args.quick && !args.allow_busy && bench::meta::in_work_tree(&args.results),
     };
     let out = bench::run(&ctx, &shaders, &config, &bench_opts)?;
     report(&out);

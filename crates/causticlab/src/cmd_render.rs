@@ -65,7 +65,9 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     check_sizes(&scene, ctx.info())?;
 
     let shaders = ShaderCompiler::new(&render::shader_root()).context("creating the shader compiler")?;
-    let req = RenderRequest { dumps, frames: args.frames };
+    let frame_mode = render::FrameMode::parse(&args.frame_mode)
+        .ok_or_else(|| input_error!("--frame-mode: `{}`: expected per-pass or throughput", args.frame_mode))?;
+    let req = RenderRequest { dumps, frames: args.frames, frame_mode };
     let rendered = render::render(&ctx, &shaders, &scene, &req)
         .with_context(|| format!("rendering {} with technique `{technique}`", args.scene.display()))?;
 
@@ -101,6 +103,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         rendered.photons_emitted,
         &args.scene,
         ctx.validation_enabled(),
+        frame_mode.name(),
         &rendered.frames,
     );
     let json = serde_json::to_string_pretty(&timings).context("serialising timings.json")?;
@@ -118,14 +121,19 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     }
 
     println!(
-        "{} on {} ({}), {} frame(s), technique `{}`",
+        "{} on {} ({}), {} {} frame(s), technique `{}`",
         args.scene.display(),
         ctx.info().name,
         ctx.info().driver_info,
         timings.frames,
+        timings.frame_mode,
         technique
     );
-    if timings.passes.is_empty() {
+    if frame_mode != render::FrameMode::PerPass {
+        let gpu: Vec<String> =
+            timings.per_frame.iter().filter_map(|f| f.gpu_frame_ms).map(|ms| format!("{ms:.3}")).collect();
+        println!("GPU ms per frame (whole frames; no pass is timed alone): {}", gpu.join(" "));
+    } else if timings.passes.is_empty() {
         println!("(no GPU timings: the device has no timestamps)");
     } else {
         println!("{:<32} {:>10} {:>10} {:>10}", "pass", "median ms", "min ms", "max ms");

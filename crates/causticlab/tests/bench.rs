@@ -106,20 +106,34 @@ fn quick_wyman2008_table2_copies_each_data_type() {
 #[test]
 fn quick_wyman_davis2006_table1_runs_static_and_dynamic_lighting() {
     let (_, r) = quick_run("wyman_davis2006_table1.toml");
-    for cell in r["cells"].as_array().expect("cells") {
+    let cells = r["cells"].as_array().expect("cells");
+    let passes = |c: &Value| c["frame_counters"]["throughput"]["passes"].as_f64().expect("throughput passes per frame");
+    for cell in cells {
         let lighting = cell["cell"]["lighting"].as_str().unwrap_or_default();
         assert!(metric(cell, "fps").unwrap_or(-1.0) > 0.0);
+        // fps is measured in throughput frames: warm ones make no Vulkan object, submit once.
+        let t = &cell["frame_counters"]["throughput"];
+        assert_eq!(t["most_objects"].as_u64(), Some(0), "{}: {t}", cell["cell"]);
+        assert_eq!(t["submits"].as_f64(), Some(1.0), "{}: {t}", cell["cell"]);
+        assert!(cell["block_ms"].as_array().is_some_and(|b| b.len() >= 2), "{}", cell["cell"]);
         // Static lighting renders its photon buffer once before the timed frames and reuses it:
-        // no photon pass in any measured frame.
-        let photon_samples = cell["passes"]
-            .as_array()
-            .expect("passes")
-            .iter()
-            .find(|p| p["name"].as_str().is_some_and(|n| n.starts_with("photon_buffer.")))
-            .and_then(|p| p["samples_ms"].as_array().map(|s| s.len()))
-            .unwrap_or(0);
-        let expected = if lighting == "static" { 0 } else { 2 };
-        assert_eq!(photon_samples, expected, "{lighting}: photon buffer rendered in {photon_samples} frames");
+        // its frames record fewer passes than the dynamic twin's.
+        if lighting == "dynamic" {
+            let twin = cells
+                .iter()
+                .find(|c| {
+                    c["cell"]["lighting"] == "static"
+                        && ["scene", "technique", "photons"].iter().all(|k| c["cell"][k] == cell["cell"][k])
+                })
+                .expect("a static twin");
+            assert!(
+                passes(twin) < passes(cell),
+                "{}: static {} passes, dynamic {}",
+                cell["cell"],
+                passes(twin),
+                passes(cell)
+            );
+        }
     }
 }
 
@@ -208,6 +222,10 @@ columns = ["technique", "metric"]
 fn bench(args: &[&std::ffi::OsStr]) -> Run {
     let mut all: Vec<&std::ffi::OsStr> = vec!["bench".as_ref()];
     all.extend(args);
+    if args.first().is_some_and(|a| *a != "merge") {
+        // Tests run side by side: a busy cell is marked, not measured again.
+        all.extend([std::ffi::OsStr::new("--busy-retries"), std::ffi::OsStr::new("0")]);
+    }
     causticlab(&all)
 }
 
@@ -1034,4 +1052,111 @@ fn quick_quality_adaptive_compares_every_technique_with_the_reference() {
         assert!(splats("max-error") < splats("wd-points"), "{photons}: adaptive splats every texel");
         assert_eq!(splats("max-error"), splats("max-error · varying multi-res"), "{photons}");
     }
+}
+
+#[test]
+fn a_metric_whose_passes_match_nothing_is_refused_with_the_passes_recorded() {
+    let dir = scratch("bench-drift");
+    let drifted = SMALL.replace("passes = [\"splat.*\"]", "passes = [\"splat_renamed.*\"]");
+    assert_ne!(drifted, SMALL);
+    let cfg = config_file(&dir, "drift.toml", &drifted);
+    let r = bench(&[cfg.as_os_str(), "--results".as_ref(), dir.join("out").as_os_str()]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(
+        r.stderr.contains("`splat_renamed.*`")
+            && r.stderr.contains("splat.light0")
+            && r.stderr.contains("metric[2].passes"),
+        "the error names the pattern, the key and the passes recorded: {}",
+        r.describe()
+    );
+    assert!(files_under(&dir.join("out")).iter().all(|f| !f.ends_with("drift.md")), "a refused run wrote its table");
+    // Saying why a metric may have no such pass turns the cells into n/a with the reason listed.
+    let allowed = drifted.replace(
+        "passes = [\"splat_renamed.*\"]",
+        "passes = [\"splat_renamed.*\"]\nabsent = \"renamed on purpose (test)\"",
+    );
+    let cfg = config_file(&dir, "allowed.toml", &allowed);
+    let r = bench(&[cfg.as_os_str(), "--results".as_ref(), dir.join("ok").as_os_str()]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    let md = std::fs::read_to_string(device_dir(&dir.join("ok")).join("allowed.md")).expect("table");
+    assert!(md.contains("renamed on purpose (test)"), "{md}");
+}
+
+/// Burns one core in another process until dropped.
+struct Burner(std::process::Child);
+impl Drop for Burner {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+#[test]
+fn a_cell_measured_while_another_process_burns_a_core_is_marked_busy_and_kept_out_of_results() {
+    // A git work tree whose results/ folder is where committed tables would go.
+    let repo = scratch("bench-busy");
+    let git = std::process::Command::new("git").args(["init", "-q"]).current_dir(&repo).status().expect("git");
+    assert!(git.success());
+    let one_cell = SMALL
+        .replace(
+            "scenes = [\"SCENES/sphere_on_plane.toml\", \"SCENES/sphere_oblique.toml\"]",
+            "scenes = [\"SCENES/sphere_on_plane.toml\"]",
+        )
+        .replace("photons = [80, 128]", "photons = [80]")
+        .replace(
+            "[run]\nwarmup_frames = 0\nmeasured_frames = 1",
+            "[run]\nwarmup_frames = 0\nmeasured_frames = 3\ntime_budget_s = 1.0",
+        );
+    let cfg = config_file(&repo, "busy.toml", &one_cell);
+    let _burner =
+        Burner(std::process::Command::new("sh").args(["-c", "while :; do :; done"]).spawn().expect("a busy process"));
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let run = |extra: &[&str], results: &str| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_causticlab"))
+            .args(["bench".as_ref(), cfg.as_os_str(), "--results".as_ref(), results.as_ref()])
+            .args(extra)
+            .current_dir(&repo)
+            .env_remove("VK_LOADER_DEBUG")
+            .output()
+            .expect("causticlab");
+        (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    // Into the work tree's results/: measured again once, still busy, refused; nothing written.
+    let (code, stderr) = run(&["--busy-retries", "1"], "results");
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("measuring it again"), "the busy cell was not measured again: {stderr}");
+    assert!(stderr.contains("kept the machine busy") && stderr.contains("cores"), "{stderr}");
+    assert!(!repo.join("results").join("README.md").exists(), "a busy run wrote into results/");
+    // Elsewhere the table is written, with the cells marked.
+    let elsewhere = scratch("bench-busy-out");
+    let (code, stderr) = run(&["--busy-retries", "0"], &elsewhere.display().to_string());
+    assert_eq!(code, Some(0), "{stderr}");
+    let dir = device_dir(&elsewhere);
+    let md = std::fs::read_to_string(dir.join("busy.md")).expect("table");
+    assert!(md.contains("busy cells (`~`)") && md.contains("~"), "{md}");
+    let json = json(&dir.join("busy.json"));
+    for c in json["cells"].as_array().expect("cells") {
+        assert_eq!(c["busy"], true, "{}", c["cell"]);
+        assert!(
+            c["other_cores"].as_f64().is_some_and(|x| x > 0.5),
+            "another process burned a core: {}",
+            c["other_cores"]
+        );
+    }
+}
+
+/// Every file under `dir` (none if it does not exist).
+fn files_under(dir: &Path) -> Vec<PathBuf> {
+    let mut out = vec![];
+    if let Ok(entries) = std::fs::read_dir(dir) {
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                out.extend(files_under(&p));
+            } else {
+                out.push(p);
+            }
+        }
+    }
+    out
 }

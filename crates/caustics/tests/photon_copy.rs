@@ -42,7 +42,8 @@ fn caustic_map_of(
     copy: Option<CopyType>,
     steps: &[FrameStep],
 ) -> Vec<f64> {
-    let mut r = Renderer::new(ctx, sh, scene, &RendererOptions { photon_copy: copy }).expect("renderer");
+    let mut r =
+        Renderer::new(ctx, sh, scene, &RendererOptions { photon_copy: copy, ..Default::default() }).expect("renderer");
     for s in steps {
         r.frame(*s).expect("frame");
     }

@@ -82,6 +82,7 @@ impl Buffer {
             return Err(VkError::Call { call: "vkBindBufferMemory", result: e });
         }
         ctx.set_name(raw, name);
+        ctx.shared.counters.object(2); // the buffer and its memory
         let id = ctx.shared.new_id();
         if let Ok(mut t) = ctx.shared.tracker.lock() {
             t.register(id, 1);

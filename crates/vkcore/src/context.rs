@@ -29,6 +29,7 @@ pub(crate) struct Shared {
     pub allocator: Mutex<Option<Allocator>>,
     pub tracker: Mutex<Tracker>,
     pub command_pool: Mutex<vk::CommandPool>,
+    pub counters: crate::counters::AtomicCounters,
     next_id: AtomicU64,
 }
 
@@ -102,6 +103,7 @@ impl Context {
                 allocator: Mutex::new(Some(allocator)),
                 tracker: Mutex::new(Tracker::default()),
                 command_pool: Mutex::new(command_pool),
+                counters: Default::default(),
                 next_id: AtomicU64::new(1),
             }),
             instance,
@@ -124,6 +126,11 @@ impl Context {
 
     pub fn validation_enabled(&self) -> bool {
         self.instance.validation_enabled()
+    }
+
+    /// Objects created, submits, barriers and timestamps so far (see [`crate::Counters`]).
+    pub fn counters(&self) -> crate::Counters {
+        self.shared.counters.snapshot()
     }
 
     /// Waits until the device is idle.

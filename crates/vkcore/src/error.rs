@@ -31,8 +31,16 @@ pub enum VkError {
     Alloc { name: String, bytes: u64, message: String },
     /// A submitted frame did not finish: its fence wait timed out or the device was lost. The
     /// crash marker says which passes had finished.
-    #[error("{}", frame_failed(*.result, .last_finished, .next, .passes))]
-    FrameFailed { result: vk::Result, last_finished: Option<String>, next: Option<String>, passes: Vec<String> },
+    #[error("{}", frame_failed(*.result, .last_finished, .next, .passes, .ring))]
+    FrameFailed {
+        result: vk::Result,
+        last_finished: Option<String>,
+        next: Option<String>,
+        passes: Vec<String>,
+        /// A ring frame: its number, its slot, and the last frame number the slot's crash marker
+        /// says had finished (ring frames write it once, at their end).
+        ring: Option<(u64, usize, Option<u64>)>,
+    },
     /// A request that can never work (zero-sized image, size above the device limit, ...).
     #[error("{0}")]
     Invalid(String),
@@ -40,8 +48,25 @@ pub enum VkError {
 
 pub type Result<T> = std::result::Result<T, VkError>;
 
-fn frame_failed(result: vk::Result, last: &Option<String>, next: &Option<String>, passes: &[String]) -> String {
+fn frame_failed(
+    result: vk::Result,
+    last: &Option<String>,
+    next: &Option<String>,
+    passes: &[String],
+    ring: &Option<(u64, usize, Option<u64>)>,
+) -> String {
     let what = if result == vk::Result::TIMEOUT { "the frame timed out" } else { "the frame failed" };
+    if let Some((frame, slot, finished)) = ring {
+        let before = match finished {
+            Some(f) => format!("the last frame that finished in this slot was frame {f}"),
+            None => "no earlier frame had finished in this slot".into(),
+        };
+        return format!(
+            "frame {frame} (ring slot {slot}): {what} ({result:?}); {before}; the frame's {} passes: {}",
+            passes.len(),
+            passes.join(", ")
+        );
+    }
     let at = match (last, next) {
         (Some(l), Some(n)) => format!("the last pass that finished was `{l}`; the one after it, `{n}`, had not"),
         (None, Some(n)) => format!("no pass had finished, not even the first, `{n}`"),

@@ -122,6 +122,7 @@ pub(crate) fn sync(ctx: &Context, cb: vk::CommandBuffer, uses: &[Use]) -> Result
     let dep =
         vk::DependencyInfo::default().buffer_memory_barriers(&buffer_barriers).image_memory_barriers(&image_barriers);
     unsafe { ctx.shared.raw().cmd_pipeline_barrier2(cb, &dep) };
+    ctx.shared.counters.barrier();
     Ok(())
 }
 
@@ -149,7 +150,7 @@ fn image_barrier(
         })
 }
 
-/// Options for recording a frame.
+/// Options for recording a one-shot frame ([`Context::frame`]).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct FrameOptions {
     /// Timestamp pair around every pass (on when the device has timestamps).
@@ -162,50 +163,102 @@ pub struct FrameOptions {
 }
 
 /// Ten minutes: lavapipe at 4096^2 photons is slow, but a hang must not block CI forever.
-const FENCE_TIMEOUT: Duration = Duration::from_secs(600);
+pub(crate) const FENCE_TIMEOUT: Duration = Duration::from_secs(600);
 
-pub struct Frame {
+/// What a frame records into: its command buffer, queries and crash marker. A one-shot frame
+/// makes its own and frees them after its submit; a ring slot keeps its own from frame to frame
+/// (see `ring.rs`).
+pub(crate) struct FrameResources {
     ctx: Context,
-    cb: vk::CommandBuffer,
-    queries: QueryPools,
-    marker: CrashMarker,
-    fence_timeout: Duration,
-    passes: Vec<String>,
-    finished: bool,
+    pub cb: vk::CommandBuffer,
+    pub queries: QueryPools,
+    pub marker: CrashMarker,
 }
 
-impl Context {
-    /// Starts recording a frame (up to `max_passes` profiled passes).
-    pub fn frame(&self, opts: FrameOptions) -> Result<Frame> {
+impl FrameResources {
+    pub fn new(ctx: &Context, timestamps: bool, stats: bool) -> Result<FrameResources> {
         let pool =
-            *self.shared.command_pool.lock().map_err(|_| VkError::Invalid("command pool lock poisoned".into()))?;
+            *ctx.shared.command_pool.lock().map_err(|_| VkError::Invalid("command pool lock poisoned".into()))?;
         let info = vk::CommandBufferAllocateInfo::default()
             .command_pool(pool)
             .level(vk::CommandBufferLevel::PRIMARY)
             .command_buffer_count(1);
-        let cb = unsafe { self.shared.raw().allocate_command_buffers(&info) }.call("vkAllocateCommandBuffers")?[0];
-        let timestamps = opts.timestamps && self.info().has(crate::Feature::Timestamps);
-        let stats = opts.pipeline_statistics && self.info().has(crate::Feature::PipelineStatisticsQuery);
-        let free = || unsafe { self.shared.raw().free_command_buffers(pool, &[cb]) };
-        let mut queries = match QueryPools::new(self, timestamps, stats) {
+        let cb = unsafe { ctx.shared.raw().allocate_command_buffers(&info) }.call("vkAllocateCommandBuffers")?[0];
+        ctx.shared.counters.object(1);
+        let free = || unsafe { ctx.shared.raw().free_command_buffers(pool, &[cb]) };
+        let queries = match QueryPools::new(ctx, timestamps, stats) {
             Ok(q) => q,
             Err(e) => {
                 free();
                 return Err(e);
             }
         };
-        let marker = match CrashMarker::new(self) {
+        let marker = match CrashMarker::new(ctx) {
             Ok(m) => m,
             Err(e) => {
-                queries.destroy(self);
                 free();
                 return Err(e);
             }
         };
+        Ok(FrameResources { ctx: ctx.clone(), cb, queries, marker })
+    }
+}
+
+impl Drop for FrameResources {
+    fn drop(&mut self) {
+        if let Ok(pool) = self.ctx.shared.command_pool.lock() {
+            unsafe { self.ctx.shared.raw().free_command_buffers(*pool, &[self.cb]) };
+        }
+        self.queries.destroy(&self.ctx);
+    }
+}
+
+/// Which ring, slot and frame number a ring frame belongs to.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RingTag {
+    pub ring: u64,
+    pub slot: usize,
+    pub frame: u64,
+}
+
+pub struct Frame {
+    pub(crate) ctx: Context,
+    /// Taken back by the ring at its submit; freed by `Drop` otherwise.
+    pub(crate) res: Option<FrameResources>,
+    fence_timeout: Duration,
+    pub(crate) passes: Vec<String>,
+    pub(crate) finished: bool,
+    /// A ring frame: no crash-marker barrier after each pass (one at the frame's end), and it is
+    /// submitted by its ring.
+    pub(crate) ring: Option<RingTag>,
+    /// The context's counters when recording began.
+    pub(crate) counters_at_begin: crate::Counters,
+    /// Timestamps and statistics around each pass (one-shot frames; ring frames timed per pass).
+    pass_queries: bool,
+}
+
+impl Context {
+    /// Starts recording a one-shot frame: its command buffer, query pools, crash marker and
+    /// fence are made for it and freed after [`Frame::submit`], which waits for the GPU (the
+    /// per-pass frame mode; [`crate::FrameRing`] keeps them for the throughput mode).
+    pub fn frame(&self, opts: FrameOptions) -> Result<Frame> {
+        let counters_at_begin = self.counters();
+        let timestamps = opts.timestamps && self.info().has(crate::Feature::Timestamps);
+        let stats = opts.pipeline_statistics && self.info().has(crate::Feature::PipelineStatisticsQuery);
+        let res = FrameResources::new(self, timestamps, stats)?;
         let fence_timeout = opts.fence_timeout.unwrap_or(FENCE_TIMEOUT);
+        let cb = res.cb;
         // From here on the frame owns (and its Drop frees) the command buffer and queries.
-        let mut frame =
-            Frame { ctx: self.clone(), cb, queries, marker, fence_timeout, passes: vec![], finished: false };
+        let mut frame = Frame {
+            ctx: self.clone(),
+            res: Some(res),
+            fence_timeout,
+            passes: vec![],
+            finished: false,
+            ring: None,
+            counters_at_begin,
+            pass_queries: true,
+        };
         let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
         if let Err(e) = unsafe { self.shared.raw().begin_command_buffer(cb, &begin) } {
             frame.finished = true;
@@ -216,42 +269,96 @@ impl Context {
 }
 
 impl Frame {
+    pub(crate) fn from_ring(
+        ctx: &Context,
+        res: FrameResources,
+        tag: RingTag,
+        counters_at_begin: crate::Counters,
+        pass_queries: bool,
+    ) -> Frame {
+        Frame {
+            ctx: ctx.clone(),
+            res: Some(res),
+            fence_timeout: FENCE_TIMEOUT,
+            passes: vec![],
+            finished: false,
+            ring: Some(tag),
+            counters_at_begin,
+            pass_queries,
+        }
+    }
+
+    fn res(&mut self) -> Result<&mut FrameResources> {
+        self.res.as_mut().ok_or_else(|| VkError::Invalid("the frame was already submitted".into()))
+    }
+
     /// Starts describing a pass named `name` (see [`Pass`]).
     pub fn pass<'a>(&mut self, name: &str) -> Pass<'_, 'a> {
         Pass::new(self, name)
     }
 
+    /// Passes recorded so far.
+    pub fn pass_count(&self) -> usize {
+        self.passes.len()
+    }
+
     /// Records one pass: barriers for `uses`, then a label, timestamps and statistics around
-    /// whatever `record` does. Descriptors pushed in it must be among `uses`.
+    /// whatever `record` does (and, in a one-shot frame, the crash marker after it). Descriptors
+    /// pushed in it must be among `uses`.
     pub(crate) fn record_pass<F>(&mut self, name: &str, uses: &[Use], record: F) -> Result<()>
     where
         F: FnOnce(&mut Cmd) -> Result<()>,
     {
-        sync(&self.ctx, self.cb, uses)?;
+        let ctx = self.ctx.clone();
         let index = self.passes.len() as u32;
+        let per_pass_marker = self.ring.is_none();
+        if index >= crate::MAX_PASSES {
+            return Err(VkError::Invalid(format!(
+                "pass `{name}`: more than {} passes in one frame",
+                crate::MAX_PASSES
+            )));
+        }
+        let pass_queries = self.pass_queries;
+        let res = self.res()?;
+        let cb = res.cb;
+        sync(&ctx, cb, uses)?;
+        if pass_queries {
+            res.queries.begin(&ctx, cb, index)?;
+        }
         self.passes.push(name.to_string());
-        self.queries.begin(&self.ctx, self.cb, index)?;
-        let mut cmd = Cmd::new(&self.ctx, self.cb, uses.iter().map(Use::key).collect());
+        let mut cmd = Cmd::new(&ctx, cb, uses.iter().map(Use::key).collect());
         cmd.begin_label(name);
         let result = record(&mut cmd);
         cmd.end_rendering();
         cmd.end_label();
         drop(cmd);
         result?;
-        self.queries.end(&self.ctx, self.cb, index);
-        self.marker.record(&self.ctx, self.cb, index + 1);
+        let res = self.res()?;
+        if pass_queries {
+            res.queries.end(&ctx, cb, index);
+        }
+        if per_pass_marker {
+            res.marker.record(&ctx, cb, index + 1);
+        }
         Ok(())
     }
 
-    /// Submits, waits for the GPU, and returns each pass's time and statistics.
+    /// Submits, waits for the GPU, and returns each pass's time and statistics (a one-shot
+    /// frame; a ring's frame goes back through [`crate::FrameRing::submit`]).
     pub fn submit(mut self) -> Result<FrameReport> {
+        if self.ring.is_some() {
+            return Err(VkError::Invalid("a ring's frame is submitted with FrameRing::submit".into()));
+        }
         self.finished = true;
+        let res = self.res.take().ok_or_else(|| VkError::Invalid("the frame was already submitted".into()))?;
         let d = self.ctx.shared.raw();
-        unsafe { d.end_command_buffer(self.cb) }.call("vkEndCommandBuffer")?;
+        unsafe { d.end_command_buffer(res.cb) }.call("vkEndCommandBuffer")?;
         let fence = unsafe { d.create_fence(&vk::FenceCreateInfo::default(), None) }.call("vkCreateFence")?;
-        let cbs = [vk::CommandBufferSubmitInfo::default().command_buffer(self.cb)];
+        self.ctx.shared.counters.object(1);
+        let cbs = [vk::CommandBufferSubmitInfo::default().command_buffer(res.cb)];
         let submit = vk::SubmitInfo2::default().command_buffer_infos(&cbs);
         let timeout = self.fence_timeout.as_nanos().min(u64::MAX as u128) as u64;
+        self.ctx.shared.counters.submit();
         let result = unsafe { d.queue_submit2(self.ctx.shared.device.queue, &[submit], fence) }
             .map_err(|e| {
                 VkError::Invalid(format!(
@@ -262,8 +369,8 @@ impl Frame {
             .and_then(|_| {
                 unsafe { d.wait_for_fences(&[fence], true, timeout) }.map_err(|result| {
                     // Read the marker now: waiting below lets the GPU finish (or fail) the rest.
-                    let (last_finished, next) = progress(&self.passes, self.marker.read());
-                    VkError::FrameFailed { result, last_finished, next, passes: self.passes.clone() }
+                    let (last_finished, next) = progress(&self.passes, res.marker.read());
+                    VkError::FrameFailed { result, last_finished, next, passes: self.passes.clone(), ring: None }
                 })
             });
         if result.is_err() {
@@ -273,32 +380,48 @@ impl Frame {
         }
         unsafe { d.destroy_fence(fence, None) };
         result?;
-        let (times, stats) = self.queries.read(&self.ctx, self.passes.len())?;
-        let passes = self
-            .passes
-            .iter()
-            .enumerate()
-            .map(|(i, name)| PassTiming {
-                name: name.clone(),
-                gpu_ms: times.as_ref().and_then(|t| t.get(i).copied()),
-                stats: stats.as_ref().and_then(|s| s.get(i).copied()).map(PipelineStats::from_raw),
-            })
-            .collect();
-        Ok(FrameReport { passes })
+        let counters = self.ctx.counters().since(&self.counters_at_begin);
+        let mut report = read_report(&self.ctx, &res, &self.passes, None)?;
+        report.counters = counters;
+        Ok(report)
     }
+}
+
+/// The passes' times and statistics of a finished frame, from its queries (for a frame timed as
+/// a whole, `frame_timing`: the frame's two timestamps are the chunk's first pair).
+pub(crate) fn read_report(
+    ctx: &Context,
+    res: &FrameResources,
+    passes: &[String],
+    frame_timing: Option<()>,
+) -> Result<FrameReport> {
+    if frame_timing.is_some() {
+        let (times, _) = res.queries.read(ctx, 1)?;
+        let passes = passes.iter().map(|name| PassTiming { name: name.clone(), gpu_ms: None, stats: None }).collect();
+        return Ok(FrameReport { passes, frame_gpu_ms: times.and_then(|t| t.first().copied()), ..Default::default() });
+    }
+    let (times, stats) = res.queries.read(ctx, passes.len())?;
+    let passes = passes
+        .iter()
+        .enumerate()
+        .map(|(i, name)| PassTiming {
+            name: name.clone(),
+            gpu_ms: times.as_ref().and_then(|t| t.get(i).copied()),
+            stats: stats.as_ref().and_then(|s| s.get(i).copied()).map(PipelineStats::from_raw),
+        })
+        .collect();
+    Ok(FrameReport { passes, ..Default::default() })
 }
 
 impl Drop for Frame {
     fn drop(&mut self) {
-        let d = self.ctx.shared.raw();
-        unsafe {
+        if let Some(res) = self.res.take() {
             if !self.finished {
-                let _ = d.end_command_buffer(self.cb);
+                unsafe {
+                    let _ = self.ctx.shared.raw().end_command_buffer(res.cb);
+                }
             }
-            if let Ok(pool) = self.ctx.shared.command_pool.lock() {
-                d.free_command_buffers(*pool, &[self.cb]);
-            }
+            drop(res);
         }
-        self.queries.destroy(&self.ctx);
     }
 }

@@ -154,6 +154,7 @@ impl Image {
             return Err(VkError::Call { call: "vkBindImageMemory", result: e });
         }
         ctx.set_name(raw, &desc.name);
+        ctx.shared.counters.object(2); // the image and its memory
         let id = ctx.shared.new_id();
         if let Ok(mut t) = ctx.shared.tracker.lock() {
             t.register(id, (desc.mip_levels * desc.array_layers) as usize);
@@ -196,6 +197,7 @@ impl Image {
             .format(self.desc.format)
             .subresource_range(range);
         let raw = unsafe { self.shared.raw().create_image_view(&info, None) }.call("vkCreateImageView")?;
+        self.shared.counters.object(1);
         Ok(ImageView {
             shared: self.shared.clone(),
             raw,
@@ -277,6 +279,7 @@ impl Sampler {
             .address_mode_w(vk::SamplerAddressMode::CLAMP_TO_EDGE)
             .max_lod(vk::LOD_CLAMP_NONE);
         let raw = unsafe { ctx.shared.raw().create_sampler(&info, None) }.call("vkCreateSampler")?;
+        ctx.shared.counters.object(1);
         Ok(Sampler { shared: ctx.shared.clone(), raw })
     }
 }

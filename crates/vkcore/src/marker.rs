@@ -35,6 +35,7 @@ impl CrashMarker {
             d.cmd_pipeline_barrier2(cb, &dep);
             d.cmd_fill_buffer(cb, self.buffer.raw, 0, 4, finished);
         }
+        ctx.shared.counters.barrier();
     }
 
     /// How many passes had finished, as far as the GPU wrote it.

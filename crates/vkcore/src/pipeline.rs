@@ -170,6 +170,7 @@ fn make_layout(ctx: &Context, bindings: &[BindingKind]) -> Result<(vk::Descripto
         .bindings(&b);
     let d = ctx.shared.raw();
     let set_layout = unsafe { d.create_descriptor_set_layout(&info, None) }.call("vkCreateDescriptorSetLayout")?;
+    ctx.shared.counters.object(2); // the set layout and the pipeline layout
     let ranges = [vk::PushConstantRange { stage_flags: stages, offset: 0, size: PUSH_CONSTANT_BYTES }];
     let layouts = [set_layout];
     let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&layouts).push_constant_ranges(&ranges);
@@ -214,6 +215,7 @@ impl Pipeline {
         let result = Self::build_graphics(ctx, desc, layout);
         match result {
             Ok(raw) => {
+                ctx.shared.counters.object(2); // its modules (counted as one) and the pipeline
                 ctx.set_name(raw, &desc.name);
                 Ok(Pipeline {
                     shared: ctx.shared.clone(),
@@ -346,6 +348,7 @@ impl Pipeline {
         };
         match build() {
             Ok(raw) => {
+                ctx.shared.counters.object(2); // the module and the pipeline
                 ctx.set_name(raw, name);
                 Ok(Pipeline {
                     shared: ctx.shared.clone(),

@@ -8,8 +8,9 @@ use crate::Feature;
 use ash::vk;
 use std::collections::BTreeMap;
 
-/// Most passes one frame can profile (adaptive caustic maps' photon batches record a few per
-/// level per batch).
+/// Most passes one frame may record (adaptive caustic maps' photon batches record a few per level
+/// per batch; their plan keeps a frame under this, and a frame beyond it is an error). The query
+/// pools do not hold this many: they grow with the frame's passes (see `QueryPools`).
 pub const MAX_PASSES: u32 = 4096;
 
 /// Counters from a pipeline-statistics query (None where the device has no such counter).
@@ -54,6 +55,15 @@ pub struct PassTiming {
 #[derive(Debug, Clone, Default)]
 pub struct FrameReport {
     pub passes: Vec<PassTiming>,
+    /// GPU milliseconds of the whole frame, from a timestamp pair around it (ring frames timed
+    /// per frame, see [`crate::Timing`]).
+    pub frame_gpu_ms: Option<f64>,
+    /// The frame's number in its ring (0 for a one-shot frame) and its slot.
+    pub index: u64,
+    pub slot: Option<usize>,
+    /// What recording and submitting the frame asked of the driver (objects created, submits,
+    /// barriers, timestamps).
+    pub counters: crate::Counters,
 }
 
 impl FrameReport {
@@ -65,23 +75,28 @@ impl FrameReport {
     }
 }
 
-pub(crate) struct QueryPools {
+/// Passes per chunk of query pools: a frame's pools grow a chunk at a time, so they are sized
+/// to the passes it records (rounded up to a chunk), up to [`MAX_PASSES`].
+const CHUNK: u32 = 32;
+
+/// One chunk: timestamps for `CHUNK` passes (two each) and, optionally, their statistics.
+struct Chunk {
     timestamps: Option<vk::QueryPool>,
-    stats: Option<(vk::QueryPool, usize)>,
+    stats: Option<vk::QueryPool>,
+}
+
+/// A frame's timestamp and pipeline-statistics queries, in chunks made as passes need them. A
+/// ring slot keeps its chunks from frame to frame (reset from the host once the slot's fence
+/// has signalled), so a warm slot creates none.
+pub(crate) struct QueryPools {
+    timestamps: bool,
+    stats_flags: Option<vk::QueryPipelineStatisticFlags>,
+    chunks: Vec<Chunk>,
 }
 
 impl QueryPools {
     pub fn new(ctx: &Context, timestamps: bool, stats: bool) -> Result<QueryPools> {
-        let d = ctx.shared.raw();
-        let mut pools = QueryPools { timestamps: None, stats: None };
-        if timestamps {
-            let info =
-                vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2 * MAX_PASSES);
-            let p = unsafe { d.create_query_pool(&info, None) }.call("vkCreateQueryPool")?;
-            unsafe { d.reset_query_pool(p, 0, 2 * MAX_PASSES) };
-            pools.timestamps = Some(p);
-        }
-        if stats {
+        let stats_flags = stats.then(|| {
             let mut flags = vk::QueryPipelineStatisticFlags::INPUT_ASSEMBLY_VERTICES
                 | vk::QueryPipelineStatisticFlags::INPUT_ASSEMBLY_PRIMITIVES
                 | vk::QueryPipelineStatisticFlags::VERTEX_SHADER_INVOCATIONS
@@ -93,64 +108,113 @@ impl QueryPools {
                 flags |= vk::QueryPipelineStatisticFlags::GEOMETRY_SHADER_INVOCATIONS
                     | vk::QueryPipelineStatisticFlags::GEOMETRY_SHADER_PRIMITIVES;
             }
-            let info = vk::QueryPoolCreateInfo::default()
-                .query_type(vk::QueryType::PIPELINE_STATISTICS)
-                .query_count(MAX_PASSES)
-                .pipeline_statistics(flags);
-            match unsafe { d.create_query_pool(&info, None) } {
-                Ok(p) => {
-                    unsafe { d.reset_query_pool(p, 0, MAX_PASSES) };
-                    pools.stats = Some((p, flags.as_raw().count_ones() as usize));
-                }
-                Err(e) => {
-                    pools.destroy(ctx);
-                    return Err(crate::VkError::Call { call: "vkCreateQueryPool", result: e });
-                }
-            }
-        }
-        Ok(pools)
+            flags
+        });
+        Ok(QueryPools { timestamps, stats_flags, chunks: vec![] })
     }
 
-    pub fn begin(&self, ctx: &Context, cb: vk::CommandBuffer, pass: u32) -> Result<()> {
+    pub fn timestamps(&self) -> bool {
+        self.timestamps
+    }
+
+    /// Makes sure the chunk holding pass `pass` exists (created and reset from the host).
+    fn ensure(&mut self, ctx: &Context, pass: u32) -> Result<()> {
         if pass >= MAX_PASSES {
             return Err(crate::VkError::Invalid(format!("more than {MAX_PASSES} passes in one frame")));
         }
         let d = ctx.shared.raw();
-        unsafe {
-            if let Some(p) = self.timestamps {
-                d.cmd_write_timestamp2(cb, vk::PipelineStageFlags2::ALL_COMMANDS, p, 2 * pass);
+        while self.chunks.len() as u32 <= pass / CHUNK {
+            let mut chunk = Chunk { timestamps: None, stats: None };
+            if self.timestamps {
+                let info =
+                    vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2 * CHUNK);
+                let p = unsafe { d.create_query_pool(&info, None) }.call("vkCreateQueryPool")?;
+                ctx.shared.counters.object(1);
+                unsafe { d.reset_query_pool(p, 0, 2 * CHUNK) };
+                chunk.timestamps = Some(p);
             }
-            if let Some((p, _)) = self.stats {
-                d.cmd_begin_query(cb, p, pass, vk::QueryControlFlags::empty());
+            if let Some(flags) = self.stats_flags {
+                let info = vk::QueryPoolCreateInfo::default()
+                    .query_type(vk::QueryType::PIPELINE_STATISTICS)
+                    .query_count(CHUNK)
+                    .pipeline_statistics(flags);
+                match unsafe { d.create_query_pool(&info, None) } {
+                    Ok(p) => {
+                        ctx.shared.counters.object(1);
+                        unsafe { d.reset_query_pool(p, 0, CHUNK) };
+                        chunk.stats = Some(p);
+                    }
+                    Err(e) => {
+                        if let Some(t) = chunk.timestamps {
+                            unsafe { d.destroy_query_pool(t, None) };
+                        }
+                        return Err(crate::VkError::Call { call: "vkCreateQueryPool", result: e });
+                    }
+                }
             }
+            self.chunks.push(chunk);
+        }
+        Ok(())
+    }
+
+    /// Resets the queries of the first `passes` passes from the host, for the slot's next frame
+    /// (the GPU is done with them: the slot's fence has signalled).
+    pub fn reset(&self, ctx: &Context, passes: u32) {
+        let d = ctx.shared.raw();
+        for chunk in self.chunks.iter().take(passes.div_ceil(CHUNK) as usize) {
+            unsafe {
+                if let Some(p) = chunk.timestamps {
+                    d.reset_query_pool(p, 0, 2 * CHUNK);
+                }
+                if let Some(p) = chunk.stats {
+                    d.reset_query_pool(p, 0, CHUNK);
+                }
+            }
+        }
+    }
+
+    fn timestamp(&self, ctx: &Context, cb: vk::CommandBuffer, query: u32) {
+        if let Some(p) = self.chunks[(query / 2 / CHUNK) as usize].timestamps {
+            unsafe {
+                ctx.shared.raw().cmd_write_timestamp2(cb, vk::PipelineStageFlags2::ALL_COMMANDS, p, query % (2 * CHUNK))
+            };
+            ctx.shared.counters.timestamp();
+        }
+    }
+
+    /// Opens pass `pass`'s queries: its first timestamp (when every earlier command has
+    /// finished) and its statistics.
+    pub fn begin(&mut self, ctx: &Context, cb: vk::CommandBuffer, pass: u32) -> Result<()> {
+        self.ensure(ctx, pass)?;
+        self.timestamp(ctx, cb, 2 * pass);
+        if let Some(p) = self.chunks[(pass / CHUNK) as usize].stats {
+            unsafe { ctx.shared.raw().cmd_begin_query(cb, p, pass % CHUNK, vk::QueryControlFlags::empty()) };
         }
         Ok(())
     }
 
     pub fn end(&self, ctx: &Context, cb: vk::CommandBuffer, pass: u32) {
-        let d = ctx.shared.raw();
-        unsafe {
-            if let Some((p, _)) = self.stats {
-                d.cmd_end_query(cb, p, pass);
-            }
-            if let Some(p) = self.timestamps {
-                d.cmd_write_timestamp2(cb, vk::PipelineStageFlags2::ALL_COMMANDS, p, 2 * pass + 1);
-            }
+        if let Some(p) = self.chunks[(pass / CHUNK) as usize].stats {
+            unsafe { ctx.shared.raw().cmd_end_query(cb, p, pass % CHUNK) };
         }
+        self.timestamp(ctx, cb, 2 * pass + 1);
     }
 
-    /// Per-pass milliseconds and raw statistics for passes 0..n.
+    /// Per-pass milliseconds and raw statistics for passes 0..n (a frame timed as a whole has
+    /// one "pass": the frame).
     #[allow(clippy::type_complexity)]
     pub fn read(&self, ctx: &Context, n: usize) -> Result<(Option<Vec<f64>>, Option<Vec<[u64; 9]>>)> {
         let d = ctx.shared.raw();
         let info = ctx.info();
+        let flags = vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT;
         let mut times = None;
-        if let (Some(p), true) = (self.timestamps, n > 0) {
+        if self.timestamps && n > 0 {
             let mut raw = vec![0u64; 2 * n];
-            unsafe {
-                d.get_query_pool_results(p, 0, &mut raw, vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT)
+            for (c, chunk) in raw.chunks_mut(2 * CHUNK as usize).zip(&self.chunks) {
+                if let Some(p) = chunk.timestamps {
+                    unsafe { d.get_query_pool_results(p, 0, c, flags) }.call("vkGetQueryPoolResults(timestamps)")?;
+                }
             }
-            .call("vkGetQueryPoolResults(timestamps)")?;
             let mask = if info.timestamp_valid_bits >= 64 { u64::MAX } else { (1u64 << info.timestamp_valid_bits) - 1 };
             let period = info.timestamp_period_ns as f64;
             times = Some(
@@ -160,21 +224,30 @@ impl QueryPools {
             );
         }
         let mut stats = None;
-        if let (Some((p, count)), true) = (self.stats, n > 0) {
-            let flags = vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT;
-            // Results come as `count` consecutive u64s per query, in flag-bit order:
-            // IA vertices, IA primitives, VS, [GS invocations, GS primitives], clip inv, clip prims, FS, CS.
-            let rows: Vec<[u64; 9]> = if count == 9 {
-                let mut raw = vec![[0u64; 9]; n];
-                unsafe { d.get_query_pool_results(p, 0, &mut raw, flags) }
-                    .call("vkGetQueryPoolResults(pipeline statistics)")?;
-                raw
-            } else {
-                let mut raw = vec![[0u64; 7]; n];
-                unsafe { d.get_query_pool_results(p, 0, &mut raw, flags) }
-                    .call("vkGetQueryPoolResults(pipeline statistics)")?;
-                raw.iter().map(|c| [c[0], c[1], c[2], 0, 0, c[3], c[4], c[5], c[6]]).collect()
-            };
+        if let (Some(stat_flags), true) = (self.stats_flags, n > 0) {
+            let count = stat_flags.as_raw().count_ones() as usize;
+            let mut rows: Vec<[u64; 9]> = Vec::with_capacity(n);
+            for (k, chunk) in self.chunks.iter().enumerate() {
+                let here = (n - k * CHUNK as usize).min(CHUNK as usize);
+                if here == 0 || k * CHUNK as usize >= n {
+                    break;
+                }
+                let Some(p) = chunk.stats else { continue };
+                // Results come as `count` consecutive u64s per query, in flag-bit order:
+                // IA vertices, IA primitives, VS, [GS invocations, GS primitives], clip inv,
+                // clip prims, FS, CS.
+                if count == 9 {
+                    let mut raw = vec![[0u64; 9]; here];
+                    unsafe { d.get_query_pool_results(p, 0, &mut raw, flags) }
+                        .call("vkGetQueryPoolResults(pipeline statistics)")?;
+                    rows.extend(raw);
+                } else {
+                    let mut raw = vec![[0u64; 7]; here];
+                    unsafe { d.get_query_pool_results(p, 0, &mut raw, flags) }
+                        .call("vkGetQueryPoolResults(pipeline statistics)")?;
+                    rows.extend(raw.iter().map(|c| [c[0], c[1], c[2], 0, 0, c[3], c[4], c[5], c[6]]));
+                }
+            }
             stats = Some(rows);
         }
         Ok((times, stats))
@@ -182,12 +255,14 @@ impl QueryPools {
 
     pub fn destroy(&mut self, ctx: &Context) {
         let d = ctx.shared.raw();
-        unsafe {
-            if let Some(p) = self.timestamps.take() {
-                d.destroy_query_pool(p, None);
-            }
-            if let Some((p, _)) = self.stats.take() {
-                d.destroy_query_pool(p, None);
+        for chunk in self.chunks.drain(..) {
+            unsafe {
+                if let Some(p) = chunk.timestamps {
+                    d.destroy_query_pool(p, None);
+                }
+                if let Some(p) = chunk.stats {
+                    d.destroy_query_pool(p, None);
+                }
             }
         }
     }
@@ -257,6 +332,7 @@ mod tests {
     fn frame(ms: &[(&str, f64)]) -> FrameReport {
         FrameReport {
             passes: ms.iter().map(|(n, t)| PassTiming { name: n.to_string(), gpu_ms: Some(*t), stats: None }).collect(),
+            ..Default::default()
         }
     }
 

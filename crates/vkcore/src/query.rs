@@ -24,6 +24,7 @@ impl QueryPool {
         let info = vk::QueryPoolCreateInfo::default().query_type(kind).query_count(count);
         let d = ctx.shared.raw();
         let raw = unsafe { d.create_query_pool(&info, None) }.call("vkCreateQueryPool")?;
+        ctx.shared.counters.object(1);
         unsafe { d.reset_query_pool(raw, 0, count) };
         Ok(QueryPool { shared: ctx.shared.clone(), raw, kind, count })
     }

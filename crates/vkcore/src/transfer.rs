@@ -129,3 +129,39 @@ impl Context {
         Ok(bytemuck::pod_collect_to_vec(&self.read_image(image, mip, layer)?))
     }
 }
+
+impl Context {
+    /// The device's buffer-to-buffer copy bandwidth, GB/s of bytes read plus bytes written: the
+    /// fastest of three timed copies of `bytes` between two device buffers (None without
+    /// timestamps). Made for the bench's plausibility rule on copies.
+    pub fn copy_bandwidth(&self, bytes: u64) -> Result<Option<f64>> {
+        if !self.info().has(crate::Feature::Timestamps) {
+            return Ok(None);
+        }
+        let a = Buffer::new(self, "bandwidth source", bytes, Memory::Gpu)?;
+        let b = Buffer::new(self, "bandwidth destination", bytes, Memory::Gpu)?;
+        let mut f = self.frame(FrameOptions { timestamps: true, ..Default::default() })?;
+        f.pass("bandwidth.fill").uses([Use::buffer(&a, Access::TRANSFER_WRITE)]).record(|c| {
+            c.fill_buffer(&a, 0x3f80_0000);
+            Ok(())
+        })?;
+        for k in 0..3 {
+            let (src, dst) = if k % 2 == 0 { (&a, &b) } else { (&b, &a) };
+            f.pass("bandwidth.copy")
+                .uses([Use::buffer(src, Access::TRANSFER_READ), Use::buffer(dst, Access::TRANSFER_WRITE)])
+                .record(|c| {
+                    c.copy_buffer(src, dst, bytes);
+                    Ok(())
+                })?;
+        }
+        let report = f.submit()?;
+        let best = report
+            .passes
+            .iter()
+            .filter(|p| p.name == "bandwidth.copy")
+            .filter_map(|p| p.gpu_ms)
+            .filter(|ms| *ms > 0.0)
+            .reduce(f64::min);
+        Ok(best.map(|ms| 2.0 * bytes as f64 / (ms * 1e-3) / 1e9))
+    }
+}

@@ -35,7 +35,7 @@ impl<'c> Renderer<'c> {
         if opts.photon_copy.is_some() {
             return Err(crate::input_error!("photon_copy: `{technique}` has no photon buffer to copy").into());
         }
-        Ok(Renderer::Pool(Box::new(PoolRenderer::new(ctx, shaders, scene)?)))
+        Ok(Renderer::Pool(Box::new(PoolRenderer::new(ctx, shaders, scene, opts.frame_mode)?)))
     }
 
     /// Moves to `scene`, a pose of the scene this renderer was made for (`crate::animation`).
@@ -46,11 +46,29 @@ impl<'c> Renderer<'c> {
         }
     }
 
-    /// Records, submits and waits for one frame; returns its per-pass timings.
+    /// Records, submits and waits for one frame; returns its per-pass timings (per-pass
+    /// frames) or its frame time (a throughput frame waited for alone).
     pub fn frame(&mut self, step: FrameStep) -> Result<FrameReport> {
         match self {
             Renderer::Mesh(r) => r.frame(step),
             Renderer::Pool(r) => r.frame(step),
+        }
+    }
+
+    /// Throughput frames: records and submits the next frame without waiting for it; returns
+    /// the reports of the frames that finished meanwhile (`FrameMode::Throughput` only).
+    pub fn submit(&mut self, step: FrameStep) -> Result<Vec<FrameReport>> {
+        match self {
+            Renderer::Mesh(r) => r.submit(step),
+            Renderer::Pool(r) => r.submit(),
+        }
+    }
+
+    /// Waits for every throughput frame in flight; returns the reports not yet returned.
+    pub fn finish(&mut self) -> Result<Vec<FrameReport>> {
+        match self {
+            Renderer::Mesh(r) => r.finish(),
+            Renderer::Pool(r) => r.finish(),
         }
     }
 

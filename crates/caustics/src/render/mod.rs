@@ -5,11 +5,13 @@
 mod dispatch;
 mod dumps;
 mod eye;
+pub mod frame_mode;
 pub mod pipelines;
 mod renderer;
 pub mod targets;
 
 pub use dispatch::Renderer;
+pub use frame_mode::FrameMode;
 pub use renderer::{FrameStep, MeshRenderer, RendererOptions};
 
 use crate::image_io::ImageF32;
@@ -89,6 +91,8 @@ pub struct RenderRequest {
     pub dumps: Vec<String>,
     /// Frames rendered (timings are kept for each; the image is the last frame's).
     pub frames: u32,
+    /// One-shot frames timed pass by pass, or throughput frames in flight.
+    pub frame_mode: FrameMode,
 }
 
 pub struct Rendered {
@@ -135,11 +139,17 @@ pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
 /// Renders `scene` with the caustic technique in `scene.caustics` `req.frames` times (at
 /// least once) and reads back the last frame.
 pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &RenderRequest) -> Result<Rendered> {
-    let mut renderer = Renderer::new(ctx, shaders, scene, &RendererOptions::default())?;
+    let opts = RendererOptions { frame_mode: req.frame_mode, ..Default::default() };
+    let mut renderer = Renderer::new(ctx, shaders, scene, &opts)?;
     let mut frames = vec![];
     for _ in 0..req.frames.max(1) {
-        frames.push(renderer.frame(FrameStep { reuse_photons: false, pipeline_statistics: true })?);
+        let step = FrameStep { reuse_photons: false, pipeline_statistics: true };
+        match req.frame_mode {
+            FrameMode::PerPass => frames.push(renderer.frame(step)?),
+            FrameMode::Throughput { .. } => frames.extend(renderer.submit(step)?),
+        }
     }
+    frames.extend(renderer.finish()?);
     let final_image = renderer.final_image()?;
     let dumps = renderer.dumps(&req.dumps)?;
     Ok(Rendered { final_image, dumps, frames, photons_emitted: renderer.photons_emitted() })

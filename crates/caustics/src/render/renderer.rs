@@ -2,6 +2,7 @@
 //! benchmark can render many frames of an animation (uniforms and moving meshes updated per
 //! frame) and time each one. (Pool scenes have their own: see `super::dispatch`.)
 
+use super::frame_mode::{FrameMode, Slots};
 use super::{dumps, eye, pipelines, targets};
 use crate::gpu::{self, setup};
 use crate::image_io::ImageF32;
@@ -17,13 +18,15 @@ use crate::techniques::wyman_nichols2009::{
 };
 use crate::techniques::{self, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
 use anyhow::{Context as _, Result};
-use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, Sampler, ShaderCompiler, Use};
+use vkcore::{Access, Buffer, Context, Filter, Frame, FrameOptions, FrameReport, Memory, Sampler, ShaderCompiler, Use};
 
 /// Choices fixed for the renderer's lifetime.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RendererOptions {
     /// Copy the photon buffer into a vertex array before splatting (Wyman 2008 Table 1-2).
     pub photon_copy: Option<CopyType>,
+    /// One-shot frames timed pass by pass, or a ring of frames in flight (`super::frame_mode`).
+    pub frame_mode: FrameMode,
 }
 
 /// What one frame does.
@@ -64,10 +67,20 @@ pub struct MeshRenderer<'c> {
     active: bool,
     pipelines: pipelines::EyePipelines,
     meshes: Vec<setup::GpuMesh>,
-    uniforms: Buffer,
-    caustic_uniforms: Buffer,
+    /// The uniform buffers the passes bind: one device buffer updated by a pass (per-pass
+    /// frames), or one host-written buffer per ring slot (throughput frames); `slot` is the one
+    /// the last frame used.
+    uniforms: Vec<Buffer>,
+    caustic_uniforms: Vec<Buffer>,
+    slot: usize,
+    /// The uniforms of the current pose.
+    current_uniforms: (gpu::FrameUniforms, techniques::uniforms::CausticUniforms),
     /// New uniform contents to write at the start of the next frame.
     pending_uniforms: Option<(gpu::FrameUniforms, techniques::uniforms::CausticUniforms)>,
+    /// Throughput frames: the ring, and per slot a staging buffer for moved meshes.
+    slots: Option<Slots>,
+    /// Meshes moved by the last pose, uploaded by the next throughput frame.
+    moved_meshes: Vec<usize>,
     targets: targets::EyeTargets,
     caustic_targets: techniques::CausticTargets,
     nearest: Sampler,
@@ -114,8 +127,35 @@ impl<'c> MeshRenderer<'c> {
         let pipelines = pipelines::EyePipelines::new(ctx, shaders)?;
         let meshes = setup::upload_meshes(ctx, scene)?;
         let (fu, cu) = uniforms_of(scene, active)?;
-        let uniforms = ctx.buffer_with_data("frame uniforms", bytemuck::bytes_of(&fu))?;
-        let caustic_uniforms = ctx.buffer_with_data("caustic uniforms", bytemuck::bytes_of(&cu))?;
+        let (uniforms, caustic_uniforms, slots) = match opts.frame_mode {
+            FrameMode::PerPass => (
+                vec![ctx.buffer_with_data("frame uniforms", bytemuck::bytes_of(&fu))?],
+                vec![ctx.buffer_with_data("caustic uniforms", bytemuck::bytes_of(&cu))?],
+                None,
+            ),
+            FrameMode::Throughput { slots } => {
+                let (mut u, mut c) = (vec![], vec![]);
+                for s in 0..slots {
+                    let mut b = Buffer::new(
+                        ctx,
+                        &format!("frame uniforms, slot {s}"),
+                        size_of_val(&fu) as u64,
+                        Memory::Upload,
+                    )?;
+                    b.write_mapped(0, bytemuck::bytes_of(&fu))?;
+                    u.push(b);
+                    let mut b = Buffer::new(
+                        ctx,
+                        &format!("caustic uniforms, slot {s}"),
+                        size_of_val(&cu) as u64,
+                        Memory::Upload,
+                    )?;
+                    b.write_mapped(0, bytemuck::bytes_of(&cu))?;
+                    c.push(b);
+                }
+                (u, c, Some(Slots::new(ctx, slots)?))
+            }
+        };
         let targets = targets::EyeTargets::new(ctx, scene)?;
         let caustic_targets = techniques::CausticTargets::new(ctx, scene, active)?;
         let spot = setup::spot_texture_layers(scene)?;
@@ -222,7 +262,11 @@ impl<'c> MeshRenderer<'c> {
             meshes,
             uniforms,
             caustic_uniforms,
+            slot: 0,
+            current_uniforms: (fu, cu),
             pending_uniforms: None,
+            slots,
+            moved_meshes: vec![],
             targets,
             caustic_targets,
             nearest: Sampler::new(ctx, Filter::Nearest)?,
@@ -247,43 +291,131 @@ impl<'c> MeshRenderer<'c> {
         if scene.lights != self.scene.lights {
             self.photons_ready = false;
         }
-        for ((obj, old), mesh) in scene.objects.iter().zip(&self.scene.objects).zip(&self.meshes) {
+        for (i, ((obj, old), mesh)) in scene.objects.iter().zip(&self.scene.objects).zip(&self.meshes).enumerate() {
             if obj.mesh.positions != old.mesh.positions || obj.mesh.normals != old.mesh.normals {
                 self.photons_ready = false;
+                if self.slots.is_some() {
+                    // A throughput frame copies it from its slot's staging buffer.
+                    if !self.moved_meshes.contains(&i) {
+                        self.moved_meshes.push(i);
+                    }
+                    continue;
+                }
                 let vertices = setup::mesh_vertices(&obj.mesh, &mesh.thickness);
                 self.ctx
                     .upload_buffer(&mesh.vertices, bytemuck::cast_slice(&vertices))
                     .with_context(|| format!("uploading the moved object `{}`", obj.name))?;
             }
         }
-        self.pending_uniforms = Some(uniforms_of(scene, self.active)?);
+        let uniforms = uniforms_of(scene, self.active)?;
+        self.current_uniforms = uniforms;
+        self.pending_uniforms = Some(uniforms);
         self.refraction_order = deferred_refraction::back_to_front(scene);
         self.scene = scene.clone();
         Ok(())
     }
 
-    /// Records, submits and waits for one frame; returns its per-pass timings.
+    /// Records, submits and waits for one frame; returns its per-pass timings (per-pass frames)
+    /// or its frame time (a throughput frame, waited for alone: see [`MeshRenderer::submit`]).
     pub fn frame(&mut self, step: FrameStep) -> Result<FrameReport> {
+        if self.slots.is_some() {
+            self.submit(step)?;
+            return self.finish()?.pop().context("the ring returned no report for its frame");
+        }
         let mut f = self.ctx.frame(FrameOptions {
             timestamps: true,
             pipeline_statistics: step.pipeline_statistics,
             ..Default::default()
         })?;
         if let Some((fu, cu)) = self.pending_uniforms.take() {
-            let uses = [
-                Use::buffer(&self.uniforms, Access::TRANSFER_WRITE),
-                Use::buffer(&self.caustic_uniforms, Access::TRANSFER_WRITE),
-            ];
+            let (u, c) = (&self.uniforms[0], &self.caustic_uniforms[0]);
+            let uses = [Use::buffer(u, Access::TRANSFER_WRITE), Use::buffer(c, Access::TRANSFER_WRITE)];
             f.pass("uniforms").uses(uses).record(|cmd| {
-                cmd.update_buffer(&self.uniforms, 0, bytemuck::bytes_of(&fu))?;
-                cmd.update_buffer(&self.caustic_uniforms, 0, bytemuck::bytes_of(&cu))?;
+                cmd.update_buffer(u, 0, bytemuck::bytes_of(&fu))?;
+                cmd.update_buffer(c, 0, bytemuck::bytes_of(&cu))?;
                 Ok(())
             })?;
         }
+        self.record_frame(&mut f, step)?;
+        let report = f.submit()?;
+        self.photons_ready = true;
+        Ok(report)
+    }
+
+    /// Throughput frames: records the next frame into its ring slot and submits it without
+    /// waiting (the slot's previous frame is waited for first). Its uniforms are written into
+    /// the slot's own buffers and moved meshes copied from the slot's staging buffer inside the
+    /// frame, so a warm frame creates nothing. Returns the reports of frames that finished.
+    pub fn submit(&mut self, step: FrameStep) -> Result<Vec<FrameReport>> {
+        let slots = self.slots.as_mut().context("submit: this renderer draws one-shot frames (FrameMode::PerPass)")?;
+        let s = slots.ring.slot();
+        let mut f = slots.ring.frame()?;
+        self.slot = s;
+        self.pending_uniforms = None;
+        let (fu, cu) = self.current_uniforms;
+        self.uniforms[s].write_mapped(0, bytemuck::bytes_of(&fu))?;
+        self.caustic_uniforms[s].write_mapped(0, bytemuck::bytes_of(&cu))?;
+        self.record_moved_meshes(&mut f, s)?;
+        self.record_frame(&mut f, step)?;
+        let slots = self.slots.as_mut().context("throughput slots")?;
+        slots.ring.submit(f)?;
+        self.photons_ready = true;
+        Ok(slots.ring.reports())
+    }
+
+    /// Waits for every throughput frame in flight; returns the reports not yet returned.
+    pub fn finish(&mut self) -> Result<Vec<FrameReport>> {
+        match self.slots.as_mut() {
+            Some(s) => Ok(s.ring.finish()?),
+            None => Ok(vec![]),
+        }
+    }
+
+    /// Copies the meshes the last pose moved from slot `s`'s staging buffer (every slot's made,
+    /// each for every mesh's vertices at once, by the first frame that needs one).
+    fn record_moved_meshes(&mut self, f: &mut Frame, s: usize) -> Result<()> {
+        if self.moved_meshes.is_empty() {
+            return Ok(());
+        }
+        let total: u64 = self.meshes.iter().map(|m| m.vertices.size()).sum();
+        let slots = self.slots.as_mut().context("throughput slots")?;
+        for (k, staging) in slots.staging.iter_mut().enumerate() {
+            if staging.is_none() {
+                *staging = Some(Buffer::new(self.ctx, &format!("moved meshes, slot {k}"), total, Memory::Upload)?);
+            }
+        }
+        let staging = slots.staging[s].as_mut().context("staging")?;
+        let mut regions = vec![];
+        let mut offset = 0u64;
+        for (i, mesh) in self.meshes.iter().enumerate() {
+            if self.moved_meshes.contains(&i) {
+                let obj = &self.scene.objects[i];
+                let vertices = setup::mesh_vertices(&obj.mesh, &mesh.thickness);
+                let bytes: &[u8] = bytemuck::cast_slice(&vertices);
+                staging.write_mapped(offset, bytes)?;
+                regions.push((i, offset, bytes.len() as u64));
+            }
+            offset += mesh.vertices.size();
+        }
+        self.moved_meshes.clear();
+        let staging = &*staging;
+        let mut uses = vec![Use::buffer(staging, Access::TRANSFER_READ)];
+        uses.extend(regions.iter().map(|&(i, _, _)| Use::buffer(&self.meshes[i].vertices, Access::TRANSFER_WRITE)));
+        f.pass("upload.meshes").uses(uses).record(|cmd| {
+            for &(i, at, bytes) in &regions {
+                cmd.copy_buffer_region(staging, at, &self.meshes[i].vertices, 0, bytes);
+            }
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// Every pass of one frame after its uniforms: eye-space backgrounds, caustics, the eye.
+    fn record_frame(&self, f: &mut Frame, step: FrameStep) -> Result<()> {
         let image_space = self.caustic.as_ref().and_then(|c| c.image_space.as_ref());
         let eye_inputs = eye::EyeInputs {
-            uniforms: &self.uniforms,
-            caustic_uniforms: &self.caustic_uniforms,
+            uniforms: &self.uniforms[self.slot],
+            caustic_uniforms: &self.caustic_uniforms[self.slot],
             caustics: &self.caustic_targets,
             meshes: &self.meshes,
             nearest: &self.nearest,
@@ -295,7 +427,7 @@ impl<'c> MeshRenderer<'c> {
         // buffer first.
         let eye_space = image_space.is_some_and(|i| i.eye_space());
         if eye_space {
-            eye::record_shadows_and_background(&mut f, &self.pipelines, &self.targets, &eye_inputs)?;
+            eye::record_shadows_and_background(f, &self.pipelines, &self.targets, &eye_inputs)?;
         }
         match &self.caustic {
             Some(c) => {
@@ -308,18 +440,16 @@ impl<'c> MeshRenderer<'c> {
                 };
                 let inputs = self.caustic_inputs(c);
                 let passes = self.caustic_passes(c, &inputs);
-                techniques::record_caustics(&mut f, &passes, self.targets.shadow.lights, frame)?;
+                techniques::record_caustics(f, &passes, self.targets.shadow.lights, frame)?;
             }
-            None => techniques::record_cleared(&mut f, &self.caustic_targets)?,
+            None => techniques::record_cleared(f, &self.caustic_targets)?,
         }
         if eye_space {
-            eye::record_after_background(&mut f, &self.pipelines, &self.targets, &eye_inputs)?;
+            eye::record_after_background(f, &self.pipelines, &self.targets, &eye_inputs)?;
         } else {
-            eye::record(&mut f, &self.pipelines, &self.targets, &eye_inputs)?;
+            eye::record(f, &self.pipelines, &self.targets, &eye_inputs)?;
         }
-        let report = f.submit()?;
-        self.photons_ready = true;
-        Ok(report)
+        Ok(())
     }
 
     /// The last frame's linear radiance.
@@ -355,8 +485,8 @@ impl<'c> MeshRenderer<'c> {
 
     fn caustic_inputs<'a>(&'a self, c: &'a CausticResources) -> techniques::CausticInputs<'a> {
         techniques::CausticInputs {
-            frame_uniforms: &self.uniforms,
-            caustic_uniforms: &self.caustic_uniforms,
+            frame_uniforms: &self.uniforms[self.slot],
+            caustic_uniforms: &self.caustic_uniforms[self.slot],
             meshes: &self.meshes,
             vertex_areas: &c.vertex_areas,
             splat_vertices: &c.splat_vertices,

@@ -10,13 +10,15 @@ use super::pipelines::PoolPipelines;
 use super::targets::PoolTargets;
 use super::uniforms::{pool_uniforms, PoolUniforms};
 use super::{dumps, pool_of, water_surface, Init, Precision};
-use crate::gpu::Target;
 use crate::image_io::ImageF32;
+use crate::render::frame_mode::{FrameMode, Slots};
 use crate::render::FrameStep;
 use crate::scene::Scene;
 use anyhow::{Context as _, Result};
 use std::time::Instant;
-use vkcore::{Access, Buffer, Context, Filter, FrameOptions, FrameReport, PassTiming, Sampler, ShaderCompiler, Use};
+use vkcore::{
+    Access, Buffer, Context, Filter, Frame, FrameOptions, FrameReport, Memory, PassTiming, Sampler, ShaderCompiler, Use,
+};
 
 pub struct PoolRenderer<'c> {
     ctx: &'c Context,
@@ -31,6 +33,10 @@ pub struct PoolRenderer<'c> {
     linear: Sampler,
     /// `f64`: the last frame's passes and the flat surface's.
     cpu: Option<(CpuPasses, CpuPasses)>,
+    /// Throughput frames: the ring, and per slot the staging buffers of the CPU path's height
+    /// field, normals and convolutions (copied inside the frame).
+    slots: Option<Slots>,
+    cpu_staging: Vec<Vec<Buffer>>,
 }
 
 /// RGBA32F texels of a CPU grid, for upload.
@@ -39,7 +45,7 @@ fn texels(values: impl Iterator<Item = [f64; 4]>) -> Vec<f32> {
 }
 
 impl<'c> PoolRenderer<'c> {
-    pub fn new(ctx: &'c Context, shaders: &ShaderCompiler, scene: &Scene) -> Result<Self> {
+    pub fn new(ctx: &'c Context, shaders: &ShaderCompiler, scene: &Scene, mode: FrameMode) -> Result<Self> {
         let pool = pool_of(scene)?;
         let init = Init::new(pool, &scene.caustics)?;
         let pipelines = PoolPipelines::new(ctx, shaders, init.precision)?;
@@ -87,6 +93,11 @@ impl<'c> PoolRenderer<'c> {
             nearest,
             linear: Sampler::new(ctx, Filter::Linear)?,
             cpu,
+            slots: match mode {
+                FrameMode::PerPass => None,
+                FrameMode::Throughput { slots } => Some(Slots::new(ctx, slots)?),
+            },
+            cpu_staging: vec![],
         })
     }
 
@@ -109,8 +120,9 @@ impl<'c> PoolRenderer<'c> {
         Ok(())
     }
 
-    /// The CPU path's height field and passes 1-6, uploaded; their host times.
-    fn cpu_passes(&mut self) -> Result<Vec<PassTiming>> {
+    /// The CPU path's height field and passes 1-6 (host times), uploaded now (per-pass frames)
+    /// or into slot `slot`'s staging buffers for the frame to copy (throughput frames).
+    fn cpu_passes(&mut self, slot: Option<usize>) -> Result<Vec<PassTiming>> {
         let n = self.init.n;
         let start = Instant::now();
         let height = water_surface::height_field(&self.init.pool, n);
@@ -118,12 +130,35 @@ impl<'c> PoolRenderer<'c> {
         let c = cpu::run(&self.init.pool, n, &self.init.kernels, height, &self.init.light_radiance);
         timings.extend(c.timings.iter().copied());
         let start = Instant::now();
-        let t = &self.targets;
-        let up = |target: &Target, v: Vec<f32>| self.ctx.upload_image(&target.image, 0, 0, bytemuck::cast_slice(&v));
-        up(&t.height, texels(c.height.iter().map(|&h| [h, 0.0, 0.0, 1.0])))?;
-        up(&t.normals, texels(c.normals.iter().map(|v| [v.x, v.y, v.z, 1.0])))?;
-        up(&t.convolutions, texels(c.convolutions.iter().copied()))?;
-        timings.push(("pool.upload", start.elapsed().as_secs_f64() * 1e3));
+        let fields = [
+            texels(c.height.iter().map(|&h| [h, 0.0, 0.0, 1.0])),
+            texels(c.normals.iter().map(|v| [v.x, v.y, v.z, 1.0])),
+            texels(c.convolutions.iter().copied()),
+        ];
+        match slot {
+            None => {
+                let t = &self.targets;
+                for (target, v) in [&t.height, &t.normals, &t.convolutions].into_iter().zip(&fields) {
+                    self.ctx.upload_image(&target.image, 0, 0, bytemuck::cast_slice(v))?;
+                }
+                timings.push(("pool.upload", start.elapsed().as_secs_f64() * 1e3));
+            }
+            Some(s) => {
+                // Every slot's at once, so that only the first frame makes any.
+                let slots = self.slots.as_ref().map(|x| x.ring.slots()).unwrap_or(1);
+                while self.cpu_staging.len() < slots.max(s + 1) {
+                    let k = self.cpu_staging.len();
+                    let bytes = (fields[0].len() * 4) as u64;
+                    let make =
+                        |what: &str| Buffer::new(self.ctx, &format!("pool {what}, slot {k}"), bytes, Memory::Upload);
+                    self.cpu_staging.push(vec![make("height")?, make("normals")?, make("convolutions")?]);
+                }
+                for (b, v) in self.cpu_staging[s].iter_mut().zip(&fields) {
+                    b.write_mapped(0, bytemuck::cast_slice(v))?;
+                }
+                timings.push(("pool.staging", start.elapsed().as_secs_f64() * 1e3));
+            }
+        }
         if let Some((last, _)) = &mut self.cpu {
             *last = c;
         }
@@ -136,12 +171,59 @@ impl<'c> PoolRenderer<'c> {
     /// Records, submits and waits for one frame; returns its per-pass timings (host times for
     /// the CPU path's passes).
     pub fn frame(&mut self, step: FrameStep) -> Result<FrameReport> {
-        let cpu_timings = if self.cpu.is_some() { self.cpu_passes()? } else { vec![] };
+        if self.slots.is_some() {
+            self.submit()?;
+            return self.finish()?.pop().context("the ring returned no report for its frame");
+        }
+        let cpu_timings = if self.cpu.is_some() { self.cpu_passes(None)? } else { vec![] };
         let mut f = self.ctx.frame(FrameOptions {
             timestamps: true,
             pipeline_statistics: step.pipeline_statistics,
             ..Default::default()
         })?;
+        self.record_frame(&mut f)?;
+        let mut report = f.submit()?;
+        report.passes.splice(0..0, cpu_timings);
+        Ok(report)
+    }
+
+    /// Throughput frames: records the next frame into its ring slot (the CPU path's fields
+    /// copied from the slot's staging buffers) and submits it without waiting; returns the
+    /// reports of frames that finished. The CPU path's host times are not in them.
+    pub fn submit(&mut self) -> Result<Vec<FrameReport>> {
+        let s = self.slots.as_ref().context("submit: this renderer draws one-shot frames")?.ring.slot();
+        // The slot's previous frame is waited for before its staging buffers are written.
+        let mut f = self.slots.as_mut().context("slots")?.ring.frame()?;
+        if self.cpu.is_some() {
+            self.cpu_passes(Some(s))?;
+            let t = &self.targets;
+            let staging = &self.cpu_staging[s];
+            let targets = [&t.height, &t.normals, &t.convolutions];
+            let mut uses: Vec<Use> = staging.iter().map(|b| Use::buffer(b, Access::TRANSFER_READ)).collect();
+            uses.extend(targets.iter().map(|t| Use::image(&t.image, 0..1, 0..1, Access::TRANSFER_WRITE)));
+            f.pass("pool.upload").uses(uses).record(|cmd| {
+                for (b, t) in staging.iter().zip(targets) {
+                    cmd.copy_buffer_to_image(b, &t.image, 0, 0);
+                }
+                Ok(())
+            })?;
+        }
+        self.record_frame(&mut f)?;
+        let slots = self.slots.as_mut().context("slots")?;
+        slots.ring.submit(f)?;
+        Ok(slots.ring.reports())
+    }
+
+    /// Waits for every throughput frame in flight; returns the reports not yet returned.
+    pub fn finish(&mut self) -> Result<Vec<FrameReport>> {
+        match self.slots.as_mut() {
+            Some(s) => Ok(s.ring.finish()?),
+            None => Ok(vec![]),
+        }
+    }
+
+    /// The uniforms if the pool moved, passes 1-6 (GPU paths) and the view.
+    fn record_frame(&mut self, f: &mut Frame) -> Result<()> {
         if let Some(u) = self.pending.take() {
             f.pass("pool.uniforms").uses([Use::buffer(&self.uniforms, Access::TRANSFER_WRITE)]).record(|cmd| {
                 cmd.update_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u))?;
@@ -150,12 +232,10 @@ impl<'c> PoolRenderer<'c> {
         }
         if let Some(p) = &self.pipelines.passes {
             let inputs = PassInputs { uniforms: &self.uniforms, nearest: &self.nearest };
-            record_passes(&mut f, p, &self.targets, &inputs, &self.targets.convolutions)?;
+            record_passes(f, p, &self.targets, &inputs, &self.targets.convolutions)?;
         }
-        super::view::record_view(&mut f, &self.pipelines, &self.targets, &self.uniforms, &self.nearest, &self.linear)?;
-        let mut report = f.submit()?;
-        report.passes.splice(0..0, cpu_timings);
-        Ok(report)
+        super::view::record_view(f, &self.pipelines, &self.targets, &self.uniforms, &self.nearest, &self.linear)?;
+        Ok(())
     }
 
     /// The last frame's linear radiance, row 0 at the top.

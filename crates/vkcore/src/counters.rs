@@ -1,0 +1,64 @@
+//! What the host asked of the driver, counted: Vulkan objects created or allocated (buffers,
+//! images, views, samplers, memory allocations, pipelines and their layouts and modules, query
+//! pools, command buffers, fences), queue submissions, pipeline barriers and timestamps written.
+//! A real-time frame creates nothing once it is warm: throughput frames are tested for that, and
+//! the bench and `timings.json` report each count per frame.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// A snapshot of the counts since the context was made (or, from [`Counters::since`], between
+/// two snapshots).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Vulkan objects created and memory allocations made.
+    pub objects: u64,
+    /// `vkQueueSubmit2` calls.
+    pub submits: u64,
+    /// `vkCmdPipelineBarrier2` calls recorded.
+    pub barriers: u64,
+    /// `vkCmdWriteTimestamp2` calls recorded.
+    pub timestamps: u64,
+}
+
+impl Counters {
+    /// The counts from `earlier` to `self`.
+    pub fn since(&self, earlier: &Counters) -> Counters {
+        Counters {
+            objects: self.objects.saturating_sub(earlier.objects),
+            submits: self.submits.saturating_sub(earlier.submits),
+            barriers: self.barriers.saturating_sub(earlier.barriers),
+            timestamps: self.timestamps.saturating_sub(earlier.timestamps),
+        }
+    }
+}
+
+#[derive(Default)]
+pub(crate) struct AtomicCounters {
+    objects: AtomicU64,
+    submits: AtomicU64,
+    barriers: AtomicU64,
+    timestamps: AtomicU64,
+}
+
+impl AtomicCounters {
+    pub fn object(&self, n: u64) {
+        self.objects.fetch_add(n, Ordering::Relaxed);
+    }
+    pub fn submit(&self) {
+        self.submits.fetch_add(1, Ordering::Relaxed);
+    }
+    pub fn barrier(&self) {
+        self.barriers.fetch_add(1, Ordering::Relaxed);
+    }
+    pub fn timestamp(&self) {
+        self.timestamps.fetch_add(1, Ordering::Relaxed);
+    }
+    pub fn snapshot(&self) -> Counters {
+        Counters {
+            objects: self.objects.load(Ordering::Relaxed),
+            submits: self.submits.load(Ordering::Relaxed),
+            barriers: self.barriers.load(Ordering::Relaxed),
+            timestamps: self.timestamps.load(Ordering::Relaxed),
+        }
+    }
+}
