@@ -274,7 +274,7 @@ pub struct MetricSpec {
     /// `caustics::render::frame_mode`.
     #[serde(default)]
     pub mode: Option<String>,
-    /// Why some cells may record no pass matching `passes` (or `exclude`), e.g. "the instanced
+    /// Why some cells may record no pass matching `passes`, e.g. "the instanced
     /// fetch copies nothing". Without it, a cell whose passes match none of the patterns is an
     /// error naming the patterns and the passes recorded: a renamed pass cannot silently turn a
     /// column into n/a. With it, such cells read n/a and the reason is listed under the table.

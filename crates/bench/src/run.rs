@@ -184,8 +184,9 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
     }
 }
 
-/// Every pass pattern of a metric (its `passes`, or `exclude`) must match a pass the cell's
-/// per-pass frames recorded, unless the metric says why it may not (`absent`).
+/// A metric's `passes` must match a pass the cell's per-pass frames recorded, unless the metric
+/// says why it may not (`absent`). (`exclude` patterns may match nothing: they take off work a
+/// cell may not have.)
 fn check_patterns(lc: &LoadedConfig, cell: &crate::plan::Cell, run: &crate::measure::CellRun) -> Result<()> {
     let Some(frame) = run.frames.first() else { return Ok(()) };
     let names: Vec<&str> = frame.passes.iter().map(|p| p.name.as_str()).collect();
@@ -193,7 +194,7 @@ fn check_patterns(lc: &LoadedConfig, cell: &crate::plan::Cell, run: &crate::meas
         if m.absent.is_some() || m.throughput() {
             continue;
         }
-        for (key, patterns) in [("passes", &m.passes), ("exclude", &m.exclude)] {
+        for (key, patterns) in [("passes", &m.passes)] {
             if patterns.is_empty() {
                 continue;
             }

@@ -46,6 +46,36 @@ pub enum Command {
     Compare(CompareArgs),
     /// Regenerate a paper's table from a bench config (bench_configs/*.toml), or merge shards.
     Bench(BenchArgs),
+    /// Render many animated throughput frames and sample resident memory, device memory and
+    /// Vulkan objects made: a real-time loop holds them flat (scripts/soak.sh).
+    Soak(SoakArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct SoakArgs {
+    /// Scene file (TOML, see scenes/README.md).
+    #[arg(long)]
+    pub scene: PathBuf,
+    #[command(flatten)]
+    pub caustics: caustics::scene::CausticOverrides,
+    /// The eye's width and height in pixels (default: the scene's camera).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(8..=4096))]
+    pub size: Option<u32>,
+    /// Frames to render.
+    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..=10_000_000))]
+    pub frames: u32,
+    /// Sample every N frames.
+    #[arg(long, default_value_t = 500, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub every: u32,
+    /// Frames per loop of the light, camera and object orbits.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub period: u32,
+    /// Judge flatness from this frame on (the warm-up before it may grow).
+    #[arg(long, default_value_t = 1000)]
+    pub after: u32,
+    /// Write the samples as CSV here.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]

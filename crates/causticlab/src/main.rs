@@ -10,6 +10,7 @@ mod cmd_devices;
 mod cmd_pool_reference;
 mod cmd_reference;
 mod cmd_render;
+mod cmd_soak;
 mod exit;
 
 use anyhow::Result;
@@ -31,6 +32,7 @@ fn main() -> ExitCode {
         Command::Reference(args) => cmd_reference::run(args),
         Command::Compare(args) => cmd_compare::run(args),
         Command::Bench(args) => cmd_bench::run(&cli.global, args, &mut validation),
+        Command::Soak(args) => cmd_soak::run(&cli.global, args, &mut validation),
     };
     let mut code = match result {
         Ok(()) => exit::OK,

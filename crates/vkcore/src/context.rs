@@ -133,6 +133,21 @@ impl Context {
         self.shared.counters.snapshot()
     }
 
+    /// Device memory held through the allocator: (bytes of live allocations, bytes of the memory
+    /// blocks they are carved from).
+    pub fn device_memory(&self) -> (u64, u64) {
+        match self.shared.allocator.lock() {
+            Ok(guard) => match guard.as_ref() {
+                Some(a) => {
+                    let r = a.generate_report();
+                    (r.total_allocated_bytes, r.total_reserved_bytes)
+                }
+                None => (0, 0),
+            },
+            Err(_) => (0, 0),
+        }
+    }
+
     /// Waits until the device is idle.
     pub fn wait_idle(&self) -> Result<()> {
         unsafe { self.shared.raw().device_wait_idle() }.call("vkDeviceWaitIdle")

@@ -8,6 +8,7 @@ mod eye;
 pub mod frame_mode;
 pub mod pipelines;
 mod renderer;
+pub mod soak;
 pub mod targets;
 
 pub use dispatch::Renderer;
