@@ -83,6 +83,9 @@ pub struct ExplainedSpec {
     pub photons: Option<u32>,
     #[serde(default)]
     pub lighting: Option<String>,
+    /// Only on devices whose name contains this (case-insensitive), e.g. `llvmpipe`.
+    #[serde(default)]
+    pub device: Option<String>,
     pub why: String,
 }
 
