@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Runs the criterion benchmarks of the CPU paths (crates/caustics/benches/cpu_paths.rs) and
-# records their medians in results/criterion/<cpu-slug>.md (see results/criterion/README.md).
+# Runs the criterion benchmarks of the CPU paths (crates/caustics/benches/cpu_paths.rs) and of
+# the frame loop in both frame modes on the default Vulkan device (frame_loop.rs), and records
+# their medians in results/criterion/<cpu-slug>.md (see results/criterion/README.md).
 #
 #   bash scripts/criterion.sh
 set -euo pipefail
@@ -14,7 +15,7 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
 start=$(date +%s)
-cargo bench -p caustics --bench cpu_paths 2>&1 | tee "$log"
+cargo bench -p caustics --bench cpu_paths --bench frame_loop 2>&1 | tee "$log"
 
 cpu=$(grep -m1 -E '^(model name|Model|cpu model)[[:space:]]*:' /proc/cpuinfo 2>/dev/null | cut -d: -f2- | sed 's/^[[:space:]]*//' || true)
 [ -n "$cpu" ] || cpu="unknown $(uname -m) CPU"
@@ -31,7 +32,7 @@ import glob, json, os, tempfile
 env = os.environ
 start = int(env["START"])
 # Units of one element per group (criterion only knows "elements" or "bytes").
-ELEMENT = {"scene_load": "tri", "bvh_build": "tri", "reference_trace": "photons"}
+ELEMENT = {"scene_load": "tri", "bvh_build": "tri", "reference_trace": "photons", "frame_loop": "frames"}
 
 
 def fmt_time(ns):
@@ -73,7 +74,9 @@ if not rows:
 rows.sort()
 
 with open(env["LOG"], errors="replace") as f:
-    skipped = [line.strip() for line in f if "cpu_paths: SKIPPING" in line]
+    log = f.readlines()
+skipped = [line.strip() for line in log if "cpu_paths: SKIPPING" in line]
+gpu_lines = [line.strip() for line in log if line.startswith("frame_loop: GPU ms")]
 
 lines = [
     f"# CPU paths: criterion medians on {env['CPU']}",
@@ -82,12 +85,15 @@ lines = [
     f"- rustc: {env['RUSTC']}",
     f"- commit: {env['COMMIT']}",
     f"- date: {env['DATE']}",
-    "- command: `bash scripts/criterion.sh` (`cargo bench -p caustics --bench cpu_paths`, 10 samples per benchmark)",
+    "- command: `bash scripts/criterion.sh` (`cargo bench -p caustics --bench cpu_paths --bench frame_loop`, 10 samples per benchmark; `frame_loop` on the default Vulkan device)",
     "",
     "| benchmark | median | 95% CI of median | throughput |",
     "|---|---|---|---|",
 ]
 lines += [f"| {name} | {med} | {ci} | {tp} |" for _, name, med, ci, tp in rows]
+if gpu_lines:
+    lines += ["", "The frame loop's GPU time for the same frames (to read the host time per frame against):", ""]
+    lines += [f"- {g.removeprefix('frame_loop: ')}" for g in gpu_lines]
 if skipped:
     lines += ["", "Skipped:", ""] + [f"- {s}" for s in skipped]
 lines.append("")

@@ -85,8 +85,9 @@ elif [ "$dry_run" -eq 1 ]; then
     head -c 400000 /dev/zero >"$pack/debs/placeholder"
 fi
 
-# 3. The plots' font (crates/bench/src/font.rs): the suite sets CAUSTICLAB_FONT to it, so the
-#    plots are drawn there as well as here.
+# 3. The plots' font (crates/bench/src/font.rs): `bench` checks for it before its first cell, so
+#    the suite sets CAUSTICLAB_FONT to it; the suite writes parts only, and gpu_unpack.sh draws
+#    the plots at home.
 font=${CAUSTICLAB_FONT:-/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf}
 [ -f "$font" ] || { echo "gpu_pack: no font at $font (apt-get install fonts-dejavu-core)" >&2; exit 1; }
 cp "$font" "$pack/DejaVuSans.ttf"

@@ -156,7 +156,7 @@ pub fn summary(config: &Config, results: &Results) -> String {
 fn modes_line(config: &Config, results: &Results) -> String {
     let timed: Vec<&crate::config::MetricSpec> = config.metrics.iter().filter(|m| is_timing(&m.kind)).collect();
     let names = |throughput: bool| -> Vec<String> {
-        timed.iter().filter(|m| m.throughput() == throughput).map(|m| format!("{}", m.label)).collect()
+        timed.iter().filter(|m| m.throughput() == throughput).map(|m| m.label.clone()).collect()
     };
     let mut parts = vec![];
     for (mode, throughput, what) in [

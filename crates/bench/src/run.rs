@@ -72,6 +72,9 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
     // beyond every cache; a quick run only smoke-tests it).
     let bandwidth_bytes = if opts.quick { 16 << 20 } else { 256 << 20 };
     let copy_bandwidth_gbs = ctx.copy_bandwidth(bandwidth_bytes).context("measuring the device's copy bandwidth")?;
+    // The commit is the code's when the run starts (the dirty check's), not whatever the tree
+    // holds when the last cell ends.
+    let commit = crate::meta::commit();
     let mut progress = Progress::new(costs);
     let mut runner = Runner::new(ctx, shaders, lc, quick);
     // Everything that can be checked before the first cell is: every scene with every
@@ -160,7 +163,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
             copy_bandwidth_gbs,
             not_run: vec![],
         },
-        meta: crate::meta::meta(ctx.info()),
+        meta: crate::results::Meta { commit, ..crate::meta::meta(ctx.info()) },
         cells: done,
         plausibility: vec![],
     };

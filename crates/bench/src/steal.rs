@@ -4,6 +4,7 @@
 //! - **other processes**: the CPU time every other process on this machine used (busy time of
 //!   all cores minus this process's own, all its threads), in cores. A build or a test suite
 //!   beside a benchmark shows here.
+//!
 //! On a software rasteriser such as lavapipe either slows every pass of the cell, so each cell
 //! records both; a cell that ran while other processes used more than a threshold is measured
 //! again, and marked busy if it stays so (`crate::run`).

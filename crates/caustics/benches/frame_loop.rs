@@ -38,7 +38,7 @@ fn frame_loop(c: &mut Criterion) {
         let opts = RendererOptions { frame_mode: mode, ..Default::default() };
         let mut r = Renderer::new(&ctx, &shaders, &scene, &opts).expect("renderer");
         let step = FrameStep::default();
-        let mut frame = |r: &mut Renderer| match mode {
+        let frame = |r: &mut Renderer| match mode {
             FrameMode::PerPass => vec![r.frame(step).expect("frame")],
             FrameMode::Throughput { .. } => r.submit(step).expect("submit"),
         };
