@@ -22,7 +22,7 @@ echo "$out"
 commit=$(git rev-parse --short HEAD)
 [ -z "$(git status --porcelain --untracked-files=no -- . ':(exclude)results' ':(exclude,glob)**/*.md')" ] || commit="$commit-dirty"
 {
-    echo "# Soak: $frames throughput frames on $("$bin" devices | sed -n 's/^\[0\] //p' | head -n1)"
+    echo "# Soak: $frames throughput frames on $("$bin" devices | sed -n 's/^\[0\] //p' | head -n1 | sed -E 's/ *\[[a-z ]*\]$//')"
     echo
     echo "- command: \`bash scripts/soak.sh $frames $every\` (\`causticlab soak\`: sphere_on_plane, shah, 64² photons, 64² eye, light, camera and object orbits of 60 frames)"
     echo "- commit: $commit; date: $(date -u +%Y-%m-%dT%H:%M:%SZ); samples: [$slug.csv]($slug.csv)"

@@ -2,8 +2,9 @@
 //! `sphere_on_plane` with `wd-points` at 256² photons, its own camera, no validation. A
 //! per-pass frame is recorded, submitted and waited for; a throughput frame is recorded and
 //! submitted, the ring waiting for the frame two before it (so in steady state the time per
-//! iteration is the time per frame). It also prints, for the same frames, the GPU time the
-//! timestamps saw: the sum of every pass (per-pass) and the frame's pair (throughput).
+//! iteration is the time per frame). It then times 20 more frames on the host and reads the GPU
+//! time the timestamps saw for them: the sum of every pass (per-pass), the frame's pair
+//! (throughput).
 //! Run with `bash scripts/criterion.sh` on an otherwise idle machine.
 
 use caustics::render::{FrameMode, FrameStep, Renderer, RendererOptions};
@@ -48,10 +49,14 @@ fn frame_loop(c: &mut Criterion) {
         g.bench_function(format!("{}/sphere_on_plane/wd-points/256", mode.name()), |b| {
             b.iter(|| frame(&mut r));
         });
-        // The GPU's view of the same frames, for the host time above to be read against.
+        // Twenty more frames, timed on the host and by the GPU, to read the two against each
+        // other (the same frames, unlike criterion's samples above).
         let mut reports = vec![];
-        for _ in 0..10 {
+        let mut host = vec![];
+        for _ in 0..20 {
+            let t = std::time::Instant::now();
             reports.extend(frame(&mut r));
+            host.push(t.elapsed().as_secs_f64() * 1e3);
         }
         reports.extend(r.finish().expect("finish"));
         let gpu: Vec<f64> = reports
@@ -66,10 +71,10 @@ fn frame_loop(c: &mut Criterion) {
             FrameMode::Throughput { .. } => "the frame's timestamp pair",
         };
         eprintln!(
-            "frame_loop: GPU ms per frame, {} mode ({what}): median {:.3} over {} frames",
+            "frame_loop: {} mode, 20 frames: host ms per frame median {:.1}; GPU ms per frame ({what}) median {:.1}",
             mode.name(),
-            median(gpu),
-            reports.len()
+            median(host),
+            median(gpu)
         );
     }
     g.finish();

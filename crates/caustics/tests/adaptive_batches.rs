@@ -4,12 +4,14 @@
 //! limit, and the caustic map, the per-level counts and the photons splatted are the unbatched
 //! traversal's, on both paths, for both metrics (including clusters that converge above the
 //! batches' level, splatted before them), with the point and the compute splat; the same with
-//! `photon_batches` = N, which gives N batches. A limit too small to make progress is an input
+//! `photon_batches` = N, which gives N batches. Every batched frame records no more passes than
+//! its plan counted against `vkcore::MAX_PASSES`. A limit too small to make progress is an input
 //! error naming the setting.
 
 use caustics::image_io::ImageF32;
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
+use caustics::techniques::wyman_nichols2009::adaptive::batches::OTHER_PASSES;
 use std::collections::BTreeSet;
 use std::path::PathBuf;
 use vkcore::{Context, ShaderCompiler};
@@ -44,7 +46,7 @@ struct Run {
 
 fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
     let mut r = Renderer::new(ctx, sh, s, &RendererOptions::default()).expect("renderer");
-    r.frame(FrameStep::default()).expect("frame");
+    let report = r.frame(FrameStep::default()).expect("frame");
     let img = r.dump("caustic_map").expect("dump").expect("a caustic map");
     let l = img.layer(Some("light0")).expect("light0");
     let map = l.data.chunks_exact(l.channels.len()).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).collect();
@@ -52,6 +54,22 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
     let a = r.adaptive().expect("adaptive");
     let storage = a.photon_storage_bytes();
     assert_eq!(storage, a.plan.storage_bytes(), "allocated storage vs the plan's");
+    // The plan fits the frame's pass limit by counting its traversal's passes (Sec. 4.3's
+    // batches multiply them); the frame must record no more than it counted. One light here.
+    let names: Vec<&str> = report.passes.iter().map(|p| p.name.as_str()).collect();
+    let traversal = |n: &&&str| {
+        (n.starts_with("adaptive.") && !n.starts_with("adaptive.geometry") && !n.starts_with("adaptive.coverage"))
+            || n.starts_with("splat.")
+    };
+    let recorded = names.iter().filter(traversal).count() as u64;
+    assert!(recorded >= 2 * a.plan.batches as u64, "each batch records a traversal and a splat: {names:?}");
+    assert!(
+        recorded <= a.plan.traversal_passes(),
+        "the traversal recorded {recorded} passes, its plan counted {}: {names:?}",
+        a.plan.traversal_passes()
+    );
+    let others = names.len() as u64 - recorded;
+    assert!(others <= OTHER_PASSES as u64, "{others} passes besides the traversal, {OTHER_PASSES} left for them");
     Run {
         map,
         counts: a.level_counts(ctx).expect("counts").remove(0),

@@ -79,7 +79,8 @@ fn render(
 
 /// Renders `frames` and `frames + 1` frames of `scene` along `anim` in both modes (so that the
 /// last frame is once in each ring slot) and compares the last frame's images: equal, or
-/// (compute splats: float atomics add in no fixed order) within `tolerance` of the largest value.
+/// (compute splats and appends: float atomics and atomic counters order photons differently from
+/// run to run) within `tolerance` of the largest value.
 fn same_in_both_modes(scene: &Scene, anim: Animation, frames: u32, step: FrameStep, tolerance: f32) {
     for n in [frames, frames + 1] {
         same_after(scene, anim.clone(), n, step, tolerance);
@@ -141,11 +142,15 @@ fn eye_space_gather_with_static_lighting_reused() {
 
 #[test]
 fn hierarchical_caustic_maps_on_both_traversal_paths() {
-    for path in ["xfb", "compute"] {
+    // Transform feedback keeps the primitives' order, so its photons blend in a fixed order and
+    // both modes agree bit for bit. The compute traversal appends photons with an atomic counter
+    // (wyman2008/traverse.comp): their order, and so the rounding of the additive splat, changes
+    // from run to run (CI saw 4.8e-7 on a peak of 12.6, 3.8e-8 of it).
+    for (path, tolerance) in [("xfb", 0.0), ("compute", 1e-6)] {
         let mut scene = small(shipped("sphere_on_plane.toml"), "hcm");
         scene.caustics.path = path.parse().expect("path");
         scene.caustics.cluster = "all".parse().expect("cluster");
-        same_in_both_modes(&scene, orbit(true, false, true), 4, FrameStep::default(), 0.0);
+        same_in_both_modes(&scene, orbit(true, false, true), 4, FrameStep::default(), tolerance);
     }
 }
 

@@ -21,7 +21,7 @@ use vkcore::compaction::COUNTER_BYTES;
 /// receiver positions, geometry buffers, up to four refractors' own and about a dozen coverage
 /// levels: under 20 per light, at most 4 lights): the batches of every light share what remains
 /// of `vkcore::MAX_PASSES`.
-const OTHER_PASSES: u32 = 160;
+pub const OTHER_PASSES: u32 = 160;
 
 /// Passes one light's traversal records with breadth-first levels 0..B (exclusive) and
 /// `batches` batches of levels B..=L: at most four per step (xfb max-error: three kernels and
@@ -63,6 +63,12 @@ pub fn stream_bytes(capacity: u32, bytes: u64) -> u64 {
 }
 
 impl BatchPlan {
+    /// The most passes this plan's traversal records for one light (levels, batches and their
+    /// splats; what [`plan`] counts against each light's share of `vkcore::MAX_PASSES`).
+    pub fn traversal_passes(&self) -> u64 {
+        passes(self.clusters.len() as u32 - 1, self.breadth, self.batches)
+    }
+
     /// Whether the traversal is split into batches.
     pub fn batched(&self) -> bool {
         self.batches > 1
