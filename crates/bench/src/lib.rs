@@ -8,6 +8,7 @@ pub mod config;
 pub mod figure;
 pub mod font;
 pub mod format;
+pub mod host_speed;
 pub mod index;
 pub mod measure;
 pub mod meta;

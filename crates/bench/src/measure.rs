@@ -66,6 +66,8 @@ pub struct CellRun {
     pub cpu_steal: Option<f64>,
     /// Cores' worth of CPU time other processes used while the cell ran (see [`crate::steal`]).
     pub other_cores: Option<f64>,
+    /// The host speed probe before the cell's frames, ms (see [`crate::host_speed`]).
+    pub host_probe_ms: f64,
 }
 
 /// Runs cells on one device, keeping CPU references between cells of the same scene.
@@ -174,6 +176,7 @@ impl<'a> Runner<'a> {
         let mut frames = vec![];
         let mut wall_ms = vec![];
         let mut counters = vec![];
+        let host_probe_ms = crate::host_speed::probe_ms();
         let cpu_before = crate::steal::sample();
         // Warm-up frames, then measured frames until the plan is met: at least `min` frames
         // and `budget_s` seconds of them (pose updates included), at most `max`.
@@ -247,6 +250,7 @@ impl<'a> Runner<'a> {
             triangles: scene.triangle_count(),
             cpu_steal,
             other_cores,
+            host_probe_ms,
         })
     }
 

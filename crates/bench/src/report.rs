@@ -57,6 +57,9 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     if let Some(gbs) = r.copy_bandwidth_gbs {
         let _ = writeln!(s, "- **Device copy bandwidth:** {gbs:.1} GB/s (bytes read plus written by a buffer copy, measured at the start of the run)");
     }
+    if let Some(line) = host_speed_line(results) {
+        let _ = writeln!(s, "{line}");
+    }
     if let Some(line) = load_line(results) {
         let _ = writeln!(s, "{line}");
     }
@@ -237,6 +240,22 @@ fn plausibility_section(results: &Results) -> String {
         let _ = writeln!(s);
     }
     s
+}
+
+/// How fast the host ran from cell to cell (`crate::host_speed`), where that was measured.
+fn host_speed_line(results: &Results) -> Option<String> {
+    let probes: Vec<f64> = results.cells.iter().filter_map(|c| c.host_probe_ms).collect();
+    let (fastest, median, slowest) = crate::host_speed::summary(&probes)?;
+    let ratio = slowest / fastest;
+    let warning = if ratio > crate::host_speed::DRIFT_WARNING {
+        ": the host's speed drifted while the table ran, so cells measured far apart may differ for that alone"
+    } else {
+        ""
+    };
+    Some(format!(
+        "- **Host speed** (a fixed single-threaded CPU loop timed before each cell, best of 3): median {median:.2} ms, \
+         fastest {fastest:.2}, slowest {slowest:.2} ({ratio:.2}x){warning}"
+    ))
 }
 
 /// How busy the host was with other processes while the cells ran, where that was measured.

@@ -105,6 +105,10 @@ pub struct CellResult {
     /// Cores' worth of CPU time other processes on the host used while the cell ran.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub other_cores: Option<f64>,
+    /// The host speed probe before the cell's frames, ms (`crate::host_speed`; absent in results
+    /// written before it was kept).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub host_probe_ms: Option<f64>,
     /// The cell ran while other processes used more than the run's threshold, even after it was
     /// measured again: its times are not a quiet machine's (`~` in the table).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
@@ -194,6 +198,7 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         passes,
         cpu_steal: run.cpu_steal,
         other_cores: run.other_cores,
+        host_probe_ms: Some(run.host_probe_ms),
         busy: false,
         list_sizes: run.hierarchy_sizes.clone(),
         frame_counters: [

@@ -84,9 +84,25 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         let same =
             |c: &crate::plan::Cell| c.scene == cell.scene && c.technique == cell.technique && c.lights == cell.lights;
         if !cells[..i].iter().any(same) {
-            let scene = runner.cell_scene(cell)?;
+            let mut scene = runner.cell_scene(cell)?;
             caustics::render::check_device(ctx, &scene)
                 .with_context(|| format!("{}: technique[{}]", lc.path.display(), cell.technique))?;
+            // The images grow with the photons and the resolution: every size this scene and
+            // technique run at must fit the device's memory.
+            if scene.caustics.technique.renders_meshes() {
+                let info = ctx.info();
+                for c in cells[i..].iter().filter(|c| same(c)) {
+                    scene.caustics.photons = c.photons;
+                    if c.resolution != [0, 0] {
+                        (scene.camera.width, scene.camera.height) = (c.resolution[0], c.resolution[1]);
+                    }
+                    if let Some(e) = caustics::render::memory::too_big(&scene, &info.name, info.device_local_bytes) {
+                        return Err(anyhow::Error::new(caustics::input_error!("{e}"))).with_context(|| {
+                            format!("{}: technique[{}], cell {}", lc.path.display(), c.technique, c.describe())
+                        });
+                    }
+                }
+            }
         }
     }
     let mut done = vec![];

@@ -89,6 +89,24 @@ fn a_noisy_cell_is_flagged_and_a_steady_one_is_not() {
     assert!(!summary.contains("| "), "the summary is plain text, not Markdown:\n{summary}");
 }
 
+/// The host speed probe: no line without probes; with them the fastest, median and slowest, and
+/// a warning once the slowest is over 1.15x the fastest.
+#[test]
+fn the_header_gives_the_host_speed_and_warns_when_it_drifted() {
+    let (config, mut r) = synthetic();
+    assert!(!bench::report::markdown(&config, &r).contains("Host speed"));
+    for (c, ms) in r.cells.iter_mut().zip([5.0, 5.1, 5.2, 5.5]) {
+        c.host_probe_ms = Some(ms);
+    }
+    let md = bench::report::markdown(&config, &r);
+    let line = md.lines().find(|l| l.contains("**Host speed**")).unwrap_or_else(|| panic!("no host speed line:\n{md}"));
+    assert!(line.contains("fastest 5.00, slowest 5.50 (1.10x)") && !line.contains("drifted"), "{line}");
+    r.cells[3].host_probe_ms = Some(6.0);
+    let md = bench::report::markdown(&config, &r);
+    let line = md.lines().find(|l| l.contains("**Host speed**")).expect("host speed line");
+    assert!(line.contains("(1.20x): the host's speed drifted"), "{line}");
+}
+
 #[test]
 fn a_not_comparable_paper_value_is_marked_and_gets_no_ratio() {
     let (config, r) = synthetic();

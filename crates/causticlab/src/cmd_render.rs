@@ -61,8 +61,8 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let out = OutputDir::create(&args.out).context("--out")?;
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
     *validation = Some(ctx.validation_log());
-    render::check_device(&ctx, &scene)?;
     check_sizes(&scene, ctx.info())?;
+    render::check_device(&ctx, &scene)?;
 
     let shaders = ShaderCompiler::new(&render::shader_root()).context("creating the shader compiler")?;
     let frame_mode = render::FrameMode::parse(&args.frame_mode)

@@ -102,6 +102,16 @@ fn huge_camera_resolution() {
     expect_scene_error("res-huge", "resolution = [512, 512]", to, &[], &["camera.resolution"]);
 }
 
+/// A camera within maxImageDimension2D whose images need more memory than the device has
+/// (lavapipe's device-local heap is 2048 MiB; 16384² eye images need 30720 MiB): refused before
+/// anything is allocated, naming the key and both amounts.
+#[test]
+fn camera_beyond_the_device_memory() {
+    let to = "resolution = [16384, 16384]";
+    let needles = ["key `camera.resolution`", "30720 MiB", "device-local heap"];
+    expect_scene_error("res-memory", "resolution = [512, 512]", to, &[], &needles);
+}
+
 #[test]
 fn unknown_device() {
     let s = scene("sphere_on_plane");

@@ -40,6 +40,7 @@ pub fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: 
         passes: vec![],
         cpu_steal: None,
         other_cores: None,
+        host_probe_ms: None,
         busy: false,
         list_sizes: None,
         frame_counters: BTreeMap::new(),

@@ -214,9 +214,38 @@ pub fn read_exr(path: &Path) -> Result<ImageF32> {
     read_exr_inner(path).with_context(|| format!("reading {}", path.display()))
 }
 
+/// The most samples (pixels times channels, over every part) [`read_exr`] reads: 2^28, 1 GiB
+/// of f32. A header that claims more is refused before any pixel is read: the exr crate would
+/// try to allocate them all, and an allocation that fails aborts the process.
+pub const MAX_EXR_SAMPLES: u64 = 1 << 28;
+
+/// Reads the headers alone and refuses sizes beyond [`MAX_EXR_SAMPLES`].
+fn check_exr_header(path: &Path) -> Result<()> {
+    let meta = exr::meta::MetaData::read_from_file(path, false)?;
+    let mut samples: u64 = 0;
+    for h in meta.headers.iter() {
+        let (w, ht) = (h.layer_size.width() as u64, h.layer_size.height() as u64);
+        let channels = h.channels.list.len() as u64;
+        let part = w.saturating_mul(ht).saturating_mul(channels);
+        ensure!(
+            part <= MAX_EXR_SAMPLES,
+            "its header claims a {w}x{ht} part of {channels} channels ({part} samples), more than the {MAX_EXR_SAMPLES} \
+             this reader reads"
+        );
+        samples = samples.saturating_add(part);
+    }
+    ensure!(
+        samples <= MAX_EXR_SAMPLES,
+        "its header claims {samples} samples over {} parts, more than the {MAX_EXR_SAMPLES} this reader reads",
+        meta.headers.len()
+    );
+    Ok(())
+}
+
 fn read_exr_inner(path: &Path) -> Result<ImageF32> {
     use exr::prelude::{read, AttributeValue, ReadChannels, ReadLayers};
 
+    check_exr_header(path)?;
     let file = File::open(path)?;
     let image = read()
         .no_deep_data()

@@ -154,6 +154,27 @@ fn exr_rejects_bad_input_without_panicking() {
     assert!(read_exr(&path).is_err());
 }
 
+/// A header that claims a huge image (its `dataWindow` patched to 1,000,000² pixels) is refused
+/// by the header check, naming the file, before the exr crate allocates the pixels.
+#[test]
+fn exr_header_claiming_a_huge_image_is_refused_before_reading_pixels() {
+    let dir = TempDir::new("exr-huge");
+    let path = dir.0.join("huge.exr");
+    let ok = ImageF32 { width: 2, height: 2, layers: vec![Layer::new(None, &["R"], vec![1.0; 4])] };
+    write_exr(&path, &ok).unwrap();
+    let mut bytes = std::fs::read(&path).unwrap();
+    let key = b"dataWindow\0box2i\0";
+    let at = bytes.windows(key.len()).position(|w| w == key).expect("a dataWindow attribute") + key.len();
+    // Size (16), then xMin, yMin, xMax, yMax as little-endian i32.
+    assert_eq!(&bytes[at..at + 4], &16i32.to_le_bytes());
+    for (k, v) in [0i32, 0, 999_999, 999_999].iter().enumerate() {
+        bytes[at + 4 + 4 * k..at + 8 + 4 * k].copy_from_slice(&v.to_le_bytes());
+    }
+    std::fs::write(&path, &bytes).unwrap();
+    let err = format!("{:#}", read_exr(&path).unwrap_err());
+    assert!(err.contains("huge.exr") && err.contains("1000000x1000000") && err.contains("claims"), "{err}");
+}
+
 /// Independent ACES (Narkowicz) + sRGB in f64, for expected codes.
 fn expected_code(linear: f64) -> u8 {
     let x = linear;

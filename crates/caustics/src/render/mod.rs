@@ -6,6 +6,7 @@ mod dispatch;
 mod dumps;
 mod eye;
 pub mod frame_mode;
+pub mod memory;
 pub mod pipelines;
 mod renderer;
 pub mod soak;
@@ -108,9 +109,16 @@ pub struct Rendered {
 }
 
 /// Checks that the device has every feature the scene's caustic technique (and, for `hcm`, its
-/// traversal path; for the compute splat, float atomics) needs; the error names the feature.
+/// traversal path; for the compute splat, float atomics) needs, and the memory its images need
+/// (`memory.rs`); the error names the feature, or the keys and the memory.
 pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
     let c = &scene.caustics;
+    if c.technique.renders_meshes() {
+        let info = ctx.info();
+        if let Some(e) = memory::too_big(scene, &info.name, info.device_local_bytes) {
+            return Err(crate::input_error!("{e}").into());
+        }
+    }
     ctx.require(&format!("technique `{}`", c.technique), c.technique.required_features())?;
     ctx.require(
         &format!("refraction `{}` (a geometry shader routes each face to the front or back layer)", c.refraction),

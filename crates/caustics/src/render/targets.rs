@@ -38,6 +38,11 @@ pub struct EyeTargets {
 }
 
 impl EyeTargets {
+    /// The eye-sized images below: COLOR (background, position, normal, albedo, back faces,
+    /// surface, final) and DEPTH (depth, back-face depth), counted by `memory.rs`.
+    pub const COLOR_IMAGES: u64 = 7;
+    pub const DEPTH_IMAGES: u64 = 2;
+
     pub fn new(ctx: &Context, scene: &Scene) -> Result<EyeTargets> {
         let (w, h) = (scene.camera.width, scene.camera.height);
         let lights = scene.lights.len().clamp(1, crate::gpu::MAX_LIGHTS) as u32;

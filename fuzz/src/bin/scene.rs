@@ -1,0 +1,8 @@
+//! Fuzz target `scene` (README.md): `cargo afl build --release --bin scene`, run by scripts/fuzz.sh.
+
+fn main() {
+    let root = causticlab_fuzz::fuzz_root();
+    afl::fuzz!(|data: &[u8]| {
+        causticlab_fuzz::run(causticlab_fuzz::check::Target::Scene, &root, data);
+    });
+}
