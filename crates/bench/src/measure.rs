@@ -256,7 +256,7 @@ impl<'a> Runner<'a> {
 
     /// The throughput frame mode: frames submitted back to back through the renderer's ring,
     /// poses updated between them; after the warm-up (at least one frame per slot, waited for,
-    /// then the ring filled again with warm frames), blocks of
+    /// then twice as many frames as the ring has slots, untimed), blocks of
     /// `run.block_frames` frames timed on the host from the start of one block to the start of
     /// the next (the ring is full from the warm-up on, so each submit waits for the frame
     /// `slots` before it: the submits are paced by the GPU), until there
@@ -292,11 +292,14 @@ impl<'a> Runner<'a> {
             f += 1;
         }
         // Frames in flight carry their time into the next submits: wait for the (cold) warm-up
-        // frames, then fill the ring again with warm ones before the first block is timed, or
-        // the first block pays for the warm-up (measured: 1016 ms against 633-689 ms for the
-        // blocks after it, beethoven_standin's eye gather on lavapipe).
+        // frames, or the first block pays for the warm-up (measured: 1016 ms against 633-689 ms
+        // for the blocks after it, beethoven_standin's eye gather on lavapipe). The first
+        // frames after that wait are still slow on lavapipe (the ring's eye gather, 512²,
+        // static, 10 blocks: the first 831 ms against 485-727 for the nine after it), so two
+        // rings' worth of frames go before the first timed block (then 587 and 657 ms against
+        // 521-712 in two runs).
         renderer.finish()?;
-        for _ in 0..FrameMode::SLOTS {
+        for _ in 0..2 * FrameMode::SLOTS {
             submit(renderer, f, &mut reports)?;
             f += 1;
         }
