@@ -30,7 +30,9 @@ if ! cargo afl --version 2>/dev/null | grep -q "$afl_version"; then
     echo "fuzz.sh: installing cargo-afl $afl_version (builds AFL++ once)"
     cargo install --locked cargo-afl --version "$afl_version"
 fi
-cargo afl config --build >/dev/null 2>&1 || cargo afl config --build --force
+# cargo-afl builds AFL++ when it is installed; `config --build` refuses to build it twice, and
+# `cargo afl build` below says so if it is missing.
+cargo afl config --build >/dev/null 2>&1 || true
 
 (cd fuzz && cargo afl build --release --bin "$target")
 bin=fuzz/target/release/$target
@@ -52,7 +54,7 @@ rm -rf "$out"
 mkdir -p "$out" fuzz/stats
 # No core dumps to wait for, no CPU governor to set on a VM; -t: a hang is over 10 s;
 # -m: an input may not make the reader use more than 4 GiB.
-export AFL_I_DONT_CARE_ABOUT_MISSING_CRASHES=1 AFL_SKIP_CPUFREQ=1 AFL_NO_UI=1 AFL_AUTORESUME=0
+export AFL_I_DONT_CARE_ABOUT_MISSING_CRASHES=1 AFL_SKIP_CPUFREQ=1 AFL_NO_UI=1 AFL_NO_AFFINITY=1
 cargo afl fuzz -i "$seeds" -o "$out" -V "$seconds" -t 10000 -m 4096 "$bin" | tail -n 20
 
 stats=$out/default/fuzzer_stats
@@ -60,6 +62,11 @@ cp "$stats" "fuzz/stats/$target.txt"
 rm -rf "fuzz/corpus/$target"
 mkdir -p "fuzz/corpus/$target"
 AFL_I_DONT_CARE_ABOUT_MISSING_CRASHES=1 cargo afl cmin -i "$out/default/queue" -o "fuzz/corpus/$target" -t 10000 -m 4096 -- "$bin" >/dev/null
+# Name each input by its content (AFL's names hold ':' and ','): stable, and the same input twice
+# is one file.
+for f in "fuzz/corpus/$target"/*; do
+    mv -n "$f" "fuzz/corpus/$target/$(sha1sum "$f" | cut -c1-16)" 2>/dev/null || true
+done
 crashes=$(find "$out/default/crashes" -type f ! -name README.txt | wc -l)
 hangs=$(find "$out/default/hangs" -type f | wc -l)
 grep -E "^(execs_done|run_time|bitmap_cvg|corpus_count|saved_crashes|saved_hangs) " "$stats"
