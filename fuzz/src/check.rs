@@ -78,16 +78,14 @@ pub fn check(target: Target, root: &Path, bytes: &[u8]) -> Result<(), String> {
         _ => bytes,
     };
     std::fs::write(&path, bytes).map_err(|e| format!("writing {}: {e}", path.display()))?;
-    let (named, result) = match target {
-        Target::Scene | Target::SceneValues => (path.clone(), caustics::scene::Scene::load(&path).map(drop)),
-        Target::Obj => {
-            let scene = root.join("obj_scene.toml");
-            (path.clone(), caustics::scene::Scene::load(&scene).map(drop))
-        }
-        Target::BenchConfig => (path.clone(), bench::config::LoadedConfig::load(&path).map(drop)),
-        Target::Exr => (path.clone(), caustics::image_io::read_exr(&path).map(drop)),
+    // Every error must name the fuzzed file, `model.obj` too (read through the scene naming it).
+    let result = match target {
+        Target::Scene | Target::SceneValues => caustics::scene::Scene::load(&path).map(drop),
+        Target::Obj => caustics::scene::Scene::load(&root.join("obj_scene.toml")).map(drop),
+        Target::BenchConfig => bench::config::LoadedConfig::load(&path).map(drop),
+        Target::Exr => caustics::image_io::read_exr(&path).map(drop),
     };
-    holds(&named, result)
+    holds(&path, result)
 }
 
 /// The property for one reader's result on `file`: `Ok`, or an error naming the file.

@@ -89,19 +89,14 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
                 .with_context(|| format!("{}: technique[{}]", lc.path.display(), cell.technique))?;
             // The images grow with the photons and the resolution: every size this scene and
             // technique run at must fit the device's memory.
-            if scene.caustics.technique.renders_meshes() {
-                let info = ctx.info();
-                for c in cells[i..].iter().filter(|c| same(c)) {
-                    scene.caustics.photons = c.photons;
-                    if c.resolution != [0, 0] {
-                        (scene.camera.width, scene.camera.height) = (c.resolution[0], c.resolution[1]);
-                    }
-                    if let Some(e) = caustics::render::memory::too_big(&scene, &info.name, info.device_local_bytes) {
-                        return Err(anyhow::Error::new(caustics::input_error!("{e}"))).with_context(|| {
-                            format!("{}: technique[{}], cell {}", lc.path.display(), c.technique, c.describe())
-                        });
-                    }
+            for c in cells[i + 1..].iter().filter(|c| same(c)) {
+                scene.caustics.photons = c.photons;
+                if c.resolution != [0, 0] {
+                    (scene.camera.width, scene.camera.height) = (c.resolution[0], c.resolution[1]);
                 }
+                caustics::render::check_memory(ctx, &scene).with_context(|| {
+                    format!("{}: technique[{}], cell {}", lc.path.display(), c.technique, c.describe())
+                })?;
             }
         }
     }

@@ -492,6 +492,15 @@ fn config_errors_name_the_file_and_key() {
             "photon_fov",
         ),
         (
+            // 8192² eye images need 7680 MiB, beyond lavapipe's 2048 MiB heap: refused before
+            // the first cell runs, though the 64² cells would fit.
+            "beyond_memory.toml",
+            SMALL
+                .replace("resolution = [[64, 64]]", "resolution = [[64, 64], [8192, 8192]]")
+                .replace("rows = [\"scene\", \"photons\"]", "rows = [\"scene\", \"photons\", \"resolution\"]"),
+            "key `camera.resolution`: the frame's images need at least 7",
+        ),
+        (
             "bad_radius.toml",
             SMALL.replace("technique = \"shah\"", "technique = \"shah\"\nsplat_radius = 500.0"),
             "splat_radius",

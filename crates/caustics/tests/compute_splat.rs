@@ -9,15 +9,13 @@
 
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
-use std::path::PathBuf;
 use vkcore::{Context, ShaderCompiler};
 
 mod common;
-use common::context;
+use common::{context, shipped};
 
 fn scene(file: &str, technique: &str) -> Scene {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes").join(file);
-    let mut s = Scene::load(&p).expect("shipped scene");
+    let mut s = shipped(file);
     s.caustics.technique = technique.parse().expect("a known name");
     s.caustics.photons = 128;
     s.caustics.caustic_map_resolution = 256;

@@ -7,16 +7,10 @@
 use caustics::animation::{scene_at, Animation};
 use caustics::render::{FrameMode, FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
-use std::path::PathBuf;
 use vkcore::{Context, ShaderCompiler};
 
 mod common;
-use common::context;
-
-fn shipped(name: &str) -> Scene {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes").join(name);
-    Scene::load(&p).expect("shipped scene")
-}
+use common::{context, shipped};
 
 fn small(mut s: Scene, technique: &str) -> Scene {
     s.caustics.technique = technique.parse().expect("a known technique");

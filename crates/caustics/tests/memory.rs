@@ -6,15 +6,13 @@
 use caustics::render::memory::needs;
 use caustics::render::{Renderer, RendererOptions};
 use caustics::scene::Scene;
-use std::path::PathBuf;
 use vkcore::{Context, ShaderCompiler};
 
 mod common;
-use common::context;
+use common::{context, shipped};
 
 fn base(technique: &str) -> Scene {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
-    let mut s = Scene::load(&p).expect("shipped scene");
+    let mut s = shipped("sphere_on_plane.toml");
     s.caustics.technique = technique.parse().expect("a known technique");
     s.caustics.photons = 64;
     s.caustics.caustic_map_resolution = 128;

@@ -9,15 +9,15 @@
 //! a scene it lets through may still fail in the allocator near the limit.
 
 use super::targets::EyeTargets;
-use crate::gpu::MAX_LIGHTS;
+use crate::gpu::{formats, MAX_LIGHTS};
 use crate::scene::Scene;
 use crate::techniques::Technique;
+use vkcore::Format;
 
-/// Bytes per texel of the formats below (`gpu::formats`: COLOR is RGBA32F, DISTANCE R32F,
-/// DEPTH D32F).
-const COLOR: u64 = 16;
-const DISTANCE: u64 = 4;
-const DEPTH: u64 = 4;
+/// Bytes per texel of one of the render targets' formats (`gpu::formats`).
+fn texel(format: Format) -> u64 {
+    vkcore::texel_size(format).expect("every render-target format has a texel size") as u64
+}
 
 /// Memory one scene key asks for.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,20 +33,21 @@ pub struct Need {
 
 /// What the mesh renderer's images need, by the key that sizes them.
 pub fn needs(scene: &Scene) -> Vec<Need> {
+    let (color, distance, depth) = (texel(formats::COLOR), texel(formats::DISTANCE), texel(formats::DEPTH));
     let lights = scene.lights.len().clamp(1, MAX_LIGHTS) as u64;
     let (w, h) = (scene.camera.width as u64, scene.camera.height as u64);
     let mut out = vec![Need {
         key: "camera.resolution",
         value: format!("{w}x{h}"),
         what: "the eye render's images",
-        bytes: w * h * (EyeTargets::COLOR_IMAGES * COLOR + EyeTargets::DEPTH_IMAGES * DEPTH),
+        bytes: w * h * (EyeTargets::COLOR_IMAGES * color + EyeTargets::DEPTH_IMAGES * depth),
     }];
     let s = scene.render.shadow_map_resolution as u64;
     out.push(Need {
         key: "render.shadow_map_resolution",
         value: s.to_string(),
         what: "the shadow maps (six faces per light)",
-        bytes: s * s * 6 * lights * (DISTANCE + DEPTH),
+        bytes: s * s * 6 * lights * (distance + depth),
     });
     if let Some(r) = &scene.receiver_map {
         let r = r.resolution as u64;
@@ -54,7 +55,7 @@ pub fn needs(scene: &Scene) -> Vec<Need> {
             key: "receiver_map.resolution",
             value: r.to_string(),
             what: "the receiver map's three images",
-            bytes: r * r * 3 * COLOR,
+            bytes: r * r * 3 * color,
         });
     }
     let c = &scene.caustics;
@@ -64,7 +65,7 @@ pub fn needs(scene: &Scene) -> Vec<Need> {
             key: "caustics.caustic_map_resolution",
             value: m.to_string(),
             what: "the caustic maps and receiver positions",
-            bytes: m * m * lights * (c.caustic_levels() as u64 * COLOR + COLOR + DEPTH),
+            bytes: m * m * lights * (c.caustic_levels() as u64 * color + color + depth),
         });
         // The photon buffer (position, direction, power) and the light-space back faces and
         // depth, reused light after light; adaptive caustic maps have none (their photon
@@ -72,8 +73,8 @@ pub fn needs(scene: &Scene) -> Vec<Need> {
         let n = c.photons as u64;
         let per_photon = match c.technique {
             Technique::Adaptive => 0,
-            Technique::ShahVertex => COLOR + DEPTH,
-            _ => 3 * COLOR + COLOR + DEPTH,
+            Technique::ShahVertex => color + depth,
+            _ => 3 * color + color + depth,
         };
         if per_photon > 0 {
             out.push(Need {

@@ -113,12 +113,7 @@ pub struct Rendered {
 /// (`memory.rs`); the error names the feature, or the keys and the memory.
 pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
     let c = &scene.caustics;
-    if c.technique.renders_meshes() {
-        let info = ctx.info();
-        if let Some(e) = memory::too_big(scene, &info.name, info.device_local_bytes) {
-            return Err(crate::input_error!("{e}").into());
-        }
-    }
+    check_memory(ctx, scene)?;
     ctx.require(&format!("technique `{}`", c.technique), c.technique.required_features())?;
     ctx.require(
         &format!("refraction `{}` (a geometry shader routes each face to the front or back layer)", c.refraction),
@@ -141,6 +136,18 @@ pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
             "splat_path `compute` (float atomics in shared/splat.comp)",
             crate::techniques::shared::compute_splat::FEATURES,
         )?;
+    }
+    Ok(())
+}
+
+/// The memory check of [`check_device`] alone (a mesh scene's images against the device-local
+/// heap, `memory.rs`): an input error naming the keys and the memory.
+pub fn check_memory(ctx: &Context, scene: &Scene) -> Result<()> {
+    if scene.caustics.technique.renders_meshes() {
+        let info = ctx.info();
+        if let Some(e) = memory::too_big(scene, &info.name, info.device_local_bytes) {
+            return Err(crate::input_error!("{e}").into());
+        }
     }
     Ok(())
 }

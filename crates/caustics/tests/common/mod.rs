@@ -1,6 +1,7 @@
 //! Shared by the caustics crate's GPU tests: a lavapipe-or-GPU context with the Khronos
 //! validation layer on (the tests fail on any message it reports).
 
+use caustics::scene::Scene;
 use vkcore::{Context, ContextOptions, ShaderCompiler};
 
 /// A validated context on `$CAUSTICLAB_TEST_DEVICE` (default: the default device).
@@ -14,4 +15,11 @@ pub fn context() -> (Context, ShaderCompiler) {
     let ctx = Context::new(&opts).expect("a Vulkan 1.3 device with the validation layer (run scripts/setup.sh)");
     let shaders = ShaderCompiler::new(&caustics::render::shader_root()).expect("shaderc");
     (ctx, shaders)
+}
+
+/// A scene shipped in `scenes/` (`name` with its extension), loaded as a user would.
+#[allow(dead_code)] // not every test crate that shares this module loads a shipped scene
+pub fn shipped(name: &str) -> Scene {
+    let p = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes").join(name);
+    Scene::load(&p).unwrap_or_else(|e| panic!("shipped scene {name}: {e:#}"))
 }
