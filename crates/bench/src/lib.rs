@@ -4,6 +4,8 @@
 //! CSV; `figure` + `plot`: SVG and PNG; `index`), plus
 //! `timings.json` of single renders (`record`).
 
+#![forbid(unsafe_code)]
+
 pub mod config;
 pub mod figure;
 pub mod font;

@@ -29,6 +29,9 @@ pub struct Timings {
     /// Each frame: its GPU time where it was timed as a whole, and what recording and
     /// submitting it asked of the driver.
     pub per_frame: Vec<FrameEntry>,
+    /// The last frame's photon counts, read back from the GPU (`render` sets them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub counts: Option<caustics::render::Counts>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -144,6 +147,7 @@ impl Timings {
                     objects: f.counters.objects,
                 })
                 .collect(),
+            counts: None,
         }
     }
 }

@@ -44,6 +44,9 @@ pub enum Command {
     Reference(ReferenceArgs),
     /// Compare two receiver maps (B is the reference): errors, peak, flux; writes an error image.
     Compare(CompareArgs),
+    /// Compare two renders texel by texel: two EXR files, or two `render --out` folders (every
+    /// dump, final.exr and the photon counts in timings.json). Exit 1 when anything differs.
+    Diff(DiffArgs),
     /// Regenerate a paper's table from a bench config (bench_configs/*.toml), or merge shards.
     Bench(BenchArgs),
     /// Render many animated throughput frames and sample resident memory, device memory and
@@ -218,6 +221,28 @@ pub struct CompareArgs {
     /// `lit` (every texel with E0 > 0: Trendall & Stewart 2000's relative RMS error).
     #[arg(long, value_enum, default_value_t = caustics::compare::Region::Caustic)]
     pub region: caustics::compare::Region,
+}
+
+#[derive(Debug, Args)]
+pub struct DiffArgs {
+    /// An EXR file or a folder `causticlab render` wrote.
+    pub a: PathBuf,
+    /// The same of the run compared with (the recording).
+    pub b: PathBuf,
+    /// The largest difference allowed in a channel, relative to the channel's largest |B|
+    /// (0: identical texels). Photon counts are always compared exactly.
+    #[arg(long, default_value_t = 0.0)]
+    pub tolerance: f64,
+    /// Files (comma-separated stems, e.g. `splats,hierarchy_lists`) compared as unordered lists:
+    /// each layer's texels sorted first, for the lists a compute path appends to with an atomic
+    /// counter, in an order that changes from run to run.
+    #[arg(long, value_delimiter = ',')]
+    pub unordered: Vec<String>,
+    /// Files (comma-separated stems) not compared in folders, e.g. the batched compute
+    /// traversal's `adaptive_lists`, whose split of the clusters into batches follows the
+    /// append order.
+    #[arg(long, value_delimiter = ',')]
+    pub ignore: Vec<String>,
 }
 
 #[derive(Debug, Args)]

@@ -97,7 +97,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             written.push(RECEIVER_PNG.to_string());
         }
     }
-    let timings = Timings::new(
+    let mut timings = Timings::new(
         ctx.info(),
         &scene.caustics,
         rendered.photons_emitted,
@@ -106,6 +106,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         frame_mode.name(),
         &rendered.frames,
     );
+    timings.counts = Some(rendered.counts.clone());
     let json = serde_json::to_string_pretty(&timings).context("serialising timings.json")?;
     image_io::write_file_atomically(&out.path("timings.json"), json.as_bytes())?;
     written.push("timings.json".to_string());

@@ -3,10 +3,13 @@
 //! mapped to exit codes (see `exit.rs`); with `--validate`, any validation message turns a
 //! successful run into exit code 3.
 
+#![forbid(unsafe_code)]
+
 mod cli;
 mod cmd_bench;
 mod cmd_compare;
 mod cmd_devices;
+mod cmd_diff;
 mod cmd_pool_reference;
 mod cmd_reference;
 mod cmd_render;
@@ -31,6 +34,7 @@ fn main() -> ExitCode {
         Command::Render(args) => cmd_render::run(&cli.global, args, &mut validation),
         Command::Reference(args) => cmd_reference::run(args),
         Command::Compare(args) => cmd_compare::run(args),
+        Command::Diff(args) => cmd_diff::run(args),
         Command::Bench(args) => cmd_bench::run(&cli.global, args, &mut validation),
         Command::Soak(args) => cmd_soak::run(&cli.global, args, &mut validation),
     };

@@ -101,3 +101,21 @@ fn the_property_fails_on_an_error_that_names_no_file() {
     assert_eq!(check::check(Target::Exr, &root, b"not an exr"), Ok(()));
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// The fuzzed scenes read stand-ins for the shipped scenes' models (`check::prepare`); a scene
+/// naming a model not on that list would load the real one, a second per input.
+#[test]
+fn the_stand_in_models_are_the_ones_the_shipped_scenes_name() {
+    let mut named = std::collections::BTreeSet::new();
+    for e in std::fs::read_dir(repo().join("scenes")).expect("scenes/") {
+        let path = e.expect("entry").path();
+        if path.extension().is_some_and(|x| x == "toml") {
+            let text = std::fs::read_to_string(&path).expect("scene");
+            for piece in text.split('"').filter(|p| p.ends_with(".obj") && !p.contains(' ')) {
+                named.insert(piece.to_string());
+            }
+        }
+    }
+    let stand_ins: std::collections::BTreeSet<String> = check::STAND_IN_MODELS.iter().map(|s| s.to_string()).collect();
+    assert_eq!(stand_ins, named);
+}

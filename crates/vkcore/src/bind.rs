@@ -1,12 +1,15 @@
-//! Descriptors: what a pass binds, in binding order. Each kind also says how the pass touches
-//! its resource, so a pass names a resource once and gets both the push descriptor and the
-//! barrier from it.
+//! Descriptors: what a pass binds, each under the name its shader gives the binding, in
+//! binding order: `("photon_power", Bind::Sampled(&view, &sampler))`. The names are checked
+//! against the pipeline's shaders (SPIR-V reflection), so a swapped, missing or extra binding
+//! is an error naming both sides rather than a wrong image. Each kind also says how the pass
+//! touches its resource, so a pass names a resource once and gets both the push descriptor
+//! and the barrier from it.
 
 use crate::buffer::Buffer;
 use crate::error::{Result, VkError};
 use crate::frame::Use;
 use crate::image::{ImageView, Sampler};
-use crate::pipeline::BindingKind;
+use crate::pipeline::{Binding, BindingKind};
 use crate::tracker::Access;
 use ash::vk;
 
@@ -28,7 +31,20 @@ pub enum Bind<'a> {
     Uniform(&'a Buffer),
 }
 
+/// A descriptor under the name its shader gives the binding.
+pub type Named<'a> = (&'static str, Bind<'a>);
+
 impl<'a> Bind<'a> {
+    /// The descriptor kind this fills.
+    pub(crate) fn kind(&self) -> BindingKind {
+        match self {
+            Bind::Sampled(..) => BindingKind::SampledImage,
+            Bind::Storage(_) => BindingKind::StorageImage,
+            Bind::Buffer(_) | Bind::BufferRange(..) | Bind::BufferRead(_) => BindingKind::StorageBuffer,
+            Bind::Uniform(_) => BindingKind::UniformBuffer,
+        }
+    }
+
     /// How a pipeline at `point` touches this descriptor's resource: uniforms and sampled images
     /// are read, storage images and buffers read and written by compute or by the graphics
     /// stages, `BufferRead` only read.
@@ -58,22 +74,109 @@ impl<'a> Bind<'a> {
     }
 }
 
-/// Checks that `binds` fit `kinds`, a pipeline's bindings, one by one.
-pub(crate) fn check_binds(kinds: &[BindingKind], binds: &[Bind]) -> Result<()> {
-    if binds.len() != kinds.len() {
-        return Err(VkError::Invalid(format!("pipeline declares {} bindings, {} given", kinds.len(), binds.len())));
-    }
-    for (i, (b, kind)) in binds.iter().zip(kinds).enumerate() {
-        let ok = matches!(
-            (b, kind),
-            (Bind::Sampled(..), BindingKind::SampledImage)
-                | (Bind::Storage(..), BindingKind::StorageImage)
-                | (Bind::Buffer(..) | Bind::BufferRange(..) | Bind::BufferRead(..), BindingKind::StorageBuffer)
-                | (Bind::Uniform(..), BindingKind::UniformBuffer)
-        );
-        if !ok {
-            return Err(VkError::Invalid(format!("binding {i}: descriptor does not match the pipeline's {kind:?}")));
+/// Checks that `binds` are `pipeline`'s bindings, by name, in binding order, each of its kind;
+/// the error names the pipeline, the shader's binding and what the pass gave in its place.
+pub(crate) fn check_binds(pipeline: &str, bindings: &[Binding], binds: &[Named]) -> Result<()> {
+    let given: Vec<(&str, BindingKind)> = binds.iter().map(|(n, b)| (*n, b.kind())).collect();
+    check_names(pipeline, bindings, &given)
+}
+
+/// [`check_binds`] on the names and kinds alone.
+fn check_names(pipeline: &str, bindings: &[Binding], binds: &[(&str, BindingKind)]) -> Result<()> {
+    let fail = |what: String| Err(VkError::Invalid(format!("pipeline `{pipeline}`: {what}")));
+    let declared = |name: &str| bindings.iter().find(|b| b.name == name);
+    for (i, &(name, kind)) in binds.iter().enumerate() {
+        let Some(want) = bindings.get(i) else {
+            return match declared(name) {
+                Some(b) => fail(format!("`{name}` (binding {}) is given twice", b.binding)),
+                None => fail(format!(
+                    "the pass gives `{name}`, which its shaders do not declare (they declare {})",
+                    list(bindings)
+                )),
+            };
+        };
+        if want.name != name {
+            let elsewhere = match declared(name) {
+                Some(b) => format!("; `{name}` is binding {}", b.binding),
+                None => "; the shaders declare no such binding".to_string(),
+            };
+            return fail(format!(
+                "binding {} is `{}` in the shaders, the pass gives `{name}` in its place{elsewhere}",
+                want.binding, want.name
+            ));
+        }
+        if kind != want.kind {
+            return fail(format!(
+                "binding {} `{name}` is a {:?} in the shaders, the pass gives a {:?}",
+                want.binding, want.kind, kind
+            ));
         }
     }
+    if let Some(missing) = bindings.get(binds.len()) {
+        return fail(format!("binding {} `{}` ({:?}) is not given", missing.binding, missing.name, missing.kind));
+    }
     Ok(())
+}
+
+/// `a` (0), `b` (1), ... for error messages.
+fn list(bindings: &[Binding]) -> String {
+    if bindings.is_empty() {
+        return "none".into();
+    }
+    bindings.iter().map(|b| format!("`{}` ({})", b.name, b.binding)).collect::<Vec<_>>().join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bindings() -> Vec<Binding> {
+        [
+            (0, "frame", BindingKind::UniformBuffer),
+            (2, "photon_position", BindingKind::SampledImage),
+            (3, "photon_power", BindingKind::SampledImage),
+        ]
+        .map(|(binding, name, kind)| Binding { binding, name: name.into(), kind })
+        .to_vec()
+    }
+
+    fn check(given: &[(&str, BindingKind)]) -> Result<()> {
+        check_names("p", &bindings(), given)
+    }
+
+    #[test]
+    fn names_in_binding_order_pass() {
+        use BindingKind::*;
+        check(&[("frame", UniformBuffer), ("photon_position", SampledImage), ("photon_power", SampledImage)]).unwrap();
+    }
+
+    #[test]
+    fn swapped_same_kind_bindings_name_both() {
+        use BindingKind::*;
+        let e = check(&[("frame", UniformBuffer), ("photon_power", SampledImage), ("photon_position", SampledImage)])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("pipeline `p`") && e.contains("binding 2 is `photon_position`"), "{e}");
+        assert!(e.contains("gives `photon_power`") && e.contains("`photon_power` is binding 3"), "{e}");
+    }
+
+    #[test]
+    fn missing_extra_unknown_and_wrong_kind_are_named() {
+        use BindingKind::*;
+        let e = check(&[("frame", UniformBuffer), ("photon_position", SampledImage)]).unwrap_err().to_string();
+        assert!(e.contains("binding 3 `photon_power`") && e.contains("not given"), "{e}");
+        let e = check(&[
+            ("frame", UniformBuffer),
+            ("photon_position", SampledImage),
+            ("photon_power", SampledImage),
+            ("x", StorageImage),
+        ])
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("`x`") && e.contains("do not declare") && e.contains("`photon_power` (3)"), "{e}");
+        let e = check(&[("frame", UniformBuffer), ("photon_positon", SampledImage)]).unwrap_err().to_string();
+        assert!(e.contains("`photon_position` in the shaders") && e.contains("no such binding"), "{e}");
+        let e = check(&[("frame", StorageBuffer)]).unwrap_err().to_string();
+        assert!(e.contains("binding 0 `frame` is a UniformBuffer") && e.contains("StorageBuffer"), "{e}");
+    }
 }

@@ -10,7 +10,7 @@ use crate::buffer::{Buffer, Memory};
 use crate::context::Context;
 use crate::error::Result;
 use crate::frame::{Frame, Use};
-use crate::pipeline::{BindingKind, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout};
+use crate::pipeline::{GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout};
 use crate::query::QueryPool;
 use crate::recorder::Targets;
 use crate::shader::ShaderCompiler;
@@ -159,19 +159,13 @@ impl Compactor {
                 })
             }
             CompactionPath::Compute => {
-                use BindingKind::StorageBuffer as SB;
                 let append = Pipeline::compute(
                     ctx,
                     "compact.append",
                     &shaders.compile("vkcore/compact_append.comp", &defines)?,
-                    &[SB, SB, SB, SB],
                 )?;
-                let finalize = Pipeline::compute(
-                    ctx,
-                    "compact.finalize",
-                    &shaders.compile("vkcore/compact_finalize.comp", &[])?,
-                    &[SB],
-                )?;
+                let finalize =
+                    Pipeline::compute(ctx, "compact.finalize", &shaders.compile("vkcore/compact_finalize.comp", &[])?)?;
                 let dummy = ctx.buffer_with_data("compact dummy counter", &[0u8; COUNTER_BYTES as usize])?;
                 Ok(Compactor {
                     path,
@@ -209,7 +203,7 @@ impl Compactor {
             }
             return frame.pass(name).bind(p, []).uses(uses).record(|cmd| {
                 cmd.begin_rendering(&Targets::none())?;
-                cmd.bind_vertex_buffer(input, 0);
+                cmd.bind_vertex_buffer(input, 0)?;
                 cmd.bind_xfb_buffers(&[&out.data])?;
                 if let Some((pool, i)) = query {
                     cmd.begin_query(pool, i)?;
@@ -241,17 +235,17 @@ impl Compactor {
             Source::Stream(s) => (&s.data, &s.counter, 0, true),
         };
         let binds = [
-            Bind::BufferRead(input),
-            Bind::BufferRead(in_counter),
-            Bind::Buffer(&out.data),
-            Bind::Buffer(&out.counter),
+            ("Input", Bind::BufferRead(input)),
+            ("InputCounter", Bind::BufferRead(in_counter)),
+            ("Output", Bind::Buffer(&out.data)),
+            ("OutputCounter", Bind::Buffer(&out.counter)),
         ];
         // The step's count is read as dispatch arguments too.
         let arguments = indirect.then(|| Use::buffer(in_counter, Access::INDIRECT));
         frame.pass(name).bind(append, binds).uses(arguments).record(|cmd| {
             cmd.push(&CompactConstants { n, use_in_count: indirect as u32, capacity: out.capacity })?;
             if indirect {
-                cmd.dispatch_indirect(in_counter, 16);
+                cmd.dispatch_indirect(in_counter, 16)?;
             } else {
                 let groups = n.div_ceil(64);
                 let x = groups.clamp(1, 65535);
@@ -259,10 +253,12 @@ impl Compactor {
             }
             Ok(())
         })?;
-        frame.pass(&format!("{name}.finalize")).bind(finalize, [Bind::Buffer(&out.counter)]).record(|cmd| {
-            cmd.dispatch(1, 1, 1);
-            Ok(())
-        })
+        frame.pass(&format!("{name}.finalize")).bind(finalize, [("Counter", Bind::Buffer(&out.counter))]).record(
+            |cmd| {
+                cmd.dispatch(1, 1, 1);
+                Ok(())
+            },
+        )
     }
 }
 

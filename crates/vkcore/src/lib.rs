@@ -28,7 +28,7 @@ mod tracker;
 mod transfer;
 
 pub use ash::vk::Format;
-pub use bind::Bind;
+pub use bind::{Bind, Named};
 pub use buffer::{Buffer, Memory};
 pub use compaction::{CompactConstants, CompactStream, CompactionPath, Compactor, Source};
 
@@ -42,12 +42,14 @@ pub use image::{texel_size, Filter, Image, ImageDesc, ImageView, Sampler, ViewKi
 pub use instance::{Instance, ValidationLog};
 pub use pass::Pass;
 pub use pipeline::{
-    BindingKind, Blend, Cull, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout, PUSH_CONSTANT_BYTES,
+    Binding, BindingKind, Blend, Cull, GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout,
+    PUSH_CONSTANT_BYTES,
 };
 pub use profiler::{FrameReport, PassSummary, PassTiming, PipelineStats, Profiler, MAX_PASSES};
 pub use push::{check_push_constants, PushConstants};
 pub use query::QueryPool;
 pub use recorder::{Cmd, Targets};
+pub use reflect::ReflectedBinding;
 pub use ring::{FrameRing, RingOptions, Timing};
 pub use shader::{ShaderCompiler, Spirv, Stage};
 pub use tracker::Access;

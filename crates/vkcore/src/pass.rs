@@ -4,7 +4,7 @@
 //! `uses` declares what no descriptor covers: attachments, vertex and index buffers, indirect
 //! arguments, transfers, transform feedback.
 
-use crate::bind::{check_binds, Bind};
+use crate::bind::{check_binds, Named};
 use crate::error::{Result, VkError};
 use crate::frame::{Frame, Use};
 use crate::pipeline::Pipeline;
@@ -14,7 +14,7 @@ use crate::recorder::Cmd;
 pub struct Pass<'f, 'a> {
     frame: &'f mut Frame,
     name: String,
-    bound: Option<(&'a Pipeline, Vec<Bind<'a>>)>,
+    bound: Option<(&'a Pipeline, Vec<Named<'a>>)>,
     uses: Vec<Use<'a>>,
     error: Option<VkError>,
 }
@@ -30,17 +30,18 @@ impl<'f, 'a> Pass<'f, 'a> {
         }
     }
 
-    /// The pipeline the pass runs and its descriptors, `binds[i]` at binding i: both are bound
-    /// before `record` runs (outside any rendering scope; the state carries into it), and each
-    /// descriptor's barrier is declared. At most once per pass.
-    pub fn bind(mut self, pipeline: &'a Pipeline, binds: impl IntoIterator<Item = Bind<'a>>) -> Self {
-        let binds: Vec<Bind<'a>> = binds.into_iter().collect();
+    /// The pipeline the pass runs and its descriptors, each under its shader's name for the
+    /// binding, in binding order (checked: `bind.rs`): both are bound before `record` runs
+    /// (outside any rendering scope; the state carries into it), and each descriptor's barrier
+    /// is declared. At most once per pass.
+    pub fn bind(mut self, pipeline: &'a Pipeline, binds: impl IntoIterator<Item = Named<'a>>) -> Self {
+        let binds: Vec<Named<'a>> = binds.into_iter().collect();
         if self.bound.is_some() {
             self.fail(VkError::Invalid("bind() given twice".into()));
-        } else if let Err(e) = check_binds(&pipeline.bindings, &binds) {
+        } else if let Err(e) = check_binds(&pipeline.name, &pipeline.bindings, &binds) {
             self.fail(e);
         } else {
-            self.uses.extend(binds.iter().map(|b| b.to_use(pipeline.bind_point)));
+            self.uses.extend(binds.iter().map(|(_, b)| b.to_use(pipeline.bind_point)));
             self.bound = Some((pipeline, binds));
         }
         self
@@ -48,9 +49,9 @@ impl<'f, 'a> Pass<'f, 'a> {
 
     /// The barriers of a descriptor set that `record` pushes itself with `Cmd::bind` (passes
     /// that rebind per draw, e.g. one set per mesh). Declare each set once.
-    pub fn declare(mut self, pipeline: &Pipeline, binds: &[Bind<'a>]) -> Self {
-        match check_binds(&pipeline.bindings, binds) {
-            Ok(()) => self.uses.extend(binds.iter().map(|b| b.to_use(pipeline.bind_point))),
+    pub fn declare(mut self, pipeline: &Pipeline, binds: &[Named<'a>]) -> Self {
+        match check_binds(&pipeline.name, &pipeline.bindings, binds) {
+            Ok(()) => self.uses.extend(binds.iter().map(|(_, b)| b.to_use(pipeline.bind_point))),
             Err(e) => self.fail(e),
         }
         self

@@ -1,7 +1,9 @@
 //! Graphics pipelines (vertex + optional geometry + optional fragment; points with gl_PointSize,
 //! additive blending, layered targets with per-primitive gl_Layer, multiview, rasterizer discard
-//! for transform-feedback-only passes) and compute pipelines. Descriptors are push descriptors:
-//! binding i of set 0 has the i-th declared kind; 128 bytes of push constants for every stage.
+//! for transform-feedback-only passes) and compute pipelines. Descriptors are push descriptors
+//! in set 0, laid out as the shaders declare them (SPIR-V reflection, `reflect.rs`): a pipeline
+//! knows each binding's name and kind, and a pass binds by those names (`bind.rs`); 128 bytes
+//! of push constants for every stage.
 
 use crate::context::{Context, Shared};
 use crate::error::{Result, VkError, VkResultExt};
@@ -24,8 +26,18 @@ pub enum BindingKind {
     UniformBuffer,
 }
 
+/// One descriptor binding of a pipeline, as its shaders declare it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Binding {
+    /// `layout(binding = N)`.
+    pub binding: u32,
+    /// The shader's name for it (see [`crate::ReflectedBinding::name`]).
+    pub name: String,
+    pub kind: BindingKind,
+}
+
 impl BindingKind {
-    fn vk(self) -> vk::DescriptorType {
+    pub(crate) fn vk(self) -> vk::DescriptorType {
         match self {
             BindingKind::SampledImage => vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
             BindingKind::StorageImage => vk::DescriptorType::STORAGE_IMAGE,
@@ -76,7 +88,6 @@ pub struct GraphicsDesc {
     pub vertex: Spirv,
     pub geometry: Option<Spirv>,
     pub fragment: Option<Spirv>,
-    pub bindings: Vec<BindingKind>,
     pub vertex_layout: Option<VertexLayout>,
     pub topology: Topology,
     pub cull: Cull,
@@ -98,7 +109,6 @@ impl GraphicsDesc {
             vertex,
             geometry: None,
             fragment,
-            bindings: vec![],
             vertex_layout: None,
             topology: Topology::Triangles,
             cull: Cull::None,
@@ -120,7 +130,7 @@ pub struct Pipeline {
     pub(crate) layout: vk::PipelineLayout,
     set_layout: vk::DescriptorSetLayout,
     pub(crate) bind_point: vk::PipelineBindPoint,
-    pub(crate) bindings: Vec<BindingKind>,
+    pub(crate) bindings: Vec<Binding>,
     pub name: String,
 }
 
@@ -152,15 +162,14 @@ fn all_stages(ctx: &Context) -> vk::ShaderStageFlags {
     s
 }
 
-fn make_layout(ctx: &Context, bindings: &[BindingKind]) -> Result<(vk::DescriptorSetLayout, vk::PipelineLayout)> {
+fn make_layout(ctx: &Context, bindings: &[Binding]) -> Result<(vk::DescriptorSetLayout, vk::PipelineLayout)> {
     let stages = all_stages(ctx);
     let b: Vec<vk::DescriptorSetLayoutBinding> = bindings
         .iter()
-        .enumerate()
-        .map(|(i, k)| {
+        .map(|b| {
             vk::DescriptorSetLayoutBinding::default()
-                .binding(i as u32)
-                .descriptor_type(k.vk())
+                .binding(b.binding)
+                .descriptor_type(b.kind.vk())
                 .descriptor_count(1)
                 .stage_flags(stages)
         })
@@ -181,6 +190,31 @@ fn make_layout(ctx: &Context, bindings: &[BindingKind]) -> Result<(vk::Descripto
             Err(VkError::Call { call: "vkCreatePipelineLayout", result: e })
         }
     }
+}
+
+/// The descriptor bindings of a pipeline's stages, merged, in binding order. Stages that
+/// declare one binding must agree on its name and kind.
+pub(crate) fn reflect_bindings(name: &str, stages: &[&Spirv]) -> Result<Vec<Binding>> {
+    let mut out: Vec<Binding> = vec![];
+    for s in stages {
+        let list = s
+            .descriptor_bindings()
+            .map_err(|e| VkError::Invalid(format!("pipeline `{name}`, {:?} shader: {e}", s.stage)))?;
+        for b in list {
+            match out.iter().find(|o| o.binding == b.binding) {
+                Some(o) if (o.name.as_str(), o.kind) != (b.name.as_str(), b.kind) => {
+                    return Err(VkError::Invalid(format!(
+                        "pipeline `{name}`: binding {} is `{}` ({:?}) in one stage and `{}` ({:?}) in the {:?} shader",
+                        b.binding, o.name, o.kind, b.name, b.kind, s.stage
+                    )))
+                }
+                Some(_) => {}
+                None => out.push(Binding { binding: b.binding, name: b.name, kind: b.kind }),
+            }
+        }
+    }
+    out.sort_by_key(|b| b.binding);
+    Ok(out)
 }
 
 struct Modules<'a> {
@@ -206,12 +240,26 @@ impl Drop for Modules<'_> {
 }
 
 impl Pipeline {
+    /// The descriptor bindings its shaders declare, in binding order: what a pass binds, by name.
+    pub fn bindings(&self) -> &[Binding] {
+        &self.bindings
+    }
+
+    /// Whether its shaders declare a binding of this name (for a binding that a shader variant
+    /// leaves out, e.g. under a define).
+    pub fn declares(&self, name: &str) -> bool {
+        self.bindings.iter().any(|b| b.name == name)
+    }
+
     pub fn graphics(ctx: &Context, desc: &GraphicsDesc) -> Result<Pipeline> {
         if desc.geometry.is_some() {
             ctx.require(&format!("pipeline `{}` (geometry shader)", desc.name), &[crate::Feature::GeometryShader])?;
         }
         let d = ctx.shared.raw();
-        let (set_layout, layout) = make_layout(ctx, &desc.bindings)?;
+        let stages: Vec<&Spirv> =
+            [Some(&desc.vertex), desc.geometry.as_ref(), desc.fragment.as_ref()].into_iter().flatten().collect();
+        let bindings = reflect_bindings(&desc.name, &stages)?;
+        let (set_layout, layout) = make_layout(ctx, &bindings)?;
         let result = Self::build_graphics(ctx, desc, layout);
         match result {
             Ok(raw) => {
@@ -223,7 +271,7 @@ impl Pipeline {
                     layout,
                     set_layout,
                     bind_point: vk::PipelineBindPoint::GRAPHICS,
-                    bindings: desc.bindings.clone(),
+                    bindings,
                     name: desc.name.clone(),
                 })
             }
@@ -331,9 +379,11 @@ impl Pipeline {
         Ok(pipelines[0])
     }
 
-    pub fn compute(ctx: &Context, name: &str, shader: &Spirv, bindings: &[BindingKind]) -> Result<Pipeline> {
+    /// A compute pipeline of `shader`, its descriptor set laid out as the shader declares it.
+    pub fn compute(ctx: &Context, name: &str, shader: &Spirv) -> Result<Pipeline> {
         let d = ctx.shared.raw();
-        let (set_layout, layout) = make_layout(ctx, bindings)?;
+        let bindings = reflect_bindings(name, &[shader])?;
+        let (set_layout, layout) = make_layout(ctx, &bindings)?;
         let build = || -> Result<vk::Pipeline> {
             let mut modules = Modules { device: d, list: vec![] };
             let m = modules.add(shader)?;
@@ -356,7 +406,7 @@ impl Pipeline {
                     layout,
                     set_layout,
                     bind_point: vk::PipelineBindPoint::COMPUTE,
-                    bindings: bindings.to_vec(),
+                    bindings,
                     name: name.into(),
                 })
             }

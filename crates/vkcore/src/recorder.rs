@@ -1,13 +1,13 @@
 //! `Cmd`: the commands a pass may record. Safe signatures over raw ash calls; resources are
 //! borrowed, and frames are waited for before anything they used can be dropped.
 
-use crate::bind::{check_binds, Bind};
+use crate::bind::{check_binds, Bind, Named};
 use crate::buffer::Buffer;
 use crate::context::Context;
 use crate::error::{Result, VkError};
 use crate::frame::{sync, Use};
 use crate::image::{aspect, Image, ImageView};
-use crate::pipeline::{BindingKind, Pipeline, PUSH_CONSTANT_BYTES};
+use crate::pipeline::{Binding, Pipeline, PUSH_CONSTANT_BYTES};
 use crate::push::PushConstants;
 use crate::query::QueryPool;
 use crate::tracker::Access;
@@ -71,7 +71,7 @@ struct Bound {
     name: String,
     point: vk::PipelineBindPoint,
     layout: vk::PipelineLayout,
-    kinds: Vec<BindingKind>,
+    bindings: Vec<Binding>,
 }
 
 impl<'f> Cmd<'f> {
@@ -184,18 +184,19 @@ impl<'f> Cmd<'f> {
     pub fn bind_pipeline(&mut self, p: &Pipeline) {
         unsafe { self.d().cmd_bind_pipeline(self.cb, p.bind_point, p.raw) };
         self.bound =
-            Some(Bound { name: p.name.clone(), point: p.bind_point, layout: p.layout, kinds: p.bindings.clone() });
+            Some(Bound { name: p.name.clone(), point: p.bind_point, layout: p.layout, bindings: p.bindings.clone() });
     }
 
-    /// Pushes descriptors for the bound pipeline: `binds[i]` goes to binding i. Each must have
-    /// been declared by the pass (`Pass::bind` or `Pass::declare`), or its barrier is missing.
-    pub fn bind(&mut self, binds: &[Bind]) -> Result<()> {
-        let Bound { name, point, layout, kinds } =
+    /// Pushes descriptors for the bound pipeline, each under its shader's name for the binding,
+    /// in binding order (checked: `bind.rs`). Each must have been declared by the pass
+    /// (`Pass::bind` or `Pass::declare`), or its barrier is missing.
+    pub fn bind(&mut self, binds: &[Named]) -> Result<()> {
+        let Bound { name, point, layout, bindings } =
             self.bound.as_ref().ok_or_else(|| VkError::Invalid("bind() before bind_pipeline()".into()))?;
-        check_binds(kinds, binds)?;
-        if let Some(i) = binds.iter().position(|b| !self.declared.contains(&b.to_use(*point).key())) {
+        check_binds(name, bindings, binds)?;
+        if let Some((n, _)) = binds.iter().find(|(_, b)| !self.declared.contains(&b.to_use(*point).key())) {
             return Err(VkError::Invalid(format!(
-                "binding {i} of pipeline `{name}`: its resource was not declared by the pass (Pass::bind or \
+                "binding `{n}` of pipeline `{name}`: its resource was not declared by the pass (Pass::bind or \
                  Pass::declare)"
             )));
         }
@@ -204,7 +205,7 @@ impl<'f> Cmd<'f> {
         }
         let mut image_infos = Vec::with_capacity(binds.len());
         let mut buffer_infos = Vec::with_capacity(binds.len());
-        for b in binds {
+        for (_, b) in binds {
             match b {
                 Bind::Sampled(v, s) => image_infos.push(
                     vk::DescriptorImageInfo::default()
@@ -223,13 +224,9 @@ impl<'f> Cmd<'f> {
         }
         let (mut ii, mut bi) = (0, 0);
         let mut writes = vec![];
-        for (i, (b, kind)) in binds.iter().zip(kinds.iter()).enumerate() {
-            let w = vk::WriteDescriptorSet::default().dst_binding(i as u32).descriptor_type(match kind {
-                BindingKind::SampledImage => vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
-                BindingKind::StorageImage => vk::DescriptorType::STORAGE_IMAGE,
-                BindingKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
-                BindingKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
-            });
+        // check_binds matched binds[i] to bindings[i].
+        for ((_, b), binding) in binds.iter().zip(bindings.iter()) {
+            let w = vk::WriteDescriptorSet::default().dst_binding(binding.binding).descriptor_type(binding.kind.vk());
             match b {
                 Bind::Sampled(..) | Bind::Storage(..) => {
                     writes.push(w.image_info(std::slice::from_ref(&image_infos[ii])));
@@ -268,12 +265,30 @@ impl<'f> Cmd<'f> {
         Ok(())
     }
 
-    pub fn bind_vertex_buffer(&mut self, b: &Buffer, offset: u64) {
-        unsafe { self.d().cmd_bind_vertex_buffers(self.cb, 0, &[b.raw], &[offset]) };
+    /// An error unless the pass declared `b` with `access` (`Pass::uses`): what a command reads
+    /// outside its descriptors must have its barrier too.
+    fn declared(&self, b: &Buffer, (access, name): (Access, &str), what: &str) -> Result<()> {
+        if self.declared.contains(&(b.id, access)) {
+            return Ok(());
+        }
+        Err(VkError::Invalid(format!(
+            "{what}: buffer `{}` was not declared by the pass (Pass::uses with Use::buffer(.., Access::{name}))",
+            b.name()
+        )))
     }
 
-    pub fn bind_index_buffer(&mut self, b: &Buffer) {
+    /// Binds `b` as vertex buffer 0; the pass must declare it `Access::VERTEX_INPUT`.
+    pub fn bind_vertex_buffer(&mut self, b: &Buffer, offset: u64) -> Result<()> {
+        self.declared(b, (Access::VERTEX_INPUT, "VERTEX_INPUT"), "bind_vertex_buffer")?;
+        unsafe { self.d().cmd_bind_vertex_buffers(self.cb, 0, &[b.raw], &[offset]) };
+        Ok(())
+    }
+
+    /// Binds `b` as the index buffer (u32); the pass must declare it `Access::VERTEX_INPUT`.
+    pub fn bind_index_buffer(&mut self, b: &Buffer) -> Result<()> {
+        self.declared(b, (Access::VERTEX_INPUT, "VERTEX_INPUT"), "bind_index_buffer")?;
         unsafe { self.d().cmd_bind_index_buffer(self.cb, b.raw, 0, vk::IndexType::UINT32) };
+        Ok(())
     }
 
     pub fn draw(&mut self, vertices: u32, instances: u32, first_vertex: u32, first_instance: u32) {
@@ -284,18 +299,22 @@ impl<'f> Cmd<'f> {
         unsafe { self.d().cmd_draw_indexed(self.cb, indices, instances, first_index, 0, 0) };
     }
 
-    /// One VkDrawIndirectCommand at `offset`.
-    pub fn draw_indirect(&mut self, args: &Buffer, offset: u64) {
+    /// One VkDrawIndirectCommand at `offset`; the pass must declare `args` `Access::INDIRECT`.
+    pub fn draw_indirect(&mut self, args: &Buffer, offset: u64) -> Result<()> {
+        self.declared(args, (Access::INDIRECT, "INDIRECT"), "draw_indirect")?;
         unsafe { self.d().cmd_draw_indirect(self.cb, args.raw, offset, 1, 16) };
+        Ok(())
     }
 
     pub fn dispatch(&mut self, x: u32, y: u32, z: u32) {
         unsafe { self.d().cmd_dispatch(self.cb, x, y, z) };
     }
 
-    /// One VkDispatchIndirectCommand at `offset`.
-    pub fn dispatch_indirect(&mut self, args: &Buffer, offset: u64) {
+    /// One VkDispatchIndirectCommand at `offset`; the pass must declare `args` `Access::INDIRECT`.
+    pub fn dispatch_indirect(&mut self, args: &Buffer, offset: u64) -> Result<()> {
+        self.declared(args, (Access::INDIRECT, "INDIRECT"), "dispatch_indirect")?;
         unsafe { self.d().cmd_dispatch_indirect(self.cb, args.raw, offset) };
+        Ok(())
     }
 
     /// vkCmdFillBuffer over the whole buffer (outside rendering).
@@ -415,8 +434,12 @@ impl<'f> Cmd<'f> {
         })
     }
 
-    /// Binds transform-feedback buffers 0.. to whole `buffers`.
+    /// Binds transform-feedback buffers 0.. to whole `buffers`; the pass must declare each
+    /// `Access::XFB_WRITE`.
     pub fn bind_xfb_buffers(&mut self, buffers: &[&Buffer]) -> Result<()> {
+        for b in buffers {
+            self.declared(b, (Access::XFB_WRITE, "XFB_WRITE"), "bind_xfb_buffers")?;
+        }
         let raws: Vec<vk::Buffer> = buffers.iter().map(|b| b.raw).collect();
         let offsets = vec![0u64; buffers.len()];
         let sizes: Vec<u64> = buffers.iter().map(|b| b.size()).collect();
@@ -436,7 +459,11 @@ impl<'f> Cmd<'f> {
 
     /// Begins transform feedback; with `counters`, writing resumes at the byte counts stored
     /// there (one u32 per xfb buffer at offset 0), otherwise at offset 0.
+    /// The pass must declare each counter `Access::XFB_COUNTER`.
     pub fn begin_xfb(&mut self, counters: &[&Buffer], resume: bool) -> Result<()> {
+        for b in counters {
+            self.declared(b, (Access::XFB_COUNTER, "XFB_COUNTER"), "begin_xfb")?;
+        }
         let raws: Vec<vk::Buffer> = counters.iter().map(|b| b.raw).collect();
         let offsets = vec![0u64; counters.len()];
         let x = self.xfb()?;
@@ -456,8 +483,12 @@ impl<'f> Cmd<'f> {
         Ok(())
     }
 
-    /// Ends transform feedback, storing each buffer's byte count into `counters`.
+    /// Ends transform feedback, storing each buffer's byte count into `counters`; the pass must
+    /// declare each `Access::XFB_COUNTER`.
     pub fn end_xfb(&mut self, counters: &[&Buffer]) -> Result<()> {
+        for b in counters {
+            self.declared(b, (Access::XFB_COUNTER, "XFB_COUNTER"), "end_xfb")?;
+        }
         let raws: Vec<vk::Buffer> = counters.iter().map(|b| b.raw).collect();
         let offsets = vec![0u64; counters.len()];
         let x = self.xfb()?;
@@ -469,7 +500,9 @@ impl<'f> Cmd<'f> {
 
     /// vkCmdDrawIndirectByteCountEXT: draws `counter`'s byte count / `stride` vertices, so the
     /// output of one transform-feedback pass feeds the next without a CPU readback.
+    /// The pass must declare `counter` `Access::INDIRECT`.
     pub fn draw_indirect_byte_count(&mut self, instances: u32, counter: &Buffer, stride: u32) -> Result<()> {
+        self.declared(counter, (Access::INDIRECT, "INDIRECT"), "draw_indirect_byte_count")?;
         self.ctx.require("vkCmdDrawIndirectByteCountEXT", &[crate::Feature::TransformFeedbackDraw])?;
         let x = self.xfb()?;
         unsafe { (x.fp().cmd_draw_indirect_byte_count_ext)(self.cb, instances, 0, counter.raw, 0, 0, stride) };

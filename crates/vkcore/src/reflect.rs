@@ -1,7 +1,10 @@
 //! A little SPIR-V reflection: the push-constant block's name and its members' names and byte
 //! offsets, read from the debug names (OpName, OpMemberName) and Offset decorations that
-//! glslang writes. Enough to check a `#[repr(C)]` struct against its GLSL twin.
+//! glslang writes, enough to check a `#[repr(C)]` struct against its GLSL twin; and the
+//! descriptor bindings of set 0 with their names and kinds, from which a pipeline's descriptor
+//! set layout is made and against which a pass's binds are checked by name (`bind.rs`).
 
+use crate::pipeline::BindingKind;
 use crate::shader::Spirv;
 use std::collections::HashMap;
 
@@ -9,9 +12,31 @@ const OP_NAME: u32 = 5;
 const OP_MEMBER_NAME: u32 = 6;
 const OP_TYPE_POINTER: u32 = 32;
 const OP_VARIABLE: u32 = 59;
+const OP_DECORATE: u32 = 71;
 const OP_MEMBER_DECORATE: u32 = 72;
+const OP_TYPE_IMAGE: u32 = 25;
+const OP_TYPE_SAMPLED_IMAGE: u32 = 27;
+const OP_TYPE_ARRAY: u32 = 28;
+const STORAGE_UNIFORM_CONSTANT: u32 = 0;
+const STORAGE_UNIFORM: u32 = 2;
 const STORAGE_PUSH_CONSTANT: u32 = 9;
+const STORAGE_BUFFER: u32 = 12;
+const DECORATION_BLOCK: u32 = 2;
+const DECORATION_BUFFER_BLOCK: u32 = 3;
+const DECORATION_BINDING: u32 = 33;
+const DECORATION_DESCRIPTOR_SET: u32 = 34;
 const DECORATION_OFFSET: u32 = 35;
+
+/// One descriptor binding a shader declares in set 0.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ReflectedBinding {
+    /// `layout(binding = N)`.
+    pub binding: u32,
+    /// The variable's name (`uniform sampler2D photon_position` -> `photon_position`), or the
+    /// block's where its instance has none (`buffer Photons { .. };` -> `Photons`).
+    pub name: String,
+    pub kind: BindingKind,
+}
 
 /// A nul-terminated UTF-8 string packed little-endian into words.
 fn string(words: &[u32]) -> String {
@@ -79,9 +104,116 @@ impl Spirv {
     }
 }
 
+impl Spirv {
+    /// The descriptor bindings of set 0 in binding order. `Err` names what this reflection
+    /// cannot describe (another set, a separate sampler, an array of descriptors).
+    pub fn descriptor_bindings(&self) -> Result<Vec<ReflectedBinding>, String> {
+        let mut names: HashMap<u32, String> = HashMap::new();
+        let mut decorations: HashMap<u32, Vec<(u32, u32)>> = HashMap::new();
+        let mut pointers: HashMap<u32, (u32, u32)> = HashMap::new();
+        let mut images: HashMap<u32, u32> = HashMap::new();
+        let mut sampled_images: HashMap<u32, u32> = HashMap::new();
+        let mut arrays: HashMap<u32, u32> = HashMap::new();
+        let mut variables = vec![];
+        for (op, o) in instructions(&self.words) {
+            match op {
+                OP_NAME if o.len() >= 2 => {
+                    names.insert(o[0], string(&o[1..]));
+                }
+                OP_DECORATE if o.len() >= 2 => {
+                    decorations.entry(o[0]).or_default().push((o[1], o.get(2).copied().unwrap_or(0)));
+                }
+                OP_TYPE_POINTER if o.len() >= 3 => {
+                    pointers.insert(o[0], (o[1], o[2]));
+                }
+                OP_TYPE_IMAGE if o.len() >= 7 => {
+                    images.insert(o[0], o[6]);
+                }
+                OP_TYPE_SAMPLED_IMAGE if o.len() >= 2 => {
+                    sampled_images.insert(o[0], o[1]);
+                }
+                OP_TYPE_ARRAY if o.len() >= 2 => {
+                    arrays.insert(o[0], o[1]);
+                }
+                OP_VARIABLE if o.len() >= 3 => variables.push((o[0], o[1], o[2])),
+                _ => {}
+            }
+        }
+        let decoration =
+            |id: u32, d: u32| decorations.get(&id).and_then(|v| v.iter().find(|(k, _)| *k == d)).map(|x| x.1);
+        let mut out = vec![];
+        for (ptr_type, id, class) in variables {
+            if ![STORAGE_UNIFORM_CONSTANT, STORAGE_UNIFORM, STORAGE_BUFFER].contains(&class) {
+                continue;
+            }
+            let Some(binding) = decoration(id, DECORATION_BINDING) else { continue };
+            let var_name = names.get(&id).cloned().unwrap_or_default();
+            if decoration(id, DECORATION_DESCRIPTOR_SET).unwrap_or(0) != 0 {
+                return Err(format!("`{var_name}` (binding {binding}) is not in descriptor set 0"));
+            }
+            let Some(&(_, pointee)) = pointers.get(&ptr_type) else { continue };
+            if arrays.contains_key(&pointee) {
+                return Err(format!("`{var_name}` (binding {binding}) is an array of descriptors"));
+            }
+            let kind = match class {
+                STORAGE_BUFFER => BindingKind::StorageBuffer,
+                STORAGE_UNIFORM if decoration(pointee, DECORATION_BUFFER_BLOCK).is_some() => BindingKind::StorageBuffer,
+                STORAGE_UNIFORM if decoration(pointee, DECORATION_BLOCK).is_some() => BindingKind::UniformBuffer,
+                _ if sampled_images.contains_key(&pointee) => BindingKind::SampledImage,
+                _ if images.get(&pointee) == Some(&2) => BindingKind::StorageImage,
+                _ => return Err(format!("`{var_name}` (binding {binding}): a descriptor kind vkcore does not use")),
+            };
+            let name = if var_name.is_empty() { names.get(&pointee).cloned().unwrap_or_default() } else { var_name };
+            out.push(ReflectedBinding { binding, name, kind });
+        }
+        out.sort_by_key(|b| b.binding);
+        Ok(out)
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use super::ReflectedBinding;
+    use crate::pipeline::BindingKind;
     use crate::shader::ShaderCompiler;
+
+    #[test]
+    fn descriptor_bindings_by_name_and_kind() {
+        let root = std::env::temp_dir().join(format!("vkcore-reflect-b-{}", std::process::id()));
+        std::fs::create_dir_all(&root).unwrap();
+        std::fs::write(
+            root.join("b.comp"),
+            "#version 450\nlayout(local_size_x = 1) in;\n\
+             layout(binding = 3) uniform sampler2D photon_position;\n\
+             layout(std140, binding = 0) uniform FrameUniforms { vec4 eye; } frame;\n\
+             layout(std430, binding = 1) buffer Photons { float x[]; };\n\
+             layout(std430, binding = 2) readonly buffer Powers { float p[]; } powers;\n\
+             layout(binding = 4, rgba32f) uniform writeonly image2D caustic_map;\n\
+             void main() { x[0] = frame.eye.x + powers.p[0] + texture(photon_position, vec2(0)).x;\n\
+             imageStore(caustic_map, ivec2(0), vec4(1)); }\n",
+        )
+        .unwrap();
+        let c = ShaderCompiler::new(&root).unwrap();
+        let s = c.compile("b.comp", &[]).unwrap();
+        let want = [
+            (0, "frame", BindingKind::UniformBuffer),
+            (1, "Photons", BindingKind::StorageBuffer),
+            (2, "powers", BindingKind::StorageBuffer),
+            (3, "photon_position", BindingKind::SampledImage),
+            (4, "caustic_map", BindingKind::StorageImage),
+        ]
+        .map(|(binding, name, kind)| ReflectedBinding { binding, name: name.into(), kind })
+        .to_vec();
+        assert_eq!(s.descriptor_bindings().unwrap(), want);
+        std::fs::write(
+            root.join("arr.comp"),
+            "#version 450\nlayout(local_size_x = 1) in;\nlayout(binding = 0) uniform sampler2D t[2];\n\
+             layout(std430, binding = 1) buffer B { float x[]; };\nvoid main() { x[0] = texture(t[1], vec2(0)).x; }\n",
+        )
+        .unwrap();
+        let e = c.compile("arr.comp", &[]).unwrap().descriptor_bindings().unwrap_err();
+        assert!(e.contains("`t`") && e.contains("array"), "{e}");
+    }
 
     #[test]
     fn push_constant_names_and_offsets() {

@@ -28,7 +28,7 @@ fn add_constants_match_their_glsl_twin() {
 
 fn add_pipeline(ctx: &Context) -> Pipeline {
     let shader = test_shaders().compile("add.comp", &[]).unwrap();
-    Pipeline::compute(ctx, "add", &shader, &[BindingKind::StorageBuffer, BindingKind::StorageBuffer]).unwrap()
+    Pipeline::compute(ctx, "add", &shader).unwrap()
 }
 
 #[test]
@@ -44,7 +44,7 @@ fn bound_descriptors_get_their_barriers() {
     // hazard needs the barrier its descriptors imply.
     for (name, src, dst, add) in [("first", &a, &b, 1u32), ("second", &b, &c, 2), ("third", &c, &b, 3)] {
         f.pass(name)
-            .bind(&p, [Bind::BufferRead(src), Bind::Buffer(dst)])
+            .bind(&p, [("In", Bind::BufferRead(src)), ("Out", Bind::Buffer(dst))])
             .record(|cmd| {
                 cmd.push(&AddConstants { count: N, add })?;
                 cmd.dispatch(N.div_ceil(64), 1, 1);
@@ -69,7 +69,10 @@ fn declared_sets_may_be_pushed_inside_and_others_are_refused() {
     let c = Buffer::new(&ctx, "c", N as u64 * 4, Memory::Gpu).unwrap();
     let mut f = ctx.frame(FrameOptions::default()).unwrap();
     // Two sets pushed one after the other inside the pass, both declared.
-    let sets = [[Bind::BufferRead(&a), Bind::Buffer(&b)], [Bind::BufferRead(&a), Bind::Buffer(&c)]];
+    let sets = [
+        [("In", Bind::BufferRead(&a)), ("Out", Bind::Buffer(&b))],
+        [("In", Bind::BufferRead(&a)), ("Out", Bind::Buffer(&c))],
+    ];
     let mut pass = f.pass("two sets");
     for set in &sets {
         pass = pass.declare(&p, set);
@@ -87,19 +90,37 @@ fn declared_sets_may_be_pushed_inside_and_others_are_refused() {
     // A set the pass did not declare: its barriers would be missing.
     let err = f
         .pass("undeclared")
-        .declare(&p, &[Bind::BufferRead(&a), Bind::Buffer(&b)])
+        .declare(&p, &[("In", Bind::BufferRead(&a)), ("Out", Bind::Buffer(&b))])
         .record(|cmd| {
             cmd.bind_pipeline(&p);
-            cmd.bind(&[Bind::BufferRead(&b), Bind::Buffer(&c)])
+            cmd.bind(&[("In", Bind::BufferRead(&b)), ("Out", Bind::Buffer(&c))])
         })
         .unwrap_err()
         .to_string();
     assert!(err.contains("not declared"), "got: {err}");
     // Descriptors that do not fit the pipeline are refused before anything is recorded.
-    let err = f.pass("too few").bind(&p, [Bind::Buffer(&b)]).record(|_| Ok(())).unwrap_err().to_string();
-    assert!(err.contains("too few") && err.contains("2 bindings, 1 given"), "got: {err}");
-    let err = f.pass("wrong kind").bind(&p, [Bind::Uniform(&a), Bind::Buffer(&b)]).record(|_| Ok(())).unwrap_err();
-    assert!(err.to_string().contains("binding 0"), "got: {err}");
+    let err = f.pass("too few").bind(&p, [("In", Bind::Buffer(&b))]).record(|_| Ok(())).unwrap_err().to_string();
+    assert!(err.contains("too few") && err.contains("binding 1 `Out`") && err.contains("not given"), "got: {err}");
+    let err = f
+        .pass("wrong kind")
+        .bind(&p, [("In", Bind::Uniform(&a)), ("Out", Bind::Buffer(&b))])
+        .record(|_| Ok(()))
+        .unwrap_err();
+    assert!(err.to_string().contains("binding 0 `In` is a StorageBuffer"), "got: {err}");
+    // Two buffers of one kind swapped: the names say so, where the kinds could not.
+    let err = f
+        .pass("swapped")
+        .bind(&p, [("Out", Bind::Buffer(&b)), ("In", Bind::BufferRead(&a))])
+        .record(|_| Ok(()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("pipeline `add`")
+            && err.contains("binding 0 is `In`")
+            && err.contains("gives `Out`")
+            && err.contains("`Out` is binding 1"),
+        "got: {err}"
+    );
     drop((f, p, a, b, c));
     assert_no_validation_messages(&ctx);
 }
@@ -112,7 +133,7 @@ const SPINNERS: u32 = 256;
 fn a_frame_that_times_out_names_the_last_pass_that_finished() {
     let (ctx, _) = context();
     let shader = test_shaders().compile("spin.comp", &[]).unwrap();
-    let spin = Pipeline::compute(&ctx, "spin", &shader, &[BindingKind::StorageBuffer]).unwrap();
+    let spin = Pipeline::compute(&ctx, "spin", &shader).unwrap();
     let mut release = Buffer::new(&ctx, "release", 16, Memory::Upload).unwrap();
     release.write_mapped(0, &[0u8; 16]).unwrap();
     let scratch = Buffer::new(&ctx, "scratch", 16, Memory::Gpu).unwrap();
@@ -126,7 +147,7 @@ fn a_frame_that_times_out_names_the_last_pass_that_finished() {
         })
         .unwrap();
     f.pass("slow")
-        .bind(&spin, [Bind::Buffer(&release)])
+        .bind(&spin, [("Release", Bind::Buffer(&release))])
         .record(|cmd| {
             cmd.dispatch(SPINNERS, 1, 1);
             Ok(())
@@ -157,4 +178,47 @@ fn a_frame_that_times_out_names_the_last_pass_that_finished() {
     assert_eq!(ctx.read_buffer_as::<u32>(&scratch).unwrap(), vec![7; 4]);
     drop((spin, release, scratch));
     assert_no_validation_messages(&ctx);
+}
+
+/// What a command reads or writes outside its descriptors (vertex and index buffers, indirect
+/// arguments, transform-feedback buffers and counters) needs its barrier too: each command
+/// refuses a buffer the pass did not declare with that access, naming the buffer and the access.
+#[test]
+fn vertex_index_indirect_and_transform_feedback_buffers_must_be_declared() {
+    let (ctx, _) = context();
+    let buf = Buffer::new(&ctx, "undeclared args", 64, Memory::Gpu).unwrap();
+    let other = Buffer::new(&ctx, "declared for something else", 64, Memory::Gpu).unwrap();
+    let mut f = ctx.frame(FrameOptions::default()).unwrap();
+    type Command = fn(&mut Cmd, &Buffer) -> Result<()>;
+    let commands: [(&str, &str, Command); 8] = [
+        ("bind_vertex_buffer", "VERTEX_INPUT", |c, b| c.bind_vertex_buffer(b, 0)),
+        ("bind_index_buffer", "VERTEX_INPUT", |c, b| c.bind_index_buffer(b)),
+        ("draw_indirect", "INDIRECT", |c, b| c.draw_indirect(b, 0)),
+        ("dispatch_indirect", "INDIRECT", |c, b| c.dispatch_indirect(b, 0)),
+        ("bind_xfb_buffers", "XFB_WRITE", |c, b| c.bind_xfb_buffers(&[b])),
+        ("begin_xfb", "XFB_COUNTER", |c, b| c.begin_xfb(&[b], true)),
+        ("end_xfb", "XFB_COUNTER", |c, b| c.end_xfb(&[b])),
+        ("draw_indirect_byte_count", "INDIRECT", |c, b| c.draw_indirect_byte_count(1, b, 4)),
+    ];
+    for (name, access, command) in commands {
+        // Declared, but for a transfer: not what the command does with it.
+        let err = f
+            .pass(name)
+            .uses([Use::buffer(&other, Access::TRANSFER_WRITE)])
+            .record(|cmd| command(cmd, &buf))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains(name) && err.contains("`undeclared args`") && err.contains(&format!("Access::{access}")),
+            "{name}: {err}"
+        );
+        let err = f
+            .pass(name)
+            .uses([Use::buffer(&other, Access::TRANSFER_WRITE)])
+            .record(|cmd| command(cmd, &other))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("`declared for something else`"), "{name}: {err}");
+    }
+    drop((f, buf, other));
 }

@@ -172,7 +172,6 @@ fn instanced_fetch(n: u32, width: u32, verts: u32) {
         sh.compile("instanced_fetch.vert", &[]).unwrap(),
         Some(sh.compile("count.frag", &[]).unwrap()),
     );
-    desc.bindings = vec![BindingKind::SampledImage];
     desc.topology = Topology::Points;
     desc.blend = Blend::Additive;
     desc.color_formats = vec![Format::R32G32B32A32_SFLOAT];
@@ -183,12 +182,12 @@ fn instanced_fetch(n: u32, width: u32, verts: u32) {
     let p = Pipeline::graphics(&ctx, &desc).unwrap();
     let mut f = ctx.frame(FrameOptions::default()).unwrap();
     f.pass("splat")
-        .bind(&p, [Bind::Sampled(&photon_view, &sampler)])
+        .bind(&p, [("photons", Bind::Sampled(&photon_view, &sampler))])
         .uses([Use::buffer(&vb, Access::VERTEX_INPUT), Use::view(&tv, Access::COLOR_ATTACHMENT)])
         .record(|c| {
             c.begin_rendering(&Targets::color(&tv, Some([0.0; 4])))?;
             c.push(&FetchConstants { count: n, width, verts_per_instance: verts, target_size: size })?;
-            c.bind_vertex_buffer(&vb, 0);
+            c.bind_vertex_buffer(&vb, 0)?;
             c.draw(verts, n.div_ceil(verts), 0, 0);
             c.end_rendering();
             Ok(())

@@ -24,7 +24,7 @@ vkcore::push_constants! {
 
 fn add_pipeline(ctx: &Context) -> Pipeline {
     let shader = test_shaders().compile("add.comp", &[]).unwrap();
-    Pipeline::compute(ctx, "add", &shader, &[BindingKind::StorageBuffer, BindingKind::StorageBuffer]).unwrap()
+    Pipeline::compute(ctx, "add", &shader).unwrap()
 }
 
 /// One frame of the test's work: b = a + k, then a = b + 1, so each frame reads what the one
@@ -32,7 +32,7 @@ fn add_pipeline(ctx: &Context) -> Pipeline {
 fn record(f: &mut Frame, p: &Pipeline, a: &Buffer, b: &Buffer, k: u32) {
     for (name, src, dst, add) in [("step", a, b, k), ("back", b, a, 1)] {
         f.pass(name)
-            .bind(p, [Bind::BufferRead(src), Bind::Buffer(dst)])
+            .bind(p, [("In", Bind::BufferRead(src)), ("Out", Bind::Buffer(dst))])
             .record(|cmd| {
                 cmd.push(&AddConstants { count: N, add })?;
                 cmd.dispatch(N.div_ceil(64), 1, 1);
@@ -144,7 +144,7 @@ fn ring_frames_timed_per_pass_report_every_pass() {
 fn a_ring_frame_that_times_out_names_its_frame_and_slot() {
     let (ctx, _) = context();
     let shader = test_shaders().compile("spin.comp", &[]).unwrap();
-    let spin = Pipeline::compute(&ctx, "spin", &shader, &[BindingKind::StorageBuffer]).unwrap();
+    let spin = Pipeline::compute(&ctx, "spin", &shader).unwrap();
     let mut release = Buffer::new(&ctx, "release", 16, Memory::Upload).unwrap();
     release.write_mapped(0, &[0u8; 16]).unwrap();
     let scratch = Buffer::new(&ctx, "scratch", 16, Memory::Gpu).unwrap();
@@ -164,7 +164,7 @@ fn a_ring_frame_that_times_out_names_its_frame_and_slot() {
     assert_eq!(ring.finish().unwrap().len(), 1);
     let mut f = ring.frame().unwrap();
     f.pass("slow")
-        .bind(&spin, [Bind::Buffer(&release)])
+        .bind(&spin, [("Release", Bind::Buffer(&release))])
         .record(|cmd| {
             cmd.dispatch(256, 1, 1);
             Ok(())

@@ -3,8 +3,7 @@
 use super::formats::DEPTH;
 use anyhow::Result;
 use vkcore::{
-    BindingKind as K, Blend, Context, Cull, Format, GraphicsDesc, Pipeline, ShaderCompiler, Topology, VertexAttribute,
-    VertexLayout,
+    Blend, Context, Cull, Format, GraphicsDesc, Pipeline, ShaderCompiler, Topology, VertexAttribute, VertexLayout,
 };
 
 pub fn mesh_layout() -> VertexLayout {
@@ -25,15 +24,13 @@ pub struct MeshPass<'a> {
     /// Defines for the vertex shader.
     pub vert_defines: &'a [(&'a str, &'a str)],
     pub frag: &'a str,
-    pub bindings: Vec<K>,
     pub colors: Vec<Format>,
     pub cull: Cull,
 }
 
 pub fn mesh_pipeline(ctx: &Context, sh: &ShaderCompiler, pass: MeshPass) -> Result<Pipeline> {
-    let MeshPass { name, vert, vert_defines, frag, bindings, colors, cull } = pass;
+    let MeshPass { name, vert, vert_defines, frag, colors, cull } = pass;
     let mut d = GraphicsDesc::new(name, sh.compile(vert, vert_defines)?, Some(sh.compile(frag, &[])?));
-    d.bindings = bindings;
     d.vertex_layout = Some(mesh_layout());
     d.topology = Topology::Triangles;
     d.cull = cull;

@@ -39,8 +39,8 @@ impl GpuMesh {
     /// Records an indexed draw of this mesh with its constants for `light`.
     pub fn draw(&self, cmd: &mut Cmd, instances: u32, light: u32) -> vkcore::Result<()> {
         cmd.push(&MeshConstants { light, ..self.constants })?;
-        cmd.bind_vertex_buffer(&self.vertices, 0);
-        cmd.bind_index_buffer(&self.indices);
+        cmd.bind_vertex_buffer(&self.vertices, 0)?;
+        cmd.bind_index_buffer(&self.indices)?;
         cmd.draw_indexed(self.index_count, instances, 0);
         Ok(())
     }

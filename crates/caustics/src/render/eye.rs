@@ -47,7 +47,7 @@ pub fn record_shadows_and_background(f: &mut Frame, p: &EyePipelines, t: &EyeTar
     // Shadow map per light: all six cube faces in one instanced draw (gl_Layer per instance).
     for (l, (dist, depth)) in t.shadow.per_light.iter().enumerate() {
         f.pass(&format!("shadow_map.light{l}"))
-            .bind(&p.shadow_map, [Bind::Uniform(inp.uniforms)])
+            .bind(&p.shadow_map, [("frame", Bind::Uniform(inp.uniforms))])
             .uses([Use::view(dist, Access::COLOR_ATTACHMENT), Use::view(depth, Access::DEPTH_ATTACHMENT)])
             .uses(mesh_uses(meshes))
             .record(|cmd| {
@@ -65,12 +65,12 @@ pub fn record_shadows_and_background(f: &mut Frame, p: &EyePipelines, t: &EyeTar
         .bind(
             &p.background,
             [
-                Bind::Uniform(inp.uniforms),
-                Bind::Sampled(&t.shadow.distance.view, inp.nearest),
-                Bind::Sampled(&t.spot_textures.view, inp.linear),
-                Bind::Uniform(inp.caustic_uniforms),
-                Bind::Sampled(&inp.caustics.caustic_map.view, inp.nearest),
-                Bind::Sampled(&inp.caustics.receiver_positions.view, inp.nearest),
+                ("frame", Bind::Uniform(inp.uniforms)),
+                ("shadow_map", Bind::Sampled(&t.shadow.distance.view, inp.nearest)),
+                ("spot_textures", Bind::Sampled(&t.spot_textures.view, inp.linear)),
+                ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+                ("caustic_map", Bind::Sampled(&inp.caustics.caustic_map.view, inp.nearest)),
+                ("receiver_positions", Bind::Sampled(&inp.caustics.receiver_positions.view, inp.nearest)),
             ],
         )
         .uses(background.map(|x| Use::view(&x.view, Access::COLOR_ATTACHMENT)))
@@ -109,16 +109,19 @@ pub fn record_after_background(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, 
 
     if let Some((ratio, irradiance, caustic)) = &t.receiver {
         let binds = [
-            Bind::Uniform(inp.uniforms),
-            Bind::Sampled(&t.shadow.distance.view, inp.nearest),
-            Bind::Sampled(&t.spot_textures.view, inp.linear),
-            Bind::Storage(&ratio.view),
-            Bind::Storage(&irradiance.view),
-            Bind::Storage(&caustic.view),
-            Bind::Uniform(inp.caustic_uniforms),
-            Bind::Sampled(&inp.caustics.caustic_map.view, inp.nearest),
-            Bind::Sampled(&inp.caustics.receiver_positions.view, inp.nearest),
-            Bind::Sampled(inp.receiver_view_caustic.unwrap_or(&t.no_receiver_view.view), inp.nearest),
+            ("frame", Bind::Uniform(inp.uniforms)),
+            ("shadow_map", Bind::Sampled(&t.shadow.distance.view, inp.nearest)),
+            ("spot_textures", Bind::Sampled(&t.spot_textures.view, inp.linear)),
+            ("ratio_map", Bind::Storage(&ratio.view)),
+            ("irradiance_map", Bind::Storage(&irradiance.view)),
+            ("caustic_only", Bind::Storage(&caustic.view)),
+            ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+            ("caustic_map", Bind::Sampled(&inp.caustics.caustic_map.view, inp.nearest)),
+            ("receiver_positions", Bind::Sampled(&inp.caustics.receiver_positions.view, inp.nearest)),
+            (
+                "receiver_view_caustic",
+                Bind::Sampled(inp.receiver_view_caustic.unwrap_or(&t.no_receiver_view.view), inp.nearest),
+            ),
         ];
         f.pass("receiver_map").bind(&p.receiver_map, binds).record(|cmd| {
             let (w, h) = ratio.view.extent;
@@ -135,7 +138,7 @@ fn record_forward(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInpu
     let meshes = inp.meshes;
     let refractors = || meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE);
     f.pass("refractor_back_faces")
-        .bind(&p.back_faces, [Bind::Uniform(inp.uniforms)])
+        .bind(&p.back_faces, [("frame", Bind::Uniform(inp.uniforms))])
         .uses([
             Use::view(&t.back_faces.view, Access::COLOR_ATTACHMENT),
             Use::view(&t.back_depth.view, Access::DEPTH_ATTACHMENT),
@@ -154,10 +157,10 @@ fn record_forward(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInpu
         .bind(
             &p.front_faces,
             [
-                Bind::Uniform(inp.uniforms),
-                Bind::Sampled(&t.background.view, inp.nearest),
-                Bind::Sampled(&t.position.view, inp.nearest),
-                Bind::Sampled(&t.back_faces.view, inp.nearest),
+                ("frame", Bind::Uniform(inp.uniforms)),
+                ("background_radiance", Bind::Sampled(&t.background.view, inp.nearest)),
+                ("background_position", Bind::Sampled(&t.position.view, inp.nearest)),
+                ("back_faces", Bind::Sampled(&t.back_faces.view, inp.nearest)),
             ],
         )
         .uses([
@@ -173,9 +176,9 @@ fn record_forward(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInpu
         })?;
 
     let composite = [
-        Bind::Sampled(&t.background.view, inp.nearest),
-        Bind::Sampled(&t.surface.view, inp.nearest),
-        Bind::Storage(&t.final_image.view),
+        ("background_radiance", Bind::Sampled(&t.background.view, inp.nearest)),
+        ("surface_radiance", Bind::Sampled(&t.surface.view, inp.nearest)),
+        ("final_image", Bind::Storage(&t.final_image.view)),
     ];
     f.pass("composite").bind(&p.composite, composite).record(|cmd| {
         let (w, h) = t.final_image.view.extent;

@@ -1,7 +1,7 @@
 //! The pipelines of the eye render (`--technique none`), built once per run.
 
 use anyhow::Result;
-use vkcore::{BindingKind as K, Context, Cull, Pipeline, ShaderCompiler};
+use vkcore::{Context, Cull, Pipeline, ShaderCompiler};
 
 pub use crate::gpu::formats::{COLOR, DEPTH, DISTANCE};
 use crate::gpu::mesh_pipeline::{mesh_pipeline, MeshPass};
@@ -17,15 +17,8 @@ pub struct EyePipelines {
 
 impl EyePipelines {
     pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<EyePipelines> {
-        let eye = |name, frag, bindings, colors, cull| MeshPass {
-            name,
-            vert: "eye/mesh.vert",
-            vert_defines: &[],
-            frag,
-            bindings,
-            colors,
-            cull,
-        };
+        let eye =
+            |name, frag, colors, cull| MeshPass { name, vert: "eye/mesh.vert", vert_defines: &[], frag, colors, cull };
         Ok(EyePipelines {
             shadow_map: mesh_pipeline(
                 ctx,
@@ -35,7 +28,6 @@ impl EyePipelines {
                     vert: "shadow/shadow_map.vert",
                     vert_defines: &[],
                     frag: "shadow/shadow_map.frag",
-                    bindings: vec![K::UniformBuffer],
                     colors: vec![DISTANCE],
                     cull: Cull::None,
                 },
@@ -43,60 +35,20 @@ impl EyePipelines {
             background: mesh_pipeline(
                 ctx,
                 sh,
-                eye(
-                    "background",
-                    "eye/background.frag",
-                    vec![
-                        K::UniformBuffer,
-                        K::SampledImage,
-                        K::SampledImage,
-                        K::UniformBuffer,
-                        K::SampledImage,
-                        K::SampledImage,
-                    ],
-                    vec![COLOR, COLOR, COLOR, COLOR],
-                    Cull::None,
-                ),
+                eye("background", "eye/background.frag", vec![COLOR, COLOR, COLOR, COLOR], Cull::None),
             )?,
             back_faces: mesh_pipeline(
                 ctx,
                 sh,
-                eye("refractor_back_faces", "eye/back_faces.frag", vec![K::UniformBuffer], vec![COLOR], Cull::Front),
+                eye("refractor_back_faces", "eye/back_faces.frag", vec![COLOR], Cull::Front),
             )?,
             front_faces: mesh_pipeline(
                 ctx,
                 sh,
-                eye(
-                    "refractor_front_faces",
-                    "eye/front_faces.frag",
-                    vec![K::UniformBuffer, K::SampledImage, K::SampledImage, K::SampledImage],
-                    vec![COLOR],
-                    Cull::Back,
-                ),
+                eye("refractor_front_faces", "eye/front_faces.frag", vec![COLOR], Cull::Back),
             )?,
-            composite: Pipeline::compute(
-                ctx,
-                "composite",
-                &sh.compile("eye/composite.comp", &[])?,
-                &[K::SampledImage, K::SampledImage, K::StorageImage],
-            )?,
-            receiver_map: Pipeline::compute(
-                ctx,
-                "receiver_map",
-                &sh.compile("receiver/receiver_map.comp", &[])?,
-                &[
-                    K::UniformBuffer,
-                    K::SampledImage,
-                    K::SampledImage,
-                    K::StorageImage,
-                    K::StorageImage,
-                    K::StorageImage,
-                    K::UniformBuffer,
-                    K::SampledImage,
-                    K::SampledImage,
-                    K::SampledImage,
-                ],
-            )?,
+            composite: Pipeline::compute(ctx, "composite", &sh.compile("eye/composite.comp", &[])?)?,
+            receiver_map: Pipeline::compute(ctx, "receiver_map", &sh.compile("receiver/receiver_map.comp", &[])?)?,
         })
     }
 }

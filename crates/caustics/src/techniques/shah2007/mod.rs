@@ -13,14 +13,11 @@ pub mod settings;
 pub use settings::{PAPER, VERTEX_PHOTON_FEATURES};
 
 use super::shared::photon_buffer::trace_binds;
-use super::shared::pipelines::TRACE_BINDINGS;
 use super::shared::CausticPasses;
 use crate::gpu::mesh_pipeline::mesh_layout;
 use crate::gpu::{mesh_uses, MeshConstants, MATERIAL_DIFFUSE};
 use anyhow::Result;
-use vkcore::{
-    Access, Bind, BindingKind as K, Context, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology, Use,
-};
+use vkcore::{Access, Bind, Context, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology, Use};
 
 /// Shah's first pass: a photon per vertex of the specular meshes.
 pub struct VertexPhotons {
@@ -32,9 +29,6 @@ impl VertexPhotons {
     /// stored into the photon buffer's images.
     pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<VertexPhotons> {
         let mut d = GraphicsDesc::new("vertex_photons", sh.compile("shah2007/vertex_photons.vert", &[])?, None);
-        let mut b = TRACE_BINDINGS.to_vec();
-        b.extend([K::StorageImage, K::StorageImage, K::StorageImage, K::StorageBuffer]);
-        d.bindings = b;
         d.vertex_layout = Some(mesh_layout());
         d.topology = Topology::Points;
         d.rasterizer_discard = true;
@@ -66,8 +60,12 @@ impl VertexPhotons {
             .iter()
             .map(|(_, areas)| {
                 let mut binds = trace_binds(c);
-                binds.extend(photons.map(|t| Bind::Storage(&t.view)));
-                binds.push(Bind::BufferRead(areas));
+                binds.extend(
+                    ["photon_position", "photon_direction", "photon_power"]
+                        .into_iter()
+                        .zip(photons.map(|t| Bind::Storage(&t.view))),
+                );
+                binds.push(("Areas", Bind::BufferRead(areas)));
                 binds
             })
             .collect();
@@ -82,7 +80,7 @@ impl VertexPhotons {
             for ((m, _), binds) in specular.iter().zip(&sets) {
                 cmd.bind(binds)?;
                 cmd.push(&MeshConstants { light: l, first_photon: first, ..m.constants })?;
-                cmd.bind_vertex_buffer(&m.vertices, 0);
+                cmd.bind_vertex_buffer(&m.vertices, 0)?;
                 let vertices = (m.vertices.size() / 28) as u32;
                 cmd.draw(vertices, 1, 0, 0);
                 first += vertices;

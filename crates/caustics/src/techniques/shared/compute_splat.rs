@@ -14,8 +14,8 @@ use super::targets::PhotonTargets;
 use crate::gpu::ComputeSplatConstants;
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, BindingKind as K, Buffer, CompactStream, CompactionPath, Context, Feature, Frame, ImageView, Memory,
-    Pipeline, ShaderCompiler, Use,
+    Access, Bind, Buffer, CompactStream, CompactionPath, Context, Feature, Frame, ImageView, Memory, Pipeline,
+    ShaderCompiler, Use,
 };
 
 /// Features the compute splat needs.
@@ -113,24 +113,16 @@ impl ComputeSplat {
         let accumulated = Buffer::new(ctx, "compute splat accumulation", bytes, Memory::Gpu)?;
         let entry_bytes = list.map_or(4, |(kind, _)| kind.element_bytes()).to_string();
         let mut defines = vec![("ENTRY_BYTES", entry_bytes.as_str())];
-        let mut bindings = vec![K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
         let list = match list {
             // Binding 4: the accumulation buffer.
-            None => {
-                bindings.push(K::StorageBuffer);
-                None
-            }
+            None => None,
             Some((kind, path)) => {
                 match kind {
                     // Bindings 4-8: the hierarchy, the accumulation buffer, the list and its counter.
-                    ListKind::HierarchyEntries => {
-                        defines.push(("HIERARCHY", "1"));
-                        bindings.extend([K::SampledImage, K::SampledImage]);
-                    }
+                    ListKind::HierarchyEntries => defines.push(("HIERARCHY", "1")),
                     // Bindings 4-6: the accumulation buffer, the photons and their counter.
                     ListKind::AdaptivePhotons => defines.push(("ADAPTIVE_PHOTONS", "1")),
                 }
-                bindings.extend([K::StorageBuffer, K::StorageBuffer, K::StorageBuffer]);
                 let dispatch = match path {
                     CompactionPath::Compute => ListDispatch::AppendCounter,
                     CompactionPath::TransformFeedback => {
@@ -139,7 +131,6 @@ impl ComputeSplat {
                             ctx,
                             "splat.arguments",
                             &sh.compile("shared/splat_args.comp", &defines)?,
-                            &[K::StorageBuffer, K::StorageBuffer],
                         )?;
                         ListDispatch::ByteCount(Box::new((
                             args,
@@ -150,13 +141,8 @@ impl ComputeSplat {
                 Some((dispatch, kind))
             }
         };
-        let splat = Pipeline::compute(ctx, "splat.compute", &sh.compile("shared/splat.comp", &defines)?, &bindings)?;
-        let resolve = Pipeline::compute(
-            ctx,
-            "splat.resolve",
-            &sh.compile("shared/splat_resolve.comp", &[])?,
-            &[K::StorageImage, K::StorageBuffer],
-        )?;
+        let splat = Pipeline::compute(ctx, "splat.compute", &sh.compile("shared/splat.comp", &defines)?)?;
+        let resolve = Pipeline::compute(ctx, "splat.resolve", &sh.compile("shared/splat_resolve.comp", &[])?)?;
         Ok(ComputeSplat { accumulated, list, splat, resolve, side, layers })
     }
 
@@ -206,22 +192,28 @@ impl ComputeSplat {
                     Ok(())
                 })?;
         }
-        let mut binds = vec![
-            Bind::Uniform(inp.frame_uniforms),
-            Bind::Uniform(inp.caustic_uniforms),
-            Bind::Sampled(&pt.position.view, inp.nearest),
-            Bind::Sampled(&pt.power.view, inp.nearest),
-        ];
+        let mut binds =
+            vec![("frame", Bind::Uniform(inp.frame_uniforms)), ("caustics", Bind::Uniform(inp.caustic_uniforms))];
+        // Adaptive photons carry their own position and power (`ADAPTIVE_PHOTONS`).
+        if !matches!(photons, Photons::Adaptive { .. }) {
+            binds.extend([
+                ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+                ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
+            ]);
+        }
         // The indirect dispatch's arguments (buffer, byte offset); None: a grid over the texels.
         let mut indirect = None;
         match photons {
-            Photons::Dense => binds.push(Bind::Buffer(&self.accumulated)),
+            Photons::Dense => binds.push(("Accumulated", Bind::Buffer(&self.accumulated))),
             Photons::List { list, .. } | Photons::Adaptive { list } => {
                 match &self.list {
                     Some((ListDispatch::ByteCount(b), _)) => {
                         let (pipeline, args) = &**b;
                         f.pass(&format!("splat.arguments{tag}.light{l}"))
-                            .bind(pipeline, [Bind::BufferRead(&list.counter), Bind::Buffer(args)])
+                            .bind(
+                                pipeline,
+                                [("Counter", Bind::BufferRead(&list.counter)), ("Arguments", Bind::Buffer(args))],
+                            )
                             .record(|cmd| {
                                 cmd.dispatch(1, 1, 1);
                                 Ok(())
@@ -232,12 +224,16 @@ impl ComputeSplat {
                     _ => indirect = Some((&list.counter, 16)),
                 }
                 if let Photons::List { power, position, .. } = photons {
-                    binds.extend([Bind::Sampled(power, inp.nearest), Bind::Sampled(position, inp.nearest)]);
+                    binds.extend([
+                        ("hierarchy_power", Bind::Sampled(power, inp.nearest)),
+                        ("hierarchy_position", Bind::Sampled(position, inp.nearest)),
+                    ]);
                 }
+                let list_data = if matches!(photons, Photons::Adaptive { .. }) { "Records" } else { "Entries" };
                 binds.extend([
-                    Bind::Buffer(&self.accumulated),
-                    Bind::BufferRead(&list.data),
-                    Bind::BufferRead(&list.counter),
+                    ("Accumulated", Bind::Buffer(&self.accumulated)),
+                    (list_data, Bind::BufferRead(&list.data)),
+                    ("Counter", Bind::BufferRead(&list.counter)),
                 ]);
             }
         }
@@ -245,7 +241,7 @@ impl ComputeSplat {
         f.pass(&format!("splat{tag}.light{l}")).bind(&self.splat, binds).uses(arguments).record(|cmd| {
             cmd.push(&ComputeSplatConstants { photon_texels: texels, light: l })?;
             match indirect {
-                Some((args, offset)) => cmd.dispatch_indirect(args, offset),
+                Some((args, offset)) => cmd.dispatch_indirect(args, offset)?,
                 None => {
                     let (x, y) = groups(texels);
                     cmd.dispatch(x, y, 1);
@@ -256,7 +252,7 @@ impl ComputeSplat {
         if !batch.last {
             return Ok(());
         }
-        let resolve = [Bind::Storage(cmap), Bind::BufferRead(&self.accumulated)];
+        let resolve = [("caustic_map", Bind::Storage(cmap)), ("Accumulated", Bind::BufferRead(&self.accumulated))];
         f.pass(&format!("splat.resolve.light{l}")).bind(&self.resolve, resolve).record(|cmd| {
             cmd.dispatch(self.side.div_ceil(8), self.side.div_ceil(8), self.layers);
             Ok(())

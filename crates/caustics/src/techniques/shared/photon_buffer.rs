@@ -8,7 +8,7 @@
 use super::CausticPasses;
 use crate::gpu::{mesh_uses, MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
 use anyhow::Result;
-use vkcore::{Access, Bind, Frame, Targets, Use};
+use vkcore::{Access, Bind, Frame, Named, Targets, Use};
 
 /// The light's views before photons are traced, for light `l`: the receiver positions (its
 /// render of the diffuse surfaces) and the refractors' back faces.
@@ -20,7 +20,8 @@ pub(crate) fn record_light_views(f: &mut Frame, c: &CausticPasses, l: u32) -> Re
 /// Light `l`'s render of the diffuse surfaces (Shah step 1): where photons land.
 pub(crate) fn record_receiver_positions(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
     let (p, ct, inp) = (c.pipelines, c.targets, c.inputs);
-    let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
+    let ubo_binds =
+        || [("frame", Bind::Uniform(inp.frame_uniforms)), ("caustics", Bind::Uniform(inp.caustic_uniforms))];
     let (_, rpos, rdepth) = &ct.per_light[l as usize];
     f.pass(&format!("receiver_positions.light{l}"))
         .bind(&p.receiver_positions, ubo_binds())
@@ -40,7 +41,8 @@ pub(crate) fn record_receiver_positions(f: &mut Frame, c: &CausticPasses, l: u32
 /// The refractors' back faces from light `l` (Wyman 2005's exit estimate).
 fn record_back_faces(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
     let (p, pt, inp) = (c.pipelines, c.photons, c.inputs);
-    let ubo_binds = || [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
+    let ubo_binds =
+        || [("frame", Bind::Uniform(inp.frame_uniforms)), ("caustics", Bind::Uniform(inp.caustic_uniforms))];
     f.pass(&format!("photon_back_faces.light{l}"))
         .bind(&p.back_faces, ubo_binds())
         .uses([
@@ -61,16 +63,17 @@ fn record_back_faces(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
     Ok(())
 }
 
-/// What tracing a photon reads (`shared/trace_surface.glsl`, bindings 0-4,
-/// [`TRACE_BINDINGS`](super::pipelines::TRACE_BINDINGS)), in binding order.
-pub(crate) fn trace_binds<'a>(c: &CausticPasses<'a>) -> Vec<Bind<'a>> {
+/// What tracing a photon reads (`shared/trace_surface.glsl`, bindings 0-4): the frame and
+/// caustic uniforms, the light-space back faces, the receiver positions and the spot lights'
+/// projected textures. Every pipeline that creates photons starts with these.
+pub(crate) fn trace_binds<'a>(c: &CausticPasses<'a>) -> Vec<Named<'a>> {
     let (ct, pt, inp) = (c.targets, c.photons, c.inputs);
     vec![
-        Bind::Uniform(inp.frame_uniforms),
-        Bind::Uniform(inp.caustic_uniforms),
-        Bind::Sampled(&pt.back_faces.view, inp.nearest),
-        Bind::Sampled(&ct.receiver_positions.view, inp.nearest),
-        Bind::Sampled(inp.spot_textures, inp.linear),
+        ("frame", Bind::Uniform(inp.frame_uniforms)),
+        ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+        ("light_back_faces", Bind::Sampled(&pt.back_faces.view, inp.nearest)),
+        ("receiver_positions", Bind::Sampled(&ct.receiver_positions.view, inp.nearest)),
+        ("spot_textures", Bind::Sampled(inp.spot_textures, inp.linear)),
     ]
 }
 

@@ -4,8 +4,7 @@ use crate::gpu::formats::COLOR;
 use crate::gpu::mesh_pipeline::{mesh_pipeline, MeshPass};
 use anyhow::Result;
 use vkcore::{
-    BindingKind as K, Blend, Context, Cull, Format, GraphicsDesc, Pipeline, ShaderCompiler, Topology, VertexAttribute,
-    VertexLayout,
+    Blend, Context, Cull, Format, GraphicsDesc, Pipeline, ShaderCompiler, Topology, VertexAttribute, VertexLayout,
 };
 
 pub struct CausticPipelines {
@@ -15,18 +14,11 @@ pub struct CausticPipelines {
     pub splat: Pipeline,
 }
 
-/// What tracing a photon reads (`shared/trace_surface.glsl`, bindings 0-4): the frame and
-/// caustic uniforms, the light-space back faces, the receiver positions and the spot lights'
-/// projected textures. Every pipeline that creates photons starts with these.
-pub const TRACE_BINDINGS: [K; 5] =
-    [K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage, K::SampledImage];
-
 /// The point splat's pipeline description (`shared/splat.vert`, `shared/splat.frag`): points
 /// blended additively into the caustic map, each vertex a photon index.
 pub fn point_splat_desc(sh: &ShaderCompiler) -> Result<GraphicsDesc> {
     let mut splat =
         GraphicsDesc::new("splat", sh.compile("shared/splat.vert", &[])?, Some(sh.compile("shared/splat.frag", &[])?));
-    splat.bindings = vec![K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage];
     splat.vertex_layout = Some(VertexLayout {
         stride: 4,
         attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }],
@@ -44,7 +36,6 @@ const LIGHT_MESH_VERT: &str = "shared/light_mesh.vert";
 
 impl CausticPipelines {
     pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<CausticPipelines> {
-        let ubo2 = vec![K::UniformBuffer, K::UniformBuffer];
         Ok(CausticPipelines {
             receiver_positions: mesh_pipeline(
                 ctx,
@@ -54,7 +45,6 @@ impl CausticPipelines {
                     vert: LIGHT_MESH_VERT,
                     vert_defines: &[],
                     frag: "shared/receiver_positions.frag",
-                    bindings: ubo2.clone(),
                     colors: vec![COLOR],
                     cull: Cull::None,
                 },
@@ -67,7 +57,6 @@ impl CausticPipelines {
                     vert: LIGHT_MESH_VERT,
                     vert_defines: PHOTON_VIEW,
                     frag: "shared/back_faces.frag",
-                    bindings: ubo2,
                     colors: vec![COLOR],
                     cull: Cull::Front,
                 },
@@ -80,7 +69,6 @@ impl CausticPipelines {
                     vert: LIGHT_MESH_VERT,
                     vert_defines: PHOTON_VIEW,
                     frag: "shared/photon_buffer.frag",
-                    bindings: TRACE_BINDINGS.to_vec(),
                     colors: vec![COLOR, COLOR, COLOR],
                     cull: Cull::Back,
                 },

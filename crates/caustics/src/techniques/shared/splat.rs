@@ -15,10 +15,10 @@ pub(crate) fn record_splat(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<(
     let (p, ct, pt, inp) = (c.pipelines, c.targets, c.photons, c.inputs);
     let (cmap, _, _) = &ct.per_light[l as usize];
     let binds = [
-        Bind::Uniform(inp.frame_uniforms),
-        Bind::Uniform(inp.caustic_uniforms),
-        Bind::Sampled(&pt.position.view, inp.nearest),
-        Bind::Sampled(&pt.power.view, inp.nearest),
+        ("frame", Bind::Uniform(inp.frame_uniforms)),
+        ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+        ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+        ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
     ];
     f.pass(&format!("splat.light{l}"))
         .bind(&p.splat, binds)
@@ -26,7 +26,7 @@ pub(crate) fn record_splat(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<(
         .record(|cmd| {
             cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
             cmd.push(&SplatConstants { light: l, vertices_per_instance: inp.instance_vertices })?;
-            cmd.bind_vertex_buffer(inp.splat_vertices, 0);
+            cmd.bind_vertex_buffer(inp.splat_vertices, 0)?;
             let total = pt.width * pt.width;
             // Wyman 2008 Sec. 4: one small vertex buffer drawn instanced; the vertex shader
             // finds its photon from gl_InstanceIndex and the vertex's index.

@@ -6,7 +6,7 @@ use super::pipelines::PassPipelines;
 use super::targets::PoolTargets;
 use crate::gpu::Target;
 use anyhow::Result;
-use vkcore::{Access, Bind, Buffer, Frame, Pipeline, Sampler, Targets, Use};
+use vkcore::{Access, Bind, Buffer, Frame, Named, Pipeline, Sampler, Targets, Use};
 
 /// What the passes read besides their targets.
 pub struct PassInputs<'a> {
@@ -19,7 +19,7 @@ fn fragment_pass<'a>(
     f: &mut Frame,
     name: &str,
     p: &'a Pipeline,
-    binds: Vec<Bind<'a>>,
+    binds: Vec<Named<'a>>,
     target: &'a Target,
 ) -> Result<()> {
     f.pass(name).bind(p, binds).uses([Use::view(&target.view, Access::COLOR_ATTACHMENT)]).record(|cmd| {
@@ -39,28 +39,29 @@ pub fn record_passes<'a>(
     inp: &PassInputs<'a>,
     output: &'a Target,
 ) -> Result<()> {
-    let u = Bind::Uniform(inp.uniforms);
+    let u = ("u", Bind::Uniform(inp.uniforms));
     let nearest = inp.nearest;
-    let s = |target: &'a Target| Bind::Sampled(&target.view, nearest);
+    let s = |name: &'static str, target: &'a Target| (name, Bind::Sampled(&target.view, nearest));
     // The faithful path's lookup tables, appended to the passes that read them.
-    let pixel_texture: Vec<Bind> = t.tables.iter().map(|l| s(&l.pixel_texture)).collect();
-    let colour_tables: Vec<Bind> = t.tables.iter().map(|l| s(&l.colour_tables)).collect();
+    let pixel_texture: Vec<Named> = t.tables.iter().map(|l| s("pixel_texture", &l.pixel_texture)).collect();
+    let colour_tables: Vec<Named> = t.tables.iter().map(|l| s("colour_tables", &l.colour_tables)).collect();
     fragment_pass(f, "pool.height_field", &p.height_field, vec![u], &t.height)?;
     fragment_pass(
         f,
         "pool.pass1_normals",
         &p.pass1_normals,
-        [vec![u, s(&t.height)], pixel_texture].concat(),
+        [vec![u, s("height_field", &t.height)], pixel_texture].concat(),
         &t.normals,
     )?;
-    let pass2 = [vec![u, s(&t.normals)], colour_tables.clone()].concat();
+    let pass2 = [vec![u, s("normals", &t.normals)], colour_tables.clone()].concat();
     fragment_pass(f, "pool.pass2_gamma_n", &p.pass2_gamma_n, pass2, &t.gamma_n)?;
-    let pass3 = [vec![u, s(&t.normals), s(&t.light_radiance)], colour_tables.clone()].concat();
+    let pass3 =
+        [vec![u, s("normals", &t.normals), s("light_radiance", &t.light_radiance)], colour_tables.clone()].concat();
     fragment_pass(f, "pool.pass3_transmitted", &p.pass3_transmitted, pass3, &t.transmitted)?;
-    let pass4 = [vec![u, s(&t.gamma_n)], colour_tables].concat();
+    let pass4 = [vec![u, s("gamma_n", &t.gamma_n)], colour_tables].concat();
     fragment_pass(f, "pool.pass4_direction", &p.pass4_direction, pass4, &t.direction)?;
-    let pass5 = vec![u, s(&t.transmitted), s(&t.direction)];
+    let pass5 = vec![u, s("transmitted", &t.transmitted), s("direction", &t.direction)];
     fragment_pass(f, "pool.pass5_integrand", &p.pass5_integrand, pass5, &t.integrand)?;
-    let pass6 = vec![u, s(&t.integrand), Bind::BufferRead(&t.kernels)];
+    let pass6 = vec![u, s("integrand", &t.integrand), ("k", Bind::BufferRead(&t.kernels))];
     fragment_pass(f, "pool.pass6_convolution", &p.pass6_convolution, pass6, output)
 }

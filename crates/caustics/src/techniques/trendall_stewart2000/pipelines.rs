@@ -5,7 +5,7 @@
 use super::settings::Precision;
 use super::targets::pass_format;
 use anyhow::Result;
-use vkcore::{BindingKind as K, Context, GraphicsDesc, Pipeline, ShaderCompiler};
+use vkcore::{Context, GraphicsDesc, Pipeline, ShaderCompiler};
 
 /// The GPU passes of Sec. 4.2 (none for the CPU path, which uploads its results).
 pub struct PassPipelines {
@@ -24,14 +24,7 @@ pub struct PoolPipelines {
     pub view: Pipeline,
 }
 
-fn fragment_pass(
-    ctx: &Context,
-    sh: &ShaderCompiler,
-    precision: Precision,
-    name: &str,
-    bindings: Vec<K>,
-    tables: usize,
-) -> Result<Pipeline> {
+fn fragment_pass(ctx: &Context, sh: &ShaderCompiler, precision: Precision, name: &str) -> Result<Pipeline> {
     let faithful = precision == Precision::Unorm8;
     let defines: &[(&str, &str)] = if faithful { &[("FAITHFUL", "1")] } else { &[] };
     let frag = sh.compile(&format!("trendall_stewart2000/{name}.frag"), defines)?;
@@ -40,10 +33,6 @@ fn fragment_pass(
         sh.compile("trendall_stewart2000/fullscreen.vert", &[])?,
         Some(frag),
     );
-    d.bindings = bindings;
-    if faithful {
-        d.bindings.extend(std::iter::repeat_n(K::SampledImage, tables));
-    }
     d.color_formats = vec![pass_format(precision)];
     Ok(Pipeline::graphics(ctx, &d)?)
 }
@@ -53,30 +42,21 @@ impl PoolPipelines {
         let passes = if precision == Precision::F64 {
             None
         } else {
-            let p =
-                |name: &str, bindings: Vec<K>, tables: usize| fragment_pass(ctx, sh, precision, name, bindings, tables);
-            let (u, s) = (K::UniformBuffer, K::SampledImage);
+            let p = |name: &str| fragment_pass(ctx, sh, precision, name);
             Some(PassPipelines {
-                height_field: p("height_field", vec![u], 0)?,
-                pass1_normals: p("pass1_normals", vec![u, s], 1)?,
-                pass2_gamma_n: p("pass2_gamma_n", vec![u, s], 1)?,
-                pass3_transmitted: p("pass3_transmitted", vec![u, s, s], 1)?,
-                pass4_direction: p("pass4_direction", vec![u, s], 1)?,
-                pass5_integrand: p("pass5_integrand", vec![u, s, s], 0)?,
-                pass6_convolution: p("pass6_convolution", vec![u, s, K::StorageBuffer], 0)?,
+                height_field: p("height_field")?,
+                pass1_normals: p("pass1_normals")?,
+                pass2_gamma_n: p("pass2_gamma_n")?,
+                pass3_transmitted: p("pass3_transmitted")?,
+                pass4_direction: p("pass4_direction")?,
+                pass5_integrand: p("pass5_integrand")?,
+                pass6_convolution: p("pass6_convolution")?,
             })
         };
-        let compute = |name: &str, bindings: &[K]| -> Result<Pipeline> {
+        let compute = |name: &str| -> Result<Pipeline> {
             let spirv = sh.compile(&format!("trendall_stewart2000/{name}.comp"), &[])?;
-            Ok(Pipeline::compute(ctx, &format!("pool.{name}"), &spirv, bindings)?)
+            Ok(Pipeline::compute(ctx, &format!("pool.{name}"), &spirv)?)
         };
-        Ok(PoolPipelines {
-            passes,
-            receiver: compute("receiver", &[K::UniformBuffer, K::SampledImage, K::SampledImage, K::StorageImage])?,
-            view: compute(
-                "view",
-                &[K::UniformBuffer, K::SampledImage, K::SampledImage, K::SampledImage, K::StorageImage],
-            )?,
-        })
+        Ok(PoolPipelines { passes, receiver: compute("receiver")?, view: compute("view")? })
     }
 }

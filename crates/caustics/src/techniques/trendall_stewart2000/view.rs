@@ -17,21 +17,21 @@ pub fn record_view(
 ) -> Result<()> {
     let n = t.receiver.view.extent.0;
     let receiver = [
-        Bind::Uniform(uniforms),
-        Bind::Sampled(&t.convolutions.view, nearest),
-        Bind::Sampled(&t.flat.view, nearest),
-        Bind::Storage(&t.receiver.view),
+        ("u", Bind::Uniform(uniforms)),
+        ("convolutions", Bind::Sampled(&t.convolutions.view, nearest)),
+        ("flat_convolutions", Bind::Sampled(&t.flat.view, nearest)),
+        ("receiver", Bind::Storage(&t.receiver.view)),
     ];
     f.pass("pool.receiver").bind(&p.receiver, receiver).record(|cmd| {
         cmd.dispatch(n.div_ceil(8), n.div_ceil(8), 1);
         Ok(())
     })?;
     let view = [
-        Bind::Uniform(uniforms),
-        Bind::Sampled(&t.height.view, linear),
-        Bind::Sampled(&t.normals.view, linear),
-        Bind::Sampled(&t.receiver.view, linear),
-        Bind::Storage(&t.final_image.view),
+        ("u", Bind::Uniform(uniforms)),
+        ("height_field", Bind::Sampled(&t.height.view, linear)),
+        ("normals", Bind::Sampled(&t.normals.view, linear)),
+        ("receiver", Bind::Sampled(&t.receiver.view, linear)),
+        ("final_image", Bind::Storage(&t.final_image.view)),
     ];
     let (w, h) = t.final_image.view.extent;
     f.pass("pool.view").bind(&p.view, view).record(|cmd| {

@@ -28,8 +28,8 @@ use crate::techniques::shared::targets::COLOR;
 use anyhow::Result;
 use pyramid::Pyramid;
 use vkcore::{
-    BindingKind as K, Buffer, CompactStream, CompactionPath, Context, Format, GraphicsDesc, Image, ImageDesc, Memory,
-    Pipeline, ShaderCompiler, Topology, VertexAttribute, VertexLayout, ViewKind,
+    Buffer, CompactStream, CompactionPath, Context, Format, GraphicsDesc, Image, ImageDesc, Memory, Pipeline,
+    ShaderCompiler, Topology, VertexAttribute, VertexLayout, ViewKind,
 };
 
 /// The traversal starts at a 16² level (Sec. 3.1: "to avoid processing mipmaps containing only
@@ -113,49 +113,25 @@ impl Hierarchy {
         let counts = Buffer::new(ctx, "hierarchy counts", (lights.max(1) * levels) as u64 * 4, Memory::Gpu)?;
         let dummy = Target::new(ctx, ImageDesc::new_2d("hierarchy dummy", COLOR, 1, 1))?;
 
-        let build = Pipeline::compute(
-            ctx,
-            "hierarchy.build",
-            &sh.compile("wyman2008/build.comp", &[])?,
-            &[
-                K::UniformBuffer,
-                K::UniformBuffer,
-                K::SampledImage,
-                K::SampledImage,
-                K::SampledImage,
-                K::SampledImage,
-                K::SampledImage,
-                K::StorageImage,
-                K::StorageImage,
-                K::StorageImage,
-            ],
-        )?;
+        let build = Pipeline::compute(ctx, "hierarchy.build", &sh.compile("wyman2008/build.comp", &[])?)?;
         let entries = VertexLayout {
             stride: ENTRY_BYTES as u32,
             attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }],
         };
-        let textures = [K::UniformBuffer, K::UniformBuffer, K::SampledImage, K::SampledImage, K::SampledImage];
         let (traverse, finalize) = match path {
             CompactionPath::TransformFeedback => {
                 let mut d = GraphicsDesc::new("hierarchy.traverse", sh.compile("wyman2008/traverse.vert", &[])?, None);
                 d.geometry = Some(sh.compile("wyman2008/traverse.geom", &[])?);
-                d.bindings = textures.to_vec();
                 d.topology = Topology::Points;
                 d.rasterizer_discard = true;
                 d.vertex_layout = Some(entries.clone());
                 (Pipeline::graphics(ctx, &d)?, None)
             }
             CompactionPath::Compute => {
-                let mut b = textures.to_vec();
-                b.extend([K::StorageBuffer; 4]);
                 let traverse =
-                    Pipeline::compute(ctx, "hierarchy.traverse", &sh.compile("wyman2008/traverse.comp", &[])?, &b)?;
-                let finalize = Pipeline::compute(
-                    ctx,
-                    "hierarchy.finalize",
-                    &sh.compile("vkcore/compact_finalize.comp", &[])?,
-                    &[K::StorageBuffer],
-                )?;
+                    Pipeline::compute(ctx, "hierarchy.traverse", &sh.compile("wyman2008/traverse.comp", &[])?)?;
+                let finalize =
+                    Pipeline::compute(ctx, "hierarchy.finalize", &sh.compile("vkcore/compact_finalize.comp", &[])?)?;
                 (traverse, Some(finalize))
             }
         };
@@ -163,7 +139,6 @@ impl Hierarchy {
         let mut splat = point_splat_desc(sh)?;
         splat.name = "splat_hierarchy".into();
         splat.vertex = sh.compile("shared/splat.vert", &[("HIERARCHY", "1")])?;
-        splat.bindings.extend([K::SampledImage, K::SampledImage]);
         splat.vertex_layout = Some(entries);
         Ok(Hierarchy {
             path,

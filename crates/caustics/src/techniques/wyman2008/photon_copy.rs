@@ -16,8 +16,8 @@ use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::CausticInputs;
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, BindingKind as K, Buffer, Context, Format, Frame, ImageDesc, ImageView, Memory, Pipeline,
-    ShaderCompiler, Targets, Use, VertexAttribute, VertexLayout,
+    Access, Bind, Buffer, Context, Format, Frame, ImageDesc, ImageView, Memory, Pipeline, ShaderCompiler, Targets, Use,
+    VertexAttribute, VertexLayout,
 };
 
 /// Data types on both sides of the copy (Wyman 2008 Table 2).
@@ -112,7 +112,6 @@ impl PhotonCopy {
         let mut d = point_splat_desc(sh)?;
         d.name = "splat_vertex_array".into();
         d.vertex = sh.compile("shared/splat.vert", &defines)?;
-        d.bindings = vec![K::UniformBuffer, K::UniformBuffer, K::StorageBuffer];
         let (format, stride) = if half { (Format::R16G16B16A16_SFLOAT, 8) } else { (Format::R32G32B32A32_SFLOAT, 16) };
         d.vertex_layout =
             Some(VertexLayout { stride, attributes: vec![VertexAttribute { location: 0, format, offset: 0 }] });
@@ -121,15 +120,18 @@ impl PhotonCopy {
 
     /// Splats light `l`'s copied photons into `cmap`, one point per vertex of the array.
     pub fn record_splat(&self, f: &mut Frame, inp: &CausticInputs, cmap: &ImageView, l: u32) -> Result<()> {
-        let binds =
-            [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms), Bind::BufferRead(&self.powers)];
+        let binds = [
+            ("frame", Bind::Uniform(inp.frame_uniforms)),
+            ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+            ("PhotonPower", Bind::BufferRead(&self.powers)),
+        ];
         f.pass(&format!("splat.light{l}"))
             .bind(&self.splat, binds)
             .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(&self.positions, Access::VERTEX_INPUT)])
             .record(|cmd| {
                 cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
                 cmd.push(&SplatConstants { light: l, vertices_per_instance: 0 })?;
-                cmd.bind_vertex_buffer(&self.positions, 0);
+                cmd.bind_vertex_buffer(&self.positions, 0)?;
                 cmd.draw(self.vertices(), 1, 0, 0);
                 cmd.end_rendering();
                 Ok(())

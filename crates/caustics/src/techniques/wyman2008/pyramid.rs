@@ -47,16 +47,16 @@ impl Hierarchy {
                 [&c[0], &c[1], &c[2]]
             };
             let binds = [
-                Bind::Uniform(inp.frame_uniforms),
-                Bind::Uniform(inp.caustic_uniforms),
-                Bind::Sampled(&pt.position.view, inp.nearest),
-                Bind::Sampled(&pt.power.view, inp.nearest),
-                Bind::Sampled(children[0], inp.nearest),
-                Bind::Sampled(children[1], inp.nearest),
-                Bind::Sampled(children[2], inp.nearest),
-                Bind::Storage(&out[0]),
-                Bind::Storage(&out[1]),
-                Bind::Storage(&out[2]),
+                ("frame", Bind::Uniform(inp.frame_uniforms)),
+                ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+                ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+                ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
+                ("child_power", Bind::Sampled(children[0], inp.nearest)),
+                ("child_position", Bind::Sampled(children[1], inp.nearest)),
+                ("child_texels", Bind::Sampled(children[2], inp.nearest)),
+                ("out_power", Bind::Storage(&out[0])),
+                ("out_position", Bind::Storage(&out[1])),
+                ("out_texels", Bind::Storage(&out[2])),
             ];
             f.pass(&format!("hierarchy.build.level{k}.light{l}")).bind(&self.build, binds).record(|cmd| {
                 cmd.push(&BuildConstants { level: k, light: l, photon_side: self.n })?;

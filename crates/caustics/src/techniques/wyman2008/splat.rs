@@ -25,12 +25,12 @@ impl Hierarchy {
         let py = &self.pyramid;
         let list = &self.lists[0];
         let binds = [
-            Bind::Uniform(inp.frame_uniforms),
-            Bind::Uniform(inp.caustic_uniforms),
-            Bind::Sampled(&pt.position.view, inp.nearest),
-            Bind::Sampled(&pt.power.view, inp.nearest),
-            Bind::Sampled(&py.all[0], inp.nearest),
-            Bind::Sampled(&py.all[1], inp.nearest),
+            ("frame", Bind::Uniform(inp.frame_uniforms)),
+            ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+            ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+            ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
+            ("hierarchy_power", Bind::Sampled(&py.all[0], inp.nearest)),
+            ("hierarchy_position", Bind::Sampled(&py.all[1], inp.nearest)),
         ];
         let uses = [
             Use::buffer(&list.data, Access::VERTEX_INPUT),
@@ -40,13 +40,13 @@ impl Hierarchy {
         f.pass(&format!("splat.light{l}")).bind(&self.splat, binds).uses(uses).record(|cmd| {
             cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])).layered(layers))?;
             cmd.push(&SplatConstants { light: l, vertices_per_instance: 0 })?;
-            cmd.bind_vertex_buffer(&list.data, 0);
+            cmd.bind_vertex_buffer(&list.data, 0)?;
             match self.path {
                 CompactionPath::TransformFeedback => {
                     cmd.draw_indirect_byte_count(1, &list.counter, ENTRY_BYTES as u32)?
                 }
                 // The draw arguments of compact_counter.glsl start at byte 32.
-                CompactionPath::Compute => cmd.draw_indirect(&list.counter, 32),
+                CompactionPath::Compute => cmd.draw_indirect(&list.counter, 32)?,
             }
             cmd.end_rendering();
             Ok(())

@@ -9,7 +9,7 @@ use crate::image_io::ImageF32;
 use crate::techniques::shared::compute_splat::{groups, Photons};
 use crate::techniques::shared::targets::PhotonTargets;
 use anyhow::Result;
-use vkcore::{Bind, BindingKind as K, Buffer, Context, FrameOptions, Memory, Pipeline, ShaderCompiler};
+use vkcore::{Bind, Buffer, Context, FrameOptions, Memory, Pipeline, ShaderCompiler};
 
 /// One splat: centre x, y and radius in base caustic-map texels, layer (of the multi-resolution
 /// map), power R, G, B (W), photons (1, or a cluster's count), splatted (1 when drawn), 3 unused
@@ -25,11 +25,8 @@ pub struct SplatFootprints {
 
 impl SplatFootprints {
     pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<SplatFootprints> {
-        let mut bindings = vec![K::UniformBuffer, K::UniformBuffer];
-        bindings.extend([K::SampledImage; 4]);
-        bindings.extend([K::StorageBuffer; 2]);
         let shader = sh.compile("wyman2008/splat_footprints.comp", &[])?;
-        Ok(SplatFootprints { pipeline: Pipeline::compute(ctx, "splat_footprints", &shader, &bindings)? })
+        Ok(SplatFootprints { pipeline: Pipeline::compute(ctx, "splat_footprints", &shader)? })
     }
 
     /// The splats of light `l`'s final list, as the hierarchy and photon buffer hold it now
@@ -57,14 +54,14 @@ impl SplatFootprints {
         }
         let out = Buffer::new(ctx, "splat footprints", bytes, Memory::Gpu)?;
         let binds = [
-            Bind::Uniform(inp.frame_uniforms),
-            Bind::Uniform(inp.caustic_uniforms),
-            Bind::Sampled(&pt.position.view, inp.nearest),
-            Bind::Sampled(&pt.power.view, inp.nearest),
-            Bind::Sampled(power, inp.nearest),
-            Bind::Sampled(position, inp.nearest),
-            Bind::BufferRead(&list.data),
-            Bind::Buffer(&out),
+            ("frame", Bind::Uniform(inp.frame_uniforms)),
+            ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+            ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+            ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
+            ("hierarchy_power", Bind::Sampled(power, inp.nearest)),
+            ("hierarchy_position", Bind::Sampled(position, inp.nearest)),
+            ("Entries", Bind::BufferRead(&list.data)),
+            ("Footprints", Bind::Buffer(&out)),
         ];
         let mut f = ctx.frame(FrameOptions::default())?;
         f.pass(&format!("splat_footprints.light{l}")).bind(&self.pipeline, binds).record(|cmd| {

@@ -37,11 +37,11 @@ impl Hierarchy {
             let input = if k == self.levels { &self.seed } else { &self.lists[k as usize] };
             let out = &self.lists[k as usize - 1];
             let mut binds = vec![
-                Bind::Uniform(inp.frame_uniforms),
-                Bind::Uniform(inp.caustic_uniforms),
-                Bind::Sampled(&pt.position.view, inp.nearest),
-                Bind::Sampled(&py.all[0], inp.nearest),
-                Bind::Sampled(&py.all[2], inp.nearest),
+                ("frame", Bind::Uniform(inp.frame_uniforms)),
+                ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+                ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+                ("hierarchy_power", Bind::Sampled(&py.all[0], inp.nearest)),
+                ("hierarchy_texels", Bind::Sampled(&py.all[2], inp.nearest)),
             ];
             let name = format!("hierarchy.traverse.level{k}.light{l}");
             let cluster = self.cluster.tests(k);
@@ -56,7 +56,7 @@ impl Hierarchy {
                     f.pass(&name).bind(&self.traverse, binds).uses(uses).record(|cmd| {
                         cmd.begin_rendering(&Targets::none())?;
                         cmd.push(&push(cluster))?;
-                        cmd.bind_vertex_buffer(&input.data, 0);
+                        cmd.bind_vertex_buffer(&input.data, 0)?;
                         cmd.bind_xfb_buffers(&[&out.data])?;
                         // No counter buffers at begin: capture starts at offset 0.
                         cmd.begin_xfb(&[], false)?;
@@ -72,21 +72,21 @@ impl Hierarchy {
                 }
                 CompactionPath::Compute => {
                     binds.extend([
-                        Bind::BufferRead(&input.data),
-                        Bind::BufferRead(&input.counter),
-                        Bind::Buffer(&out.data),
-                        Bind::Buffer(&out.counter),
+                        ("Input", Bind::BufferRead(&input.data)),
+                        ("InputCounter", Bind::BufferRead(&input.counter)),
+                        ("Output", Bind::Buffer(&out.data)),
+                        ("OutputCounter", Bind::Buffer(&out.counter)),
                     ]);
                     // The input's count is read as dispatch arguments too.
                     let arguments = [Use::buffer(&input.counter, Access::INDIRECT)];
                     f.pass(&name).bind(&self.traverse, binds).uses(arguments).record(|cmd| {
                         cmd.push(&push(cluster))?;
-                        cmd.dispatch_indirect(&input.counter, 16);
+                        cmd.dispatch_indirect(&input.counter, 16)?;
                         Ok(())
                     })?;
                     let finalize = self.finalize.as_ref().ok_or_else(|| anyhow::anyhow!("no finalize pipeline"))?;
                     f.pass(&format!("hierarchy.finalize.level{k}.light{l}"))
-                        .bind(finalize, [Bind::Buffer(&out.counter)])
+                        .bind(finalize, [("Counter", Bind::Buffer(&out.counter))])
                         .record(|cmd| {
                             cmd.dispatch(1, 1, 1);
                             Ok(())

@@ -9,7 +9,7 @@ use super::views::ViewBuffers;
 use crate::gpu::ImageSpaceConstants;
 use crate::techniques::CausticPasses;
 use anyhow::Result;
-use vkcore::{Bind, BindingKind as K, Context, Frame, ImageView, Pipeline, ShaderCompiler};
+use vkcore::{Bind, Context, Frame, ImageView, Pipeline, ShaderCompiler};
 
 /// The gather's half-width: 7x7 pixels (Sec. 3.2.2 step 2 (1)).
 pub const RADIUS: u32 = 3;
@@ -18,27 +18,16 @@ pub const MIN_PHOTONS: u32 = 3;
 
 pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result<Pipeline> {
     let defines: &[(&str, &str)] = if light_space { &[("LIGHT_SPACE", "1")] } else { &[] };
-    let bindings = [
-        K::UniformBuffer,
-        K::UniformBuffer,
-        K::SampledImage,
-        K::SampledImage,
-        K::SampledImage,
-        K::SampledImage,
-        K::StorageImage,
-    ];
     let name = if light_space { "wd.gather.light_space" } else { "wd.gather" };
-    Ok(Pipeline::compute(ctx, name, &sh.compile("wyman_davis2006/gather.comp", defines)?, &bindings)?)
+    Ok(Pipeline::compute(ctx, name, &sh.compile("wyman_davis2006/gather.comp", defines)?)?)
 }
 
 pub fn shade_pipeline(ctx: &Context, sh: &ShaderCompiler) -> Result<Pipeline> {
-    let bindings = [K::StorageImage, K::SampledImage, K::SampledImage];
-    Ok(Pipeline::compute(ctx, "wd.shade", &sh.compile("wyman_davis2006/shade.comp", &[])?, &bindings)?)
+    Ok(Pipeline::compute(ctx, "wd.shade", &sh.compile("wyman_davis2006/shade.comp", &[])?)?)
 }
 
 pub fn receiver_view_pipeline(ctx: &Context, sh: &ShaderCompiler) -> Result<Pipeline> {
-    let bindings = [K::UniformBuffer, K::StorageImage, K::StorageImage];
-    Ok(Pipeline::compute(ctx, "wd.receiver_view", &sh.compile("wyman_davis2006/receiver_view.comp", &[])?, &bindings)?)
+    Ok(Pipeline::compute(ctx, "wd.receiver_view", &sh.compile("wyman_davis2006/receiver_view.comp", &[])?)?)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -55,15 +44,18 @@ pub fn record(
     constants: ImageSpaceConstants,
 ) -> Result<()> {
     let inp = c.inputs;
-    let binds = [
-        Bind::Uniform(inp.frame_uniforms),
-        Bind::Uniform(inp.caustic_uniforms),
-        Bind::Sampled(&from.photons.view, inp.nearest),
-        Bind::Sampled(&from.directions.view, inp.nearest),
-        Bind::Sampled(geometry.0, inp.nearest),
-        Bind::Sampled(geometry.1, inp.nearest),
-        Bind::Storage(out),
+    let mut binds = vec![
+        ("frame", Bind::Uniform(inp.frame_uniforms)),
+        ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+        ("photons", Bind::Sampled(&from.photons.view, inp.nearest)),
+        ("directions", Bind::Sampled(&from.directions.view, inp.nearest)),
+        ("view_position", Bind::Sampled(geometry.0, inp.nearest)),
     ];
+    // In light space (`LIGHT_SPACE`) the gather reads no normals.
+    if pipeline.declares("view_normal") {
+        binds.push(("view_normal", Bind::Sampled(geometry.1, inp.nearest)));
+    }
+    binds.push(("gathered", Bind::Storage(out)));
     f.pass(name).bind(pipeline, binds).record(|cmd| {
         cmd.push(&constants)?;
         cmd.dispatch(from.width.div_ceil(8), from.height.div_ceil(8), 1);

@@ -275,9 +275,9 @@ impl ImageSpace {
         let shade = self.shade.as_ref().context("no shading pipeline")?;
         let caustic = &eye_buffers.caustic.as_ref().context("no caustic image")?.view;
         let binds = [
-            vkcore::Bind::Storage(eye.background),
-            vkcore::Bind::Sampled(eye.albedo, c.inputs.nearest),
-            vkcore::Bind::Sampled(caustic, c.inputs.nearest),
+            ("background", vkcore::Bind::Storage(eye.background)),
+            ("albedo", vkcore::Bind::Sampled(eye.albedo, c.inputs.nearest)),
+            ("caustic", vkcore::Bind::Sampled(caustic, c.inputs.nearest)),
         ];
         f.pass("wd.shade").bind(shade, binds).record(|cmd| {
             cmd.dispatch(eye_buffers.width.div_ceil(8), eye_buffers.height.div_ceil(8), 1);
@@ -305,9 +305,9 @@ impl ImageSpace {
 /// The receiver view's geometry: the receiver plane seen straight down.
 fn record_receiver_geometry(f: &mut Frame, c: &CausticPasses, p: &Pipeline, r: &ReceiverView) -> Result<()> {
     let binds = [
-        vkcore::Bind::Uniform(c.inputs.frame_uniforms),
-        vkcore::Bind::Storage(&r.position.view),
-        vkcore::Bind::Storage(&r.normal.view),
+        ("frame", vkcore::Bind::Uniform(c.inputs.frame_uniforms)),
+        ("view_position", vkcore::Bind::Storage(&r.position.view)),
+        ("view_normal", vkcore::Bind::Storage(&r.normal.view)),
     ];
     f.pass("wd.receiver_view").bind(p, binds).record(|cmd| {
         cmd.dispatch(r.buffers.width.div_ceil(8), r.buffers.height.div_ceil(8), 1);

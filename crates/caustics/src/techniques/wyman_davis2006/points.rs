@@ -10,20 +10,8 @@ use crate::gpu::ImageSpaceConstants;
 use crate::techniques::CausticPasses;
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, BindingKind as K, Blend, Context, Frame, GraphicsDesc, ImageView, Pipeline, ShaderCompiler, Targets,
-    Topology, Use,
+    Access, Bind, Blend, Context, Frame, GraphicsDesc, ImageView, Pipeline, ShaderCompiler, Targets, Topology, Use,
 };
-
-/// The bindings of photons.vert/.frag (binding 6, the view's normals, is not read in light space).
-const BINDINGS: [K; 7] = [
-    K::UniformBuffer,
-    K::UniformBuffer,
-    K::SampledImage,
-    K::SampledImage,
-    K::SampledImage,
-    K::SampledImage,
-    K::SampledImage,
-];
 
 /// The photons' point pipeline into a view (`light_space`: into a caustic map).
 pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result<Pipeline> {
@@ -34,7 +22,6 @@ pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result
         sh.compile("wyman_davis2006/photons.vert", defines)?,
         Some(sh.compile("wyman_davis2006/photons.frag", defines)?),
     );
-    d.bindings = BINDINGS.to_vec();
     d.topology = Topology::Points;
     d.blend = Blend::Additive;
     d.color_formats = vec![COLOR, COLOR];
@@ -63,15 +50,18 @@ pub fn record(
     let (pt, inp) = (c.photons, c.inputs);
     let layer = &into.buffers.layers[into.slot as usize];
     let directions = &into.buffers.directions.view;
-    let binds = [
-        Bind::Uniform(inp.frame_uniforms),
-        Bind::Uniform(inp.caustic_uniforms),
-        Bind::Sampled(&pt.position.view, inp.nearest),
-        Bind::Sampled(&pt.direction.view, inp.nearest),
-        Bind::Sampled(&pt.power.view, inp.nearest),
-        Bind::Sampled(into.geometry.0, inp.nearest),
-        Bind::Sampled(into.geometry.1, inp.nearest),
+    let mut binds = vec![
+        ("frame", Bind::Uniform(inp.frame_uniforms)),
+        ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+        ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+        ("photon_direction", Bind::Sampled(&pt.direction.view, inp.nearest)),
+        ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
+        ("view_position", Bind::Sampled(into.geometry.0, inp.nearest)),
     ];
+    // In light space (`LIGHT_SPACE`) the photons read no normals.
+    if pipeline.declares("view_normal") {
+        binds.push(("view_normal", Bind::Sampled(into.geometry.1, inp.nearest)));
+    }
     let clear = if into.clear { Some([0.0; 4]) } else { None };
     f.pass(&into.name)
         .bind(pipeline, binds)

@@ -12,8 +12,8 @@ use crate::gpu::ImageSpaceConstants;
 use crate::techniques::CausticPasses;
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, BindingKind as K, Blend, Context, Cull, Frame, GraphicsDesc, ImageView, Pipeline, ShaderCompiler,
-    Targets, Topology, Use,
+    Access, Bind, Blend, Context, Cull, Frame, GraphicsDesc, ImageView, Pipeline, ShaderCompiler, Targets, Topology,
+    Use,
 };
 
 /// How the quads' pipelines draw a block's polygon (same bindings and push constants).
@@ -54,8 +54,6 @@ pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result
             sh.compile("wyman_davis2006/quads.vert", &defines)?,
             Some(sh.compile("wyman_davis2006/quads.frag", &defines)?),
         );
-        d.bindings = vec![K::UniformBuffer; 2];
-        d.bindings.extend([K::SampledImage; 6]);
         d.topology = topology;
         d.cull = Cull::None;
         d.blend = Blend::Additive;
@@ -83,34 +81,40 @@ pub fn record(
     constants: ImageSpaceConstants,
 ) -> Result<()> {
     let (pt, inp) = (c.photons, c.inputs);
-    let binds = [
-        Bind::Uniform(inp.frame_uniforms),
-        Bind::Uniform(inp.caustic_uniforms),
-        Bind::Sampled(&pt.position.view, inp.nearest),
-        Bind::Sampled(&pt.direction.view, inp.nearest),
-        Bind::Sampled(&pt.power.view, inp.nearest),
-        Bind::Sampled(geometry.0, inp.nearest),
-        Bind::Sampled(geometry.1, inp.nearest),
-        Bind::Sampled(&c.targets.per_light[constants.light as usize].1, inp.nearest),
+    let mut binds = vec![
+        ("frame", Bind::Uniform(inp.frame_uniforms)),
+        ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+        ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+        ("photon_direction", Bind::Sampled(&pt.direction.view, inp.nearest)),
+        ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
+        ("view_position", Bind::Sampled(geometry.0, inp.nearest)),
     ];
+    // In light space (`LIGHT_SPACE`) the quads read no normals; the three pipelines share
+    // their bindings.
+    if pipelines.triangles.declares("view_normal") {
+        binds.push(("view_normal", Bind::Sampled(geometry.1, inp.nearest)));
+    }
+    binds.push(("receiver_positions", Bind::Sampled(&c.targets.per_light[constants.light as usize].1, inp.nearest)));
     let n = pt.width;
-    f.pass(name).bind(&pipelines.triangles, binds).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(|cmd| {
-        cmd.begin_rendering(&Targets::color(out, if clear { Some([0.0; 4]) } else { None }))?;
-        cmd.push(&constants)?;
-        // Two triangles for each of the (N - 1)^2 blocks of 2x2 photons.
-        cmd.draw((n - 1) * (n - 1) * 6, 1, 0, 0);
-        // One point for each block under a pixel.
-        cmd.bind_pipeline(&pipelines.points);
-        cmd.bind(&binds)?;
-        cmd.push(&constants)?;
-        cmd.draw((n - 1) * (n - 1), 1, 0, 0);
-        // A line (two vertices) for each sliver.
-        cmd.bind_pipeline(&pipelines.lines);
-        cmd.bind(&binds)?;
-        cmd.push(&constants)?;
-        cmd.draw((n - 1) * (n - 1) * 2, 1, 0, 0);
-        cmd.end_rendering();
-        Ok(())
-    })?;
+    f.pass(name).bind(&pipelines.triangles, binds.clone()).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(
+        |cmd| {
+            cmd.begin_rendering(&Targets::color(out, if clear { Some([0.0; 4]) } else { None }))?;
+            cmd.push(&constants)?;
+            // Two triangles for each of the (N - 1)^2 blocks of 2x2 photons.
+            cmd.draw((n - 1) * (n - 1) * 6, 1, 0, 0);
+            // One point for each block under a pixel.
+            cmd.bind_pipeline(&pipelines.points);
+            cmd.bind(&binds)?;
+            cmd.push(&constants)?;
+            cmd.draw((n - 1) * (n - 1), 1, 0, 0);
+            // A line (two vertices) for each sliver.
+            cmd.bind_pipeline(&pipelines.lines);
+            cmd.bind(&binds)?;
+            cmd.push(&constants)?;
+            cmd.draw((n - 1) * (n - 1) * 2, 1, 0, 0);
+            cmd.end_rendering();
+            Ok(())
+        },
+    )?;
     Ok(())
 }

@@ -28,7 +28,7 @@ use crate::gpu::{GpuMesh, MeshConstants};
 use crate::image_io::ImageF32;
 use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
-use vkcore::{Access, Bind, BindingKind as K, Context, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Use};
+use vkcore::{Access, Bind, Context, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Use};
 
 /// The `--dump` name of the geometry buffers photons are created from.
 pub const DUMP: &str = "photon_geometry_buffers";
@@ -62,9 +62,6 @@ impl DeferredPhotons {
                 &[("REFRACTORS", &refractors.refractors_define())],
             )?),
         );
-        d.bindings = crate::techniques::shared::pipelines::TRACE_BINDINGS.to_vec();
-        d.bindings.extend([K::SampledImage; 3]);
-        d.bindings.extend(refractors.bindings());
         d.color_formats = vec![COLOR, COLOR, COLOR];
         Ok(DeferredPhotons {
             specular,
@@ -90,13 +87,17 @@ impl DeferredPhotons {
         self.all.record_surfaces(f, &u, inp.meshes, &self.specular, "deferred_photons.geometry", l)?;
         self.refractors.record(f, &u, inp.meshes, "deferred_photons.geometry", l)?;
         let mut binds = vec![
-            Bind::Uniform(inp.frame_uniforms),
-            Bind::Uniform(inp.caustic_uniforms),
-            Bind::Sampled(&self.all.back_faces, inp.nearest),
-            Bind::Sampled(&c.targets.receiver_positions.view, inp.nearest),
-            Bind::Sampled(inp.spot_textures, inp.linear),
+            ("frame", Bind::Uniform(inp.frame_uniforms)),
+            ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+            ("light_back_faces", Bind::Sampled(&self.all.back_faces, inp.nearest)),
+            ("receiver_positions", Bind::Sampled(&c.targets.receiver_positions.view, inp.nearest)),
+            ("spot_textures", Bind::Sampled(inp.spot_textures, inp.linear)),
         ];
-        binds.extend(self.all.surface_binds(inp.nearest));
+        binds.extend(
+            ["surface_position", "surface_normal", "surface_material"]
+                .into_iter()
+                .zip(self.all.surface_binds(inp.nearest)),
+        );
         binds.extend(self.refractors.binds(inp.nearest));
         let photons = [&pt.position, &pt.direction, &pt.power];
         f.pass(&format!("deferred_photons.light{l}"))

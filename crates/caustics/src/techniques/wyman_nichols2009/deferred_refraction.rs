@@ -24,8 +24,8 @@ use crate::gpu::{mesh_uses, GpuMesh};
 use crate::scene::{MaterialKind, Scene};
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, BindingKind as K, Blend, Context, Cull, Format, Frame, GraphicsDesc, Image, ImageDesc, ImageView,
-    Pipeline, Sampler, ShaderCompiler, Targets, Topology, Use, ViewKind,
+    Access, Bind, Blend, Context, Cull, Format, Frame, GraphicsDesc, Image, ImageDesc, ImageView, Pipeline, Sampler,
+    ShaderCompiler, Targets, Topology, Use, ViewKind,
 };
 
 /// The window depth and thickness layers: two floats.
@@ -96,7 +96,6 @@ impl DeferredRefraction {
             Some(sh.compile("wyman_nichols2009/refractor_geometry.frag", &[])?),
         );
         d.geometry = Some(sh.compile("wyman_nichols2009/refractor_geometry.geom", &[])?);
-        d.bindings = vec![K::UniformBuffer];
         d.vertex_layout = Some(mesh_layout());
         d.topology = Topology::Triangles;
         d.cull = Cull::None;
@@ -112,8 +111,6 @@ impl DeferredRefraction {
             sh.compile("wyman_nichols2009/full_screen.vert", &[])?,
             Some(sh.compile("wyman_nichols2009/deferred_refraction.frag", &[])?),
         );
-        r.bindings = vec![K::UniformBuffer];
-        r.bindings.extend([K::SampledImage; 6]);
         r.color_formats = vec![COLOR];
         let refraction = Pipeline::graphics(ctx, &r)?;
         let array =
@@ -159,7 +156,7 @@ impl DeferredRefraction {
                 Use::view(&views.depth_buffer, Access::DEPTH_ATTACHMENT),
             ];
             f.pass(&format!("refractor_geometry.layer{k}"))
-                .bind(&self.geometry, [Bind::Uniform(inp.uniforms)])
+                .bind(&self.geometry, [("frame", Bind::Uniform(inp.uniforms))])
                 .uses(attachments)
                 .uses(mesh_uses(mesh.map(std::slice::from_ref).unwrap_or_default()))
                 .record(|cmd| {
@@ -181,13 +178,13 @@ impl DeferredRefraction {
             };
             let output = views.result.as_ref().unwrap_or(inp.final_image);
             let binds = [
-                Bind::Uniform(inp.uniforms),
-                Bind::Sampled(previous, inp.nearest),
-                Bind::Sampled(inp.position, inp.nearest),
-                Bind::Sampled(inp.normal, inp.nearest),
-                Bind::Sampled(&views.front, inp.nearest),
-                Bind::Sampled(&views.back, inp.nearest),
-                Bind::Sampled(&views.front_depth, inp.nearest),
+                ("frame", Bind::Uniform(inp.uniforms)),
+                ("background_radiance", Bind::Sampled(previous, inp.nearest)),
+                ("background_position", Bind::Sampled(inp.position, inp.nearest)),
+                ("background_normal", Bind::Sampled(inp.normal, inp.nearest)),
+                ("front_faces", Bind::Sampled(&views.front, inp.nearest)),
+                ("back_faces", Bind::Sampled(&views.back, inp.nearest)),
+                ("front_depth", Bind::Sampled(&views.front_depth, inp.nearest)),
             ];
             let uses = [Use::view(output, Access::COLOR_ATTACHMENT)];
             f.pass(&format!("deferred_refraction.layer{k}")).bind(&self.refraction, binds).uses(uses).record(

@@ -28,8 +28,8 @@ use crate::gpu::{mesh_uses, CoverageConstants, GpuMesh};
 use crate::image_io::{ImageF32, Layer};
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, BindingKind as K, Blend, Context, Cull, Format, Frame, GraphicsDesc, Image, ImageDesc, ImageView,
-    Pipeline, Sampler, ShaderCompiler, Targets, Topology, Use, ViewKind,
+    Access, Bind, Blend, Context, Cull, Format, Frame, GraphicsDesc, Image, ImageDesc, ImageView, Pipeline, Sampler,
+    ShaderCompiler, Targets, Topology, Use, ViewKind,
 };
 
 /// The coverage pyramid's format: r any, g all covered (0 or 1, exact in 8 bits).
@@ -75,7 +75,6 @@ impl LightGeometryBuffers {
             Some(sh.compile("wyman_nichols2009/light_geometry.frag", &[])?),
         );
         d.geometry = Some(sh.compile("wyman_nichols2009/light_geometry.geom", &[])?);
-        d.bindings = vec![K::UniformBuffer, K::UniformBuffer];
         d.vertex_layout = Some(mesh_layout());
         d.topology = Topology::Triangles;
         d.cull = Cull::None;
@@ -85,12 +84,8 @@ impl LightGeometryBuffers {
         d.depth_test = true;
         d.depth_write = true;
         let geometry = Pipeline::graphics(ctx, &d)?;
-        let coverage = Pipeline::compute(
-            ctx,
-            "adaptive.coverage",
-            &sh.compile("wyman_nichols2009/coverage.comp", &[])?,
-            &[K::SampledImage, K::SampledImage, K::StorageImage],
-        )?;
+        let coverage =
+            Pipeline::compute(ctx, "adaptive.coverage", &sh.compile("wyman_nichols2009/coverage.comp", &[])?)?;
         let array = |name: &str, format| Image::new(ctx, ImageDesc::new_2d(name, format, side, side).layers(2));
         let position = array("light geometry: position", COLOR)?;
         let normal = array("light geometry: normal", COLOR)?;
@@ -150,7 +145,7 @@ impl LightGeometryBuffers {
             Use::view(&self.depth_layers, Access::DEPTH_ATTACHMENT),
         ];
         f.pass(&format!("{name}.light{l}"))
-            .bind(&self.geometry, [Bind::Uniform(u.frame), Bind::Uniform(u.caustics)])
+            .bind(&self.geometry, [("frame", Bind::Uniform(u.frame)), ("caustics", Bind::Uniform(u.caustics))])
             .uses(attachments)
             .uses(mesh_uses(meshes))
             .record(|cmd| {
@@ -184,8 +179,11 @@ impl LightGeometryBuffers {
         for (m, out) in self.coverage_level.iter().enumerate() {
             // Level 0 reads the geometry buffers; its `finer` binding is level 1, unused.
             let finer = &self.coverage_level[if m == 0 { 1 } else { m - 1 }];
-            let binds =
-                [Bind::Sampled(&self.normal_layers, nearest), Bind::Sampled(finer, nearest), Bind::Storage(out)];
+            let binds = [
+                ("geometry_normal", Bind::Sampled(&self.normal_layers, nearest)),
+                ("finer", Bind::Sampled(finer, nearest)),
+                ("level_out", Bind::Storage(out)),
+            ];
             f.pass(&format!("adaptive.coverage.level{m}.light{l}")).bind(&self.coverage, binds).record(|cmd| {
                 cmd.push(&CoverageConstants { level: m as u32 })?;
                 let s = (self.padded >> m).max(1);

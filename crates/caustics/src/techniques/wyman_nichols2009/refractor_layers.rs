@@ -10,11 +10,19 @@ use super::geometry_buffers::{LightGeometryBuffers, Uniforms};
 use crate::gpu::{GpuMesh, MATERIAL_DIFFUSE};
 use crate::image_io::ImageF32;
 use anyhow::Result;
-use vkcore::{Bind, BindingKind as K, Context, Frame, Sampler, ShaderCompiler};
+use vkcore::{Context, Frame, Named, Sampler, ShaderCompiler};
 
 /// The most specular objects the multi-layer trace follows a photon through
 /// (`deferred_photon_layers.glsl` declares this many buffers at most).
 pub const MAX_REFRACTORS: usize = 4;
+
+/// Each object's three bindings, as `deferred_photon_layers.glsl`'s `LAYER_BINDINGS(k)` names them.
+const LAYER_NAMES: [[&str; 3]; MAX_REFRACTORS] = [
+    ["layer0_position", "layer0_normal", "layer0_material"],
+    ["layer1_position", "layer1_normal", "layer1_material"],
+    ["layer2_position", "layer2_normal", "layer2_material"],
+    ["layer3_position", "layer3_normal", "layer3_material"],
+];
 
 /// The indices of the specular meshes (the scene's specular objects), in the scene's order.
 pub fn specular_objects(meshes: &[GpuMesh]) -> Vec<usize> {
@@ -40,14 +48,14 @@ impl RefractorLayers {
         self.layers.len().max(1).to_string()
     }
 
-    /// The descriptor kinds of the layers' bindings, after a shader's own (`LAYER_BINDING`).
-    pub fn bindings(&self) -> Vec<K> {
-        vec![K::SampledImage; 3 * self.layers.len()]
-    }
-
-    /// The layers' bindings, in the order of [`Self::bindings`].
-    pub fn binds<'a>(&'a self, nearest: &'a Sampler) -> Vec<Bind<'a>> {
-        self.layers.iter().flat_map(|(_, b)| b.surface_binds(nearest)).collect()
+    /// The layers' bindings, after a shader's own (`LAYER_BINDING`), under
+    /// `deferred_photon_layers.glsl`'s names: `layer<k>_position`, `_normal`, `_material`.
+    pub fn binds<'a>(&'a self, nearest: &'a Sampler) -> Vec<Named<'a>> {
+        self.layers
+            .iter()
+            .zip(LAYER_NAMES)
+            .flat_map(|((_, b), names)| names.into_iter().zip(b.surface_binds(nearest)))
+            .collect()
     }
 
     /// Records light `l`'s buffers of each object alone, passes `<name>.refractor<k>.light<l>`.

@@ -42,14 +42,14 @@ use super::geometry_buffers::LightGeometryBuffers;
 use super::refractor_layers::{specular_objects, RefractorLayers, MAX_REFRACTORS};
 use super::settings::{Metric, TOP_PHOTONS};
 use crate::gpu::GpuMesh;
-use crate::techniques::shared::pipelines::{point_splat_desc, TRACE_BINDINGS};
+use crate::techniques::shared::pipelines::point_splat_desc;
 use crate::techniques::wyman2008::TraversalPath;
 use crate::techniques::CausticSettings;
 use anyhow::Result;
 use photon::{CLUSTER_BYTES, HITS_BYTES, PHOTON_BYTES};
 use vkcore::{
-    BindingKind as K, Buffer, CompactStream, CompactionPath, Context, Format, GraphicsDesc, Memory, Pipeline,
-    ShaderCompiler, Topology, VertexAttribute, VertexLayout,
+    Buffer, CompactStream, CompactionPath, Context, Format, GraphicsDesc, Memory, Pipeline, ShaderCompiler, Topology,
+    VertexAttribute, VertexLayout,
 };
 
 /// The transform-feedback path's kernels (`adaptive_step.geom`, Sec. 4.1).
@@ -106,11 +106,9 @@ pub struct AdaptiveCaustics {
 }
 
 /// The traversal's bindings 0-8 (`adaptive.glsl`): the trace's (uniforms, back faces, receiver
-/// positions, spot textures: [`TRACE_BINDINGS`]), the geometry buffers and their coverage pyramid.
-const TEXTURES: [K; 9] = {
-    let t = TRACE_BINDINGS;
-    [t[0], t[1], t[2], t[3], t[4], K::SampledImage, K::SampledImage, K::SampledImage, K::SampledImage]
-};
+/// positions, spot textures: `photon_buffer::trace_binds`), the geometry buffers and their
+/// coverage pyramid; the kernels' own bindings follow.
+const TEXTURES: usize = 9;
 
 impl AdaptiveCaustics {
     /// Adaptive caustic maps of the specular meshes among `meshes`.
@@ -187,16 +185,15 @@ impl AdaptiveCaustics {
         let hits = (plan.hits > 0).then(|| stream("adaptive cluster hits", plan.hits, HITS_BYTES)).transpose()?;
         let photons = stream("adaptive photons", plan.photons, PHOTON_BYTES)?;
         let counts = Buffer::new(ctx, "adaptive counts", (lights.max(1) * 2 * (finest + 1)) as u64 * 4, Memory::Gpu)?;
-        let storage = |name: &str, kinds: &[K]| -> Result<Pipeline> {
+        let storage = |name: &str| -> Result<Pipeline> {
             Ok(Pipeline::compute(
                 ctx,
                 &format!("adaptive.{name}"),
                 &sh.compile(&format!("wyman_nichols2009/adaptive_{name}.comp"), &[])?,
-                kinds,
             )?)
         };
-        let batch_select = storage("batch", &[K::StorageBuffer; 4])?;
-        let count = storage("counts", &[K::StorageBuffer; 3])?;
+        let batch_select = storage("batch")?;
+        let count = storage("counts")?;
         let kernels = match path {
             CompactionPath::TransformFeedback => Kernels::Xfb(Box::new(XfbKernels {
                 subdivide: xfb_kernel(ctx, sh, "SUBDIVIDE", &refractors)?,
@@ -206,20 +203,16 @@ impl AdaptiveCaustics {
                 refine: xfb_kernel(ctx, sh, "REFINE", &refractors)?,
             })),
             CompactionPath::Compute => {
-                let mut b = TEXTURES.to_vec();
-                b.extend([K::StorageBuffer; 6]);
-                // The further refractors' buffers after the kernel's own bindings.
-                let (count, first) = (refractors.refractors_define(), b.len().to_string());
+                // The further refractors' buffers after the kernel's own six storage buffers.
+                let (count, first) = (refractors.refractors_define(), (TEXTURES + 6).to_string());
                 let defines = [("REFRACTORS", count.as_str()), ("LAYER_BINDING", first.as_str())];
                 let spirv = sh.compile("wyman_nichols2009/adaptive_traverse.comp", &defines)?;
-                b.extend(refractors.bindings());
                 Kernels::Compute {
-                    traverse: Pipeline::compute(ctx, "adaptive.traverse", &spirv, &b)?,
+                    traverse: Pipeline::compute(ctx, "adaptive.traverse", &spirv)?,
                     finalize: Pipeline::compute(
                         ctx,
                         "adaptive.finalize",
                         &sh.compile("vkcore/compact_finalize.comp", &[])?,
-                        &[K::StorageBuffer],
                     )?,
                 }
             }
@@ -228,7 +221,6 @@ impl AdaptiveCaustics {
         let mut splat = point_splat_desc(sh)?;
         splat.name = "splat_adaptive".into();
         splat.vertex = sh.compile("shared/splat.vert", &[("ADAPTIVE_PHOTONS", "1")])?;
-        splat.bindings = vec![K::UniformBuffer, K::UniformBuffer];
         splat.vertex_layout = Some(VertexLayout {
             stride: PHOTON_BYTES as u32,
             attributes: vec![
@@ -281,7 +273,7 @@ impl AdaptiveCaustics {
 /// refractors' buffers bound after its own.
 fn xfb_kernel(ctx: &Context, sh: &ShaderCompiler, kernel: &str, layers: &RefractorLayers) -> Result<Pipeline> {
     let from_hits = matches!(kernel, "CONVERGED" | "REFINE");
-    let (count, first) = (layers.refractors_define(), (TEXTURES.len() + from_hits as usize).to_string());
+    let (count, first) = (layers.refractors_define(), (TEXTURES + from_hits as usize).to_string());
     let mut defines = vec![(kernel, "1"), ("REFRACTORS", count.as_str()), ("LAYER_BINDING", first.as_str())];
     if from_hits {
         defines.push(("FROM_HITS", "1"));
@@ -292,11 +284,6 @@ fn xfb_kernel(ctx: &Context, sh: &ShaderCompiler, kernel: &str, layers: &Refract
         None,
     );
     d.geometry = Some(sh.compile("wyman_nichols2009/adaptive_step.geom", &defines)?);
-    d.bindings = TEXTURES.to_vec();
-    if from_hits {
-        d.bindings.push(K::StorageBuffer);
-    }
-    d.bindings.extend(layers.bindings());
     if !from_hits {
         d.vertex_layout = Some(VertexLayout {
             stride: CLUSTER_BYTES as u32,

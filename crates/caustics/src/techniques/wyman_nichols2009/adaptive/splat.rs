@@ -30,7 +30,7 @@ impl AdaptiveCaustics {
         }
         let list = &self.photons;
         let inp = &s.passes;
-        let binds = [Bind::Uniform(inp.frame_uniforms), Bind::Uniform(inp.caustic_uniforms)];
+        let binds = [("frame", Bind::Uniform(inp.frame_uniforms)), ("caustics", Bind::Uniform(inp.caustic_uniforms))];
         let uses = [
             Use::buffer(&list.data, Access::VERTEX_INPUT),
             Use::buffer(&list.counter, Access::INDIRECT),
@@ -39,13 +39,13 @@ impl AdaptiveCaustics {
         f.pass(&format!("splat{tag}.light{l}")).bind(&self.splat, binds).uses(uses).record(|cmd| {
             cmd.begin_rendering(&Targets::color(s.cmap, first.then_some([0.0; 4])).layered(s.layers))?;
             cmd.push(&SplatConstants { light: l, vertices_per_instance: 0 })?;
-            cmd.bind_vertex_buffer(&list.data, 0);
+            cmd.bind_vertex_buffer(&list.data, 0)?;
             match self.path {
                 CompactionPath::TransformFeedback => {
                     cmd.draw_indirect_byte_count(1, &list.counter, PHOTON_BYTES as u32)?
                 }
                 // The draw arguments of compact_counter.glsl start at byte 32.
-                CompactionPath::Compute => cmd.draw_indirect(&list.counter, 32),
+                CompactionPath::Compute => cmd.draw_indirect(&list.counter, 32)?,
             }
             cmd.end_rendering();
             Ok(())

@@ -16,7 +16,8 @@ use crate::techniques::wyman_nichols2009::geometry_buffers::Uniforms;
 use crate::techniques::wyman_nichols2009::settings::tests_convergence;
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, Buffer, CompactStream, CompactionPath, Context, Frame, ImageView, Pipeline, Sampler, Targets, Use,
+    Access, Bind, Buffer, CompactStream, CompactionPath, Context, Frame, ImageView, Named, Pipeline, Sampler, Targets,
+    Use,
 };
 
 /// What the traversal reads besides its own buffers.
@@ -139,7 +140,7 @@ impl AdaptiveCaustics {
     fn record_finalize_photons(&self, f: &mut Frame, l: u32, tag: &str) -> Result<()> {
         if let Kernels::Compute { finalize, .. } = &self.kernels {
             f.pass(&format!("adaptive.finalize.photons{tag}.light{l}"))
-                .bind(finalize, [Bind::Buffer(&self.photons.counter)])
+                .bind(finalize, [("Counter", Bind::Buffer(&self.photons.counter))])
                 .record(|cmd| {
                     cmd.dispatch(1, 1, 1);
                     Ok(())
@@ -152,10 +153,10 @@ impl AdaptiveCaustics {
     fn record_batch_input(&self, f: &mut Frame, l: u32, batch: u32, input: &CompactStream, tag: &str) -> Result<()> {
         let pending = &self.clusters[self.plan.breadth as usize];
         let binds = [
-            Bind::BufferRead(&pending.data),
-            Bind::BufferRead(&pending.counter),
-            Bind::Buffer(&input.data),
-            Bind::Buffer(&input.counter),
+            ("Pending", Bind::BufferRead(&pending.data)),
+            ("PendingCounter", Bind::BufferRead(&pending.counter)),
+            ("Batch", Bind::Buffer(&input.data)),
+            ("BatchCounter", Bind::Buffer(&input.counter)),
         ];
         let push = BatchConstants {
             first: batch * self.plan.batch,
@@ -177,9 +178,9 @@ impl AdaptiveCaustics {
         let base = l.min(self.lights.max(1) - 1) * 2 * (self.finest + 1);
         let next = self.clusters.get(k as usize + 1);
         let binds = [
-            Bind::BufferRead(&next.unwrap_or(&self.spare).counter),
-            Bind::BufferRead(&self.photons.counter),
-            Bind::Buffer(&self.counts),
+            ("Clusters", Bind::BufferRead(&next.unwrap_or(&self.spare).counter)),
+            ("Photons", Bind::BufferRead(&self.photons.counter)),
+            ("Counts", Bind::Buffer(&self.counts)),
         ];
         let push = CountConstants {
             cluster_slot: if next.is_some() { base + k + 1 } else { u32::MAX },
@@ -224,18 +225,18 @@ impl AdaptiveCaustics {
     }
 
     /// Bindings 0-8 of every traversal kernel (`adaptive.glsl`).
-    fn textures<'a>(&'a self, inp: &Inputs<'a>) -> Vec<Bind<'a>> {
+    fn textures<'a>(&'a self, inp: &Inputs<'a>) -> Vec<Named<'a>> {
         let g = &self.geometry;
         vec![
-            Bind::Uniform(inp.frame_uniforms),
-            Bind::Uniform(inp.caustic_uniforms),
-            Bind::Sampled(&g.back_faces, inp.nearest),
-            Bind::Sampled(inp.receiver_positions, inp.nearest),
-            Bind::Sampled(inp.spot_textures, inp.linear),
-            Bind::Sampled(&g.position_layers, inp.nearest),
-            Bind::Sampled(&g.normal_layers, inp.nearest),
-            Bind::Sampled(&g.material_layers, inp.nearest),
-            Bind::Sampled(&g.coverage_levels, inp.nearest),
+            ("frame", Bind::Uniform(inp.frame_uniforms)),
+            ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+            ("light_back_faces", Bind::Sampled(&g.back_faces, inp.nearest)),
+            ("receiver_positions", Bind::Sampled(inp.receiver_positions, inp.nearest)),
+            ("spot_textures", Bind::Sampled(inp.spot_textures, inp.linear)),
+            ("geometry_position", Bind::Sampled(&g.position_layers, inp.nearest)),
+            ("geometry_normal", Bind::Sampled(&g.normal_layers, inp.nearest)),
+            ("geometry_material", Bind::Sampled(&g.material_layers, inp.nearest)),
+            ("coverage", Bind::Sampled(&g.coverage_levels, inp.nearest)),
         ]
     }
 
@@ -261,26 +262,28 @@ impl AdaptiveCaustics {
             Kernels::Compute { traverse, finalize } => {
                 let mut binds = self.textures(inp);
                 binds.extend([
-                    Bind::BufferRead(&input.data),
-                    Bind::BufferRead(&input.counter),
-                    Bind::Buffer(&out.data),
-                    Bind::Buffer(&out.counter),
-                    Bind::Buffer(&self.photons.data),
-                    Bind::Buffer(&self.photons.counter),
+                    ("Input", Bind::BufferRead(&input.data)),
+                    ("InputCounter", Bind::BufferRead(&input.counter)),
+                    ("Output", Bind::Buffer(&out.data)),
+                    ("OutputCounter", Bind::Buffer(&out.counter)),
+                    ("Photons", Bind::Buffer(&self.photons.data)),
+                    ("PhotonCounter", Bind::Buffer(&self.photons.counter)),
                 ]);
                 binds.extend(self.refractors.binds(inp.nearest));
                 // The input's count is read as dispatch arguments too.
                 let arguments = [Use::buffer(&input.counter, Access::INDIRECT)];
                 f.pass(&name("traverse")).bind(traverse, binds).uses(arguments).record(|cmd| {
                     cmd.push(&push)?;
-                    cmd.dispatch_indirect(&input.counter, 16);
+                    cmd.dispatch_indirect(&input.counter, 16)?;
                     Ok(())
                 })?;
                 if !last {
-                    f.pass(&name("finalize")).bind(finalize, [Bind::Buffer(&out.counter)]).record(|cmd| {
-                        cmd.dispatch(1, 1, 1);
-                        Ok(())
-                    })?;
+                    f.pass(&name("finalize")).bind(finalize, [("Counter", Bind::Buffer(&out.counter))]).record(
+                        |cmd| {
+                            cmd.dispatch(1, 1, 1);
+                            Ok(())
+                        },
+                    )?;
                 }
             }
             Kernels::Xfb(x) => {
@@ -328,7 +331,7 @@ impl AdaptiveCaustics {
         let mut binds = self.textures(inp);
         let mut uses = vec![];
         if from_hits {
-            binds.push(Bind::BufferRead(&input.data));
+            binds.push(("Hits", Bind::BufferRead(&input.data)));
         } else {
             uses.push(Use::buffer(&input.data, Access::VERTEX_INPUT));
         }
@@ -346,7 +349,7 @@ impl AdaptiveCaustics {
             cmd.begin_rendering(&Targets::none())?;
             cmd.push(push)?;
             if !from_hits {
-                cmd.bind_vertex_buffer(&input.data, 0);
+                cmd.bind_vertex_buffer(&input.data, 0)?;
             }
             cmd.bind_xfb_buffers(&[&out.data])?;
             match to {

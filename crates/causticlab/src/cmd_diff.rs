@@ -1,0 +1,153 @@
+//! `causticlab diff A B`: whether two renders made the same images, texel by texel
+//! (`caustics::diff`): two EXR files, or two `render --out` folders, where every EXR file
+//! (final.exr and the dumps) and the photon counts of timings.json are compared.
+//! `scripts/same_maps.sh` shows with it that a refactor kept every image.
+
+use crate::cli::DiffArgs;
+use anyhow::{bail, Context as _, Result};
+use caustics::diff::{diff_images, sort_texels};
+use caustics::image_io::read_exr;
+use caustics::input_error;
+use std::collections::BTreeSet;
+use std::path::Path;
+
+pub fn run(args: &DiffArgs) -> Result<()> {
+    if !(args.tolerance.is_finite() && args.tolerance >= 0.0) {
+        return Err(input_error!("--tolerance {}: must be a number >= 0", args.tolerance).into());
+    }
+    for p in [&args.a, &args.b] {
+        if !p.exists() {
+            return Err(input_error!("{}: no such file or folder", p.display()).into());
+        }
+    }
+    let differing = match (args.a.is_dir(), args.b.is_dir()) {
+        (true, true) => diff_dirs(&args.a, &args.b, args)?,
+        (false, false) => usize::from(!diff_file(&args.a, &args.b, args)?),
+        _ => {
+            return Err(input_error!(
+                "{} and {}: compare two EXR files or two folders, not one of each",
+                args.a.display(),
+                args.b.display()
+            )
+            .into())
+        }
+    };
+    if differing > 0 {
+        bail!("{differing} difference(s) between {} and {}", args.a.display(), args.b.display());
+    }
+    println!("same");
+    Ok(())
+}
+
+/// Every EXR file of either folder, then the counts of their timings.json; the number of files
+/// (or counts) that differ.
+fn diff_dirs(a: &Path, b: &Path, args: &DiffArgs) -> Result<usize> {
+    let exrs = |dir: &Path| -> Result<BTreeSet<String>> {
+        let mut names = BTreeSet::new();
+        for e in std::fs::read_dir(dir).with_context(|| format!("listing {}", dir.display()))? {
+            let name = e?.file_name().to_string_lossy().into_owned();
+            if name.ends_with(".exr") {
+                names.insert(name);
+            }
+        }
+        Ok(names)
+    };
+    let (in_a, in_b) = (exrs(a)?, exrs(b)?);
+    let mut differing = 0;
+    for name in in_a.union(&in_b) {
+        if args.ignore.iter().any(|i| name.strip_suffix(".exr") == Some(i.as_str())) {
+            println!("{name}: ignored");
+            continue;
+        }
+        match (in_a.contains(name), in_b.contains(name)) {
+            (true, true) => differing += usize::from(!diff_file(&a.join(name), &b.join(name), args)?),
+            (true, false) => {
+                println!("{name}: only in {}", a.display());
+                differing += 1;
+            }
+            _ => {
+                println!("{name}: only in {}", b.display());
+                differing += 1;
+            }
+        }
+    }
+    let timings = |dir: &Path| -> Result<Option<serde_json::Value>> {
+        let path = dir.join("timings.json");
+        if !path.is_file() {
+            return Ok(None);
+        }
+        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+        let v: serde_json::Value =
+            serde_json::from_str(&text).map_err(|e| input_error!("{}: not JSON: {e}", path.display()))?;
+        Ok(Some(v))
+    };
+    match (timings(a)?, timings(b)?) {
+        (Some(ta), Some(tb)) => {
+            for key in ["photons_emitted", "counts"] {
+                if ta.get(key) == tb.get(key) {
+                    println!("timings.json {key}: same");
+                } else {
+                    println!(
+                        "timings.json {key}: {} against {}",
+                        ta.get(key).map_or("none".into(), |v| v.to_string()),
+                        tb.get(key).map_or("none".into(), |v| v.to_string())
+                    );
+                    differing += 1;
+                }
+            }
+        }
+        (None, None) => {}
+        (Some(_), None) => {
+            println!("timings.json: only in {}", a.display());
+            differing += 1;
+        }
+        (None, Some(_)) => {
+            println!("timings.json: only in {}", b.display());
+            differing += 1;
+        }
+    }
+    Ok(differing)
+}
+
+/// Prints how `a` differs from `b` (or `same`); whether every channel is within the tolerance.
+fn diff_file(a: &Path, b: &Path, args: &DiffArgs) -> Result<bool> {
+    let tolerance = args.tolerance;
+    let name = b.file_name().map_or_else(|| b.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let read = |p: &Path| read_exr(p).map_err(|e| input_error!("{}: {e:#}", p.display()));
+    let (mut ia, mut ib) = (read(a)?, read(b)?);
+    let stem = name.strip_suffix(".exr").unwrap_or(&name);
+    let unordered = args.unordered.iter().any(|u| u == stem);
+    if unordered {
+        sort_texels(&mut ia);
+        sort_texels(&mut ib);
+    }
+    let name = if unordered { format!("{name} (unordered)") } else { name };
+    let channels = match diff_images(&ia, &ib) {
+        Ok(c) => c,
+        Err(shape) => {
+            println!("{name}: different shapes: {shape}");
+            return Ok(false);
+        }
+    };
+    let over: Vec<_> = channels.iter().filter(|c| c.relative() > tolerance).collect();
+    if over.is_empty() {
+        let worst = channels.iter().map(|c| c.relative()).fold(0.0, f64::max);
+        if worst == 0.0 {
+            println!("{name}: same");
+        } else {
+            println!("{name}: same within {tolerance:e} (largest relative difference {worst:.3e})");
+        }
+        return Ok(true);
+    }
+    for c in over {
+        println!(
+            "{name}: {}: {} texels differ, max |a-b| {:.6e} of max |b| {:.6e} (relative {:.3e})",
+            c.channel,
+            c.texels_differing,
+            c.max_abs_diff,
+            c.max_abs,
+            c.relative()
+        );
+    }
+    Ok(false)
+}
