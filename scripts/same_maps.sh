@@ -10,8 +10,8 @@
 #
 # `check` runs `causticlab diff --tolerance 1e-5` on each case's folder: final.exr and every
 # dump, channel by channel (largest |now - recorded| over the channel's largest |recorded|),
-# and the photon counts of timings.json exactly (what the bench reports: photons emitted, valid
-# photons, splats drawn, the traversal's list sizes). The lists a compute path appends to with
+# and the pass names and photon counts of timings.json exactly (the counts the bench reports:
+# photons emitted, valid photons, splats drawn, the traversal's list sizes). The lists a compute path appends to with
 # an atomic counter (splats, hierarchy_lists, adaptive_lists) are compared unordered, and the
 # additive splats they feed differ by float rounding (about 1e-6), hence the tolerance; batched,
 # which clusters fall into which batch follows that order too, so adaptive_lists is not compared.

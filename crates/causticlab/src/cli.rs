@@ -45,7 +45,8 @@ pub enum Command {
     /// Compare two receiver maps (B is the reference): errors, peak, flux; writes an error image.
     Compare(CompareArgs),
     /// Compare two renders texel by texel: two EXR files, or two `render --out` folders (every
-    /// dump, final.exr and the photon counts in timings.json). Exit 1 when anything differs.
+    /// dump, final.exr, and the pass names and photon counts in timings.json). Exit 1 when
+    /// anything differs.
     Diff(DiffArgs),
     /// Regenerate a paper's table from a bench config (bench_configs/*.toml), or merge shards.
     Bench(BenchArgs),

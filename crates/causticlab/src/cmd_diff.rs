@@ -1,6 +1,6 @@
 //! `causticlab diff A B`: whether two renders made the same images, texel by texel
 //! (`caustics::diff`): two EXR files, or two `render --out` folders, where every EXR file
-//! (final.exr and the dumps) and the photon counts of timings.json are compared.
+//! (final.exr and the dumps), and the pass names and photon counts of timings.json, are compared.
 //! `scripts/same_maps.sh` shows with it that a refactor kept every image.
 
 use crate::cli::DiffArgs;
@@ -83,6 +83,20 @@ fn diff_dirs(a: &Path, b: &Path, args: &DiffArgs) -> Result<usize> {
     };
     match (timings(a)?, timings(b)?) {
         (Some(ta), Some(tb)) => {
+            // The passes the frame recorded, by name and in order (not their times).
+            let names = |t: &serde_json::Value| -> serde_json::Value {
+                t.get("passes")
+                    .and_then(|p| p.as_array())
+                    .map(|p| p.iter().filter_map(|x| x.get("name").cloned()).collect())
+                    .unwrap_or(serde_json::Value::Null)
+            };
+            let (na, nb) = (names(&ta), names(&tb));
+            if na == nb {
+                println!("timings.json pass names: same");
+            } else {
+                println!("timings.json pass names: {na} against {nb}");
+                differing += 1;
+            }
             for key in ["photons_emitted", "counts"] {
                 if ta.get(key) == tb.get(key) {
                     println!("timings.json {key}: same");

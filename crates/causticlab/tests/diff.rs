@@ -50,6 +50,7 @@ fn renders_that_differ_are_told_apart_by_file_channel_and_count() {
     let same = diff(&a, &b, &[]);
     assert_eq!(same.code, Some(0), "{}", same.describe());
     assert!(same.stdout.contains("receiver.exr: same") && same.stdout.contains("timings.json counts: same"));
+    assert!(same.stdout.contains("timings.json pass names: same"), "{}", same.describe());
     let counts: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(a.join("timings.json")).unwrap()).unwrap();
     assert!(counts["counts"]["splats_drawn"].as_u64().is_some_and(|n| n > 0), "{counts}");
@@ -94,6 +95,7 @@ fn renders_that_differ_are_told_apart_by_file_channel_and_count() {
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let drawn = v["counts"]["splats_drawn"].as_u64().unwrap();
     v["counts"]["splats_drawn"] = (drawn + 1).into();
+    v["passes"][0]["name"] = "renamed.light0".into();
     std::fs::write(recounted.join("timings.json"), v.to_string()).unwrap();
     std::fs::remove_file(recounted.join("splats.exr")).unwrap();
     let run = diff(&a, &recounted, &[]);

@@ -1,6 +1,6 @@
 //! `causticlab` on pool scenes (Trendall & Stewart 2000): the render's flags and files with
 //! validation on, `reference` (the f64 passes and `--direct` Eq. 2) against the render, and bad
-//! input. (The Table 1 config's quick run is in tests/bench.rs.)
+//! input. (The Table 1 config's quick run is in tests/bench_papers.rs.)
 
 mod common;
 

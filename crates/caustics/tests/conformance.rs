@@ -15,7 +15,7 @@
 //! batched traversal.
 //!
 //! `pool-convolution` renders pool scenes only (and refuses the sphere scenes, checked here);
-//! its own suite is `tests/pool.rs`.
+//! its own suite is `tests/trendall_stewart2000_pool.rs`.
 //!
 //! Settings: 256² photons, Fresnel off (the image-space model the reference can match exactly),
 //! a 512² caustic map, Wyman & Davis 2006's photons lit from the light's direction (Eq. 11 and
@@ -56,7 +56,7 @@ struct Stated {
 fn stated(t: Technique) -> Option<Stated> {
     match t {
         Technique::None => None,
-        // Pool scenes only: tests/pool.rs states its accuracy against its CPU reference.
+        // Pool scenes only: tests/trendall_stewart2000_pool.rs states its accuracy against its CPU reference.
         Technique::PoolConvolution => None,
         // Shah's rayGeo can land a photon beyond the caustic map's frustum, where its splat is
         // dropped: measured drift -2.3e-3 (oblique), RMSE 0.110, flux 0.964-1.007.

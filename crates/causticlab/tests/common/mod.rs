@@ -2,6 +2,8 @@
 //! channel lookup in EXR files.
 #![allow(dead_code)]
 
+pub mod bench;
+
 use caustics::image_io::ImageF32;
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -4,11 +4,13 @@
 
 pub mod formats;
 pub mod mesh_pipeline;
+pub mod pass_name;
 pub mod push;
 pub mod setup;
 pub mod structs;
 pub mod target;
 
+pub use pass_name::{BatchPart, PassName, Stage};
 pub use push::*;
 pub use setup::{mesh_uses, GpuMesh};
 pub use structs::*;

@@ -6,7 +6,7 @@
 use super::pipelines::EyePipelines;
 use super::targets::EyeTargets;
 use crate::gpu::*;
-use crate::gpu::{mesh_uses, GpuMesh};
+use crate::gpu::{mesh_uses, GpuMesh, Stage};
 use crate::techniques::wyman_nichols2009::{deferred_refraction, DeferredRefraction};
 use anyhow::Result;
 use vkcore::{Access, Bind, Buffer, Cmd, Frame, Sampler, Targets, Use};
@@ -46,7 +46,7 @@ pub fn record_shadows_and_background(f: &mut Frame, p: &EyePipelines, t: &EyeTar
 
     // Shadow map per light: all six cube faces in one instanced draw (gl_Layer per instance).
     for (l, (dist, depth)) in t.shadow.per_light.iter().enumerate() {
-        f.pass(&format!("shadow_map.light{l}"))
+        f.pass(&Stage::ShadowMap.light(l as u32))
             .bind(&p.shadow_map, [("frame", Bind::Uniform(inp.uniforms))])
             .uses([Use::view(dist, Access::COLOR_ATTACHMENT), Use::view(depth, Access::DEPTH_ATTACHMENT)])
             .uses(mesh_uses(meshes))
@@ -61,7 +61,7 @@ pub fn record_shadows_and_background(f: &mut Frame, p: &EyePipelines, t: &EyeTar
     }
 
     let background = [&t.background, &t.position, &t.normal, &t.albedo];
-    f.pass("background")
+    f.pass(&Stage::Background.pass())
         .bind(
             &p.background,
             [
@@ -123,7 +123,7 @@ pub fn record_after_background(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, 
                 Bind::Sampled(inp.receiver_view_caustic.unwrap_or(&t.no_receiver_view.view), inp.nearest),
             ),
         ];
-        f.pass("receiver_map").bind(&p.receiver_map, binds).record(|cmd| {
+        f.pass(&Stage::ReceiverMap.pass()).bind(&p.receiver_map, binds).record(|cmd| {
             let (w, h) = ratio.view.extent;
             cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);
             Ok(())
@@ -137,7 +137,7 @@ pub fn record_after_background(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, 
 fn record_forward(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) -> Result<()> {
     let meshes = inp.meshes;
     let refractors = || meshes.iter().filter(|m| m.kind() == MATERIAL_REFRACTIVE);
-    f.pass("refractor_back_faces")
+    f.pass(&Stage::RefractorBackFaces.pass())
         .bind(&p.back_faces, [("frame", Bind::Uniform(inp.uniforms))])
         .uses([
             Use::view(&t.back_faces.view, Access::COLOR_ATTACHMENT),
@@ -153,7 +153,7 @@ fn record_forward(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInpu
             Ok(())
         })?;
 
-    f.pass("refractor_front_faces")
+    f.pass(&Stage::RefractorFrontFaces.pass())
         .bind(
             &p.front_faces,
             [
@@ -180,7 +180,7 @@ fn record_forward(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInpu
         ("surface_radiance", Bind::Sampled(&t.surface.view, inp.nearest)),
         ("final_image", Bind::Storage(&t.final_image.view)),
     ];
-    f.pass("composite").bind(&p.composite, composite).record(|cmd| {
+    f.pass(&Stage::Composite.pass()).bind(&p.composite, composite).record(|cmd| {
         let (w, h) = t.final_image.view.extent;
         cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);
         Ok(())

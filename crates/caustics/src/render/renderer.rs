@@ -4,7 +4,7 @@
 
 use super::frame_mode::{FrameMode, Slots};
 use super::{dumps, eye, pipelines, targets};
-use crate::gpu::{self, setup};
+use crate::gpu::{self, setup, Stage};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::shah2007::VertexPhotons;
@@ -330,7 +330,7 @@ impl<'c> MeshRenderer<'c> {
         if let Some((fu, cu)) = self.pending_uniforms.take() {
             let (u, c) = (&self.uniforms[0], &self.caustic_uniforms[0]);
             let uses = [Use::buffer(u, Access::TRANSFER_WRITE), Use::buffer(c, Access::TRANSFER_WRITE)];
-            f.pass("uniforms").uses(uses).record(|cmd| {
+            f.pass(&Stage::Uniforms.pass()).uses(uses).record(|cmd| {
                 cmd.update_buffer(u, 0, bytemuck::bytes_of(&fu))?;
                 cmd.update_buffer(c, 0, bytemuck::bytes_of(&cu))?;
                 Ok(())
@@ -401,7 +401,7 @@ impl<'c> MeshRenderer<'c> {
         let staging = &*staging;
         let mut uses = vec![Use::buffer(staging, Access::TRANSFER_READ)];
         uses.extend(regions.iter().map(|&(i, _, _)| Use::buffer(&self.meshes[i].vertices, Access::TRANSFER_WRITE)));
-        f.pass("upload.meshes").uses(uses).record(|cmd| {
+        f.pass(&Stage::UploadMeshes.pass()).uses(uses).record(|cmd| {
             for &(i, at, bytes) in &regions {
                 cmd.copy_buffer_region(staging, at, &self.meshes[i].vertices, 0, bytes);
             }

@@ -109,7 +109,7 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
                 layers: ct.levels,
             };
             if frame.reuse_photons && !a.plan.batched() {
-                a.record_splat_batch(f, &splat, l, "", true, true)?;
+                a.record_splat_batch(f, &splat, l, crate::gpu::BatchPart::Whole, true, true)?;
             } else {
                 photon_buffer::record_receiver_positions(f, c, l)?;
                 a.record_traversal(f, &adaptive_inputs(c), l, Some(&splat))?;

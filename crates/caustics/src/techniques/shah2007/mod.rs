@@ -15,7 +15,7 @@ pub use settings::{PAPER, VERTEX_PHOTON_FEATURES};
 use super::shared::photon_buffer::trace_binds;
 use super::shared::CausticPasses;
 use crate::gpu::mesh_pipeline::mesh_layout;
-use crate::gpu::{mesh_uses, MeshConstants, MATERIAL_DIFFUSE};
+use crate::gpu::{mesh_uses, MeshConstants, Stage, MATERIAL_DIFFUSE};
 use anyhow::Result;
 use vkcore::{Access, Bind, Context, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology, Use};
 
@@ -42,7 +42,7 @@ impl VertexPhotons {
         let vp = &self.pipeline;
         let photons = [&pt.position, &pt.direction, &pt.power];
         let clear: Vec<Use> = photons.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)).collect();
-        f.pass(&format!("vertex_photons.clear.light{l}")).uses(clear).record(|cmd| {
+        f.pass(&Stage::VertexPhotonsClear.light(l)).uses(clear).record(|cmd| {
             for t in photons {
                 cmd.clear_color(&t.view, [0.0; 4]);
             }
@@ -69,7 +69,7 @@ impl VertexPhotons {
                 binds
             })
             .collect();
-        let mut pass = f.pass(&format!("vertex_photons.light{l}")).uses(mesh_uses(inp.meshes));
+        let mut pass = f.pass(&Stage::VertexPhotons.light(l)).uses(mesh_uses(inp.meshes));
         for binds in &sets {
             pass = pass.declare(vp, binds);
         }

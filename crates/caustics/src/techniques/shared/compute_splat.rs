@@ -12,6 +12,7 @@
 
 use super::targets::PhotonTargets;
 use crate::gpu::ComputeSplatConstants;
+use crate::gpu::{BatchPart, Stage};
 use anyhow::Result;
 use vkcore::{
     Access, Bind, Buffer, CompactStream, CompactionPath, Context, Feature, Frame, ImageView, Memory, Pipeline,
@@ -59,10 +60,10 @@ impl ListKind {
 
 pub use super::PassInputs as Inputs;
 
-/// One batch of a splat made in batches: its pass-name tag, and whether it is the first (the
-/// sum is cleared) and the last (the sum is stored in the caustic map).
-pub struct Batch<'a> {
-    pub tag: &'a str,
+/// One batch of a splat made in batches: its number (None: no batches), and whether it is the
+/// first (the sum is cleared) and the last (the sum is stored in the caustic map).
+pub struct Batch {
+    pub tag: BatchPart,
     pub first: bool,
     pub last: bool,
 }
@@ -156,7 +157,7 @@ impl ComputeSplat {
         cmap: &ImageView,
         l: u32,
     ) -> Result<()> {
-        self.record_batch(f, inp, pt, photons, cmap, l, &Batch { tag: "", first: true, last: true })
+        self.record_batch(f, inp, pt, photons, cmap, l, &Batch { tag: BatchPart::Whole, first: true, last: true })
     }
 
     /// [`Self::record`] for one batch of photons (adaptive caustic maps' batches, Wyman &
@@ -185,12 +186,12 @@ impl ComputeSplat {
             }
         }
         if batch.first {
-            f.pass(&format!("splat.clear.light{l}"))
-                .uses([Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)])
-                .record(|cmd| {
+            f.pass(&Stage::SplatClear.light(l)).uses([Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)]).record(
+                |cmd| {
                     cmd.fill_buffer(&self.accumulated, 0);
                     Ok(())
-                })?;
+                },
+            )?;
         }
         let mut binds =
             vec![("frame", Bind::Uniform(inp.frame_uniforms)), ("caustics", Bind::Uniform(inp.caustic_uniforms))];
@@ -209,7 +210,7 @@ impl ComputeSplat {
                 match &self.list {
                     Some((ListDispatch::ByteCount(b), _)) => {
                         let (pipeline, args) = &**b;
-                        f.pass(&format!("splat.arguments{tag}.light{l}"))
+                        f.pass(&Stage::SplatArguments.pass().batch(tag).light(l))
                             .bind(
                                 pipeline,
                                 [("Counter", Bind::BufferRead(&list.counter)), ("Arguments", Bind::Buffer(args))],
@@ -238,7 +239,7 @@ impl ComputeSplat {
             }
         }
         let arguments = indirect.map(|(args, _)| Use::buffer(args, Access::INDIRECT));
-        f.pass(&format!("splat{tag}.light{l}")).bind(&self.splat, binds).uses(arguments).record(|cmd| {
+        f.pass(&Stage::Splat.pass().batch(tag).light(l)).bind(&self.splat, binds).uses(arguments).record(|cmd| {
             cmd.push(&ComputeSplatConstants { photon_texels: texels, light: l })?;
             match indirect {
                 Some((args, offset)) => cmd.dispatch_indirect(args, offset)?,
@@ -253,7 +254,7 @@ impl ComputeSplat {
             return Ok(());
         }
         let resolve = [("caustic_map", Bind::Storage(cmap)), ("Accumulated", Bind::BufferRead(&self.accumulated))];
-        f.pass(&format!("splat.resolve.light{l}")).bind(&self.resolve, resolve).record(|cmd| {
+        f.pass(&Stage::SplatResolve.light(l)).bind(&self.resolve, resolve).record(|cmd| {
             cmd.dispatch(self.side.div_ceil(8), self.side.div_ceil(8), self.layers);
             Ok(())
         })?;

@@ -6,7 +6,7 @@
 //! replace the last pass (see `shah2007`).
 
 use super::CausticPasses;
-use crate::gpu::{mesh_uses, MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
+use crate::gpu::{mesh_uses, Stage, MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
 use anyhow::Result;
 use vkcore::{Access, Bind, Frame, Named, Targets, Use};
 
@@ -23,7 +23,7 @@ pub(crate) fn record_receiver_positions(f: &mut Frame, c: &CausticPasses, l: u32
     let ubo_binds =
         || [("frame", Bind::Uniform(inp.frame_uniforms)), ("caustics", Bind::Uniform(inp.caustic_uniforms))];
     let (_, rpos, rdepth) = &ct.per_light[l as usize];
-    f.pass(&format!("receiver_positions.light{l}"))
+    f.pass(&Stage::ReceiverPositions.light(l))
         .bind(&p.receiver_positions, ubo_binds())
         .uses([Use::view(rpos, Access::COLOR_ATTACHMENT), Use::view(rdepth, Access::DEPTH_ATTACHMENT)])
         .uses(mesh_uses(inp.meshes))
@@ -43,7 +43,7 @@ fn record_back_faces(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
     let (p, pt, inp) = (c.pipelines, c.photons, c.inputs);
     let ubo_binds =
         || [("frame", Bind::Uniform(inp.frame_uniforms)), ("caustics", Bind::Uniform(inp.caustic_uniforms))];
-    f.pass(&format!("photon_back_faces.light{l}"))
+    f.pass(&Stage::PhotonBackFaces.light(l))
         .bind(&p.back_faces, ubo_binds())
         .uses([
             Use::view(&pt.back_faces.view, Access::COLOR_ATTACHMENT),
@@ -82,7 +82,7 @@ pub(crate) fn trace_binds<'a>(c: &CausticPasses<'a>) -> Vec<Named<'a>> {
 pub(crate) fn record_photon_buffer(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
     let (p, pt, inp) = (c.pipelines, c.photons, c.inputs);
     let photons = [&pt.position, &pt.direction, &pt.power];
-    f.pass(&format!("photon_buffer.light{l}"))
+    f.pass(&Stage::PhotonBuffer.light(l))
         .bind(&p.photon_buffer, trace_binds(c))
         .uses(mesh_uses(inp.meshes))
         .uses(photons.map(|t| Use::view(&t.view, Access::COLOR_ATTACHMENT)))

@@ -6,6 +6,7 @@
 use super::targets::CausticTargets;
 use super::CausticPasses;
 use crate::gpu::SplatConstants;
+use crate::gpu::Stage;
 use anyhow::Result;
 use vkcore::{Access, Bind, Frame, Targets, Use};
 
@@ -20,7 +21,7 @@ pub(crate) fn record_splat(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<(
         ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
         ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
     ];
-    f.pass(&format!("splat.light{l}"))
+    f.pass(&Stage::Splat.light(l))
         .bind(&p.splat, binds)
         .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT)])
         .record(|cmd| {
@@ -43,7 +44,7 @@ pub fn record_cleared(f: &mut Frame, ct: &CausticTargets) -> Result<()> {
         Use::view(&ct.caustic_map.view, Access::TRANSFER_WRITE),
         Use::view(&ct.receiver_positions.view, Access::TRANSFER_WRITE),
     ];
-    f.pass("caustics.clear").uses(uses).record(|cmd| {
+    f.pass(&Stage::CausticsClear.pass()).uses(uses).record(|cmd| {
         cmd.clear_color(&ct.caustic_map.view, [0.0; 4]);
         cmd.clear_color(&ct.receiver_positions.view, [0.0; 4]);
         Ok(())

@@ -4,6 +4,7 @@
 
 use super::pipelines::PassPipelines;
 use super::targets::PoolTargets;
+use crate::gpu::Stage;
 use crate::gpu::Target;
 use anyhow::Result;
 use vkcore::{Access, Bind, Buffer, Frame, Named, Pipeline, Sampler, Targets, Use};
@@ -17,12 +18,12 @@ pub struct PassInputs<'a> {
 /// One fragment pass: a triangle over `target`, every texel written.
 fn fragment_pass<'a>(
     f: &mut Frame,
-    name: &str,
+    stage: Stage,
     p: &'a Pipeline,
     binds: Vec<Named<'a>>,
     target: &'a Target,
 ) -> Result<()> {
-    f.pass(name).bind(p, binds).uses([Use::view(&target.view, Access::COLOR_ATTACHMENT)]).record(|cmd| {
+    f.pass(&stage.pass()).bind(p, binds).uses([Use::view(&target.view, Access::COLOR_ATTACHMENT)]).record(|cmd| {
         cmd.begin_rendering(&Targets::color(&target.view, Some([0.0; 4])))?;
         cmd.draw(3, 1, 0, 0);
         cmd.end_rendering();
@@ -45,23 +46,23 @@ pub fn record_passes<'a>(
     // The faithful path's lookup tables, appended to the passes that read them.
     let pixel_texture: Vec<Named> = t.tables.iter().map(|l| s("pixel_texture", &l.pixel_texture)).collect();
     let colour_tables: Vec<Named> = t.tables.iter().map(|l| s("colour_tables", &l.colour_tables)).collect();
-    fragment_pass(f, "pool.height_field", &p.height_field, vec![u], &t.height)?;
+    fragment_pass(f, Stage::PoolHeightField, &p.height_field, vec![u], &t.height)?;
     fragment_pass(
         f,
-        "pool.pass1_normals",
+        Stage::PoolPass1Normals,
         &p.pass1_normals,
         [vec![u, s("height_field", &t.height)], pixel_texture].concat(),
         &t.normals,
     )?;
     let pass2 = [vec![u, s("normals", &t.normals)], colour_tables.clone()].concat();
-    fragment_pass(f, "pool.pass2_gamma_n", &p.pass2_gamma_n, pass2, &t.gamma_n)?;
+    fragment_pass(f, Stage::PoolPass2GammaN, &p.pass2_gamma_n, pass2, &t.gamma_n)?;
     let pass3 =
         [vec![u, s("normals", &t.normals), s("light_radiance", &t.light_radiance)], colour_tables.clone()].concat();
-    fragment_pass(f, "pool.pass3_transmitted", &p.pass3_transmitted, pass3, &t.transmitted)?;
+    fragment_pass(f, Stage::PoolPass3Transmitted, &p.pass3_transmitted, pass3, &t.transmitted)?;
     let pass4 = [vec![u, s("gamma_n", &t.gamma_n)], colour_tables].concat();
-    fragment_pass(f, "pool.pass4_direction", &p.pass4_direction, pass4, &t.direction)?;
+    fragment_pass(f, Stage::PoolPass4Direction, &p.pass4_direction, pass4, &t.direction)?;
     let pass5 = vec![u, s("transmitted", &t.transmitted), s("direction", &t.direction)];
-    fragment_pass(f, "pool.pass5_integrand", &p.pass5_integrand, pass5, &t.integrand)?;
+    fragment_pass(f, Stage::PoolPass5Integrand, &p.pass5_integrand, pass5, &t.integrand)?;
     let pass6 = vec![u, s("integrand", &t.integrand), ("k", Bind::BufferRead(&t.kernels))];
-    fragment_pass(f, "pool.pass6_convolution", &p.pass6_convolution, pass6, output)
+    fragment_pass(f, Stage::PoolPass6Convolution, &p.pass6_convolution, pass6, output)
 }

@@ -10,6 +10,7 @@ use super::pipelines::PoolPipelines;
 use super::targets::PoolTargets;
 use super::uniforms::{pool_uniforms, PoolUniforms};
 use super::{dumps, pool_of, water_surface, Init, Precision};
+use crate::gpu::Stage;
 use crate::image_io::ImageF32;
 use crate::render::frame_mode::{FrameMode, Slots};
 use crate::render::FrameStep;
@@ -201,7 +202,7 @@ impl<'c> PoolRenderer<'c> {
             let targets = [&t.height, &t.normals, &t.convolutions];
             let mut uses: Vec<Use> = staging.iter().map(|b| Use::buffer(b, Access::TRANSFER_READ)).collect();
             uses.extend(targets.iter().map(|t| Use::image(&t.image, 0..1, 0..1, Access::TRANSFER_WRITE)));
-            f.pass("pool.upload").uses(uses).record(|cmd| {
+            f.pass(&Stage::PoolUpload.pass()).uses(uses).record(|cmd| {
                 for (b, t) in staging.iter().zip(targets) {
                     cmd.copy_buffer_to_image(b, &t.image, 0, 0);
                 }
@@ -225,10 +226,12 @@ impl<'c> PoolRenderer<'c> {
     /// The uniforms if the pool moved, passes 1-6 (GPU paths) and the view.
     fn record_frame(&mut self, f: &mut Frame) -> Result<()> {
         if let Some(u) = self.pending.take() {
-            f.pass("pool.uniforms").uses([Use::buffer(&self.uniforms, Access::TRANSFER_WRITE)]).record(|cmd| {
-                cmd.update_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u))?;
-                Ok(())
-            })?;
+            f.pass(&Stage::PoolUniforms.pass()).uses([Use::buffer(&self.uniforms, Access::TRANSFER_WRITE)]).record(
+                |cmd| {
+                    cmd.update_buffer(&self.uniforms, 0, bytemuck::bytes_of(&u))?;
+                    Ok(())
+                },
+            )?;
         }
         if let Some(p) = &self.pipelines.passes {
             let inputs = PassInputs { uniforms: &self.uniforms, nearest: &self.nearest };

@@ -3,6 +3,7 @@
 
 use super::pipelines::PoolPipelines;
 use super::targets::PoolTargets;
+use crate::gpu::Stage;
 use anyhow::Result;
 use vkcore::{Bind, Buffer, Frame, Sampler};
 
@@ -22,7 +23,7 @@ pub fn record_view(
         ("flat_convolutions", Bind::Sampled(&t.flat.view, nearest)),
         ("receiver", Bind::Storage(&t.receiver.view)),
     ];
-    f.pass("pool.receiver").bind(&p.receiver, receiver).record(|cmd| {
+    f.pass(&Stage::PoolReceiver.pass()).bind(&p.receiver, receiver).record(|cmd| {
         cmd.dispatch(n.div_ceil(8), n.div_ceil(8), 1);
         Ok(())
     })?;
@@ -34,7 +35,7 @@ pub fn record_view(
         ("final_image", Bind::Storage(&t.final_image.view)),
     ];
     let (w, h) = t.final_image.view.extent;
-    f.pass("pool.view").bind(&p.view, view).record(|cmd| {
+    f.pass(&Stage::PoolView.pass()).bind(&p.view, view).record(|cmd| {
         cmd.dispatch(w.div_ceil(8), h.div_ceil(8), 1);
         Ok(())
     })?;

@@ -10,7 +10,7 @@
 //! driver would: a plain copy when both sides have the same type, and for 16-bit to 32-bit a
 //! converting blit into a 32-bit image followed by the copy.
 
-use crate::gpu::{SplatConstants, Target};
+use crate::gpu::{SplatConstants, Stage, Target};
 use crate::techniques::shared::pipelines::point_splat_desc;
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::CausticInputs;
@@ -125,7 +125,7 @@ impl PhotonCopy {
             ("caustics", Bind::Uniform(inp.caustic_uniforms)),
             ("PhotonPower", Bind::BufferRead(&self.powers)),
         ];
-        f.pass(&format!("splat.light{l}"))
+        f.pass(&Stage::Splat.light(l))
             .bind(&self.splat, binds)
             .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(&self.positions, Access::VERTEX_INPUT)])
             .record(|cmd| {
@@ -150,7 +150,7 @@ impl PhotonCopy {
         if let Some(half) = &self.half {
             let mut uses: Vec<Use> = src32.iter().map(|t| Use::view(&t.view, Access::TRANSFER_READ)).collect();
             uses.extend(half.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)));
-            f.pass(&format!("photon_buffer.to_16bit.light{l}")).uses(uses).record(|cmd| {
+            f.pass(&Stage::PhotonBufferTo16bit.light(l)).uses(uses).record(|cmd| {
                 for (s, d) in src32.iter().zip(half) {
                     cmd.blit_converting(&s.image, &d.image);
                 }
@@ -163,7 +163,7 @@ impl PhotonCopy {
             (Some(half), Some(wide)) => {
                 uses.extend(half.iter().map(|t| Use::view(&t.view, Access::TRANSFER_READ)));
                 uses.extend(wide.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)));
-                f.pass(&format!("photon_copy.light{l}")).uses(uses).record(|cmd| {
+                f.pass(&Stage::PhotonCopy.light(l)).uses(uses).record(|cmd| {
                     for (s, w) in half.iter().zip(wide) {
                         cmd.blit_converting(&s.image, &w.image);
                     }
@@ -181,7 +181,7 @@ impl PhotonCopy {
                     None => src32.to_vec(),
                 };
                 uses.extend(src.iter().map(|t| Use::view(&t.view, Access::TRANSFER_READ)));
-                f.pass(&format!("photon_copy.light{l}")).uses(uses).record(|cmd| {
+                f.pass(&Stage::PhotonCopy.light(l)).uses(uses).record(|cmd| {
                     for (s, b) in src.iter().zip(dst) {
                         cmd.copy_image_to_buffer(&s.image, 0, 0, b);
                     }

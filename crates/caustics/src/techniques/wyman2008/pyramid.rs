@@ -5,6 +5,7 @@
 
 use super::{Hierarchy, Inputs, TOP_SIDE};
 use crate::gpu::BuildConstants;
+use crate::gpu::Stage;
 use crate::image_io::{ImageF32, Layer};
 use crate::techniques::shared::targets::PhotonTargets;
 use anyhow::Result;
@@ -58,7 +59,7 @@ impl Hierarchy {
                 ("out_position", Bind::Storage(&out[1])),
                 ("out_texels", Bind::Storage(&out[2])),
             ];
-            f.pass(&format!("hierarchy.build.level{k}.light{l}")).bind(&self.build, binds).record(|cmd| {
+            f.pass(&Stage::HierarchyBuild.pass().level(k).light(l)).bind(&self.build, binds).record(|cmd| {
                 cmd.push(&BuildConstants { level: k, light: l, photon_side: self.n })?;
                 let side = self.padded >> k;
                 cmd.dispatch(side.div_ceil(8), side.div_ceil(8), 1);

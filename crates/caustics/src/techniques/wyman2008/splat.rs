@@ -6,6 +6,7 @@
 use super::entry::ENTRY_BYTES;
 use super::{Hierarchy, Inputs};
 use crate::gpu::SplatConstants;
+use crate::gpu::Stage;
 use crate::techniques::shared::targets::PhotonTargets;
 use anyhow::Result;
 use vkcore::{Access, Bind, CompactionPath, Frame, ImageView, Targets, Use};
@@ -37,7 +38,7 @@ impl Hierarchy {
             Use::buffer(&list.counter, Access::INDIRECT),
             Use::view(cmap, Access::COLOR_ATTACHMENT),
         ];
-        f.pass(&format!("splat.light{l}")).bind(&self.splat, binds).uses(uses).record(|cmd| {
+        f.pass(&Stage::Splat.light(l)).bind(&self.splat, binds).uses(uses).record(|cmd| {
             cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])).layered(layers))?;
             cmd.push(&SplatConstants { light: l, vertices_per_instance: 0 })?;
             cmd.bind_vertex_buffer(&list.data, 0)?;

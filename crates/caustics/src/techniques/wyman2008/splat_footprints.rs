@@ -5,6 +5,7 @@
 
 use super::{Hierarchy, Inputs};
 use crate::gpu::FootprintConstants;
+use crate::gpu::Stage;
 use crate::image_io::ImageF32;
 use crate::techniques::shared::compute_splat::{groups, Photons};
 use crate::techniques::shared::targets::PhotonTargets;
@@ -64,7 +65,7 @@ impl SplatFootprints {
             ("Footprints", Bind::Buffer(&out)),
         ];
         let mut f = ctx.frame(FrameOptions::default())?;
-        f.pass(&format!("splat_footprints.light{l}")).bind(&self.pipeline, binds).record(|cmd| {
+        f.pass(&Stage::SplatFootprints.light(l)).bind(&self.pipeline, binds).record(|cmd| {
             cmd.push(&FootprintConstants { entries: count, light: l })?;
             let (x, y) = groups(count);
             cmd.dispatch(x, y, 1);

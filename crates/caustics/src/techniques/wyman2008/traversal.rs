@@ -7,6 +7,7 @@
 
 use super::entry::{unpack_entry, ENTRY_BYTES};
 use super::{Hierarchy, Inputs};
+use crate::gpu::Stage;
 use crate::gpu::TraverseConstants;
 use crate::image_io::ImageF32;
 use crate::techniques::shared::targets::PhotonTargets;
@@ -21,7 +22,7 @@ impl Hierarchy {
         let push = |cluster: bool| TraverseConstants { light: l, cluster: cluster as u32, photon_side: self.n };
         // The paper zeroes its counters before every traversal; so do we (both paths).
         let counters: Vec<Use> = self.lists.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_WRITE)).collect();
-        f.pass(&format!("hierarchy.reset.light{l}")).uses(counters).record(|cmd| {
+        f.pass(&Stage::HierarchyReset.light(l)).uses(counters).record(|cmd| {
             for s in &self.lists {
                 match self.path {
                     CompactionPath::TransformFeedback => cmd.fill_buffer(&s.counter, 0),
@@ -43,7 +44,7 @@ impl Hierarchy {
                 ("hierarchy_power", Bind::Sampled(&py.all[0], inp.nearest)),
                 ("hierarchy_texels", Bind::Sampled(&py.all[2], inp.nearest)),
             ];
-            let name = format!("hierarchy.traverse.level{k}.light{l}");
+            let name = Stage::HierarchyTraverse.pass().level(k).light(l);
             let cluster = self.cluster.tests(k);
             match self.path {
                 CompactionPath::TransformFeedback => {
@@ -85,7 +86,7 @@ impl Hierarchy {
                         Ok(())
                     })?;
                     let finalize = self.finalize.as_ref().ok_or_else(|| anyhow::anyhow!("no finalize pipeline"))?;
-                    f.pass(&format!("hierarchy.finalize.level{k}.light{l}"))
+                    f.pass(&Stage::HierarchyFinalize.pass().level(k).light(l))
                         .bind(finalize, [("Counter", Bind::Buffer(&out.counter))])
                         .record(|cmd| {
                             cmd.dispatch(1, 1, 1);
@@ -97,7 +98,7 @@ impl Hierarchy {
         // Keep this light's list sizes for the photon-count tables (read after the frame).
         let mut uses: Vec<Use> = self.lists.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_READ)).collect();
         uses.push(Use::buffer(&self.counts, Access::TRANSFER_WRITE));
-        f.pass(&format!("hierarchy.counts.light{l}")).uses(uses).record(|cmd| {
+        f.pass(&Stage::HierarchyCounts.light(l)).uses(uses).record(|cmd| {
             for (k, s) in self.lists.iter().enumerate() {
                 let slot = (l.min(self.lights.max(1) - 1) * self.levels + k as u32) as u64 * 4;
                 cmd.copy_buffer_region(&s.counter, 0, &self.counts, slot, 4);

@@ -31,7 +31,7 @@ pub mod views;
 pub use settings::PAPER;
 pub use views::EyeView;
 
-use crate::gpu::{ImageSpaceConstants, Target};
+use crate::gpu::{ImageSpaceConstants, Stage, Target};
 use crate::image_io::{ImageF32, Layer};
 use crate::scene::Scene;
 use crate::techniques::{CausticPasses, CausticSettings, Technique};
@@ -204,7 +204,7 @@ impl ImageSpace {
                         // Light l's photons, gathered at once into the view's caustic (lights
                         // after the first add to it: gather.comp).
                         let into = points::PointsInto {
-                            name: format!("wd.photons.{view}.light{l}"),
+                            name: Stage::WdPhotons.pass().view(view).light(l),
                             buffers,
                             slot: k.slot,
                             geometry,
@@ -215,11 +215,20 @@ impl ImageSpace {
                         let radius = if self.method == Method::EyePoints { 0 } else { gather::RADIUS };
                         let kg = self.constants(base, c, l, radius);
                         let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
-                        gather::record(f, &format!("wd.gather.{view}.light{l}"), c, g, buffers, geometry, out, kg)?;
+                        gather::record(
+                            f,
+                            &Stage::WdGather.pass().view(view).light(l),
+                            c,
+                            g,
+                            buffers,
+                            geometry,
+                            out,
+                            kg,
+                        )?;
                     }
                     (None, Some(q)) => {
                         let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
-                        quads::record(f, &format!("wd.quads.{view}.light{l}"), c, q, out, geometry, first, k)?;
+                        quads::record(f, &Stage::WdQuads.pass().view(view).light(l), c, q, out, geometry, first, k)?;
                     }
                     (None, None) => anyhow::bail!("image-space caustics without a pipeline"),
                 }
@@ -236,18 +245,36 @@ impl ImageSpace {
             (Some(p), Some(g), _, Some(buffers)) => {
                 let k = self.constants(base, c, l, gather::RADIUS);
                 let into = points::PointsInto {
-                    name: format!("wd.photons.light_space.light{l}"),
+                    name: Stage::WdPhotons.pass().view("light_space").light(l),
                     buffers,
                     slot: k.slot,
                     geometry: (rpos, rpos),
                     clear: true,
                 };
                 points::record(f, c, p, into, k)?;
-                gather::record(f, &format!("wd.gather.light_space.light{l}"), c, g, buffers, (rpos, rpos), cmap, k)?;
+                gather::record(
+                    f,
+                    &Stage::WdGather.pass().view("light_space").light(l),
+                    c,
+                    g,
+                    buffers,
+                    (rpos, rpos),
+                    cmap,
+                    k,
+                )?;
             }
             (_, _, Some(q), _) => {
                 let k = self.constants(base, c, l, 0);
-                quads::record(f, &format!("wd.quads.light_space.light{l}"), c, q, cmap, (rpos, rpos), true, k)?;
+                quads::record(
+                    f,
+                    &Stage::WdQuads.pass().view("light_space").light(l),
+                    c,
+                    q,
+                    cmap,
+                    (rpos, rpos),
+                    true,
+                    k,
+                )?;
             }
             _ => anyhow::bail!("light-space caustics without a pipeline"),
         }
@@ -279,7 +306,7 @@ impl ImageSpace {
             ("albedo", vkcore::Bind::Sampled(eye.albedo, c.inputs.nearest)),
             ("caustic", vkcore::Bind::Sampled(caustic, c.inputs.nearest)),
         ];
-        f.pass("wd.shade").bind(shade, binds).record(|cmd| {
+        f.pass(&Stage::WdShade.pass()).bind(shade, binds).record(|cmd| {
             cmd.dispatch(eye_buffers.width.div_ceil(8), eye_buffers.height.div_ceil(8), 1);
             Ok(())
         })?;
@@ -309,7 +336,7 @@ fn record_receiver_geometry(f: &mut Frame, c: &CausticPasses, p: &Pipeline, r: &
         ("view_position", vkcore::Bind::Storage(&r.position.view)),
         ("view_normal", vkcore::Bind::Storage(&r.normal.view)),
     ];
-    f.pass("wd.receiver_view").bind(p, binds).record(|cmd| {
+    f.pass(&Stage::WdReceiverView.pass()).bind(p, binds).record(|cmd| {
         cmd.dispatch(r.buffers.width.div_ceil(8), r.buffers.height.div_ceil(8), 1);
         Ok(())
     })?;

@@ -31,7 +31,7 @@ pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result
 /// Where the points go: a view's photon layer `slot` and directions, seen through `geometry`
 /// (world position, and normal: the position again in light space).
 pub struct PointsInto<'a> {
-    pub name: String,
+    pub name: crate::gpu::PassName,
     pub buffers: &'a ViewBuffers,
     pub slot: u32,
     pub geometry: (&'a ImageView, &'a ImageView),

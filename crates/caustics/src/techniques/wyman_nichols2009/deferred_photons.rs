@@ -24,7 +24,7 @@
 use super::geometry_buffers::{LightGeometryBuffers, Uniforms};
 use super::refractor_layers::{specular_objects, RefractorLayers, MAX_REFRACTORS};
 use crate::gpu::formats::COLOR;
-use crate::gpu::{GpuMesh, MeshConstants};
+use crate::gpu::{GpuMesh, MeshConstants, Stage};
 use crate::image_io::ImageF32;
 use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
@@ -84,8 +84,8 @@ impl DeferredPhotons {
     pub fn record(&self, f: &mut vkcore::Frame, c: &CausticPasses, l: u32) -> Result<()> {
         let (inp, pt) = (c.inputs, c.photons);
         let u = Uniforms { frame: inp.frame_uniforms, caustics: inp.caustic_uniforms };
-        self.all.record_surfaces(f, &u, inp.meshes, &self.specular, "deferred_photons.geometry", l)?;
-        self.refractors.record(f, &u, inp.meshes, "deferred_photons.geometry", l)?;
+        self.all.record_surfaces(f, &u, inp.meshes, &self.specular, Stage::DeferredPhotonsGeometry.pass(), l)?;
+        self.refractors.record(f, &u, inp.meshes, Stage::DeferredPhotonsGeometry, l)?;
         let mut binds = vec![
             ("frame", Bind::Uniform(inp.frame_uniforms)),
             ("caustics", Bind::Uniform(inp.caustic_uniforms)),
@@ -100,7 +100,7 @@ impl DeferredPhotons {
         );
         binds.extend(self.refractors.binds(inp.nearest));
         let photons = [&pt.position, &pt.direction, &pt.power];
-        f.pass(&format!("deferred_photons.light{l}"))
+        f.pass(&Stage::DeferredPhotons.light(l))
             .bind(&self.photons, binds)
             .uses(photons.map(|t| Use::view(&t.view, Access::COLOR_ATTACHMENT)))
             .record(|cmd| {

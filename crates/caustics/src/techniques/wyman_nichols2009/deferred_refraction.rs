@@ -20,7 +20,7 @@
 
 use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::mesh_pipeline::mesh_layout;
-use crate::gpu::{mesh_uses, GpuMesh};
+use crate::gpu::{mesh_uses, GpuMesh, Stage};
 use crate::scene::{MaterialKind, Scene};
 use anyhow::Result;
 use vkcore::{
@@ -155,7 +155,7 @@ impl DeferredRefraction {
                 Use::view(&views.depths, Access::COLOR_ATTACHMENT),
                 Use::view(&views.depth_buffer, Access::DEPTH_ATTACHMENT),
             ];
-            f.pass(&format!("refractor_geometry.layer{k}"))
+            f.pass(&Stage::RefractorGeometry.pass().layer(k))
                 .bind(&self.geometry, [("frame", Bind::Uniform(inp.uniforms))])
                 .uses(attachments)
                 .uses(mesh_uses(mesh.map(std::slice::from_ref).unwrap_or_default()))
@@ -187,7 +187,7 @@ impl DeferredRefraction {
                 ("front_depth", Bind::Sampled(&views.front_depth, inp.nearest)),
             ];
             let uses = [Use::view(output, Access::COLOR_ATTACHMENT)];
-            f.pass(&format!("deferred_refraction.layer{k}")).bind(&self.refraction, binds).uses(uses).record(
+            f.pass(&Stage::DeferredRefraction.pass().layer(k)).bind(&self.refraction, binds).uses(uses).record(
                 |cmd| {
                     // Every pixel is written: the previous contents need not be loaded.
                     cmd.begin_rendering(&Targets::color(output, Some([0.0; 4])))?;

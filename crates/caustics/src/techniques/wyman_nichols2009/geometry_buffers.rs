@@ -24,7 +24,7 @@
 
 use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::mesh_pipeline::mesh_layout;
-use crate::gpu::{mesh_uses, CoverageConstants, GpuMesh};
+use crate::gpu::{mesh_uses, CoverageConstants, GpuMesh, PassName, Stage};
 use crate::image_io::{ImageF32, Layer};
 use anyhow::Result;
 use vkcore::{
@@ -122,7 +122,7 @@ impl LightGeometryBuffers {
     /// coverage pyramid.
     pub fn record(&self, f: &mut Frame, u: &Uniforms, meshes: &[GpuMesh], nearest: &Sampler, l: u32) -> Result<()> {
         let specular = super::refractor_layers::specular_objects(meshes);
-        self.record_surfaces(f, u, meshes, &specular, "adaptive.geometry", l)?;
+        self.record_surfaces(f, u, meshes, &specular, Stage::AdaptiveGeometry.pass(), l)?;
         self.record_coverage(f, nearest, l)
     }
 
@@ -135,7 +135,7 @@ impl LightGeometryBuffers {
         u: &Uniforms,
         meshes: &[GpuMesh],
         objects: &[usize],
-        name: &str,
+        name: PassName,
         l: u32,
     ) -> Result<()> {
         let attachments = [
@@ -144,7 +144,7 @@ impl LightGeometryBuffers {
             Use::view(&self.material_layers, Access::COLOR_ATTACHMENT),
             Use::view(&self.depth_layers, Access::DEPTH_ATTACHMENT),
         ];
-        f.pass(&format!("{name}.light{l}"))
+        f.pass(&name.light(l))
             .bind(&self.geometry, [("frame", Bind::Uniform(u.frame)), ("caustics", Bind::Uniform(u.caustics))])
             .uses(attachments)
             .uses(mesh_uses(meshes))
@@ -184,12 +184,14 @@ impl LightGeometryBuffers {
                 ("finer", Bind::Sampled(finer, nearest)),
                 ("level_out", Bind::Storage(out)),
             ];
-            f.pass(&format!("adaptive.coverage.level{m}.light{l}")).bind(&self.coverage, binds).record(|cmd| {
-                cmd.push(&CoverageConstants { level: m as u32 })?;
-                let s = (self.padded >> m).max(1);
-                cmd.dispatch(s.div_ceil(8), s.div_ceil(8), 1);
-                Ok(())
-            })?;
+            f.pass(&Stage::AdaptiveCoverage.pass().level(m as u32).light(l)).bind(&self.coverage, binds).record(
+                |cmd| {
+                    cmd.push(&CoverageConstants { level: m as u32 })?;
+                    let s = (self.padded >> m).max(1);
+                    cmd.dispatch(s.div_ceil(8), s.div_ceil(8), 1);
+                    Ok(())
+                },
+            )?;
         }
         Ok(())
     }

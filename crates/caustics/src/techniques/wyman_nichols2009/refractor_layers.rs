@@ -7,7 +7,7 @@
 //! buffers of all objects together hold it.
 
 use super::geometry_buffers::{LightGeometryBuffers, Uniforms};
-use crate::gpu::{GpuMesh, MATERIAL_DIFFUSE};
+use crate::gpu::{GpuMesh, Stage, MATERIAL_DIFFUSE};
 use crate::image_io::ImageF32;
 use anyhow::Result;
 use vkcore::{Context, Frame, Named, Sampler, ShaderCompiler};
@@ -59,9 +59,9 @@ impl RefractorLayers {
     }
 
     /// Records light `l`'s buffers of each object alone, passes `<name>.refractor<k>.light<l>`.
-    pub fn record(&self, f: &mut Frame, u: &Uniforms, meshes: &[GpuMesh], name: &str, l: u32) -> Result<()> {
+    pub fn record(&self, f: &mut Frame, u: &Uniforms, meshes: &[GpuMesh], stage: Stage, l: u32) -> Result<()> {
         for (k, (object, b)) in self.layers.iter().enumerate() {
-            b.record_surfaces(f, u, meshes, &[*object], &format!("{name}.refractor{k}"), l)?;
+            b.record_surfaces(f, u, meshes, &[*object], stage.pass().refractor(k), l)?;
         }
         Ok(())
     }

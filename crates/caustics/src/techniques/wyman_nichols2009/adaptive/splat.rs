@@ -7,12 +7,13 @@
 use super::photon::PHOTON_BYTES;
 use super::{AdaptiveCaustics, Splat};
 use crate::gpu::SplatConstants;
+use crate::gpu::{BatchPart, Stage};
 use crate::techniques::shared::compute_splat::{self, Photons};
 use anyhow::Result;
 use vkcore::{Access, Bind, CompactionPath, Frame, Targets, Use};
 
 impl AdaptiveCaustics {
-    /// Splats the output photons of light `l` (of one batch, `tag`) into its caustic-map layer
+    /// Splats the output photons of light `l` (of batch `tag`, where there are batches) into its caustic-map layer
     /// by `s`'s splat: the first batch clears the map, later ones add to it (Sec. 4.3), and the
     /// compute splat stores its sum in the map after the last.
     pub fn record_splat_batch(
@@ -20,7 +21,7 @@ impl AdaptiveCaustics {
         f: &mut Frame,
         s: &Splat,
         l: u32,
-        tag: &str,
+        tag: BatchPart,
         first: bool,
         last: bool,
     ) -> Result<()> {
@@ -36,7 +37,7 @@ impl AdaptiveCaustics {
             Use::buffer(&list.counter, Access::INDIRECT),
             Use::view(s.cmap, Access::COLOR_ATTACHMENT),
         ];
-        f.pass(&format!("splat{tag}.light{l}")).bind(&self.splat, binds).uses(uses).record(|cmd| {
+        f.pass(&Stage::Splat.pass().batch(tag).light(l)).bind(&self.splat, binds).uses(uses).record(|cmd| {
             cmd.begin_rendering(&Targets::color(s.cmap, first.then_some([0.0; 4])).layered(s.layers))?;
             cmd.push(&SplatConstants { light: l, vertices_per_instance: 0 })?;
             cmd.bind_vertex_buffer(&list.data, 0)?;

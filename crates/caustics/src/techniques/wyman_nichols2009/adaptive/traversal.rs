@@ -8,6 +8,7 @@
 use super::photon::{unpack_cell, AdaptivePhoton, CLUSTER_BYTES, HITS_BYTES};
 use super::{AdaptiveCaustics, Kernels};
 use crate::gpu::{AdaptiveConstants, BatchConstants, CountConstants, GpuMesh};
+use crate::gpu::{BatchPart, PassName, Stage};
 use crate::image_io::ImageF32;
 use crate::techniques::shared::compute_splat::{groups, ComputeSplat};
 use crate::techniques::shared::targets::PhotonTargets;
@@ -82,20 +83,20 @@ impl AdaptiveCaustics {
     pub fn record_breadth(&self, f: &mut Frame, inp: &Inputs, l: u32, splat: Option<&Splat>) -> Result<bool> {
         let u = Uniforms { frame: inp.frame_uniforms, caustics: inp.caustic_uniforms };
         self.geometry.record(f, &u, inp.meshes, inp.nearest, l)?;
-        self.refractors.record(f, &u, inp.meshes, "adaptive.geometry", l)?;
+        self.refractors.record(f, &u, inp.meshes, Stage::AdaptiveGeometry, l)?;
         let b = self.plan.breadth;
-        self.record_reset(f, &format!("adaptive.reset.light{l}"), 1, Some(l))?;
+        self.record_reset(f, Stage::AdaptiveReset.light(l), 1, Some(l))?;
         for k in 0..b {
-            self.record_step(f, inp, l, k, &self.clusters[k as usize], k == 0, "")?;
-            self.record_counts(f, l, k, "")?;
+            self.record_step(f, inp, l, k, &self.clusters[k as usize], k == 0, BatchPart::Whole)?;
+            self.record_counts(f, l, k, BatchPart::Whole)?;
         }
         if !(self.plan.batched() && (0..b).any(|k| tests_convergence(self.metric, k))) {
             return Ok(false);
         }
         // Clusters converged above level B: splatted before the batches reuse the photons.
-        self.record_finalize_photons(f, l, ".breadth")?;
+        self.record_finalize_photons(f, l, BatchPart::Breadth)?;
         if let Some(s) = splat {
-            self.record_splat_batch(f, s, l, ".breadth", true, false)?;
+            self.record_splat_batch(f, s, l, BatchPart::Breadth, true, false)?;
         }
         Ok(true)
     }
@@ -114,11 +115,11 @@ impl AdaptiveCaustics {
         splat: Option<(&Splat, bool)>,
     ) -> Result<()> {
         let b = self.plan.breadth;
-        let tag = if self.plan.batched() { format!(".batch{batch}") } else { String::new() };
+        let tag = if self.plan.batched() { BatchPart::Batch(batch) } else { BatchPart::Whole };
         let input = match &self.batch_input {
             Some(input) => {
-                self.record_batch_input(f, l, batch, input, &tag)?;
-                self.record_reset(f, &format!("adaptive.reset{tag}.light{l}"), b as usize + 1, None)?;
+                self.record_batch_input(f, l, batch, input, tag)?;
+                self.record_reset(f, Stage::AdaptiveReset.pass().batch(tag).light(l), b as usize + 1, None)?;
                 input
             }
             None => &self.clusters[b as usize],
@@ -126,20 +127,20 @@ impl AdaptiveCaustics {
         for k in b..=self.finest {
             let input = if k == b { input } else { &self.clusters[k as usize] };
             let seeded = k == 0 && self.batch_input.is_none();
-            self.record_step(f, inp, l, k, input, seeded, &tag)?;
-            self.record_counts(f, l, k, &tag)?;
+            self.record_step(f, inp, l, k, input, seeded, tag)?;
+            self.record_counts(f, l, k, tag)?;
         }
-        self.record_finalize_photons(f, l, &tag)?;
+        self.record_finalize_photons(f, l, tag)?;
         if let Some((s, first)) = splat {
-            self.record_splat_batch(f, s, l, &tag, first, batch + 1 == self.plan.batches)?;
+            self.record_splat_batch(f, s, l, tag, first, batch + 1 == self.plan.batches)?;
         }
         Ok(())
     }
 
     /// The compute path's draw (or dispatch) over the output photons, for the splat.
-    fn record_finalize_photons(&self, f: &mut Frame, l: u32, tag: &str) -> Result<()> {
+    fn record_finalize_photons(&self, f: &mut Frame, l: u32, tag: BatchPart) -> Result<()> {
         if let Kernels::Compute { finalize, .. } = &self.kernels {
-            f.pass(&format!("adaptive.finalize.photons{tag}.light{l}"))
+            f.pass(&Stage::AdaptiveFinalizePhotons.pass().batch(tag).light(l))
                 .bind(finalize, [("Counter", Bind::Buffer(&self.photons.counter))])
                 .record(|cmd| {
                     cmd.dispatch(1, 1, 1);
@@ -150,7 +151,14 @@ impl AdaptiveCaustics {
     }
 
     /// Batch `batch`'s clusters of level B, copied from level B's list (`adaptive_batch.comp`).
-    fn record_batch_input(&self, f: &mut Frame, l: u32, batch: u32, input: &CompactStream, tag: &str) -> Result<()> {
+    fn record_batch_input(
+        &self,
+        f: &mut Frame,
+        l: u32,
+        batch: u32,
+        input: &CompactStream,
+        tag: BatchPart,
+    ) -> Result<()> {
         let pending = &self.clusters[self.plan.breadth as usize];
         let binds = [
             ("Pending", Bind::BufferRead(&pending.data)),
@@ -163,7 +171,7 @@ impl AdaptiveCaustics {
             size: self.plan.batch,
             xfb: (self.path == CompactionPath::TransformFeedback) as u32,
         };
-        f.pass(&format!("adaptive.select{tag}.light{l}")).bind(&self.batch_select, binds).record(|cmd| {
+        f.pass(&Stage::AdaptiveSelect.pass().batch(tag).light(l)).bind(&self.batch_select, binds).record(|cmd| {
             cmd.push(&push)?;
             let (x, y) = groups(self.plan.batch);
             cmd.dispatch(x, y, 1);
@@ -174,7 +182,7 @@ impl AdaptiveCaustics {
 
     /// After step k: the next level's pending clusters and the photons so far, added to light
     /// `l`'s counts (`adaptive_counts.comp`).
-    fn record_counts(&self, f: &mut Frame, l: u32, k: u32, tag: &str) -> Result<()> {
+    fn record_counts(&self, f: &mut Frame, l: u32, k: u32, tag: BatchPart) -> Result<()> {
         let base = l.min(self.lights.max(1) - 1) * 2 * (self.finest + 1);
         let next = self.clusters.get(k as usize + 1);
         let binds = [
@@ -187,7 +195,7 @@ impl AdaptiveCaustics {
             photon_slot: base + self.finest + 1 + k,
             xfb: (self.path == CompactionPath::TransformFeedback) as u32,
         };
-        f.pass(&format!("adaptive.counts.level{k}{tag}.light{l}")).bind(&self.count, binds).record(|cmd| {
+        f.pass(&Stage::AdaptiveCounts.pass().level(k).batch(tag).light(l)).bind(&self.count, binds).record(|cmd| {
             cmd.push(&push)?;
             cmd.dispatch(1, 1, 1);
             Ok(())
@@ -197,14 +205,14 @@ impl AdaptiveCaustics {
 
     /// Zeroes the counters of the lists of levels `from`.. and of the hits and the photons
     /// (both paths); with `light`, also that light's counts.
-    fn record_reset(&self, f: &mut Frame, name: &str, from: usize, light: Option<u32>) -> Result<()> {
+    fn record_reset(&self, f: &mut Frame, name: PassName, from: usize, light: Option<u32>) -> Result<()> {
         let written: Vec<&CompactStream> =
             self.clusters[from..].iter().chain([&self.photons, &self.spare]).chain(self.hits.as_ref()).collect();
         let mut uses: Vec<Use> = written.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_WRITE)).collect();
         if light.is_some() {
             uses.push(Use::buffer(&self.counts, Access::TRANSFER_WRITE));
         }
-        f.pass(name).uses(uses).record(|cmd| {
+        f.pass(&name).uses(uses).record(|cmd| {
             for s in &written {
                 match self.path {
                     CompactionPath::TransformFeedback => cmd.fill_buffer(&s.counter, 0),
@@ -251,13 +259,13 @@ impl AdaptiveCaustics {
         k: u32,
         input: &CompactStream,
         seeded: bool,
-        tag: &str,
+        tag: BatchPart,
     ) -> Result<()> {
         let last = k == self.finest;
         let out = self.clusters.get(k as usize + 1).unwrap_or(&self.spare);
         let converge = tests_convergence(self.metric, k);
         let push = AdaptiveConstants { light: l, level: k, finest: self.finest, converge: converge as u32 };
-        let name = |kernel: &str| format!("adaptive.{kernel}.level{k}{tag}.light{l}");
+        let name = |kernel: Stage| kernel.pass().level(k).batch(tag).light(l);
         match &self.kernels {
             Kernels::Compute { traverse, finalize } => {
                 let mut binds = self.textures(inp);
@@ -272,39 +280,69 @@ impl AdaptiveCaustics {
                 binds.extend(self.refractors.binds(inp.nearest));
                 // The input's count is read as dispatch arguments too.
                 let arguments = [Use::buffer(&input.counter, Access::INDIRECT)];
-                f.pass(&name("traverse")).bind(traverse, binds).uses(arguments).record(|cmd| {
+                f.pass(&name(Stage::AdaptiveTraverse)).bind(traverse, binds).uses(arguments).record(|cmd| {
                     cmd.push(&push)?;
                     cmd.dispatch_indirect(&input.counter, 16)?;
                     Ok(())
                 })?;
                 if !last {
-                    f.pass(&name("finalize")).bind(finalize, [("Counter", Bind::Buffer(&out.counter))]).record(
-                        |cmd| {
+                    f.pass(&name(Stage::AdaptiveFinalize))
+                        .bind(finalize, [("Counter", Bind::Buffer(&out.counter))])
+                        .record(|cmd| {
                             cmd.dispatch(1, 1, 1);
                             Ok(())
-                        },
-                    )?;
+                        })?;
                 }
             }
             Kernels::Xfb(x) => {
                 let clusters = Xfb { input, seeded, stride: CLUSTER_BYTES };
                 match (converge, last) {
-                    (false, false) => {
-                        self.record_xfb(f, &name("subdivide"), &x.subdivide, inp, &push, &clusters, XfbOut::List(out))?
-                    }
+                    (false, false) => self.record_xfb(
+                        f,
+                        &name(Stage::AdaptiveSubdivide),
+                        &x.subdivide,
+                        inp,
+                        &push,
+                        &clusters,
+                        XfbOut::List(out),
+                    )?,
                     (false, true) => {
-                        self.record_xfb(f, &name("emit"), &x.emit, inp, &push, &clusters, XfbOut::Photons)?
+                        self.record_xfb(f, &name(Stage::AdaptiveEmit), &x.emit, inp, &push, &clusters, XfbOut::Photons)?
                     }
                     (true, _) => {
                         let hits = self.hits.as_ref().ok_or_else(|| anyhow::anyhow!("no hits stream"))?;
                         let from_hits = Xfb { input: hits, seeded: false, stride: HITS_BYTES };
                         // Sec. 4.1's three kernels: hit positions, the converged stream, subdivision.
-                        self.record_xfb(f, &name("hits"), &x.hits, inp, &push, &clusters, XfbOut::List(hits))?;
+                        self.record_xfb(
+                            f,
+                            &name(Stage::AdaptiveHits),
+                            &x.hits,
+                            inp,
+                            &push,
+                            &clusters,
+                            XfbOut::List(hits),
+                        )?;
                         let converged = &x.converged;
-                        self.record_xfb(f, &name("converged"), converged, inp, &push, &from_hits, XfbOut::Photons)?;
+                        self.record_xfb(
+                            f,
+                            &name(Stage::AdaptiveConverged),
+                            converged,
+                            inp,
+                            &push,
+                            &from_hits,
+                            XfbOut::Photons,
+                        )?;
                         if !last {
                             let refine = &x.refine;
-                            self.record_xfb(f, &name("refine"), refine, inp, &push, &from_hits, XfbOut::List(out))?;
+                            self.record_xfb(
+                                f,
+                                &name(Stage::AdaptiveRefine),
+                                refine,
+                                inp,
+                                &push,
+                                &from_hits,
+                                XfbOut::List(out),
+                            )?;
                         }
                     }
                 }

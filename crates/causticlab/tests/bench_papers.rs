@@ -1,0 +1,423 @@
+//! `causticlab bench --quick` of every shipped paper config (validation on, zero messages):
+//! each table's cells are all there, counted and timed by their own passes.
+
+mod common;
+
+use common::bench::*;
+use common::{causticlab, scratch, workspace};
+use serde_json::Value;
+use std::path::PathBuf;
+
+fn quick_run(config: &str) -> (PathBuf, Value) {
+    let root = scratch("bench-quick");
+    let cfg = workspace().join("bench_configs").join(config);
+    let r = causticlab(&[
+        "--validate".as_ref(),
+        "bench".as_ref(),
+        cfg.as_os_str(),
+        "--quick".as_ref(),
+        "--results".as_ref(),
+        root.as_os_str(),
+    ]);
+    assert_clean(&r);
+    let dir = device_dir(&root).join("quick");
+    let stem = config.trim_end_matches(".toml");
+    for ext in ["md", "csv", "json", "svg", "png"] {
+        let f = dir.join(format!("{stem}.{ext}"));
+        assert!(f.is_file(), "{} missing\n{}", f.display(), r.describe());
+    }
+    assert!(root.join("README.md").is_file(), "results index missing");
+    let results = json(&dir.join(format!("{stem}.json")));
+    let cells = results["cells"].as_array().expect("cells").len();
+    assert_eq!(results["run"]["total_cells"].as_u64(), Some(cells as u64), "a quick run measures every cell");
+    assert!(results["run"]["quick"].as_bool() == Some(true));
+    // One CSV row per cell and metric, plus the header.
+    let csv = std::fs::read_to_string(dir.join(format!("{stem}.csv"))).expect("csv");
+    let metrics = results["cells"][0]["metrics"].as_object().expect("metrics").len();
+    assert_eq!(csv.lines().count(), 1 + cells * metrics, "{csv}");
+    let svg = std::fs::read_to_string(dir.join(format!("{stem}.svg"))).expect("svg");
+    assert!(svg.starts_with("<svg") && svg.contains("<polyline"), "plot without lines");
+    (dir, results)
+}
+
+#[test]
+fn quick_wyman2008_table1_times_every_phase_and_copies_only_on_the_copy_path() {
+    let (dir, r) = quick_run("wyman2008_table1.toml");
+    for cell in r["cells"].as_array().expect("cells") {
+        let technique = cell["cell"]["technique_label"].as_str().unwrap_or_default();
+        for m in ["Render Photon Buffer", "Splat Photons", "Eye Render"] {
+            let v = metric(cell, m).unwrap_or(-1.0);
+            assert!(v > 0.0, "{technique}: {m} = {v}");
+        }
+        // The copy pass exists exactly where the technique copies the photon buffer.
+        let copy = metric(cell, "Copy to Vertex Array");
+        assert_eq!(copy.is_some(), technique == "W&D copy", "{technique}: copy = {copy:?}");
+        let samples = cell["passes"][0]["samples_ms"].as_array().map(|s| s.len()).unwrap_or(0);
+        assert_eq!(samples, 2, "raw samples of the 2 measured quick frames are kept");
+    }
+    let md = std::fs::read_to_string(dir.join("wyman2008_table1.md")).expect("md");
+    assert!(md.contains("Costs for the caustic mapping phases") && md.contains("| 64² "), "{md}");
+    // On Linux each cell records how much CPU the hypervisor took while it ran, and the table says so.
+    if cfg!(target_os = "linux") {
+        for cell in r["cells"].as_array().expect("cells") {
+            let steal = cell["cpu_steal"].as_f64().unwrap_or(-1.0);
+            assert!((0.0..=1.0).contains(&steal), "cpu_steal {steal} in {}", cell["cell"]);
+        }
+        assert!(md.contains("**Host CPU steal**"), "{md}");
+    }
+}
+
+#[test]
+fn quick_wyman2008_table2_copies_each_data_type() {
+    let (_, r) = quick_run("wyman2008_table2.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 6, "3 copy types x 2 photon counts");
+    for cell in cells {
+        assert!(metric(cell, "copy").unwrap_or(-1.0) > 0.0, "{}", cell["cell"]);
+    }
+}
+
+#[test]
+fn quick_wyman_davis2006_table1_runs_static_and_dynamic_lighting() {
+    let (_, r) = quick_run("wyman_davis2006_table1.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    let passes = |c: &Value| c["frame_counters"]["throughput"]["passes"].as_f64().expect("throughput passes per frame");
+    for cell in cells {
+        let lighting = cell["cell"]["lighting"].as_str().unwrap_or_default();
+        assert!(metric(cell, "fps").unwrap_or(-1.0) > 0.0);
+        // fps is measured in throughput frames: warm ones make no Vulkan object, submit once.
+        let t = &cell["frame_counters"]["throughput"];
+        assert_eq!(t["most_objects"].as_u64(), Some(0), "{}: {t}", cell["cell"]);
+        assert_eq!(t["submits"].as_f64(), Some(1.0), "{}: {t}", cell["cell"]);
+        assert!(cell["block_ms"].as_array().is_some_and(|b| b.len() >= 2), "{}", cell["cell"]);
+        // Static lighting renders its photon buffer once before the timed frames and reuses it:
+        // its frames record fewer passes than the dynamic twin's.
+        if lighting == "dynamic" {
+            let twin = cells
+                .iter()
+                .find(|c| {
+                    c["cell"]["lighting"] == "static"
+                        && ["scene", "technique", "photons"].iter().all(|k| c["cell"][k] == cell["cell"][k])
+                })
+                .expect("a static twin");
+            assert!(
+                passes(twin) < passes(cell),
+                "{}: static {} passes, dynamic {}",
+                cell["cell"],
+                passes(twin),
+                passes(cell)
+            );
+        }
+    }
+}
+
+#[test]
+fn quick_hierarchical_tables_count_and_time_every_cell() {
+    // Wyman 2008 Tables 3-5: every timed column has a value in every cell.
+    for config in ["wyman2008_table3.toml", "wyman2008_table4.toml", "wyman2008_table5.toml"] {
+        let (dir, r) = quick_run(config);
+        // Laid out like the paper's: its columns (Table 3: photons and ten more), each line
+        // of the table within a 120-column terminal.
+        let md = std::fs::read_to_string(dir.join(config.replace(".toml", ".md"))).expect("md");
+        // The header lines of the value table (wrapped into blocks), before the ratio grid.
+        let values = &md[..md.find("## Ratios").unwrap_or(md.len())];
+        let headers: std::collections::BTreeSet<&str> = values
+            .lines()
+            .filter(|l| l.starts_with("| photons") || l.starts_with("| scene"))
+            .flat_map(|l| l.split('|').map(str::trim).filter(|c| !c.is_empty()))
+            .collect();
+        assert!(md.lines().filter(|l| l.starts_with('|')).all(|l| l.chars().count() <= 120), "{md}");
+        let paper_columns = match config {
+            "wyman2008_table3.toml" => 11,
+            "wyman2008_table4.toml" => 7,
+            _ => 3, // Table 5: scene and the quick run's two photon counts
+        };
+        assert_eq!(headers.len(), paper_columns, "{config}: {headers:?}");
+        if config == "wyman2008_table3.toml" {
+            for h in ["Render Photon Buffer", "W&D 2006 Gather", "Varying, Single Map", "Final Render, Multi-Res"] {
+                assert!(headers.contains(h), "{config}: no column `{h}` in {headers:?}");
+            }
+        }
+        for cell in r["cells"].as_array().expect("cells") {
+            for (label, v) in cell["metrics"].as_object().expect("metrics") {
+                let x = v["value"].as_f64().unwrap_or(-1.0);
+                // W&D + Sec. 4 has no copy; every other column is a time or a rate.
+                assert!(x > 0.0, "{config}: {} {label} = {x}", cell["cell"]);
+            }
+        }
+    }
+    // Wyman & Nichols 2009 Table 1: the hierarchy splats only valid photons, clustering fewer.
+    let (_, r) = quick_run("wyman_nichols2009_table1.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    for scene in ["bunny_in_room", "sphere_in_room"] {
+        for photons in [64u64, 128] {
+            let find = |t: &str| {
+                cells
+                    .iter()
+                    .find(|c| {
+                        c["cell"]["scene"].as_str().is_some_and(|s| s.contains(scene))
+                            && c["cell"]["technique_label"] == t
+                            && c["cell"]["photons"].as_u64() == Some(photons)
+                    })
+                    .unwrap_or_else(|| panic!("no cell {scene} {t} {photons}"))
+            };
+            let (dense, hier, last) = (find("Caustic Maps"), find("Hier. Caustic Maps"), find("combine last"));
+            let s = |c: &Value, m: &str| metric(c, m).unwrap_or(f64::NAN);
+            assert_eq!(s(dense, "splatted"), (photons * photons) as f64, "{scene} {photons}");
+            assert!(s(hier, "splatted") > 0.0 && s(hier, "splatted") < s(dense, "splatted"), "{scene} {photons}");
+            assert!(s(hier, "processed") > s(hier, "splatted"), "{scene} {photons}: traversal entries not counted");
+            assert!(s(last, "splatted") <= s(hier, "splatted"), "{scene} {photons}: clustering splatted more");
+        }
+    }
+}
+
+#[test]
+fn quick_adaptive_table_counts_both_metrics_and_keeps_each_levels_list() {
+    // Wyman & Nichols 2009 Table 1's adaptive columns and Fig. 7: max-traversal splats what the
+    // hierarchy would (the valid photons, up to the geometry buffers' interpolation), max-error
+    // fewer once it tests convergence (512²), the same below; every cell keeps its per-level
+    // list sizes, whose last entry is the splatted count.
+    let (dir, r) = quick_run("wyman_nichols2009_adaptive.toml");
+    let md = std::fs::read_to_string(dir.join("wyman_nichols2009_adaptive.md")).expect("md");
+    assert!(md.contains("## Ratios"), "no Fig. 7 ratio grid:\n{md}");
+    for scene in ["bunny_in_room", "sphere_in_room"] {
+        for photons in [128u64, 512] {
+            let find = |t: &str| {
+                r["cells"]
+                    .as_array()
+                    .expect("cells")
+                    .iter()
+                    .find(|c| {
+                        c["cell"]["scene"].as_str().is_some_and(|s| s.contains(scene))
+                            && c["cell"]["technique_label"] == t
+                            && c["cell"]["photons"].as_u64() == Some(photons)
+                    })
+                    .unwrap_or_else(|| panic!("no cell {scene} {t} {photons}"))
+            };
+            let (hier, traversal, error) =
+                (find("Hier. Caustic Maps"), find("Adaptive Max Traversal"), find("Adaptive Max Error"));
+            let s = |c: &Value| metric(c, "splatted").unwrap_or(f64::NAN);
+            assert!(s(traversal) > 0.0, "{scene} {photons}: nothing splatted");
+            assert!((s(traversal) / s(hier) - 1.0).abs() < 0.1, "{scene} {photons}: {} vs {}", s(traversal), s(hier));
+            if photons < 512 {
+                assert_eq!(s(error), s(traversal), "{scene} {photons}: max-error clustered above 512²");
+            } else {
+                assert!(s(error) < s(traversal), "{scene} {photons}: max-error splatted no fewer");
+            }
+            for c in [traversal, error] {
+                let sizes = c["list_sizes"][0].as_array().expect("list sizes");
+                let levels = (photons / 64).trailing_zeros() as usize + 1;
+                assert_eq!(sizes.len(), levels + 1, "{scene} {photons}: {sizes:?}");
+                assert_eq!(sizes[0].as_u64(), Some(32 * 32), "{scene} {photons}: the coarse grid's clusters");
+                assert_eq!(sizes[levels].as_f64(), Some(s(c)), "{scene} {photons}: the splatted count");
+            }
+        }
+    }
+}
+
+#[test]
+fn quick_photon_view_times_every_view_and_the_fitted_one_wastes_least() {
+    // V1: every view is timed, and the fitted view spends the largest share of its photons on
+    // the object.
+    let (_, r) = quick_run("photon_view.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    for c in cells {
+        for m in ["Render Photon Buffer", "Gather"] {
+            assert!(metric(c, m).unwrap_or(-1.0) > 0.0, "{}: {m} not timed", c["cell"]);
+        }
+        let valid = metric(c, "valid").unwrap_or(-1.0);
+        assert!((0.0..=1.0).contains(&valid), "{}: valid share {valid}", c["cell"]);
+    }
+    for c in cells.iter().filter(|c| c["cell"]["technique_label"] == "W&D 90°") {
+        let fitted = cell(&r, "W&D fitted", c["cell"]["photons"].as_u64().unwrap_or(0));
+        assert!(metric(fitted, "valid") > metric(c, "valid"), "{}", c["cell"]);
+    }
+}
+
+#[test]
+fn quick_fig9_times_each_refraction_by_its_own_passes() {
+    // Wyman & Nichols 2009 Fig. 9: forward and deferred refraction, each metric timed from the
+    // refraction's own passes, on every model.
+    let (_, r) = quick_run("wyman_nichols2009_fig9.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 16);
+    for c in cells {
+        let refraction = c["caustics"]["refraction"].as_str().unwrap_or_default();
+        assert_eq!(c["cell"]["technique_label"].as_str(), Some(refraction));
+        for m in ["refraction", "geometry", "shading", "eye"] {
+            assert!(metric(c, m).unwrap_or(-1.0) > 0.0, "{} {refraction}: {m} not timed", c["cell"]);
+        }
+        let passes: Vec<&str> =
+            c["passes"].as_array().expect("passes").iter().filter_map(|p| p["name"].as_str()).collect();
+        let deferred = passes.contains(&"refractor_geometry.layer0") && passes.contains(&"deferred_refraction.layer0");
+        let forward = passes.contains(&"refractor_back_faces") && passes.contains(&"composite");
+        assert_eq!((forward, deferred), (refraction == "forward", refraction == "deferred"), "{passes:?}");
+    }
+}
+
+#[test]
+fn quick_fig8_splits_into_the_batches_asked_for_and_splats_the_same_photons() {
+    // Wyman & Nichols 2009 Fig. 8: each column's batch count is the one its label asks for (the
+    // plan's, as recorded), more batches allocate less, and every cell splats the same photons.
+    let (_, r) = quick_run("wyman_nichols2009_fig8.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 10);
+    for photons in [128u64, 256] {
+        let mut storage = f64::INFINITY;
+        let one = cell(&r, "1 batch", photons);
+        for n in [1u32, 2, 4, 8, 16] {
+            let label = if n == 1 { "1 batch".to_string() } else { format!("{n} batches") };
+            let c = cell(&r, &label, photons);
+            assert_eq!(metric(c, "batches"), Some(n as f64), "{label} {photons}");
+            assert!(metric(c, "caustic map").unwrap_or(-1.0) > 0.0, "{label} {photons}: not timed");
+            let s = metric(c, "storage").expect("storage");
+            assert!(s < storage, "{label} {photons}: {s} MiB, not less than with fewer batches");
+            storage = s;
+            assert_eq!(c["list_sizes"], one["list_sizes"], "{label} {photons}: other photons than 1 batch");
+            let splats = c["passes"]
+                .as_array()
+                .expect("passes")
+                .iter()
+                .filter(|p| p["name"].as_str().is_some_and(|n| n.starts_with("splat.batch")));
+            assert_eq!(splats.count(), if n == 1 { 0 } else { n as usize }, "{label} {photons}: splats");
+        }
+    }
+}
+
+#[test]
+fn quick_fig11_times_every_step_of_the_levels_each_density_runs() {
+    // Wyman & Nichols 2009 Fig. 11: the fixed steps are timed at every density, a traversal
+    // level only where the density reaches it (64²: level 0; 128²: levels 0-1).
+    let (dir, r) = quick_run("wyman_nichols2009_fig11.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 4);
+    for c in cells {
+        let photons = c["cell"]["photons"].as_u64().expect("photons");
+        let finest = (photons / 64).trailing_zeros();
+        let fixed = ["shadow map", "receivers", "geometry buffers", "coverage pyramid", "splat", "eye render"];
+        for m in fixed.into_iter().chain(["batch bookkeeping", "fps"]) {
+            assert!(metric(c, m).unwrap_or(-1.0) > 0.0, "{}: {m} not timed", c["cell"]);
+        }
+        for k in 0..=6u32 {
+            let timed = metric(c, &format!("level {k}")).is_some();
+            assert_eq!(timed, k <= finest, "{}: level {k}", c["cell"]);
+        }
+    }
+    let md = std::fs::read_to_string(dir.join("wyman_nichols2009_fig11.md")).expect("md");
+    assert!(md.contains("level 6") && md.contains("eye render"), "{md}");
+}
+
+#[test]
+fn quick_traversal_paths_process_the_same_photons_and_sparse_gathers_splat_fewer() {
+    // P1: the transform-feedback and compute traversals read and emit the same photons in
+    // every clustering mode, and every frame is timed.
+    let (_, r) = quick_run("hcm_paths.toml");
+    for photons in [64u64, 128] {
+        for cluster in ["none", "last", "all"] {
+            let (x, c) =
+                (cell(&r, &format!("{cluster} · xfb"), photons), cell(&r, &format!("{cluster} · compute"), photons));
+            let px = metric(x, "processed").unwrap_or(-1.0);
+            assert!(px > 0.0, "{cluster} {photons}: nothing processed");
+            assert_eq!(Some(px), metric(c, "processed"), "{cluster} {photons}: the paths processed different photons");
+            for m in ["Traversal", "Gather", "Frame"] {
+                assert!(metric(x, m).unwrap_or(-1.0) > 0.0, "{cluster} · xfb {photons}: {m} not timed");
+            }
+            assert!(metric(c, "Frame").unwrap_or(-1.0) > 0.0, "{cluster} · compute {photons}: Frame not timed");
+        }
+    }
+    // Table 3 on a sparse photon buffer: the hierarchy splats only the valid photons.
+    let (_, r) = quick_run("wyman2008_table3_sparse.toml");
+    for photons in [64u64, 128] {
+        let dense = metric(cell(&r, "W&D + Sec. 4", photons), "splatted").unwrap_or(-1.0);
+        let hier = metric(cell(&r, "hierarchical", photons), "splatted").unwrap_or(-1.0);
+        assert!(dense >= (photons * photons) as f64, "{photons}: dense splatted {dense}");
+        assert!(hier > 0.0 && hier < 0.5 * dense, "{photons}: hierarchical splatted {hier} of {dense}: not sparse");
+        for t in ["W&D 2006", "W&D + Sec. 4", "hierarchical", "combine last", "combine all"] {
+            assert!(metric(cell(&r, t, photons), "Gather").unwrap_or(-1.0) > 0.0, "{t} {photons}: Gather not timed");
+        }
+    }
+}
+
+#[test]
+fn quick_splat_paths_splat_the_same_photons_and_time_every_splat() {
+    // P2: points and the compute splat splat the same photons (the maps themselves are compared
+    // in crates/caustics/tests/compute_splat.rs), and every splat is timed, the compute splat's
+    // clear and resolve passes included.
+    let (_, r) = quick_run("splat_paths.toml");
+    for photons in [64u64, 128] {
+        for t in ["W&D + Sec. 4", "combine all", "varying multi-res"] {
+            let (raster, compute) =
+                (cell(&r, &format!("{t} · raster"), photons), cell(&r, &format!("{t} · compute"), photons));
+            let splatted = metric(raster, "splatted").unwrap_or(-1.0);
+            assert!(splatted > 0.0, "{t} {photons}: nothing splatted");
+            assert_eq!(
+                Some(splatted),
+                metric(compute, "splatted"),
+                "{t} {photons}: the paths splatted different photons"
+            );
+            for (c, path) in [(raster, "raster"), (compute, "compute")] {
+                for m in ["Splat", "Gather", "Frame"] {
+                    assert!(metric(c, m).unwrap_or(-1.0) > 0.0, "{t} · {path} {photons}: {m} not timed");
+                }
+            }
+        }
+        let dense = metric(cell(&r, "W&D + Sec. 4 · compute", photons), "splatted");
+        assert_eq!(dense, Some((photons * photons) as f64), "{photons}: the dense compute splat covers every texel");
+    }
+}
+
+#[test]
+fn quick_trendall_stewart2000_table1_times_the_passes_and_the_height_field() {
+    let (dir, r) = quick_run("trendall_stewart2000_table1.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 2 * 3 * 2, "2 scenes x 3 techniques x 2 grid sides");
+    for c in cells {
+        for m in ["caustics fps", "height field fps"] {
+            assert!(metric(c, m).is_some_and(|v| v.is_finite() && v > 0.0), "{m}: {}", c["cell"]);
+        }
+    }
+    let md = std::fs::read_to_string(dir.join("trendall_stewart2000_table1.md")).expect("md");
+    assert!(md.contains("37.9") && md.contains("178"), "the paper's values beside ours");
+}
+
+#[test]
+fn quick_fig10_times_five_caustic_maps_each_with_its_own_passes() {
+    // Wyman & Nichols 2009 Fig. 10: simple and deferred photon buffers, the deferred hierarchy,
+    // adaptive with both metrics; each cell timed, each technique running the passes it names.
+    let (_, r) = quick_run("wyman_nichols2009_fig10.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 3 * 5 * 2, "3 scenes x 5 techniques x 2 photon counts");
+    for c in cells {
+        let label = c["cell"]["technique_label"].as_str().unwrap_or_default();
+        for m in ["fps", "caustic map"] {
+            assert!(metric(c, m).is_some_and(|v| v.is_finite() && v > 0.0), "{label}: {m}");
+        }
+        let passes: Vec<&str> =
+            c["passes"].as_array().expect("passes").iter().filter_map(|p| p["name"].as_str()).collect();
+        let has = |prefix: &str| passes.iter().any(|p| p.starts_with(prefix));
+        let expect = match label {
+            "Simple" => [true, false, false, false],
+            "Deferred" => [false, true, false, false],
+            "Deferred Hier." => [false, true, true, false],
+            _ => [false, false, false, true],
+        };
+        let got = [has("photon_buffer."), has("deferred_photons."), has("hierarchy."), has("adaptive.traverse")];
+        assert_eq!(got, expect, "{label}: {passes:?}");
+        assert!(has("deferred_refraction."), "{label}: the eye view is rendered deferred (Sec. 5)");
+    }
+}
+
+#[test]
+fn every_bench_config_has_a_quick_test() {
+    // A config no test runs could rot unnoticed: each must be named in one of these files.
+    let src = [include_str!("bench_papers.rs"), include_str!("bench_quality.rs")].concat();
+    for e in std::fs::read_dir(workspace().join("bench_configs")).expect("bench_configs") {
+        let name = e.expect("entry").file_name().to_string_lossy().to_string();
+        if name.ends_with(".toml") {
+            assert!(
+                src.contains(&format!("\"{name}\"")),
+                "bench_configs/{name} is run by no test in tests/bench_papers.rs or bench_quality.rs"
+            );
+        }
+    }
+}
