@@ -16,6 +16,7 @@
 //! texels; `common/caustic_lookup.glsl` turns that into irradiance with the texel's area on the
 //! receiver (Wyman & Davis 2006, Eq. 5-8).
 
+mod mirrored;
 pub mod record;
 pub mod settings;
 pub mod shah2007;

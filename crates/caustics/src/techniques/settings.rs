@@ -209,7 +209,7 @@ impl CausticSettings {
     /// Sec. 3.3), else 1.
     pub fn caustic_levels(&self) -> u32 {
         if matches!(self.technique, Technique::Hcm | Technique::Adaptive) && self.splat == SplatMode::VaryingMultires {
-            4
+            crate::techniques::wyman2008::settings::MULTIRES_LEVELS
         } else {
             1
         }

@@ -5,9 +5,9 @@
 /// Bytes of a list entry: (x, y, level, final) packed into a u32 (`wyman2008/entry.glsl`).
 pub const ENTRY_BYTES: u64 = 4;
 /// Bit offsets of y, level and final in a packed entry (x in bits 0-11), as in `entry.glsl`.
-const ENTRY_Y_SHIFT: u32 = 12;
-const ENTRY_LEVEL_SHIFT: u32 = 24;
-const ENTRY_FINAL_SHIFT: u32 = 28;
+pub(crate) const ENTRY_Y_SHIFT: u32 = 12;
+pub(crate) const ENTRY_LEVEL_SHIFT: u32 = 24;
+pub(crate) const ENTRY_FINAL_SHIFT: u32 = 28;
 /// The largest padded photon buffer side a packed entry can address (12 bits of x and y).
 pub const MAX_SIDE: u32 = 1 << ENTRY_Y_SHIFT;
 

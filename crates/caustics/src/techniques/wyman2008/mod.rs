@@ -9,7 +9,7 @@
 //!
 //! Shaders: `shaders_glsl/wyman2008/`.
 
-mod entry;
+pub(crate) mod entry;
 pub mod photon_copy;
 mod pyramid;
 pub mod settings;

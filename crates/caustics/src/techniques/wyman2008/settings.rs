@@ -2,6 +2,11 @@
 //! bench configs and the command line name them, and the technique's dumps (a leaf module: the
 //! scene description reads it).
 
+/// Layers of the multi-resolution caustic map (Wyman 2008 Sec. 3.3, Eq. 3): a splat of
+/// diameter D goes to layer trunc(log2(max(1, D/5))), the last layer taking the rest
+/// (`MULTIRES_LEVELS` in `shaders_glsl/common/caustics.glsl`).
+pub const MULTIRES_LEVELS: u32 = 4;
+
 use super::super::value_enum::value_enum;
 use vkcore::{CompactionPath, Feature};
 

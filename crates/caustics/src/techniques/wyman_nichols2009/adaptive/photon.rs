@@ -5,9 +5,9 @@
 use bytemuck::{Pod, Zeroable};
 
 /// Bit offsets of y and the level in a packed cell (x in bits 0-13), as in the GLSL.
-const CELL_Y_SHIFT: u32 = 14;
-const CELL_LEVEL_SHIFT: u32 = 28;
-const CELL_MASK: u32 = (1 << CELL_Y_SHIFT) - 1;
+pub(crate) const CELL_Y_SHIFT: u32 = 14;
+pub(crate) const CELL_LEVEL_SHIFT: u32 = 28;
+pub(crate) const CELL_MASK: u32 = (1 << CELL_Y_SHIFT) - 1;
 /// Bytes of a list entry (a packed cluster).
 pub const CLUSTER_BYTES: u64 = 4;
 /// Bytes of a cluster's hits (the xfb path's first kernel of a max-error step, Sec. 4.1): a

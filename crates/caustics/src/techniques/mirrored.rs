@@ -1,0 +1,70 @@
+//! Constants written twice, in Rust and in GLSL (`#define`s the shaders share), checked equal:
+//! a change on one side alone fails here rather than as a wrong image. (The caustic uniforms'
+//! flag bits are checked in `uniforms.rs`, the push constants and bindings by SPIR-V
+//! reflection in vkcore.)
+
+#[cfg(test)]
+mod tests {
+    use crate::gpu::{MATERIAL_DIFFUSE, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, MAX_LIGHTS};
+    use crate::techniques::trendall_stewart2000::uniforms::MAX_SOURCES;
+    use crate::techniques::wyman2008::entry::{ENTRY_FINAL_SHIFT, ENTRY_LEVEL_SHIFT, ENTRY_Y_SHIFT};
+    use crate::techniques::wyman2008::settings::MULTIRES_LEVELS;
+    use crate::techniques::wyman_nichols2009::adaptive::photon::{CELL_LEVEL_SHIFT, CELL_MASK, CELL_Y_SHIFT};
+    use crate::techniques::wyman_nichols2009::refractor_layers::MAX_REFRACTORS;
+    use crate::techniques::wyman_nichols2009::settings::TOP_PHOTONS;
+
+    fn shader(file: &str) -> String {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders_glsl").join(file);
+        std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    }
+
+    /// The value of `#define name value` in `file` (a trailing `u` dropped, hex allowed).
+    fn define(file: &str, name: &str) -> u64 {
+        let text = shader(file);
+        let line = text
+            .lines()
+            .find(|l| l.split_whitespace().take(2).eq(["#define", name]))
+            .unwrap_or_else(|| panic!("{file}: no #define {name}"));
+        let v = line.split_whitespace().nth(2).unwrap_or_default().trim_end_matches('u');
+        match v.strip_prefix("0x") {
+            Some(hex) => u64::from_str_radix(hex, 16),
+            None => v.parse(),
+        }
+        .unwrap_or_else(|e| panic!("{file}: #define {name} {v}: {e}"))
+    }
+
+    #[test]
+    fn the_shaders_defines_equal_their_rust_twins() {
+        let twins: [(&str, &str, u64); 13] = [
+            ("common/caustics.glsl", "MULTIRES_LEVELS", MULTIRES_LEVELS as u64),
+            ("common/frame.glsl", "MAX_LIGHTS", MAX_LIGHTS as u64),
+            ("common/materials.glsl", "MATERIAL_DIFFUSE", MATERIAL_DIFFUSE as u64),
+            ("common/materials.glsl", "MATERIAL_REFRACTIVE", MATERIAL_REFRACTIVE as u64),
+            ("common/materials.glsl", "MATERIAL_REFLECTIVE", MATERIAL_REFLECTIVE as u64),
+            ("trendall_stewart2000/pool.glsl", "MAX_SOURCES", MAX_SOURCES as u64),
+            ("wyman2008/entry.glsl", "ENTRY_Y_SHIFT", ENTRY_Y_SHIFT as u64),
+            ("wyman2008/entry.glsl", "ENTRY_LEVEL_SHIFT", ENTRY_LEVEL_SHIFT as u64),
+            ("wyman2008/entry.glsl", "ENTRY_FINAL_SHIFT", ENTRY_FINAL_SHIFT as u64),
+            ("wyman_nichols2009/adaptive_photon.glsl", "CELL_Y_SHIFT", CELL_Y_SHIFT as u64),
+            ("wyman_nichols2009/adaptive_photon.glsl", "CELL_LEVEL_SHIFT", CELL_LEVEL_SHIFT as u64),
+            ("wyman_nichols2009/adaptive_photon.glsl", "CELL_MASK", CELL_MASK as u64),
+            ("wyman_nichols2009/adaptive.glsl", "TOP_PHOTONS", TOP_PHOTONS as u64),
+        ];
+        let wrong: Vec<String> = twins
+            .iter()
+            .filter_map(|&(file, name, rust)| {
+                let glsl = define(file, name);
+                (glsl != rust).then(|| format!("{file}: #define {name} {glsl}, Rust has {rust}"))
+            })
+            .collect();
+        assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+    }
+
+    #[test]
+    fn the_layered_trace_declares_buffers_for_max_refractors() {
+        // deferred_photon_layers.glsl declares each object's buffers with LAYER_BINDINGS(k).
+        let text = shader("wyman_nichols2009/deferred_photon_layers.glsl");
+        let declared = (0..16).filter(|k| text.contains(&format!("LAYER_BINDINGS({k})"))).count();
+        assert_eq!(declared, MAX_REFRACTORS);
+    }
+}
