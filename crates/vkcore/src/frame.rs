@@ -17,8 +17,12 @@ use ash::vk;
 use std::ops::Range;
 use std::time::Duration;
 
-/// One resource a pass touches and how, other than through a descriptor.
-pub enum Use<'a> {
+/// One resource a pass touches and how, other than through a descriptor: made only by
+/// [`Use::buffer`], [`Use::view`] and [`Use::image`], so it always names a live resource.
+pub struct Use<'a>(Kind<'a>);
+
+/// What a [`Use`] holds (vkcore only: no caller sees the raw image).
+pub(crate) enum Kind<'a> {
     Buffer(&'a Buffer, Access),
     Image {
         image_id: u64,
@@ -33,11 +37,11 @@ pub enum Use<'a> {
 
 impl<'a> Use<'a> {
     pub fn buffer(b: &'a Buffer, access: Access) -> Use<'a> {
-        Use::Buffer(b, access)
+        Use(Kind::Buffer(b, access))
     }
     /// Every subresource the view covers.
     pub fn view(v: &'a ImageView, access: Access) -> Use<'a> {
-        Use::Image {
+        Use(Kind::Image {
             image_id: v.image_id,
             raw: v.image,
             format: v.format,
@@ -45,19 +49,19 @@ impl<'a> Use<'a> {
             mips: v.mips.clone(),
             layers: v.layers.clone(),
             access,
-        }
+        })
     }
     /// The resource's id and the access, to check pushed descriptors against what a pass
     /// declared.
     pub(crate) fn key(&self) -> (u64, Access) {
-        match self {
-            Use::Buffer(b, access) => (b.id, *access),
-            Use::Image { image_id, access, .. } => (*image_id, *access),
+        match &self.0 {
+            Kind::Buffer(b, access) => (b.id, *access),
+            Kind::Image { image_id, access, .. } => (*image_id, *access),
         }
     }
     /// Some mips and layers of an image, without a view.
     pub fn image(i: &'a Image, mips: Range<u32>, layers: Range<u32>, access: Access) -> Use<'a> {
-        Use::Image {
+        Use(Kind::Image {
             image_id: i.id,
             raw: i.raw,
             format: i.desc.format,
@@ -65,7 +69,7 @@ impl<'a> Use<'a> {
             mips,
             layers,
             access,
-        }
+        })
     }
 }
 
@@ -91,8 +95,8 @@ pub(crate) fn sync(ctx: &Context, cb: vk::CommandBuffer, uses: &[Use]) -> Result
     let mut image_barriers = vec![];
     let mut tracker = ctx.shared.tracker.lock().map_err(|_| VkError::Invalid("tracker lock poisoned".into()))?;
     for u in uses {
-        match u {
-            Use::Buffer(b, access) => {
+        match &u.0 {
+            Kind::Buffer(b, access) => {
                 for (_, t) in tracker.access(b.id, std::iter::once(0), supported(ctx, *access), false) {
                     buffer_barriers.push(
                         vk::BufferMemoryBarrier2::default()
@@ -106,7 +110,7 @@ pub(crate) fn sync(ctx: &Context, cb: vk::CommandBuffer, uses: &[Use]) -> Result
                     );
                 }
             }
-            Use::Image { image_id, raw, format, total_layers, mips, layers, access } => {
+            Kind::Image { image_id, raw, format, total_layers, mips, layers, access } => {
                 let subs = mips.clone().flat_map(|m| layers.clone().map(move |l| (m * total_layers + l) as usize));
                 for (i, t) in tracker.access(*image_id, subs, supported(ctx, *access), true) {
                     let (mip, layer) = (i as u32 / total_layers, i as u32 % total_layers);
