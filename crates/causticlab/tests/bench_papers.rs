@@ -4,41 +4,8 @@
 mod common;
 
 use common::bench::*;
-use common::{causticlab, scratch, workspace};
+use common::workspace;
 use serde_json::Value;
-use std::path::PathBuf;
-
-fn quick_run(config: &str) -> (PathBuf, Value) {
-    let root = scratch("bench-quick");
-    let cfg = workspace().join("bench_configs").join(config);
-    let r = causticlab(&[
-        "--validate".as_ref(),
-        "bench".as_ref(),
-        cfg.as_os_str(),
-        "--quick".as_ref(),
-        "--results".as_ref(),
-        root.as_os_str(),
-    ]);
-    assert_clean(&r);
-    let dir = device_dir(&root).join("quick");
-    let stem = config.trim_end_matches(".toml");
-    for ext in ["md", "csv", "json", "svg", "png"] {
-        let f = dir.join(format!("{stem}.{ext}"));
-        assert!(f.is_file(), "{} missing\n{}", f.display(), r.describe());
-    }
-    assert!(root.join("README.md").is_file(), "results index missing");
-    let results = json(&dir.join(format!("{stem}.json")));
-    let cells = results["cells"].as_array().expect("cells").len();
-    assert_eq!(results["run"]["total_cells"].as_u64(), Some(cells as u64), "a quick run measures every cell");
-    assert!(results["run"]["quick"].as_bool() == Some(true));
-    // One CSV row per cell and metric, plus the header.
-    let csv = std::fs::read_to_string(dir.join(format!("{stem}.csv"))).expect("csv");
-    let metrics = results["cells"][0]["metrics"].as_object().expect("metrics").len();
-    assert_eq!(csv.lines().count(), 1 + cells * metrics, "{csv}");
-    let svg = std::fs::read_to_string(dir.join(format!("{stem}.svg"))).expect("svg");
-    assert!(svg.starts_with("<svg") && svg.contains("<polyline"), "plot without lines");
-    (dir, results)
-}
 
 #[test]
 fn quick_wyman2008_table1_times_every_phase_and_copies_only_on_the_copy_path() {
