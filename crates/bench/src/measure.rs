@@ -210,7 +210,7 @@ impl<'a> Runner<'a> {
         } else {
             None
         };
-        let valid_photons = if self.needs_valid_photons() { renderer.valid_photons()? } else { None };
+        let valid_photons = if self.needs_valid_photons() { renderer.valid_photons(None)? } else { None };
         let quality = if self.needs_quality() { Some(self.quality(&mut renderer, &scene)?) } else { None };
         let (photons_emitted, splats_drawn, hierarchy_sizes) =
             (renderer.photons_emitted(), renderer.splats_drawn()?, renderer.list_sizes()?);

@@ -74,7 +74,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     // What made these images, in each EXR header (tev and `exrheader` show it).
     let header = [
         ("causticlab:technique", technique.to_string()),
-        ("causticlab:photons", format!("{}", rendered.photons_emitted)),
+        ("causticlab:photons", format!("{}", rendered.counts.photons_emitted)),
         ("causticlab:photon_buffer", format!("{0}x{0}", scene.caustics.photons)),
         ("causticlab:commit", bench::meta::commit()),
         ("causticlab:device", format!("{} ({})", ctx.info().name, ctx.info().driver_info)),
@@ -100,7 +100,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let mut timings = Timings::new(
         ctx.info(),
         &scene.caustics,
-        rendered.photons_emitted,
+        rendered.counts.photons_emitted,
         &args.scene,
         ctx.validation_enabled(),
         frame_mode.name(),

@@ -53,7 +53,7 @@ fn valid_photons_follow_the_frustum_and_the_caustic_does_not() {
         let mut r =
             Renderer::new(&ctx, &sh, &scene(view, fov, photons), &RendererOptions::default()).expect("renderer");
         r.frame(FrameStep::default()).expect("frame");
-        let valid = r.valid_photons().expect("read back").expect("wd-points has a photon buffer");
+        let valid = r.valid_photons(None).expect("read back").expect("wd-points has a photon buffer");
         let share = valid as f64 / (photons as f64).powi(2);
         let want = disc_share(half);
         println!("{view} {fov}: {valid} valid photons of {photons}^2, share {share:.5}, disc {want:.5}");

@@ -76,7 +76,7 @@ impl<'f, 'a> Pass<'f, 'a> {
         frame.record_pass(&name, &uses, |cmd| {
             if let Some((pipeline, binds)) = &bound {
                 cmd.bind_pipeline(pipeline);
-                cmd.bind(binds)?;
+                cmd.push_descriptors(binds)?;
             }
             record(cmd)
         })

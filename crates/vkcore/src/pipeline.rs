@@ -130,7 +130,8 @@ pub struct Pipeline {
     pub(crate) layout: vk::PipelineLayout,
     set_layout: vk::DescriptorSetLayout,
     pub(crate) bind_point: vk::PipelineBindPoint,
-    pub(crate) bindings: Vec<Binding>,
+    /// Shared with every `Cmd` that binds the pipeline (no copy per pass).
+    pub(crate) bindings: Arc<[Binding]>,
     pub name: String,
 }
 
@@ -271,7 +272,7 @@ impl Pipeline {
                     layout,
                     set_layout,
                     bind_point: vk::PipelineBindPoint::GRAPHICS,
-                    bindings,
+                    bindings: bindings.into(),
                     name: desc.name.clone(),
                 })
             }
@@ -406,7 +407,7 @@ impl Pipeline {
                     layout,
                     set_layout,
                     bind_point: vk::PipelineBindPoint::COMPUTE,
-                    bindings,
+                    bindings: bindings.into(),
                     name: name.into(),
                 })
             }

@@ -12,6 +12,7 @@ use crate::push::PushConstants;
 use crate::query::QueryPool;
 use crate::tracker::Access;
 use ash::vk;
+use std::sync::Arc;
 
 /// Colour and depth targets of a rendering scope. All views must have the same extent.
 pub struct Targets<'a> {
@@ -71,7 +72,7 @@ struct Bound {
     name: String,
     point: vk::PipelineBindPoint,
     layout: vk::PipelineLayout,
-    bindings: Vec<Binding>,
+    bindings: Arc<[Binding]>,
 }
 
 impl<'f> Cmd<'f> {
@@ -191,7 +192,7 @@ impl<'f> Cmd<'f> {
     /// in binding order (checked: `bind.rs`). Each must have been declared by the pass
     /// (`Pass::bind` or `Pass::declare`), or its barrier is missing.
     pub fn bind(&mut self, binds: &[Named]) -> Result<()> {
-        let Bound { name, point, layout, bindings } =
+        let Bound { name, point, bindings, .. } =
             self.bound.as_ref().ok_or_else(|| VkError::Invalid("bind() before bind_pipeline()".into()))?;
         check_binds(name, bindings, binds)?;
         if let Some((n, _)) = binds.iter().find(|(_, b)| !self.declared.contains(&b.to_use(*point).key())) {
@@ -200,6 +201,14 @@ impl<'f> Cmd<'f> {
                  Pass::declare)"
             )));
         }
+        self.push_descriptors(binds)
+    }
+
+    /// Pushes `binds` for the bound pipeline without checking them: `Pass::bind` checked them
+    /// against the pipeline and declared them when the pass was described.
+    pub(crate) fn push_descriptors(&mut self, binds: &[Named]) -> Result<()> {
+        let Bound { point, layout, bindings, .. } =
+            self.bound.as_ref().ok_or_else(|| VkError::Invalid("bind() before bind_pipeline()".into()))?;
         if binds.is_empty() {
             return Ok(());
         }
@@ -224,7 +233,7 @@ impl<'f> Cmd<'f> {
         }
         let (mut ii, mut bi) = (0, 0);
         let mut writes = vec![];
-        // check_binds matched binds[i] to bindings[i].
+        // check_binds matched binds[i] to bindings[i] (here or in Pass::bind).
         for ((_, b), binding) in binds.iter().zip(bindings.iter()) {
             let w = vk::WriteDescriptorSet::default().dst_binding(binding.binding).descriptor_type(binding.kind.vk());
             match b {

@@ -107,9 +107,9 @@ impl<'c> Renderer<'c> {
     }
 
     /// Valid photons of the last frame (see `MeshRenderer::valid_photons`; a pool has none).
-    pub fn valid_photons(&mut self) -> Result<Option<u64>> {
+    pub fn valid_photons(&mut self, read: Option<&ImageF32>) -> Result<Option<u64>> {
         match self {
-            Renderer::Mesh(r) => r.valid_photons(),
+            Renderer::Mesh(r) => r.valid_photons(read),
             Renderer::Pool(_) => Ok(None),
         }
     }

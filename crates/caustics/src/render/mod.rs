@@ -104,8 +104,6 @@ pub struct Rendered {
     pub dumps: Vec<(String, ImageF32)>,
     /// Per-pass GPU timings of every frame.
     pub frames: Vec<FrameReport>,
-    /// Photons emitted per frame, all lights (0 for `none`).
-    pub photons_emitted: u64,
     /// What the last frame drew, read back from the GPU.
     pub counts: Counts,
 }
@@ -113,17 +111,17 @@ pub struct Rendered {
 /// The photon counts of a frame that the bench reports (`bench::metrics`): the same numbers
 /// for the same scene and settings, whatever the frame mode or the code's shape, so a render's
 /// `timings.json` holds them and `causticlab diff` compares them exactly.
-#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
 pub struct Counts {
     /// Photons emitted per frame over all lights.
     pub photons_emitted: u64,
     /// Photon-buffer texels with `valid` set, all lights (photon-buffer techniques only).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub valid_photons: Option<u64>,
     /// Points drawn or compute-splat invocations, all lights.
     pub splats_drawn: u64,
     /// Per light, the traversal's list sizes (`hcm`, `adaptive`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub list_sizes: Option<Vec<Vec<u64>>>,
 }
 
@@ -187,13 +185,16 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
     frames.extend(renderer.finish()?);
     let final_image = renderer.final_image()?;
     let dumps = renderer.dumps(&req.dumps)?;
+    // The photon buffer is read back once: from its dump where one was asked for.
+    let photon_buffer = dumps.iter().find(|(n, _)| n == "photon_buffer").map(|(_, img)| img);
+    let valid_photons = renderer.valid_photons(photon_buffer)?;
     let counts = Counts {
         photons_emitted: renderer.photons_emitted(),
-        valid_photons: renderer.valid_photons()?,
+        valid_photons,
         splats_drawn: renderer.splats_drawn()?,
         list_sizes: renderer.list_sizes()?,
     };
-    Ok(Rendered { final_image, dumps, frames, photons_emitted: counts.photons_emitted, counts })
+    Ok(Rendered { final_image, dumps, frames, counts })
 }
 
 /// The shader folder: `$CAUSTICLAB_SHADERS`, else `shaders_glsl/` found by walking up from the

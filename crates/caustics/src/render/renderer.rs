@@ -671,17 +671,16 @@ impl<'c> MeshRenderer<'c> {
     /// buffer's texels with `valid` set, over all lights), read back from the GPU; `None` where
     /// the technique has no photon buffer. Against [`Self::photons_emitted`] this is the share
     /// of the light's view that the photon view spends on photons (Wyman & Nichols 2009 Table 1).
-    pub fn valid_photons(&mut self) -> Result<Option<u64>> {
+    /// `read`: the `photon_buffer` dump where the caller read it already (it is not read again).
+    pub fn valid_photons(&mut self, read: Option<&ImageF32>) -> Result<Option<u64>> {
         if !self.active || !self.scene.caustics.technique.has_photon_buffer() {
             return Ok(None);
         }
-        let Some(img) = self.dump("photon_buffer")? else { return Ok(None) };
-        let mut valid = 0u64;
-        for layer in img.layers.iter().filter(|l| l.name.as_deref().is_some_and(|n| n.ends_with("position"))) {
-            let c = layer.channels.iter().position(|c| c == "valid").context("photon buffer without `valid`")?;
-            valid += layer.data.chunks_exact(layer.channels.len()).filter(|p| p[c] > 0.5).count() as u64;
+        if let Some(img) = read {
+            return Ok(Some(valid_photons_in(img)?));
         }
-        Ok(Some(valid))
+        let Some(img) = self.dump("photon_buffer")? else { return Ok(None) };
+        Ok(Some(valid_photons_in(&img)?))
     }
 
     /// The hierarchy of `hcm` (None for the other techniques).
@@ -740,6 +739,16 @@ impl<'c> MeshRenderer<'c> {
             None => 0,
         })
     }
+}
+
+/// The texels with `valid` set in a `photon_buffer` dump, over all lights.
+fn valid_photons_in(img: &ImageF32) -> Result<u64> {
+    let mut valid = 0u64;
+    for layer in img.layers.iter().filter(|l| l.name.as_deref().is_some_and(|n| n.ends_with("position"))) {
+        let c = layer.channels.iter().position(|c| c == "valid").context("photon buffer without `valid`")?;
+        valid += layer.data.chunks_exact(layer.channels.len()).filter(|p| p[c] > 0.5).count() as u64;
+    }
+    Ok(valid)
 }
 
 /// Frame and caustic uniforms of `scene`; the caustic pass is switched off when not `active`.

@@ -10,7 +10,7 @@ use crate::gpu::ImageSpaceConstants;
 use crate::techniques::CausticPasses;
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, Blend, Context, Frame, GraphicsDesc, ImageView, Pipeline, ShaderCompiler, Targets, Topology, Use,
+    Access, Blend, Context, Frame, GraphicsDesc, ImageView, Pipeline, ShaderCompiler, Targets, Topology, Use,
 };
 
 /// The photons' point pipeline into a view (`light_space`: into a caustic map).
@@ -47,21 +47,10 @@ pub fn record(
     into: PointsInto,
     constants: ImageSpaceConstants,
 ) -> Result<()> {
-    let (pt, inp) = (c.photons, c.inputs);
+    let pt = c.photons;
     let layer = &into.buffers.layers[into.slot as usize];
     let directions = &into.buffers.directions.view;
-    let mut binds = vec![
-        ("frame", Bind::Uniform(inp.frame_uniforms)),
-        ("caustics", Bind::Uniform(inp.caustic_uniforms)),
-        ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
-        ("photon_direction", Bind::Sampled(&pt.direction.view, inp.nearest)),
-        ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
-        ("view_position", Bind::Sampled(into.geometry.0, inp.nearest)),
-    ];
-    // In light space (`LIGHT_SPACE`) the photons read no normals.
-    if pipeline.declares("view_normal") {
-        binds.push(("view_normal", Bind::Sampled(into.geometry.1, inp.nearest)));
-    }
+    let binds = super::views::photon_view_binds(c, pipeline, into.geometry);
     let clear = if into.clear { Some([0.0; 4]) } else { None };
     f.pass(&into.name)
         .bind(pipeline, binds)

@@ -81,19 +81,8 @@ pub fn record(
     constants: ImageSpaceConstants,
 ) -> Result<()> {
     let (pt, inp) = (c.photons, c.inputs);
-    let mut binds = vec![
-        ("frame", Bind::Uniform(inp.frame_uniforms)),
-        ("caustics", Bind::Uniform(inp.caustic_uniforms)),
-        ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
-        ("photon_direction", Bind::Sampled(&pt.direction.view, inp.nearest)),
-        ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
-        ("view_position", Bind::Sampled(geometry.0, inp.nearest)),
-    ];
-    // In light space (`LIGHT_SPACE`) the quads read no normals; the three pipelines share
-    // their bindings.
-    if pipelines.triangles.declares("view_normal") {
-        binds.push(("view_normal", Bind::Sampled(geometry.1, inp.nearest)));
-    }
+    // The three pipelines share their bindings.
+    let mut binds = super::views::photon_view_binds(c, &pipelines.triangles, geometry);
     binds.push(("receiver_positions", Bind::Sampled(&c.targets.per_light[constants.light as usize].1, inp.nearest)));
     let n = pt.width;
     f.pass(name).bind(&pipelines.triangles, binds.clone()).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(

@@ -8,9 +8,33 @@
 use crate::gpu::formats::COLOR;
 use crate::gpu::{ImageSpaceConstants, Target};
 use crate::scene::Scene;
+use crate::techniques::CausticPasses;
 use anyhow::Result;
 use glam::{Mat4, Vec3, Vec4};
-use vkcore::{Context, ImageDesc, ImageView, ViewKind};
+use vkcore::{Bind, Context, ImageDesc, ImageView, Named, Pipeline, ViewKind};
+
+/// What the photons' points and quads read first (`photons.vert`, `quads.vert`): the uniforms,
+/// the photon buffer and the view's geometry (world position and normal), the normals only
+/// where `pipeline` declares them (light space, `LIGHT_SPACE`, reads none).
+pub fn photon_view_binds<'a>(
+    c: &CausticPasses<'a>,
+    pipeline: &Pipeline,
+    geometry: (&'a ImageView, &'a ImageView),
+) -> Vec<Named<'a>> {
+    let (pt, inp) = (c.photons, c.inputs);
+    let mut binds = vec![
+        ("frame", Bind::Uniform(inp.frame_uniforms)),
+        ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+        ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+        ("photon_direction", Bind::Sampled(&pt.direction.view, inp.nearest)),
+        ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
+        ("view_position", Bind::Sampled(geometry.0, inp.nearest)),
+    ];
+    if pipeline.declares("view_normal") {
+        binds.push(("view_normal", Bind::Sampled(geometry.1, inp.nearest)));
+    }
+    binds
+}
 
 /// The eye's view as the eye render made it this frame.
 #[derive(Clone, Copy)]
