@@ -42,4 +42,26 @@ float texel_solid_angle(vec2 ndc, vec4 plane) {
     float s = 2.0 * plane.x / plane.y;
     return s * s / pow(1.0 + dot(xy, xy), 1.5);
 }
+
+// Where point `p` lands in light `cl`'s caustic map, in texels (texel (i, j) spans [i, i + 1) x
+// [j, j + 1)); false behind the light, where `t` means nothing. Every caustic technique's
+// photons, splats and clusters land by this projection.
+bool caustic_map_texel(CausticLight cl, vec3 p, out vec2 t) {
+    vec4 clip = cl.caustic_view_proj * vec4(p, 1.0);
+    t = (clip.xy / clip.w * 0.5 + 0.5) * cl.caustic_plane.y;
+    return clip.w > 0.0;
+}
+
+// The varying splat radius "based on the maximum distance between adjacent photons rather than
+// area" (Wyman 2008 Sec. 3.3): the largest distance in caustic-map texels from a photon's
+// `centre` to where its adjacent photons landed (neighbour k at `t[k]` where bit k of
+// `landed` is set). Wyman 2008's photon buffer and Wyman & Nichols 2009's adaptive photons
+// (Sec. 3.2.2) both use it.
+float max_distance_radius(vec2 centre, vec2 t[4], uint landed) {
+    float dmax = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        if ((landed & (1u << uint(k))) != 0u) dmax = max(dmax, distance(t[k], centre));
+    }
+    return dmax;
+}
 #endif

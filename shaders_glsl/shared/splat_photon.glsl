@@ -76,10 +76,9 @@ struct Splat {
 bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
     s = Splat(vec4(0.0), vec2(0.0), 0.0, 1.0, 0);
     if (pos.w < 0.5) return false;
-    vec4 clip = cl.caustic_view_proj * vec4(pos.xyz, 1.0);
-    if (clip.w <= 0.0) return false;
+    vec2 centre;
+    if (!caustic_map_texel(cl, pos.xyz, centre)) return false;
     float m = cl.caustic_plane.y;
-    vec2 centre = (clip.xy / clip.w * 0.5 + 0.5) * m;
     float r = caustics.splat.x;
 #ifdef VARYING_SPLATS
     if (caustics.splat.w != SPLAT_FIXED) {

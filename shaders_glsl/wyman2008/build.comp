@@ -27,10 +27,8 @@ layout(binding = 9, rgba32f) uniform writeonly image2D out_texels;
 // The caustic-map texel photon position `p` lands in (as in photons/splat.vert); photons
 // behind the light's caustic frustum get texel (-1, -1).
 vec2 caustic_texel(vec3 p, uint l) {
-    CausticLight cl = caustics.lights[l];
-    vec4 clip = cl.caustic_view_proj * vec4(p, 1.0);
-    if (clip.w <= 0.0) return vec2(-1.0);
-    return floor((clip.xy / clip.w * 0.5 + 0.5) * cl.caustic_plane.y);
+    vec2 t;
+    return caustic_map_texel(caustics.lights[l], p, t) ? floor(t) : vec2(-1.0);
 }
 
 void main() {

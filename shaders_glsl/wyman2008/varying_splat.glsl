@@ -20,18 +20,17 @@ bool adjacent_photon(ivec2 q, out vec3 p) {
     return v.w > 0.5;
 }
 
-// The approximation "based on the maximum distance between adjacent photons rather than area".
-float max_distance_radius(ivec2 t, vec2 centre, CausticLight cl) {
+// The approximation "based on the maximum distance between adjacent photons rather than area",
+// over the photon buffer's four neighbours of texel `t`.
+float photon_buffer_max_distance(ivec2 t, vec2 centre, CausticLight cl) {
     const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
-    float dmax = 0.0;
+    vec2 landed_at[4];
+    uint landed = 0u;
     for (int k = 0; k < 4; ++k) {
         vec3 p;
-        if (!adjacent_photon(t + offsets[k], p)) continue;
-        vec4 clip = cl.caustic_view_proj * vec4(p, 1.0);
-        if (clip.w <= 0.0) continue;
-        dmax = max(dmax, distance((clip.xy / clip.w * 0.5 + 0.5) * cl.caustic_plane.y, centre));
+        if (adjacent_photon(t + offsets[k], p) && caustic_map_texel(cl, p, landed_at[k])) landed |= 1u << uint(k);
     }
-    return dmax;
+    return max_distance_radius(centre, landed_at, landed);
 }
 
 // Eq. 1-2: photon p_i at distance d_i from the light stands for a beam of solid angle w_i (its
@@ -74,7 +73,7 @@ float varying_radius(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) {
     if (entry.z != 0u) return 1.0;
     ivec2 t = ivec2(entry.xy);
     float r = (caustics.settings.w & CAUSTIC_BEAM_AREA) != 0u ? beam_area_radius(t, p, cl)
-                                                              : max_distance_radius(t, centre, cl);
+                                                              : photon_buffer_max_distance(t, centre, cl);
     return max(r, 1.0);
 }
 #endif

@@ -141,12 +141,9 @@ bool create_photon(uvec2 p, uint level, out AdaptivePhoton ph) {
     return true;
 }
 
-// Where photon `ph` lands in light l's caustic map, in texels; false behind the light.
-bool caustic_map_texel(AdaptivePhoton ph, out vec2 t) {
-    CausticLight cl = caustics.lights[constants.light];
-    vec4 clip = cl.caustic_view_proj * vec4(ph.position, 1.0);
-    t = (clip.xy / max(clip.w, 1e-30) * 0.5 + 0.5) * cl.caustic_plane.y;
-    return clip.w > 0.0;
+// Where photon `ph` lands in the light's caustic map, in texels; false behind the light.
+bool photon_texel(AdaptivePhoton ph, out vec2 t) {
+    return caustic_map_texel(caustics.lights[constants.light], ph.position, t);
 }
 
 // Photon i of cluster c: (2x + (i & 1), 2y + (i >> 1)) of level k.
@@ -170,7 +167,7 @@ bool converges(AdaptivePhoton p[4], uint landed, bool all_covered) {
     vec2 first = vec2(-1.0);
     for (int i = 0; i < 4; ++i) {
         vec2 t;
-        if (!caustic_map_texel(p[i], t)) return false;
+        if (!photon_texel(p[i], t)) return false;
         t = floor(t);
         if (any(lessThan(t, vec2(0.0))) || any(greaterThanEqual(t, vec2(m)))) return false;
         if (i > 0 && t != first) return false;
@@ -208,9 +205,10 @@ void with_footprints(uvec3 c, inout AdaptivePhoton p[4], uint landed) {
     int side = int(TOP_PHOTONS << c.z);
     for (uint i = 0u; i < 4u; ++i) {
         vec2 centre;
-        if ((landed & (1u << i)) == 0u || !caustic_map_texel(p[i], centre)) continue;
+        if ((landed & (1u << i)) == 0u || !photon_texel(p[i], centre)) continue;
         ivec2 q = ivec2(photon_of(c, i));
-        float dmax = 0.0;
+        vec2 landed_at[4];
+        uint neighbours = 0u;
         for (int k = 0; k < 4; ++k) {
             ivec2 n = q + offsets[k];
             ivec2 local = n - 2 * ivec2(c.xy);
@@ -223,10 +221,9 @@ void with_footprints(uvec3 c, inout AdaptivePhoton p[4], uint landed) {
                        || !create_photon(uvec2(n), c.z, a)) {
                 continue;
             }
-            vec2 t;
-            if (caustic_map_texel(a, t)) dmax = max(dmax, distance(t, centre));
+            if (photon_texel(a, landed_at[k])) neighbours |= 1u << uint(k);
         }
-        p[i].footprint = dmax;
+        p[i].footprint = max_distance_radius(centre, landed_at, neighbours);
     }
 }
 #endif

@@ -274,7 +274,7 @@ pub struct MetricSpec {
     /// The frame mode its frames run in: `per-pass` (default: one-shot frames, a timestamp pair
     /// around every pass) or `throughput` (a ring of frames in flight, timed per block of frames
     /// and per frame on the GPU; kinds fps, frame_ms and gpu_frame_ms). See
-    /// `caustics::render::frame_mode`.
+    /// `caustics::gpu::frame_mode`.
     #[serde(default)]
     pub mode: Option<String>,
     /// Why some cells may record no pass matching `passes`, e.g. "the instanced

@@ -215,7 +215,7 @@ impl<'a> Runner<'a> {
         let (photons_emitted, splats_drawn, hierarchy_sizes) =
             (renderer.photons_emitted(), renderer.splats_drawn()?, renderer.list_sizes()?);
         let (photon_storage, photon_batches) =
-            (renderer.adaptive().map(|a| a.photon_storage_bytes()), renderer.adaptive().map(|a| a.plan.batches));
+            (renderer.adaptive().map(|a| a.photon_storage_bytes()), renderer.adaptive().map(|a| a.plan().batches));
         let throughput = if throughput {
             // One renderer at a time: the per-pass one's buffers go before the ring's are made.
             drop(renderer);

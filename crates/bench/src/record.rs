@@ -19,7 +19,7 @@ pub struct Timings {
     pub photons_emitted: u64,
     pub scene: String,
     /// `per-pass` (one-shot frames, timestamps around every pass) or `throughput` (a ring of
-    /// frames in flight, one timestamp pair per frame): `caustics::render::frame_mode`.
+    /// frames in flight, one timestamp pair per frame): `caustics::gpu::frame_mode`.
     pub frame_mode: String,
     pub frames: usize,
     pub validation: bool,

@@ -1,4 +1,4 @@
-//! Host time per frame of the frame loop in both frame modes (`caustics::render::frame_mode`):
+//! Host time per frame of the frame loop in both frame modes (`caustics::gpu::frame_mode`):
 //! `sphere_on_plane` with `wd-points` at 256² photons, its own camera, no validation. A
 //! per-pass frame is recorded, submitted and waited for; a throughput frame is recorded and
 //! submitted, the ring waiting for the frame two before it (so in steady state the time per

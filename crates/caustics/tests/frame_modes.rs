@@ -1,4 +1,4 @@
-//! The two frame modes (`caustics::render::frame_mode`) render the same frames: one-shot
+//! The two frame modes (`caustics::gpu::frame_mode`) render the same frames: one-shot
 //! per-pass frames and throughput frames in flight (per-slot uniforms, moved meshes and a pool's
 //! CPU-path fields copied from per-slot staging inside the frame) give the same final image and
 //! caustic map along an animation. A warm throughput frame creates or allocates no Vulkan object

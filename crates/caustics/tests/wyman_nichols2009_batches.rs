@@ -53,7 +53,7 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
     let splatted = r.splats_drawn().expect("splats");
     let a = r.adaptive().expect("adaptive");
     let storage = a.photon_storage_bytes();
-    assert_eq!(storage, a.plan.storage_bytes(), "allocated storage vs the plan's");
+    assert_eq!(storage, a.plan().storage_bytes(), "allocated storage vs the plan's");
     // The plan fits the frame's pass limit by counting its traversal's passes (Sec. 4.3's
     // batches multiply them); the frame must record no more than it counted. One light here.
     let names: Vec<&str> = report.passes.iter().map(|p| p.name.as_str()).collect();
@@ -62,11 +62,11 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
             || n.starts_with("splat.")
     };
     let recorded = names.iter().filter(traversal).count() as u64;
-    assert!(recorded >= 2 * a.plan.batches as u64, "each batch records a traversal and a splat: {names:?}");
+    assert!(recorded >= 2 * a.plan().batches as u64, "each batch records a traversal and a splat: {names:?}");
     assert!(
-        recorded <= a.plan.traversal_passes(),
+        recorded <= a.plan().traversal_passes(),
         "the traversal recorded {recorded} passes, its plan counted {}: {names:?}",
-        a.plan.traversal_passes()
+        a.plan().traversal_passes()
     );
     let others = names.len() as u64 - recorded;
     assert!(others <= OTHER_PASSES as u64, "{others} passes besides the traversal, {OTHER_PASSES} left for them");
@@ -75,7 +75,7 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
         counts: a.level_counts(ctx).expect("counts").remove(0),
         splatted,
         storage,
-        plan: (a.plan.breadth, a.plan.batches),
+        plan: (a.plan().breadth, a.plan().batches),
     }
 }
 
@@ -190,7 +190,7 @@ fn every_batch_is_dumped_and_together_they_are_the_unbatched_traversal() {
         let mut r = Renderer::new(&ctx, &sh, s, &RendererOptions::default()).expect("renderer");
         r.frame(FrameStep::default()).expect("frame");
         let a = r.adaptive().expect("adaptive");
-        let plan = (a.plan.breadth, a.plan.batches);
+        let plan = (a.plan().breadth, a.plan().batches);
         (r.dump("adaptive_lists").expect("dump").expect("the lists"), plan)
     };
     for (path, metric) in

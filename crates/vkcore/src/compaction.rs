@@ -12,7 +12,7 @@ use crate::error::Result;
 use crate::frame::{Frame, Use};
 use crate::pipeline::{GraphicsDesc, Pipeline, Topology, VertexAttribute, VertexLayout};
 use crate::query::QueryPool;
-use crate::recorder::Targets;
+use crate::recorder::{Cmd, Targets};
 use crate::shader::ShaderCompiler;
 use crate::tracker::Access;
 use crate::Feature;
@@ -32,8 +32,42 @@ crate::push_constants! {
 
 /// Bytes per element of the [`Compactor`]'s streams.
 pub const ELEMENT_BYTES: u64 = 16;
-/// Bytes of the compute path's counter (see `shaders_glsl/vkcore/compact_counter.glsl`).
-pub const COUNTER_BYTES: u64 = 48;
+/// Bytes of the compute path's counter ([`AppendCounter`]).
+pub const COUNTER_BYTES: u64 = std::mem::size_of::<AppendCounter>() as u64;
+
+/// The compute path's counter header, `CompactCounter` in
+/// `shaders_glsl/vkcore/compact_counter.glsl`: the append step counts into `count`, then
+/// `compact_finalize.comp` writes the arguments the next step is dispatched or drawn with.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct AppendCounter {
+    /// Elements appended (may exceed `capacity`: overflow is visible).
+    pub count: u32,
+    /// Slots in the output buffer.
+    pub capacity: u32,
+    pub pad: [u32; 2],
+    /// VkDispatchIndirectCommand (x, y, z) over 64-wide groups, w unused.
+    pub dispatch: [u32; 4],
+    /// VkDrawIndirectCommand (vertexCount, instanceCount, firstVertex, firstInstance).
+    pub draw: [u32; 4],
+}
+
+impl AppendCounter {
+    /// Byte offset of [`AppendCounter::dispatch`].
+    pub const DISPATCH_OFFSET: u64 = std::mem::offset_of!(AppendCounter, dispatch) as u64;
+    /// Byte offset of [`AppendCounter::draw`].
+    pub const DRAW_OFFSET: u64 = std::mem::offset_of!(AppendCounter, draw) as u64;
+
+    /// A stream of `count` elements already in place (a seed, uploaded once), with the arguments
+    /// finalize would have written.
+    pub fn full(count: u32) -> AppendCounter {
+        // As compact_finalize.comp: at least one group, rows of 65535 groups.
+        let groups = count.div_ceil(64);
+        let x = groups.min(65535);
+        let y = if x == 0 { 1 } else { groups.div_ceil(x) };
+        AppendCounter { count, capacity: count, pad: [0; 2], dispatch: [x.max(1), y, 1, 0], draw: [count, 1, 0, 0] }
+    }
+}
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CompactionPath {
@@ -54,16 +88,42 @@ impl CompactionPath {
 
 /// A compacted stream on the GPU: the elements and their GPU-side count.
 pub struct CompactStream {
-    pub path: CompactionPath,
-    pub data: Buffer,
+    path: CompactionPath,
+    data: Buffer,
     /// xfb: the transform-feedback counter (bytes written, u32 at 0); compute: an append counter.
-    pub counter: Buffer,
-    pub capacity: u32,
+    counter: Buffer,
+    capacity: u32,
     /// Bytes per element (the xfb counter counts bytes).
-    pub element_bytes: u64,
+    element_bytes: u64,
 }
 
 impl CompactStream {
+    /// The path that writes the stream.
+    pub fn path(&self) -> CompactionPath {
+        self.path
+    }
+
+    /// The elements (`capacity` of `element_bytes` each).
+    pub fn data(&self) -> &Buffer {
+        &self.data
+    }
+
+    /// xfb: the transform-feedback counter (bytes written, u32 at 0); compute: the append
+    /// counter's header (see [`COUNTER_BYTES`]).
+    pub fn counter(&self) -> &Buffer {
+        &self.counter
+    }
+
+    /// The most elements it holds.
+    pub fn capacity(&self) -> u32 {
+        self.capacity
+    }
+
+    /// Bytes per element (the xfb counter counts bytes).
+    pub fn element_bytes(&self) -> u64 {
+        self.element_bytes
+    }
+
     /// A stream of `capacity` elements of [`ELEMENT_BYTES`] (the [`Compactor`]'s).
     pub fn new(ctx: &Context, name: &str, path: CompactionPath, capacity: u32) -> Result<CompactStream> {
         Self::with_element_bytes(ctx, name, path, capacity, ELEMENT_BYTES)
@@ -86,13 +146,115 @@ impl CompactStream {
         Ok(CompactStream { path, data, counter, capacity, element_bytes })
     }
 
+    /// Uploads the counter of a stream whose first `count` elements are in place (a seed, its
+    /// elements uploaded once): transform feedback's byte count, or the compute path's
+    /// [`AppendCounter::full`].
+    pub fn upload_seeded_counter(&self, ctx: &Context, count: u32) -> Result<()> {
+        let mut header = AppendCounter::full(count);
+        header.capacity = self.capacity;
+        if self.path == CompactionPath::TransformFeedback {
+            header.count = count * self.element_bytes as u32;
+        }
+        ctx.upload_buffer(&self.counter, bytemuck::bytes_of(&header))
+    }
+
+    /// Records the zeroing of the count before a step appends (outside rendering; the pass
+    /// declares [`CompactStream::reset_use`]): transform feedback's byte count, or the compute
+    /// path's count with the capacity (the arguments are finalize's to write).
+    pub fn reset(&self, cmd: &mut Cmd) -> Result<()> {
+        match self.path {
+            CompactionPath::TransformFeedback => {
+                cmd.fill_buffer(&self.counter, 0);
+                Ok(())
+            }
+            CompactionPath::Compute => {
+                let header: Vec<u8> = [0u32, self.capacity, 0, 0].iter().flat_map(|x| x.to_le_bytes()).collect();
+                cmd.update_buffer(&self.counter, 0, &header)
+            }
+        }
+    }
+
+    /// What [`CompactStream::reset`] writes.
+    pub fn reset_use(&self) -> Use<'_> {
+        Use::buffer(&self.counter, Access::TRANSFER_WRITE)
+    }
+
+    /// The counter read as indirect arguments (by [`CompactStream::draw`] and
+    /// [`CompactStream::dispatch`]).
+    pub fn arguments_use(&self) -> Use<'_> {
+        Use::buffer(&self.counter, Access::INDIRECT)
+    }
+
+    /// Draws one vertex per element (instanced once): from the byte count on the xfb path, from
+    /// [`AppendCounter::draw`] on the compute path (after finalize). The pass declares
+    /// [`CompactStream::arguments_use`].
+    pub fn draw(&self, cmd: &mut Cmd) -> Result<()> {
+        match self.path {
+            CompactionPath::TransformFeedback => {
+                cmd.draw_indirect_byte_count(1, &self.counter, self.element_bytes as u32)
+            }
+            CompactionPath::Compute => cmd.draw_indirect(&self.counter, AppendCounter::DRAW_OFFSET),
+        }
+    }
+
+    /// Dispatches 64-wide groups over the elements, from [`AppendCounter::dispatch`] (compute
+    /// path, after finalize). The pass declares [`CompactStream::arguments_use`].
+    pub fn dispatch(&self, cmd: &mut Cmd) -> Result<()> {
+        cmd.dispatch_indirect(&self.counter, AppendCounter::DISPATCH_OFFSET)
+    }
+
+    /// The xfb path's step from `from` into this stream, inside rendering (the pass declares
+    /// [`CompactStream::capture_uses`]): a point per element of `from`, whose elements are
+    /// vertex buffer 0 with `from.as_vertices` (else the kernel reads them by index), all of
+    /// them when `from.seeded` (drawn by number), else as many as its counter says; captured
+    /// from the start, or with `append` after what earlier steps wrote. This stream's counter
+    /// holds the bytes written afterwards.
+    pub fn capture(&self, cmd: &mut Cmd, from: StepInput, append: bool) -> Result<()> {
+        if from.as_vertices {
+            cmd.bind_vertex_buffer(&from.stream.data, 0)?;
+        }
+        cmd.bind_xfb_buffers(&[&self.data])?;
+        if append {
+            cmd.begin_xfb(&[&self.counter], true)?;
+        } else {
+            // No counter buffers at begin: capture starts at offset 0.
+            cmd.begin_xfb(&[], false)?;
+        }
+        if from.seeded {
+            cmd.draw(from.stream.capacity, 1, 0, 0);
+        } else {
+            from.stream.draw(cmd)?;
+        }
+        cmd.end_xfb(&[&self.counter])
+    }
+
+    /// What [`CompactStream::capture`] reads of `from` and writes.
+    pub fn capture_uses<'a>(&'a self, from: StepInput<'a>) -> Vec<Use<'a>> {
+        let mut uses = vec![];
+        if from.as_vertices {
+            uses.push(Use::buffer(&from.stream.data, Access::VERTEX_INPUT));
+        }
+        if !from.seeded {
+            uses.push(from.stream.arguments_use());
+        }
+        uses.push(Use::buffer(&self.data, Access::XFB_WRITE));
+        uses.push(Use::buffer(&self.counter, Access::XFB_COUNTER));
+        uses
+    }
+
+    /// The elements a counter's first word stands for (the xfb path counts bytes; the compute
+    /// path may count past the capacity).
+    pub fn elements(&self, first_word: u32) -> u32 {
+        match self.path {
+            CompactionPath::TransformFeedback => (first_word as u64 / self.element_bytes) as u32,
+            CompactionPath::Compute => first_word.min(self.capacity),
+        }
+    }
+
     /// Reads the element count back (for tests and statistics, never between steps).
     pub fn count(&self, ctx: &Context) -> Result<u32> {
         let c: Vec<u32> = ctx.read_buffer_as(&self.counter)?;
-        Ok(match self.path {
-            CompactionPath::TransformFeedback => (c[0] as u64 / self.element_bytes) as u32,
-            CompactionPath::Compute => c[0].min(self.capacity),
-        })
+        Ok(self.elements(c[0]))
     }
 
     /// Reads the kept elements back as `T`s (`T` of `element_bytes` bytes).
@@ -116,6 +278,16 @@ impl CompactStream {
     }
 }
 
+/// What one step of a compacted traversal reads (see [`CompactStream::capture`]).
+#[derive(Clone, Copy)]
+pub struct StepInput<'a> {
+    pub stream: &'a CompactStream,
+    /// Every element is in place (a seed): drawn by number, not from the counter.
+    pub seeded: bool,
+    /// The elements are vertex buffer 0 (else the kernel reads them by index).
+    pub as_vertices: bool,
+}
+
 /// Where a compaction step's input comes from.
 pub enum Source<'a> {
     /// The first `n` elements of a buffer.
@@ -128,7 +300,7 @@ pub struct Compactor {
     pub path: CompactionPath,
     xfb: Option<Pipeline>,
     append: Option<Pipeline>,
-    finalize: Option<Pipeline>,
+    finalize: Option<Finalize>,
     dummy_counter: Option<Buffer>,
 }
 
@@ -164,8 +336,7 @@ impl Compactor {
                     "compact.append",
                     &shaders.compile("vkcore/compact_append.comp", &defines)?,
                 )?;
-                let finalize =
-                    Pipeline::compute(ctx, "compact.finalize", &shaders.compile("vkcore/compact_finalize.comp", &[])?)?;
+                let finalize = Finalize::new(ctx, shaders, "compact.finalize")?;
                 let dummy = ctx.buffer_with_data("compact dummy counter", &[0u8; COUNTER_BYTES as usize])?;
                 Ok(Compactor {
                     path,
@@ -225,11 +396,7 @@ impl Compactor {
         let (Some(append), Some(finalize), Some(dummy)) = (&self.append, &self.finalize, &self.dummy_counter) else {
             return Err(crate::VkError::Invalid("compactor has no pipelines".into()));
         };
-        let header: Vec<u8> = [0u32, out.capacity, 0, 0].iter().flat_map(|x| x.to_le_bytes()).collect();
-        frame
-            .pass(&format!("{name}.reset"))
-            .uses([Use::buffer(&out.counter, Access::TRANSFER_WRITE)])
-            .record(|cmd| cmd.update_buffer(&out.counter, 0, &header))?;
+        frame.pass(&format!("{name}.reset")).uses([out.reset_use()]).record(|cmd| out.reset(cmd))?;
         let (input, in_counter, n, indirect) = match &src {
             Source::Array(b, n) => (*b, dummy, *n, false),
             Source::Stream(s) => (&s.data, &s.counter, 0, true),
@@ -244,8 +411,8 @@ impl Compactor {
         let arguments = indirect.then(|| Use::buffer(in_counter, Access::INDIRECT));
         frame.pass(name).bind(append, binds).uses(arguments).record(|cmd| {
             cmd.push(&CompactConstants { n, use_in_count: indirect as u32, capacity: out.capacity })?;
-            if indirect {
-                cmd.dispatch_indirect(in_counter, 16)?;
+            if let Source::Stream(s) = &src {
+                s.dispatch(cmd)?;
             } else {
                 let groups = n.div_ceil(64);
                 let x = groups.clamp(1, 65535);
@@ -253,12 +420,25 @@ impl Compactor {
             }
             Ok(())
         })?;
-        frame.pass(&format!("{name}.finalize")).bind(finalize, [("Counter", Bind::Buffer(&out.counter))]).record(
-            |cmd| {
-                cmd.dispatch(1, 1, 1);
-                Ok(())
-            },
-        )
+        finalize.record(frame, &format!("{name}.finalize"), out)
+    }
+}
+
+/// The compute path's finalize kernel (`compact_finalize.comp`): after a step appended to a
+/// stream, writes the [`AppendCounter`] arguments the next step is dispatched or drawn with.
+pub struct Finalize(Pipeline);
+
+impl Finalize {
+    pub fn new(ctx: &Context, shaders: &ShaderCompiler, name: &str) -> Result<Finalize> {
+        Ok(Finalize(Pipeline::compute(ctx, name, &shaders.compile("vkcore/compact_finalize.comp", &[])?)?))
+    }
+
+    /// One pass `name` over `stream`'s counter.
+    pub fn record(&self, frame: &mut Frame, name: &str, stream: &CompactStream) -> Result<()> {
+        frame.pass(name).bind(&self.0, [("Counter", Bind::Buffer(&stream.counter))]).record(|cmd| {
+            cmd.dispatch(1, 1, 1);
+            Ok(())
+        })
     }
 }
 

@@ -30,7 +30,9 @@ mod transfer;
 pub use ash::vk::Format;
 pub use bind::{Bind, Named};
 pub use buffer::{Buffer, Memory};
-pub use compaction::{CompactConstants, CompactStream, CompactionPath, Compactor, Source};
+pub use compaction::{
+    AppendCounter, CompactConstants, CompactStream, CompactionPath, Compactor, Finalize, Source, StepInput,
+};
 
 pub use context::{Context, ContextOptions};
 pub use counters::Counters;

@@ -3,7 +3,7 @@
 
 mod common;
 use common::*;
-use vkcore::{CompactStream, CompactionPath, Compactor, FrameOptions, QueryPool, Source};
+use vkcore::{AppendCounter, CompactStream, CompactionPath, Compactor, FrameOptions, QueryPool, Source};
 
 const SIZES: [u32; 6] = [1, 27, 64, 2049, 100_003, 0];
 
@@ -36,6 +36,15 @@ fn run(path: CompactionPath, n: u32) -> Outcome {
     assert!(report.pass("compact.step1").is_some());
     let out1 = s1.read(&ctx).unwrap();
     let out2 = s2.read(&ctx).unwrap();
+    if path == CompactionPath::Compute {
+        // The Rust twin of compact_counter.glsl reads what finalize wrote: the count, then
+        // VkDispatchIndirectCommand over 64-wide groups (at least one) and VkDrawIndirectCommand.
+        let header: AppendCounter = ctx.read_buffer_as::<AppendCounter>(s1.counter()).unwrap()[0];
+        let k = out1.len() as u32;
+        assert_eq!((header.count, header.capacity), (k, n.max(1)), "n = {n}");
+        assert_eq!(header.dispatch, [k.div_ceil(64).max(1), 1, 1, 0], "n = {n}");
+        assert_eq!(header.draw, [k, 1, 0, 0], "n = {n}");
+    }
     let q = pool.map(|p| p.read_xfb().unwrap()[0]);
     drop((c1, c2, s1, s2, in_buf));
     assert_no_validation_messages(&ctx);
@@ -98,4 +107,31 @@ fn xfb_path_without_transform_feedback_names_the_feature() {
     let msg = err.to_string();
     assert!(msg.contains("transform_feedback") && msg.contains("VK_EXT_transform_feedback"), "got: {msg}");
     assert_no_validation_messages(&ctx);
+}
+
+/// A seed (elements uploaded once, `upload_seeded_counter`) feeds a GPU-driven step on both
+/// paths: the xfb path draws it from its byte count, the compute path dispatches it from the
+/// arguments of [`AppendCounter::full`].
+#[test]
+fn a_seeded_stream_feeds_a_step_on_both_paths() {
+    for path in [CompactionPath::TransformFeedback, CompactionPath::Compute] {
+        let (ctx, shaders) = context();
+        let n = 300;
+        let data = input(n, 7);
+        let seed = CompactStream::new(&ctx, "seed", path, n).unwrap();
+        ctx.upload_buffer(seed.data(), bytemuck::cast_slice(&data)).unwrap();
+        seed.upload_seeded_counter(&ctx, n).unwrap();
+        assert_eq!(seed.count(&ctx).unwrap(), n, "{path:?}");
+        let out = CompactStream::new(&ctx, "out", path, n).unwrap();
+        let c = Compactor::new(&ctx, &shaders, path, STEP1).unwrap();
+        let mut f = ctx.frame(FrameOptions::default()).unwrap();
+        c.record(&mut f, "compact.seeded", Source::Stream(&seed), &out, None).unwrap();
+        f.submit().unwrap();
+        let mut got = out.read(&ctx).unwrap();
+        got.sort();
+        let want: Vec<[u32; 4]> = data.iter().copied().filter(|v| v[3] != 0).collect();
+        assert_eq!(got, want, "{path:?}");
+        drop((c, seed, out));
+        assert_no_validation_messages(&ctx);
+    }
 }

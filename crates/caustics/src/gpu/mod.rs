@@ -1,8 +1,10 @@
 //! What every pass shares on the GPU, below both the eye render (`crate::render`) and the
 //! caustic techniques (`crate::techniques`): the scene's meshes and uniforms (twins of
-//! `shaders_glsl/common/`), render targets, their formats, and pipelines over meshes.
+//! `shaders_glsl/common/`), render targets, their formats, pipelines over meshes, and the frame
+//! modes both record in.
 
 pub mod formats;
+pub mod frame_mode;
 pub mod mesh_pipeline;
 pub mod pass_name;
 pub mod push;

@@ -3,7 +3,8 @@
 //! techniques); a pool scene (`[pool]`) by Trendall & Stewart 2000's `PoolRenderer`, which has no
 //! photons, meshes or shadow maps.
 
-use super::renderer::{FrameStep, MeshRenderer, RendererOptions};
+use super::renderer::{MeshRenderer, RendererOptions};
+use super::FrameStep;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::trendall_stewart2000::{self as ts, PoolRenderer};

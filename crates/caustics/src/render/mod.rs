@@ -5,16 +5,15 @@
 mod dispatch;
 mod dumps;
 mod eye;
-pub mod frame_mode;
 pub mod memory;
 pub mod pipelines;
 mod renderer;
 pub mod soak;
 pub mod targets;
 
+pub use crate::gpu::frame_mode::{FrameMode, FrameStep};
 pub use dispatch::Renderer;
-pub use frame_mode::FrameMode;
-pub use renderer::{FrameStep, MeshRenderer, RendererOptions};
+pub use renderer::{MeshRenderer, RendererOptions};
 
 use crate::image_io::ImageF32;
 use crate::scene::Scene;

@@ -2,13 +2,12 @@
 //! benchmark can render many frames of an animation (uniforms and moving meshes updated per
 //! frame) and time each one. (Pool scenes have their own: see `super::dispatch`.)
 
-use super::frame_mode::{FrameMode, Slots};
 use super::{dumps, eye, pipelines, targets};
+use crate::gpu::frame_mode::{FrameMode, FrameStep, Slots};
 use crate::gpu::{self, setup, Stage};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::shah2007::VertexPhotons;
-use crate::techniques::shared::ListKind;
 use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
 use crate::techniques::wyman2008::{self, Hierarchy};
 use crate::techniques::wyman_davis2006::{EyeView, ImageSpace};
@@ -25,18 +24,8 @@ use vkcore::{Access, Buffer, Context, Filter, Frame, FrameOptions, FrameReport, 
 pub struct RendererOptions {
     /// Copy the photon buffer into a vertex array before splatting (Wyman 2008 Table 1-2).
     pub photon_copy: Option<CopyType>,
-    /// One-shot frames timed pass by pass, or a ring of frames in flight (`super::frame_mode`).
+    /// One-shot frames timed pass by pass, or a ring of frames in flight (`crate::gpu::frame_mode`).
     pub frame_mode: FrameMode,
-}
-
-/// What one frame does.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct FrameStep {
-    /// Keep the previous frame's photon buffer (static lighting); ignored on the first frame,
-    /// after a pose moved the lights or meshes, and with more than one light.
-    pub reuse_photons: bool,
-    /// Pipeline-statistics queries around every pass (where the device has them).
-    pub pipeline_statistics: bool,
 }
 
 struct CausticResources {
@@ -212,8 +201,8 @@ impl<'c> MeshRenderer<'c> {
             let compute_splat = if settings.splat_path == SplatPath::Compute {
                 let (side, layers) = (settings.caustic_map_resolution, settings.caustic_levels());
                 let list = match (&hierarchy, &adaptive) {
-                    (Some(h), _) => Some((ListKind::HierarchyEntries, h.path)),
-                    (None, Some(a)) => Some((ListKind::AdaptivePhotons, a.path)),
+                    (Some(h), _) => Some(h.splat_list()),
+                    (None, Some(a)) => Some(a.splat_list()),
                     (None, None) => None,
                 };
                 Some(techniques::ComputeSplat::new(ctx, shaders, side, layers, list)?)
@@ -473,7 +462,7 @@ impl<'c> MeshRenderer<'c> {
     fn caustic_passes<'a>(
         &'a self,
         c: &'a CausticResources,
-        inputs: &'a techniques::CausticInputs<'a>,
+        inputs: &'a techniques::FrameInputs<'a>,
     ) -> techniques::CausticPasses<'a> {
         techniques::CausticPasses {
             pipelines: &c.pipelines,
@@ -483,8 +472,8 @@ impl<'c> MeshRenderer<'c> {
         }
     }
 
-    fn caustic_inputs<'a>(&'a self, c: &'a CausticResources) -> techniques::CausticInputs<'a> {
-        techniques::CausticInputs {
+    fn caustic_inputs<'a>(&'a self, c: &'a CausticResources) -> techniques::FrameInputs<'a> {
+        techniques::FrameInputs {
             frame_uniforms: &self.uniforms[self.slot],
             caustic_uniforms: &self.caustic_uniforms[self.slot],
             meshes: &self.meshes,
@@ -494,6 +483,7 @@ impl<'c> MeshRenderer<'c> {
             nearest: &self.nearest,
             spot_textures: &self.targets.spot_textures.view,
             linear: &self.linear,
+            receiver_positions: &self.caustic_targets.receiver_positions.view,
         }
     }
 
@@ -580,7 +570,7 @@ impl<'c> MeshRenderer<'c> {
                     }
                     ("splats", Some(h)) => {
                         let footprints = c.footprints.as_ref().context("no splat footprints pipeline")?;
-                        let inputs = self.caustic_inputs(c).pass_inputs();
+                        let inputs = self.caustic_inputs(c);
                         splats.push(footprints.read(self.ctx, h, &inputs, &c.photons, l)?);
                         continue;
                     }
@@ -630,13 +620,13 @@ impl<'c> MeshRenderer<'c> {
         a: &AdaptiveCaustics,
         l: u32,
     ) -> Result<wn2009::adaptive::LightLists> {
-        if !a.plan.batched() {
+        if !a.plan().batched() {
             return a.read_lists(self.ctx, None);
         }
         let inputs = self.caustic_inputs(c);
         let passes = self.caustic_passes(c, &inputs);
         let mut lists = vec![];
-        let parts = std::iter::once(Part::Breadth).chain((0..a.plan.batches).map(Part::Batch));
+        let parts = std::iter::once(Part::Breadth).chain((0..a.plan().batches).map(Part::Batch));
         for part in parts {
             let mut f = self.ctx.frame(FrameOptions::default())?;
             techniques::record_adaptive_part(&mut f, &passes, a, l, part)?;

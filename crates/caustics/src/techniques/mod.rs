@@ -30,8 +30,7 @@ pub mod wyman_davis2006;
 pub mod wyman_nichols2009;
 
 pub use record::{
-    record_adaptive_part, record_caustics, record_cleared, record_light_space, CausticFrame, CausticInputs,
-    CausticPasses,
+    record_adaptive_part, record_caustics, record_cleared, record_light_space, CausticFrame, CausticPasses, FrameInputs,
 };
 pub use settings::{CausticOverrides, CausticSettings};
 pub use shared::{

@@ -16,7 +16,7 @@ use anyhow::Result;
 use vkcore::Frame;
 
 pub use super::shared::splat::record_cleared;
-pub use super::shared::{CausticInputs, CausticPasses};
+pub use super::shared::{CausticPasses, FrameInputs};
 
 /// What one frame records beyond the splat.
 #[derive(Clone, Copy, Default)]
@@ -53,7 +53,7 @@ pub fn record_light_space(f: &mut Frame, c: &CausticPasses, l: u32, frame: Caust
     if let Some(a) = frame.adaptive {
         // No photon buffer and no back-face pass: the geometry buffers hold the back faces.
         photon_buffer::record_receiver_positions(f, c, l)?;
-        return a.record_traversal(f, &adaptive_inputs(c), l, None);
+        return a.record_traversal(f, c.inputs, l, None);
     }
     match (frame.vertex_photons, frame.deferred_photons) {
         (Some(vp), _) => {
@@ -76,7 +76,7 @@ pub fn record_light_space(f: &mut Frame, c: &CausticPasses, l: u32, frame: Caust
         copy.record(f, pt, l)?;
     }
     if let Some(h) = frame.hierarchy {
-        h.record_traversal(f, &inp.pass_inputs(), pt, l)?;
+        h.record_traversal(f, inp, pt, l)?;
     }
     Ok(())
 }
@@ -88,9 +88,9 @@ pub fn record_adaptive_part(f: &mut Frame, c: &CausticPasses, a: &AdaptiveCausti
     match part {
         Part::Breadth => {
             photon_buffer::record_receiver_positions(f, c, l)?;
-            a.record_breadth(f, &adaptive_inputs(c), l, None)?;
+            a.record_breadth(f, c.inputs, l, None)?;
         }
-        Part::Batch(b) => a.record_batch(f, &adaptive_inputs(c), l, b, None)?,
+        Part::Batch(b) => a.record_batch(f, c.inputs, l, b, None)?,
     }
     Ok(())
 }
@@ -102,17 +102,17 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
             // Adaptive caustic maps splat batch after batch inside their traversal (Sec. 4.3).
             let cmap = &ct.per_light[l as usize].0;
             let splat = adaptive::Splat {
-                passes: inp.pass_inputs(),
+                inputs: inp,
                 compute: frame.compute_splat,
                 photon_targets: pt,
                 cmap,
                 layers: ct.levels,
             };
-            if frame.reuse_photons && !a.plan.batched() {
+            if frame.reuse_photons && !a.plan().batched() {
                 a.record_splat_batch(f, &splat, l, crate::gpu::BatchPart::Whole, true, true)?;
             } else {
                 photon_buffer::record_receiver_positions(f, c, l)?;
-                a.record_traversal(f, &adaptive_inputs(c), l, Some(&splat))?;
+                a.record_traversal(f, c.inputs, l, Some(&splat))?;
             }
             continue;
         }
@@ -124,11 +124,10 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
             continue;
         }
         let cmap = &ct.per_light[l as usize].0;
-        let passes = inp.pass_inputs();
         match (frame.hierarchy, frame.compute_splat, frame.copy) {
-            (Some(h), None, _) => h.record_splat(f, &passes, pt, cmap, ct.levels, l)?,
-            (Some(h), Some(cs), _) => cs.record(f, &passes, pt, &h.final_list(), cmap, l)?,
-            (None, Some(cs), _) => cs.record(f, &passes, pt, &compute_splat::Photons::Dense, cmap, l)?,
+            (Some(h), None, _) => h.record_splat(f, inp, pt, cmap, ct.levels, l)?,
+            (Some(h), Some(cs), _) => cs.record(f, inp, pt, &h.final_list(), cmap, l)?,
+            (None, Some(cs), _) => cs.record(f, inp, pt, &compute_splat::Photons::Dense, cmap, l)?,
             (None, None, Some(copy)) => copy.record_splat(f, inp, cmap, l)?,
             (None, None, None) => splat::record_splat(f, c, l)?,
         }
@@ -137,18 +136,4 @@ pub fn record_caustics(f: &mut Frame, c: &CausticPasses, lights: u32, frame: Cau
         is.record_after_lights(f, c, eye, frame.reuse_photons)?;
     }
     Ok(())
-}
-
-/// What the adaptive traversal reads of the caustic passes' inputs.
-fn adaptive_inputs<'a>(c: &CausticPasses<'a>) -> adaptive::Inputs<'a> {
-    let inp = c.inputs;
-    adaptive::Inputs {
-        frame_uniforms: inp.frame_uniforms,
-        caustic_uniforms: inp.caustic_uniforms,
-        meshes: inp.meshes,
-        receiver_positions: &c.targets.receiver_positions.view,
-        nearest: inp.nearest,
-        spot_textures: inp.spot_textures,
-        linear: inp.linear,
-    }
 }

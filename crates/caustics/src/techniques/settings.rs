@@ -6,10 +6,10 @@
 //! - [`CausticSettings::validate_combination`]: a setting that belongs to some techniques only
 //!   (`only Hcm`) is refused, with its key, for the others.
 
-use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath};
+use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath, TraversalPath};
 use super::technique::Technique;
 use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNEL};
-use super::wyman2008::settings::{Cluster, SplatMode, TraversalPath, VaryingRadius};
+use super::wyman2008::settings::{Cluster, SplatMode, VaryingRadius};
 use super::wyman_davis2006::settings::{GatherLighting, QuadLighting, Reflection, Space, TemporalFilter};
 use super::wyman_nichols2009::adaptive::batches as wn2009_batches;
 use super::wyman_nichols2009::settings::{self as wn2009, Metric, Refraction};
@@ -241,7 +241,8 @@ impl CausticSettings {
         if self.technique.has_photon_buffer() && self.photon_refraction == Refraction::Deferred {
             // After the photon buffer and its caustic map, where `render::all_dump_names` has it.
             let last = ["caustic_map", "photon_buffer"].iter().find_map(|n| dumps.iter().position(|d| d == n));
-            dumps.insert(last.map_or(dumps.len(), |i| i + 1), super::wyman_nichols2009::deferred_photons::DUMP);
+            dumps
+                .insert(last.map_or(dumps.len(), |i| i + 1), super::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP);
         }
         dumps
     }
@@ -348,10 +349,10 @@ impl CausticSettings {
                 format!("must be at most 1048576 MiB (0: no limit), got {}", self.photon_memory_limit),
             )?;
         }
-        if !(1..=wn2009_batches::MAX_BATCHES).contains(&self.photon_batches) {
+        if !(1..=wn2009::MAX_BATCHES).contains(&self.photon_batches) {
             bad(
                 "photon_batches",
-                format!("must be between 1 and {} batches, got {}", wn2009_batches::MAX_BATCHES, self.photon_batches),
+                format!("must be between 1 and {} batches, got {}", wn2009::MAX_BATCHES, self.photon_batches),
             )?;
         }
         if self.technique == Technique::Adaptive {

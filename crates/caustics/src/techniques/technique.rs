@@ -43,7 +43,7 @@ impl Technique {
             Technique::None => "Wyman 2005 image-space refraction (no caustics)",
             Technique::Shah | Technique::ShahVertex => shah2007::settings::PAPER,
             Technique::WdPoints | Technique::WdEyePoints | Technique::WdQuads | Technique::WdGather => {
-                wyman_davis2006::PAPER
+                wyman_davis2006::settings::PAPER
             }
             Technique::Hcm => wyman2008::settings::PAPER,
             Technique::Adaptive => wyman_nichols2009::settings::PAPER,
@@ -124,7 +124,7 @@ impl Technique {
         let mut all = CausticSettings { technique: self, ..Default::default() }.dumps();
         if self.has_photon_buffer() {
             // With photon_refraction `deferred`.
-            all.push(super::wyman_nichols2009::deferred_photons::DUMP);
+            all.push(super::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP);
         }
         if matches!(self, Technique::WdQuads | Technique::WdGather) {
             let light = CausticSettings { technique: self, space: Space::Light, ..Default::default() }.dumps();

@@ -43,22 +43,24 @@ pub enum Photons<'a> {
 /// Which traversal's list a compute splat reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ListKind {
-    /// Packed entries of Wyman 2008's hierarchy (`wyman2008::ENTRY_BYTES` each).
+    /// Packed entries of Wyman 2008's hierarchy.
     HierarchyEntries,
-    /// Adaptive photons (32 bytes each).
+    /// Adaptive photons (Wyman & Nichols 2009).
     AdaptivePhotons,
 }
 
-impl ListKind {
-    fn element_bytes(self) -> u64 {
-        match self {
-            ListKind::HierarchyEntries => crate::techniques::wyman2008::ENTRY_BYTES,
-            ListKind::AdaptivePhotons => crate::techniques::wyman_nichols2009::adaptive::photon::PHOTON_BYTES,
-        }
-    }
+/// The list a compute splat reads, as the traversal that writes it describes it
+/// (`Hierarchy::splat_list`, `AdaptiveCaustics::splat_list`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SplatList {
+    pub kind: ListKind,
+    /// The traversal path that writes it.
+    pub path: CompactionPath,
+    /// The bytes of one element (`ENTRY_BYTES` in `shared/splat.comp`).
+    pub element_bytes: u64,
 }
 
-pub use super::PassInputs as Inputs;
+use super::FrameInputs;
 
 /// One batch of a splat made in batches: its number (None: no batches), and whether it is the
 /// first (the sum is cleared) and the last (the sum is stored in the caustic map).
@@ -90,15 +92,14 @@ pub struct ComputeSplat {
 }
 
 impl ComputeSplat {
-    /// A splat into `layers` caustic-map layers of `side`² texels; `list` is the kind of list it
-    /// splats and the traversal path that wrote it (hcm, adaptive), None for the dense photon
-    /// texture.
+    /// A splat into `layers` caustic-map layers of `side`² texels; `list` is the traversal's list
+    /// it splats (hcm, adaptive), None for the dense photon texture.
     pub fn new(
         ctx: &Context,
         sh: &ShaderCompiler,
         side: u32,
         layers: u32,
-        list: Option<(ListKind, CompactionPath)>,
+        list: Option<SplatList>,
     ) -> Result<ComputeSplat> {
         ctx.require("splat_path `compute` (float atomics in shared/splat.comp)", FEATURES)?;
         let bytes = side as u64 * side as u64 * layers as u64 * 16;
@@ -112,12 +113,12 @@ impl ComputeSplat {
             .into());
         }
         let accumulated = Buffer::new(ctx, "compute splat accumulation", bytes, Memory::Gpu)?;
-        let entry_bytes = list.map_or(4, |(kind, _)| kind.element_bytes()).to_string();
+        let entry_bytes = list.map_or(4, |l| l.element_bytes).to_string();
         let mut defines = vec![("ENTRY_BYTES", entry_bytes.as_str())];
         let list = match list {
             // Binding 4: the accumulation buffer.
             None => None,
-            Some((kind, path)) => {
+            Some(SplatList { kind, path, .. }) => {
                 match kind {
                     // Bindings 4-8: the hierarchy, the accumulation buffer, the list and its counter.
                     ListKind::HierarchyEntries => defines.push(("HIERARCHY", "1")),
@@ -151,7 +152,7 @@ impl ComputeSplat {
     pub fn record(
         &self,
         f: &mut Frame,
-        inp: &Inputs,
+        inp: &FrameInputs,
         pt: &PhotonTargets,
         photons: &Photons,
         cmap: &ImageView,
@@ -166,7 +167,7 @@ impl ComputeSplat {
     pub fn record_batch(
         &self,
         f: &mut Frame,
-        inp: &Inputs,
+        inp: &FrameInputs,
         pt: &PhotonTargets,
         photons: &Photons,
         cmap: &ImageView,
@@ -213,7 +214,7 @@ impl ComputeSplat {
                         f.pass(&Stage::SplatArguments.pass().batch(tag).light(l))
                             .bind(
                                 pipeline,
-                                [("Counter", Bind::BufferRead(&list.counter)), ("Arguments", Bind::Buffer(args))],
+                                [("Counter", Bind::BufferRead(list.counter())), ("Arguments", Bind::Buffer(args))],
                             )
                             .record(|cmd| {
                                 cmd.dispatch(1, 1, 1);
@@ -221,8 +222,7 @@ impl ComputeSplat {
                             })?;
                         indirect = Some((args, 0));
                     }
-                    // The dispatch arguments of compact_counter.glsl start at byte 16.
-                    _ => indirect = Some((&list.counter, 16)),
+                    _ => indirect = Some((list.counter(), vkcore::AppendCounter::DISPATCH_OFFSET)),
                 }
                 if let Photons::List { power, position, .. } = photons {
                     binds.extend([
@@ -233,8 +233,8 @@ impl ComputeSplat {
                 let list_data = if matches!(photons, Photons::Adaptive { .. }) { "Records" } else { "Entries" };
                 binds.extend([
                     ("Accumulated", Bind::Buffer(&self.accumulated)),
-                    (list_data, Bind::BufferRead(&list.data)),
-                    ("Counter", Bind::BufferRead(&list.counter)),
+                    (list_data, Bind::BufferRead(list.data())),
+                    ("Counter", Bind::BufferRead(list.counter())),
                 ]);
             }
         }

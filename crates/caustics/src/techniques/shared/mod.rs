@@ -10,7 +10,7 @@ pub mod settings;
 pub mod splat;
 pub mod targets;
 
-pub use compute_splat::{ComputeSplat, ListKind};
+pub use compute_splat::{ComputeSplat, ListKind, SplatList};
 pub use pipelines::CausticPipelines;
 pub use settings::{Intersect, PhotonView, SplatKernel, SplatPath, DUMPS};
 pub use targets::{CausticTargets, PhotonTargets};
@@ -18,17 +18,12 @@ pub use targets::{CausticTargets, PhotonTargets};
 use crate::gpu::GpuMesh;
 use vkcore::{Buffer, ImageView, Sampler};
 
-/// What the light-space passes read besides their own buffers: the frame and caustic uniforms
-/// and the nearest sampler.
-pub struct PassInputs<'a> {
-    pub frame_uniforms: &'a Buffer,
-    pub caustic_uniforms: &'a Buffer,
-    pub nearest: &'a Sampler,
-}
 use crate::image_io::{ImageF32, Layer};
 
-/// What the caustic passes read besides their own targets.
-pub struct CausticInputs<'a> {
+/// What every caustic pass may read of the frame besides its own resources: the uniforms, the
+/// scene's meshes, the samplers, the spot textures and the receiver positions. The one type of
+/// inputs every stage (photon source, selection, deposit) records with.
+pub struct FrameInputs<'a> {
     pub frame_uniforms: &'a Buffer,
     pub caustic_uniforms: &'a Buffer,
     pub meshes: &'a [GpuMesh],
@@ -43,6 +38,8 @@ pub struct CausticInputs<'a> {
     /// are read with (`common/spot_texture.glsl`): they weight every photon's power.
     pub spot_textures: &'a ImageView,
     pub linear: &'a Sampler,
+    /// Every light's receiver positions (layer per light: where photons land).
+    pub receiver_positions: &'a ImageView,
 }
 
 /// What every caustic pass of a light records with: the technique's pipelines, the caustic-map
@@ -52,18 +49,7 @@ pub struct CausticPasses<'a> {
     pub pipelines: &'a CausticPipelines,
     pub targets: &'a CausticTargets,
     pub photons: &'a PhotonTargets,
-    pub inputs: &'a CausticInputs<'a>,
-}
-
-impl<'a> CausticInputs<'a> {
-    /// What the hierarchy's passes, the compute splat (and the `splats` dump) read of these.
-    pub fn pass_inputs(&self) -> PassInputs<'a> {
-        PassInputs {
-            frame_uniforms: self.frame_uniforms,
-            caustic_uniforms: self.caustic_uniforms,
-            nearest: self.nearest,
-        }
-    }
+    pub inputs: &'a FrameInputs<'a>,
 }
 
 /// Lists of records as one image for the dumps: a record (of `channels.len()` values) per pixel

@@ -2,6 +2,7 @@
 //! command line name them (a leaf module: the scene description reads it).
 
 use super::super::value_enum::value_enum;
+use vkcore::{CompactionPath, Feature};
 
 /// The buffers every caustic technique has (`--dump` names).
 pub const DUMPS: &[&str] = &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map"];
@@ -51,5 +52,37 @@ value_enum! {
         /// The face of the light's cube shadow map (90 degrees, axis-aligned) that the direction
         /// to the specular objects passes through; parts of an object in other faces get no photons.
         ShadowMap = "shadow-map",
+    }
+}
+
+value_enum! {
+    /// How a compacted traversal runs (`caustics.path`, `--path`): Wyman 2008 Sec. 3.1's
+    /// hierarchy and Wyman & Nichols 2009's adaptive photon hierarchy both step through
+    /// levels, keeping only the nodes that go on.
+    pub enum TraversalPath {
+        /// A geometry shader per level writes transform-feedback buffers (the papers' path).
+        Xfb = "xfb",
+        /// A compute kernel per level appends with an atomic counter.
+        Compute = "compute",
+    }
+}
+
+impl TraversalPath {
+    /// The stream-compaction path of `vkcore` that implements it.
+    pub fn compaction(self) -> CompactionPath {
+        match self {
+            TraversalPath::Xfb => CompactionPath::TransformFeedback,
+            TraversalPath::Compute => CompactionPath::Compute,
+        }
+    }
+
+    /// The device features the path needs.
+    pub fn features(self) -> &'static [Feature] {
+        match self {
+            TraversalPath::Xfb => {
+                &[Feature::GeometryShader, Feature::TransformFeedback, Feature::TransformFeedbackDraw]
+            }
+            TraversalPath::Compute => &[],
+        }
     }
 }

@@ -5,10 +5,47 @@
 
 use super::targets::CausticTargets;
 use super::CausticPasses;
+use crate::gpu::PassName;
 use crate::gpu::SplatConstants;
 use crate::gpu::Stage;
 use anyhow::Result;
-use vkcore::{Access, Bind, Frame, Targets, Use};
+use vkcore::{Access, Bind, CompactStream, Frame, ImageView, Named, Pipeline, Targets, Use};
+
+/// Where a list's point splat lands: light `light`'s caustic map `cmap`, its `layers` layers
+/// (the multi-resolution map's, else 1), cleared first or added to.
+pub(crate) struct ListSplat<'a> {
+    pub cmap: &'a ImageView,
+    pub layers: u32,
+    pub clear: bool,
+    pub light: u32,
+}
+
+/// The point splat over a traversal's list (Wyman 2008's final entries, Wyman & Nichols 2009's
+/// photons): `pipeline` draws a point per element, the list as vertex buffer 0, as many as its
+/// counter says (nothing read back).
+pub(crate) fn record_list_splat<'a>(
+    f: &mut Frame,
+    name: &PassName,
+    pipeline: &'a Pipeline,
+    binds: impl IntoIterator<Item = Named<'a>>,
+    list: &'a CompactStream,
+    to: ListSplat<'a>,
+) -> Result<()> {
+    let uses = [
+        Use::buffer(list.data(), Access::VERTEX_INPUT),
+        list.arguments_use(),
+        Use::view(to.cmap, Access::COLOR_ATTACHMENT),
+    ];
+    f.pass(name).bind(pipeline, binds).uses(uses).record(|cmd| {
+        cmd.begin_rendering(&Targets::color(to.cmap, to.clear.then_some([0.0; 4])).layered(to.layers))?;
+        cmd.push(&SplatConstants { light: to.light, vertices_per_instance: 0 })?;
+        cmd.bind_vertex_buffer(list.data(), 0)?;
+        list.draw(cmd)?;
+        cmd.end_rendering();
+        Ok(())
+    })?;
+    Ok(())
+}
 
 /// Splats light `l`'s photons into its caustic-map layer, fetched instanced from the photon
 /// texture (Wyman 2008 Sec. 4).

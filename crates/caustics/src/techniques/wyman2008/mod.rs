@@ -28,7 +28,7 @@ use crate::techniques::shared::targets::COLOR;
 use anyhow::Result;
 use pyramid::Pyramid;
 use vkcore::{
-    Buffer, CompactStream, CompactionPath, Context, Format, GraphicsDesc, Image, ImageDesc, Memory, Pipeline,
+    Buffer, CompactStream, CompactionPath, Context, Finalize, Format, GraphicsDesc, Image, ImageDesc, Memory, Pipeline,
     ShaderCompiler, Topology, VertexAttribute, VertexLayout, ViewKind,
 };
 
@@ -37,12 +37,12 @@ use vkcore::{
 pub const TOP_SIDE: u32 = 16;
 
 pub struct Hierarchy {
-    pub path: CompactionPath,
-    pub cluster: Cluster,
+    path: CompactionPath,
+    cluster: Cluster,
     /// Photon buffer side N, padded side P and levels L.
-    pub n: u32,
-    pub padded: u32,
-    pub levels: u32,
+    n: u32,
+    padded: u32,
+    levels: u32,
     pyramid: Pyramid,
     /// Stands in for the children of level 1 (read from the photon buffer instead).
     dummy: Target,
@@ -55,7 +55,7 @@ pub struct Hierarchy {
     lights: u32,
     build: Pipeline,
     traverse: Pipeline,
-    finalize: Option<Pipeline>,
+    finalize: Option<Finalize>,
     splat: Pipeline,
 }
 
@@ -90,10 +90,8 @@ impl Hierarchy {
         let stream =
             |name: &str, capacity: u32| CompactStream::with_element_bytes(ctx, name, path, capacity, ENTRY_BYTES);
         let seed = stream("hierarchy seed", seed_entries.len() as u32)?;
-        ctx.upload_buffer(&seed.data, bytemuck::cast_slice(&seed_entries))?;
-        let count = seed_entries.len() as u32;
-        let header: [u32; 12] = [count, count, 0, 0, count.div_ceil(64), 1, 1, 0, count, 1, 0, 0];
-        ctx.upload_buffer(&seed.counter, bytemuck::cast_slice(&header))?;
+        ctx.upload_buffer(seed.data(), bytemuck::cast_slice(&seed_entries))?;
+        seed.upload_seeded_counter(ctx, seed_entries.len() as u32)?;
         // List k holds level-k nodes and clusters finished above level k, each covering at least
         // one level-k node with photons: no more entries than level-k nodes over the N² photons.
         let capacity = |k: u32| n.div_ceil(1 << k) * n.div_ceil(1 << k);
@@ -130,8 +128,7 @@ impl Hierarchy {
             CompactionPath::Compute => {
                 let traverse =
                     Pipeline::compute(ctx, "hierarchy.traverse", &sh.compile("wyman2008/traverse.comp", &[])?)?;
-                let finalize =
-                    Pipeline::compute(ctx, "hierarchy.finalize", &sh.compile("vkcore/compact_finalize.comp", &[])?)?;
+                let finalize = Finalize::new(ctx, sh, "hierarchy.finalize")?;
                 (traverse, Some(finalize))
             }
         };
@@ -158,6 +155,35 @@ impl Hierarchy {
             splat: Pipeline::graphics(ctx, &splat)?,
         })
     }
-}
 
-pub use crate::techniques::shared::PassInputs as Inputs;
+    /// The traversal's stream-compaction path.
+    pub fn path(&self) -> CompactionPath {
+        self.path
+    }
+
+    /// Which levels test converging photons for clustering (Sec. 3.2).
+    pub fn cluster(&self) -> Cluster {
+        self.cluster
+    }
+
+    /// The photon buffer's side N.
+    pub fn n(&self) -> u32 {
+        self.n
+    }
+
+    /// The side P the photon buffer is padded to (a power of two, at least N).
+    pub fn padded(&self) -> u32 {
+        self.padded
+    }
+
+    /// The hierarchy's levels L above the photon buffer.
+    pub fn levels(&self) -> u32 {
+        self.levels
+    }
+
+    /// The final list, as the compute splat reads it (packed entries, Sec. 3.1).
+    pub fn splat_list(&self) -> crate::techniques::shared::SplatList {
+        let kind = crate::techniques::shared::ListKind::HierarchyEntries;
+        crate::techniques::shared::SplatList { kind, path: self.path, element_bytes: ENTRY_BYTES }
+    }
+}

@@ -13,7 +13,7 @@
 use crate::gpu::{SplatConstants, Stage, Target};
 use crate::techniques::shared::pipelines::point_splat_desc;
 use crate::techniques::shared::targets::PhotonTargets;
-use crate::techniques::shared::CausticInputs;
+use crate::techniques::shared::FrameInputs;
 use anyhow::Result;
 use vkcore::{
     Access, Bind, Buffer, Context, Format, Frame, ImageDesc, ImageView, Memory, Pipeline, ShaderCompiler, Targets, Use,
@@ -119,7 +119,7 @@ impl PhotonCopy {
     }
 
     /// Splats light `l`'s copied photons into `cmap`, one point per vertex of the array.
-    pub fn record_splat(&self, f: &mut Frame, inp: &CausticInputs, cmap: &ImageView, l: u32) -> Result<()> {
+    pub fn record_splat(&self, f: &mut Frame, inp: &FrameInputs, cmap: &ImageView, l: u32) -> Result<()> {
         let binds = [
             ("frame", Bind::Uniform(inp.frame_uniforms)),
             ("caustics", Bind::Uniform(inp.caustic_uniforms)),

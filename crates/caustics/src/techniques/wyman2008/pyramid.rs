@@ -3,11 +3,12 @@
 //! caustic-map texels they land in (what the convergence test of Sec. 3.2 reads). Built by one
 //! compute pass per level (`shaders_glsl/wyman2008/build.comp`).
 
-use super::{Hierarchy, Inputs, TOP_SIDE};
+use super::{Hierarchy, TOP_SIDE};
 use crate::gpu::BuildConstants;
 use crate::gpu::Stage;
 use crate::image_io::{ImageF32, Layer};
 use crate::techniques::shared::targets::PhotonTargets;
+use crate::techniques::shared::FrameInputs;
 use anyhow::Result;
 use vkcore::{Bind, Context, Frame, Image, ImageView};
 
@@ -37,7 +38,7 @@ pub(super) struct Pyramid {
 impl Hierarchy {
     /// Builds light `l`'s hierarchy levels 1..=L, each from the one below (level 1 from the
     /// photon buffer).
-    pub(super) fn record_build(&self, f: &mut Frame, inp: &Inputs, pt: &PhotonTargets, l: u32) -> Result<()> {
+    pub(super) fn record_build(&self, f: &mut Frame, inp: &FrameInputs, pt: &PhotonTargets, l: u32) -> Result<()> {
         let py = &self.pyramid;
         for k in 1..=self.levels {
             let out = &py.mips[k as usize - 1];

@@ -8,43 +8,13 @@
 pub const MULTIRES_LEVELS: u32 = 4;
 
 use super::super::value_enum::value_enum;
-use vkcore::{CompactionPath, Feature};
+pub use crate::techniques::shared::settings::TraversalPath;
 
 /// The paper, as tables and `--help` cite it.
 pub const PAPER: &str = "Wyman 2008, hierarchical caustic maps";
 
 /// The buffers only `hcm` has (`--dump` names).
 pub const DUMPS: &[&str] = &["hierarchy", "hierarchy_lists", "splats"];
-
-value_enum! {
-    /// How the hierarchy is traversed (Sec. 3.1; `caustics.path`, `--path`).
-    pub enum TraversalPath {
-        /// A geometry shader per level writes transform-feedback buffers (the paper's path).
-        Xfb = "xfb",
-        /// A compute kernel per level appends with an atomic counter.
-        Compute = "compute",
-    }
-}
-
-impl TraversalPath {
-    /// The stream-compaction path of `vkcore` that implements it.
-    pub fn compaction(self) -> CompactionPath {
-        match self {
-            TraversalPath::Xfb => CompactionPath::TransformFeedback,
-            TraversalPath::Compute => CompactionPath::Compute,
-        }
-    }
-
-    /// The device features the path needs.
-    pub fn features(self) -> &'static [Feature] {
-        match self {
-            TraversalPath::Xfb => {
-                &[Feature::GeometryShader, Feature::TransformFeedback, Feature::TransformFeedbackDraw]
-            }
-            TraversalPath::Compute => &[],
-        }
-    }
-}
 
 value_enum! {
     /// Converging-photon clustering (Sec. 3.2; `caustics.cluster`, `--cluster`).

@@ -3,13 +3,13 @@
 //! from its neighbours (Sec. 3.3, `shaders_glsl/wyman2008/varying_splat.glsl`) and, in the
 //! multi-resolution map, it picks its layer with gl_Layer.
 
-use super::entry::ENTRY_BYTES;
-use super::{Hierarchy, Inputs};
-use crate::gpu::SplatConstants;
+use super::Hierarchy;
 use crate::gpu::Stage;
+use crate::techniques::shared::splat::{record_list_splat, ListSplat};
 use crate::techniques::shared::targets::PhotonTargets;
+use crate::techniques::shared::FrameInputs;
 use anyhow::Result;
-use vkcore::{Access, Bind, CompactionPath, Frame, ImageView, Targets, Use};
+use vkcore::{Bind, Frame, ImageView};
 
 impl Hierarchy {
     /// Splats the traversal's final list (photons and clusters) into `cmap`: one layer, or the
@@ -17,7 +17,7 @@ impl Hierarchy {
     pub fn record_splat(
         &self,
         f: &mut Frame,
-        inp: &Inputs,
+        inp: &FrameInputs,
         pt: &PhotonTargets,
         cmap: &ImageView,
         layers: u32,
@@ -33,26 +33,8 @@ impl Hierarchy {
             ("hierarchy_power", Bind::Sampled(&py.all[0], inp.nearest)),
             ("hierarchy_position", Bind::Sampled(&py.all[1], inp.nearest)),
         ];
-        let uses = [
-            Use::buffer(&list.data, Access::VERTEX_INPUT),
-            Use::buffer(&list.counter, Access::INDIRECT),
-            Use::view(cmap, Access::COLOR_ATTACHMENT),
-        ];
-        f.pass(&Stage::Splat.light(l)).bind(&self.splat, binds).uses(uses).record(|cmd| {
-            cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])).layered(layers))?;
-            cmd.push(&SplatConstants { light: l, vertices_per_instance: 0 })?;
-            cmd.bind_vertex_buffer(&list.data, 0)?;
-            match self.path {
-                CompactionPath::TransformFeedback => {
-                    cmd.draw_indirect_byte_count(1, &list.counter, ENTRY_BYTES as u32)?
-                }
-                // The draw arguments of compact_counter.glsl start at byte 32.
-                CompactionPath::Compute => cmd.draw_indirect(&list.counter, 32)?,
-            }
-            cmd.end_rendering();
-            Ok(())
-        })?;
-        Ok(())
+        let to = ListSplat { cmap, layers, clear: true, light: l };
+        record_list_splat(f, &Stage::Splat.light(l), &self.splat, binds, list, to)
     }
 
     /// What the compute splat reads: the hierarchy and the traversal's final list.

@@ -3,12 +3,13 @@
 //! `shared/splat_photon.glsl`): centre, radius and layer of the caustic map, power and photons.
 //! This is where varying splat sizes (Wyman 2008 Sec. 3.3) can be read, photon by photon.
 
-use super::{Hierarchy, Inputs};
+use super::Hierarchy;
 use crate::gpu::FootprintConstants;
 use crate::gpu::Stage;
 use crate::image_io::ImageF32;
 use crate::techniques::shared::compute_splat::{groups, Photons};
 use crate::techniques::shared::targets::PhotonTargets;
+use crate::techniques::shared::FrameInputs;
 use anyhow::Result;
 use vkcore::{Bind, Buffer, Context, FrameOptions, Memory, Pipeline, ShaderCompiler};
 
@@ -36,7 +37,7 @@ impl SplatFootprints {
         &self,
         ctx: &Context,
         h: &Hierarchy,
-        inp: &Inputs,
+        inp: &FrameInputs,
         pt: &PhotonTargets,
         l: u32,
     ) -> Result<Vec<Footprint>> {
@@ -61,7 +62,7 @@ impl SplatFootprints {
             ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
             ("hierarchy_power", Bind::Sampled(power, inp.nearest)),
             ("hierarchy_position", Bind::Sampled(position, inp.nearest)),
-            ("Entries", Bind::BufferRead(&list.data)),
+            ("Entries", Bind::BufferRead(list.data())),
             ("Footprints", Bind::Buffer(&out)),
         ];
         let mut f = ctx.frame(FrameOptions::default())?;

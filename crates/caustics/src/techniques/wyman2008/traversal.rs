@@ -5,32 +5,27 @@
 //! with vkCmdDrawIndirectByteCountEXT (the paper's), or a compute kernel appending with an atomic
 //! counter and dispatching the next level indirectly. Nothing is read back between levels.
 
-use super::entry::{unpack_entry, ENTRY_BYTES};
-use super::{Hierarchy, Inputs};
+use super::entry::unpack_entry;
+use super::Hierarchy;
 use crate::gpu::Stage;
 use crate::gpu::TraverseConstants;
 use crate::image_io::ImageF32;
 use crate::techniques::shared::targets::PhotonTargets;
+use crate::techniques::shared::FrameInputs;
 use anyhow::Result;
-use vkcore::{Access, Bind, CompactStream, CompactionPath, Context, Frame, Targets, Use};
+use vkcore::{Access, Bind, CompactStream, CompactionPath, Context, Frame, StepInput, Targets, Use};
 
 impl Hierarchy {
     /// Builds the hierarchy over light `l`'s photon buffer and traverses it (Sec. 3.1-3.2).
-    pub fn record_traversal(&self, f: &mut Frame, inp: &Inputs, pt: &PhotonTargets, l: u32) -> Result<()> {
+    pub fn record_traversal(&self, f: &mut Frame, inp: &FrameInputs, pt: &PhotonTargets, l: u32) -> Result<()> {
         self.record_build(f, inp, pt, l)?;
         let py = &self.pyramid;
         let push = |cluster: bool| TraverseConstants { light: l, cluster: cluster as u32, photon_side: self.n };
         // The paper zeroes its counters before every traversal; so do we (both paths).
-        let counters: Vec<Use> = self.lists.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_WRITE)).collect();
+        let counters: Vec<Use> = self.lists.iter().map(|s| s.reset_use()).collect();
         f.pass(&Stage::HierarchyReset.light(l)).uses(counters).record(|cmd| {
             for s in &self.lists {
-                match self.path {
-                    CompactionPath::TransformFeedback => cmd.fill_buffer(&s.counter, 0),
-                    CompactionPath::Compute => {
-                        let header: Vec<u8> = [0u32, s.capacity, 0, 0].iter().flat_map(|x| x.to_le_bytes()).collect();
-                        cmd.update_buffer(&s.counter, 0, &header)?;
-                    }
-                }
+                s.reset(cmd)?;
             }
             Ok(())
         })?;
@@ -48,60 +43,39 @@ impl Hierarchy {
             let cluster = self.cluster.tests(k);
             match self.path {
                 CompactionPath::TransformFeedback => {
-                    let mut uses = vec![Use::buffer(&input.data, Access::VERTEX_INPUT)];
-                    if k != self.levels {
-                        uses.push(Use::buffer(&input.counter, Access::INDIRECT));
-                    }
-                    uses.push(Use::buffer(&out.data, Access::XFB_WRITE));
-                    uses.push(Use::buffer(&out.counter, Access::XFB_COUNTER));
-                    f.pass(&name).bind(&self.traverse, binds).uses(uses).record(|cmd| {
+                    let from = StepInput { stream: input, seeded: k == self.levels, as_vertices: true };
+                    f.pass(&name).bind(&self.traverse, binds).uses(out.capture_uses(from)).record(|cmd| {
                         cmd.begin_rendering(&Targets::none())?;
                         cmd.push(&push(cluster))?;
-                        cmd.bind_vertex_buffer(&input.data, 0)?;
-                        cmd.bind_xfb_buffers(&[&out.data])?;
-                        // No counter buffers at begin: capture starts at offset 0.
-                        cmd.begin_xfb(&[], false)?;
-                        if k == self.levels {
-                            cmd.draw(self.seed.capacity, 1, 0, 0);
-                        } else {
-                            cmd.draw_indirect_byte_count(1, &input.counter, ENTRY_BYTES as u32)?;
-                        }
-                        cmd.end_xfb(&[&out.counter])?;
+                        out.capture(cmd, from, false)?;
                         cmd.end_rendering();
                         Ok(())
                     })?;
                 }
                 CompactionPath::Compute => {
                     binds.extend([
-                        ("Input", Bind::BufferRead(&input.data)),
-                        ("InputCounter", Bind::BufferRead(&input.counter)),
-                        ("Output", Bind::Buffer(&out.data)),
-                        ("OutputCounter", Bind::Buffer(&out.counter)),
+                        ("Input", Bind::BufferRead(input.data())),
+                        ("InputCounter", Bind::BufferRead(input.counter())),
+                        ("Output", Bind::Buffer(out.data())),
+                        ("OutputCounter", Bind::Buffer(out.counter())),
                     ]);
                     // The input's count is read as dispatch arguments too.
-                    let arguments = [Use::buffer(&input.counter, Access::INDIRECT)];
-                    f.pass(&name).bind(&self.traverse, binds).uses(arguments).record(|cmd| {
+                    f.pass(&name).bind(&self.traverse, binds).uses([input.arguments_use()]).record(|cmd| {
                         cmd.push(&push(cluster))?;
-                        cmd.dispatch_indirect(&input.counter, 16)?;
-                        Ok(())
+                        input.dispatch(cmd)
                     })?;
                     let finalize = self.finalize.as_ref().ok_or_else(|| anyhow::anyhow!("no finalize pipeline"))?;
-                    f.pass(&Stage::HierarchyFinalize.pass().level(k).light(l))
-                        .bind(finalize, [("Counter", Bind::Buffer(&out.counter))])
-                        .record(|cmd| {
-                            cmd.dispatch(1, 1, 1);
-                            Ok(())
-                        })?;
+                    finalize.record(f, &Stage::HierarchyFinalize.pass().level(k).light(l), out)?;
                 }
             }
         }
         // Keep this light's list sizes for the photon-count tables (read after the frame).
-        let mut uses: Vec<Use> = self.lists.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_READ)).collect();
+        let mut uses: Vec<Use> = self.lists.iter().map(|s| Use::buffer(s.counter(), Access::TRANSFER_READ)).collect();
         uses.push(Use::buffer(&self.counts, Access::TRANSFER_WRITE));
         f.pass(&Stage::HierarchyCounts.light(l)).uses(uses).record(|cmd| {
             for (k, s) in self.lists.iter().enumerate() {
                 let slot = (l.min(self.lights.max(1) - 1) * self.levels + k as u32) as u64 * 4;
-                cmd.copy_buffer_region(&s.counter, 0, &self.counts, slot, 4);
+                cmd.copy_buffer_region(s.counter(), 0, &self.counts, slot, 4);
             }
             Ok(())
         })?;
@@ -115,13 +89,10 @@ impl Hierarchy {
         let per = self.levels as usize;
         Ok((0..self.lights.max(1) as usize)
             .map(|l| {
-                let mut v = vec![self.seed.capacity as u64];
+                let mut v = vec![self.seed.capacity() as u64];
                 for k in (0..per).rev() {
-                    let c = raw.get(l * per + k).copied().unwrap_or(0) as u64;
-                    v.push(match self.path {
-                        CompactionPath::TransformFeedback => c / ENTRY_BYTES,
-                        CompactionPath::Compute => c.min(self.lists[k].capacity as u64),
-                    });
+                    let c = raw.get(l * per + k).copied().unwrap_or(0);
+                    v.push(self.lists[k].elements(c) as u64);
                 }
                 v
             })

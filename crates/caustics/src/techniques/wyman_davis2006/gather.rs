@@ -7,7 +7,7 @@
 
 use super::views::ViewBuffers;
 use crate::gpu::ImageSpaceConstants;
-use crate::techniques::CausticPasses;
+use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use vkcore::{Bind, Context, Frame, ImageView, Pipeline, ShaderCompiler};
 

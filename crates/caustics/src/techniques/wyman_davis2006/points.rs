@@ -7,7 +7,7 @@
 use super::views::ViewBuffers;
 use crate::gpu::formats::COLOR;
 use crate::gpu::ImageSpaceConstants;
-use crate::techniques::CausticPasses;
+use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use vkcore::{
     Access, Blend, Context, Frame, GraphicsDesc, ImageView, Pipeline, ShaderCompiler, Targets, Topology, Use,

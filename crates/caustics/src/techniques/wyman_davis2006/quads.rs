@@ -9,7 +9,7 @@
 
 use crate::gpu::formats::COLOR;
 use crate::gpu::ImageSpaceConstants;
-use crate::techniques::CausticPasses;
+use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use vkcore::{
     Access, Bind, Blend, Context, Cull, Frame, GraphicsDesc, ImageView, Pipeline, ShaderCompiler, Targets, Topology,

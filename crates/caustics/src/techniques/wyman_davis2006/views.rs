@@ -8,7 +8,7 @@
 use crate::gpu::formats::COLOR;
 use crate::gpu::{ImageSpaceConstants, Target};
 use crate::scene::Scene;
-use crate::techniques::CausticPasses;
+use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use glam::{Mat4, Vec3, Vec4};
 use vkcore::{Bind, Context, ImageDesc, ImageView, Named, Pipeline, ViewKind};

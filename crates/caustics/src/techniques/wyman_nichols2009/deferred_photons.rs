@@ -30,8 +30,7 @@ use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use vkcore::{Access, Bind, Context, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Use};
 
-/// The `--dump` name of the geometry buffers photons are created from.
-pub const DUMP: &str = "photon_geometry_buffers";
+pub use super::settings::DEFERRED_PHOTONS_DUMP as DUMP;
 
 pub struct DeferredPhotons {
     /// The indices of the specular meshes (the scene's objects), in the scene's order.

@@ -42,6 +42,13 @@ impl Refraction {
     }
 }
 
+/// The `--dump` name of the geometry buffers deferred photons (Sec. 3.2) are created from.
+pub const DEFERRED_PHOTONS_DUMP: &str = "photon_geometry_buffers";
+
+/// The most batches a traversal may be asked for (`photon_batches`); one frame records fewer
+/// (see `adaptive::batches::plan`).
+pub const MAX_BATCHES: u32 = 256;
+
 /// The buffers only technique `adaptive` has (`--dump` names): the light-space geometry buffers
 /// and their coverage pyramid (Sec. 3.2), the traversal's lists and its photons.
 pub const ADAPTIVE_DUMPS: &[&str] = &["adaptive_geometry", "adaptive_lists"];

@@ -124,9 +124,7 @@ fn with_batches(finest: u32, metric: Metric, xfb: bool, b: u32, s: u32) -> Batch
     }
 }
 
-/// The most batches a traversal may be asked for (`photon_batches`); one frame records fewer
-/// (see [`plan`]).
-pub const MAX_BATCHES: u32 = 256;
+pub use crate::techniques::wyman_nichols2009::settings::MAX_BATCHES;
 
 /// The plan for photon storage of at most `limit` bytes (None: no limit) in at least
 /// `least_batches` batches (`photon_batches`, Fig. 8) for `lights` lights: the deepest

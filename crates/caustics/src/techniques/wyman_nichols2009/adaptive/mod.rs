@@ -36,20 +36,20 @@ mod traversal;
 
 pub use batches::BatchPlan;
 pub use photon::{pack_cell, unpack_cell, AdaptivePhoton};
-pub use traversal::{lists_image, Inputs, LightLists, Listed, Part, Splat};
+pub use traversal::{lists_image, LightLists, Listed, Part, Splat};
 
 use super::geometry_buffers::LightGeometryBuffers;
 use super::refractor_layers::{specular_objects, RefractorLayers, MAX_REFRACTORS};
 use super::settings::{Metric, TOP_PHOTONS};
 use crate::gpu::GpuMesh;
+use crate::techniques::settings::CausticSettings;
 use crate::techniques::shared::pipelines::point_splat_desc;
-use crate::techniques::wyman2008::TraversalPath;
-use crate::techniques::CausticSettings;
+use crate::techniques::shared::settings::TraversalPath;
 use anyhow::Result;
 use photon::{CLUSTER_BYTES, HITS_BYTES, PHOTON_BYTES};
 use vkcore::{
-    Buffer, CompactStream, CompactionPath, Context, Format, GraphicsDesc, Memory, Pipeline, ShaderCompiler, Topology,
-    VertexAttribute, VertexLayout,
+    Buffer, CompactStream, CompactionPath, Context, Finalize, Format, GraphicsDesc, Memory, Pipeline, ShaderCompiler,
+    Topology, VertexAttribute, VertexLayout,
 };
 
 /// The transform-feedback path's kernels (`adaptive_step.geom`, Sec. 4.1).
@@ -69,20 +69,20 @@ enum Kernels {
     /// The step kernel and vkcore's counter finalize.
     Compute {
         traverse: Pipeline,
-        finalize: Pipeline,
+        finalize: Finalize,
     },
 }
 
 pub struct AdaptiveCaustics {
-    pub path: CompactionPath,
-    pub metric: Metric,
+    path: CompactionPath,
+    metric: Metric,
     /// The last level L (photons on the (64 × 2^L)² grid).
-    pub finest: u32,
-    pub geometry: LightGeometryBuffers,
+    finest: u32,
+    geometry: LightGeometryBuffers,
     /// With several specular objects, each one's own buffers; none with one.
-    pub refractors: RefractorLayers,
+    refractors: RefractorLayers,
     /// How the traversal is split into batches (one batch without a memory limit).
-    pub plan: BatchPlan,
+    plan: BatchPlan,
     /// clusters[k]: the pending clusters of level k; clusters[0], the 32² clusters of the 64²
     /// coarse grid, is uploaded once. Below the breadth-first levels, one batch's.
     clusters: Vec<CompactStream>,
@@ -93,7 +93,7 @@ pub struct AdaptiveCaustics {
     /// Max-error on the xfb path: the hits of one step's clusters.
     hits: Option<CompactStream>,
     /// Every output photon of the light traversed last.
-    pub photons: CompactStream,
+    photons: CompactStream,
     /// Per light: each level's cluster count, then the photon count after each step, summed
     /// over the batches (u32 elements).
     counts: Buffer,
@@ -171,14 +171,8 @@ impl AdaptiveCaustics {
         }
         let side = TOP_PHOTONS / 2;
         let seed: Vec<u32> = (0..side * side).map(|i| pack_cell([i % side, i / side, 0])).collect();
-        ctx.upload_buffer(&clusters[0].data, bytemuck::cast_slice(&seed))?;
-        let count = seed.len() as u32;
-        // The compute path's counter (vkcore/compact_counter.glsl): count, capacity, the dispatch
-        // over 64-wide groups, the draw. On the xfb path its first word is the byte count, as
-        // transform feedback writes it.
-        let first = if xfb { count * CLUSTER_BYTES as u32 } else { count };
-        let header: [u32; 12] = [first, count, 0, 0, count.div_ceil(64), 1, 1, 0, count, 1, 0, 0];
-        ctx.upload_buffer(&clusters[0].counter, bytemuck::cast_slice(&header))?;
+        ctx.upload_buffer(clusters[0].data(), bytemuck::cast_slice(&seed))?;
+        clusters[0].upload_seeded_counter(ctx, seed.len() as u32)?;
         let spare = stream("adaptive spare clusters", 1, CLUSTER_BYTES)?;
         let batch_input =
             plan.batched().then(|| stream("adaptive batch clusters", plan.batch, CLUSTER_BYTES)).transpose()?;
@@ -209,11 +203,7 @@ impl AdaptiveCaustics {
                 let spirv = sh.compile("wyman_nichols2009/adaptive_traverse.comp", &defines)?;
                 Kernels::Compute {
                     traverse: Pipeline::compute(ctx, "adaptive.traverse", &spirv)?,
-                    finalize: Pipeline::compute(
-                        ctx,
-                        "adaptive.finalize",
-                        &sh.compile("vkcore/compact_finalize.comp", &[])?,
-                    )?,
+                    finalize: Finalize::new(ctx, sh, "adaptive.finalize")?,
                 }
             }
         };
@@ -260,12 +250,53 @@ impl AdaptiveCaustics {
         Ok(img)
     }
 
+    /// The traversal's stream-compaction path.
+    pub fn path(&self) -> CompactionPath {
+        self.path
+    }
+
+    /// The refinement metric (Sec. 4.1).
+    pub fn metric(&self) -> Metric {
+        self.metric
+    }
+
+    /// The last level L (photons on the (64 × 2^L)² grid).
+    pub fn finest(&self) -> u32 {
+        self.finest
+    }
+
+    /// The light-space geometry buffers photons are made from (Sec. 3.2).
+    pub fn geometry(&self) -> &LightGeometryBuffers {
+        &self.geometry
+    }
+
+    /// With several specular objects, each one's own buffers.
+    pub fn refractors(&self) -> &RefractorLayers {
+        &self.refractors
+    }
+
+    /// How the traversal is split into batches.
+    pub fn plan(&self) -> &BatchPlan {
+        &self.plan
+    }
+
+    /// Every output photon of the light traversed last.
+    pub fn photons(&self) -> &CompactStream {
+        &self.photons
+    }
+
+    /// The photon list, as the compute splat reads it.
+    pub fn splat_list(&self) -> crate::techniques::shared::SplatList {
+        let kind = crate::techniques::shared::ListKind::AdaptivePhotons;
+        crate::techniques::shared::SplatList { kind, path: self.path, element_bytes: photon::PHOTON_BYTES }
+    }
+
     /// The photon storage allocated (bytes): every list of pending clusters, the batch input,
     /// the hits and the output photons, with their counters ([`BatchPlan::storage_bytes`]).
     pub fn photon_storage_bytes(&self) -> u64 {
         let streams =
             self.clusters.iter().chain([&self.spare, &self.photons]).chain(&self.batch_input).chain(&self.hits);
-        streams.map(|s| s.data.size() + s.counter.size()).sum()
+        streams.map(|s| s.data().size() + s.counter().size()).sum()
     }
 }
 

@@ -7,37 +7,22 @@
 
 use super::photon::{unpack_cell, AdaptivePhoton, CLUSTER_BYTES, HITS_BYTES};
 use super::{AdaptiveCaustics, Kernels};
-use crate::gpu::{AdaptiveConstants, BatchConstants, CountConstants, GpuMesh};
+use crate::gpu::{AdaptiveConstants, BatchConstants, CountConstants};
 use crate::gpu::{BatchPart, PassName, Stage};
 use crate::image_io::ImageF32;
 use crate::techniques::shared::compute_splat::{groups, ComputeSplat};
 use crate::techniques::shared::targets::PhotonTargets;
-use crate::techniques::shared::PassInputs;
+use crate::techniques::shared::FrameInputs;
 use crate::techniques::wyman_nichols2009::geometry_buffers::Uniforms;
 use crate::techniques::wyman_nichols2009::settings::tests_convergence;
 use anyhow::Result;
 use vkcore::{
-    Access, Bind, Buffer, CompactStream, CompactionPath, Context, Frame, ImageView, Named, Pipeline, Sampler, Targets,
-    Use,
+    Access, Bind, CompactStream, CompactionPath, Context, Frame, ImageView, Named, Pipeline, StepInput, Targets, Use,
 };
-
-/// What the traversal reads besides its own buffers.
-pub struct Inputs<'a> {
-    pub frame_uniforms: &'a Buffer,
-    pub caustic_uniforms: &'a Buffer,
-    pub meshes: &'a [GpuMesh],
-    /// Every light's receiver positions (the photon trace's receivers).
-    pub receiver_positions: &'a ImageView,
-    pub nearest: &'a Sampler,
-    /// The spot lights' projected textures and their (linear) sampler: they weight the power
-    /// of every photon created (`common/spot_texture.glsl`).
-    pub spot_textures: &'a ImageView,
-    pub linear: &'a Sampler,
-}
 
 /// Where each batch's photons are splatted (none: the traversal alone, for the dumps).
 pub struct Splat<'a> {
-    pub passes: PassInputs<'a>,
+    pub inputs: &'a FrameInputs<'a>,
     /// The compute splat, else the point splat.
     pub compute: Option<&'a ComputeSplat>,
     pub photon_targets: &'a PhotonTargets,
@@ -68,7 +53,7 @@ impl AdaptiveCaustics {
     /// breadth-first down to level B, then batch after batch below it, each splatted before the
     /// next (Sec. 4.3; one batch without a memory limit). Afterwards `photons` holds the last
     /// batch's output.
-    pub fn record_traversal(&self, f: &mut Frame, inp: &Inputs, l: u32, splat: Option<&Splat>) -> Result<()> {
+    pub fn record_traversal(&self, f: &mut Frame, inp: &FrameInputs, l: u32, splat: Option<&Splat>) -> Result<()> {
         let splatted = self.record_breadth(f, inp, l, splat)?;
         for batch in 0..self.plan.batches {
             self.record_batch(f, inp, l, batch, splat.map(|s| (s, !splatted && batch == 0)))?;
@@ -80,7 +65,7 @@ impl AdaptiveCaustics {
     /// level B's pending clusters (and, with max-error, the photons of clusters that converged
     /// above it). Returns whether those photons were splatted (batched max-error traversals
     /// only: the batches reuse the photon list).
-    pub fn record_breadth(&self, f: &mut Frame, inp: &Inputs, l: u32, splat: Option<&Splat>) -> Result<bool> {
+    pub fn record_breadth(&self, f: &mut Frame, inp: &FrameInputs, l: u32, splat: Option<&Splat>) -> Result<bool> {
         let u = Uniforms { frame: inp.frame_uniforms, caustics: inp.caustic_uniforms };
         self.geometry.record(f, &u, inp.meshes, inp.nearest, l)?;
         self.refractors.record(f, &u, inp.meshes, Stage::AdaptiveGeometry, l)?;
@@ -109,7 +94,7 @@ impl AdaptiveCaustics {
     pub fn record_batch(
         &self,
         f: &mut Frame,
-        inp: &Inputs,
+        inp: &FrameInputs,
         l: u32,
         batch: u32,
         splat: Option<(&Splat, bool)>,
@@ -140,12 +125,7 @@ impl AdaptiveCaustics {
     /// The compute path's draw (or dispatch) over the output photons, for the splat.
     fn record_finalize_photons(&self, f: &mut Frame, l: u32, tag: BatchPart) -> Result<()> {
         if let Kernels::Compute { finalize, .. } = &self.kernels {
-            f.pass(&Stage::AdaptiveFinalizePhotons.pass().batch(tag).light(l))
-                .bind(finalize, [("Counter", Bind::Buffer(&self.photons.counter))])
-                .record(|cmd| {
-                    cmd.dispatch(1, 1, 1);
-                    Ok(())
-                })?;
+            finalize.record(f, &Stage::AdaptiveFinalizePhotons.pass().batch(tag).light(l), &self.photons)?;
         }
         Ok(())
     }
@@ -161,10 +141,10 @@ impl AdaptiveCaustics {
     ) -> Result<()> {
         let pending = &self.clusters[self.plan.breadth as usize];
         let binds = [
-            ("Pending", Bind::BufferRead(&pending.data)),
-            ("PendingCounter", Bind::BufferRead(&pending.counter)),
-            ("Batch", Bind::Buffer(&input.data)),
-            ("BatchCounter", Bind::Buffer(&input.counter)),
+            ("Pending", Bind::BufferRead(pending.data())),
+            ("PendingCounter", Bind::BufferRead(pending.counter())),
+            ("Batch", Bind::Buffer(input.data())),
+            ("BatchCounter", Bind::Buffer(input.counter())),
         ];
         let push = BatchConstants {
             first: batch * self.plan.batch,
@@ -186,8 +166,8 @@ impl AdaptiveCaustics {
         let base = l.min(self.lights.max(1) - 1) * 2 * (self.finest + 1);
         let next = self.clusters.get(k as usize + 1);
         let binds = [
-            ("Clusters", Bind::BufferRead(&next.unwrap_or(&self.spare).counter)),
-            ("Photons", Bind::BufferRead(&self.photons.counter)),
+            ("Clusters", Bind::BufferRead(next.unwrap_or(&self.spare).counter())),
+            ("Photons", Bind::BufferRead(self.photons.counter())),
             ("Counts", Bind::Buffer(&self.counts)),
         ];
         let push = CountConstants {
@@ -208,19 +188,13 @@ impl AdaptiveCaustics {
     fn record_reset(&self, f: &mut Frame, name: PassName, from: usize, light: Option<u32>) -> Result<()> {
         let written: Vec<&CompactStream> =
             self.clusters[from..].iter().chain([&self.photons, &self.spare]).chain(self.hits.as_ref()).collect();
-        let mut uses: Vec<Use> = written.iter().map(|s| Use::buffer(&s.counter, Access::TRANSFER_WRITE)).collect();
+        let mut uses: Vec<Use> = written.iter().map(|s| s.reset_use()).collect();
         if light.is_some() {
             uses.push(Use::buffer(&self.counts, Access::TRANSFER_WRITE));
         }
         f.pass(&name).uses(uses).record(|cmd| {
             for s in &written {
-                match self.path {
-                    CompactionPath::TransformFeedback => cmd.fill_buffer(&s.counter, 0),
-                    CompactionPath::Compute => {
-                        let header: Vec<u8> = [0u32, s.capacity, 0, 0].iter().flat_map(|x| x.to_le_bytes()).collect();
-                        cmd.update_buffer(&s.counter, 0, &header)?;
-                    }
-                }
+                s.reset(cmd)?;
             }
             if let Some(l) = light {
                 let slots = 2 * (self.finest + 1);
@@ -233,7 +207,7 @@ impl AdaptiveCaustics {
     }
 
     /// Bindings 0-8 of every traversal kernel (`adaptive.glsl`).
-    fn textures<'a>(&'a self, inp: &Inputs<'a>) -> Vec<Named<'a>> {
+    fn textures<'a>(&'a self, inp: &FrameInputs<'a>) -> Vec<Named<'a>> {
         let g = &self.geometry;
         vec![
             ("frame", Bind::Uniform(inp.frame_uniforms)),
@@ -254,7 +228,7 @@ impl AdaptiveCaustics {
     fn record_step(
         &self,
         f: &mut Frame,
-        inp: &Inputs,
+        inp: &FrameInputs,
         l: u32,
         k: u32,
         input: &CompactStream,
@@ -270,28 +244,23 @@ impl AdaptiveCaustics {
             Kernels::Compute { traverse, finalize } => {
                 let mut binds = self.textures(inp);
                 binds.extend([
-                    ("Input", Bind::BufferRead(&input.data)),
-                    ("InputCounter", Bind::BufferRead(&input.counter)),
-                    ("Output", Bind::Buffer(&out.data)),
-                    ("OutputCounter", Bind::Buffer(&out.counter)),
-                    ("Photons", Bind::Buffer(&self.photons.data)),
-                    ("PhotonCounter", Bind::Buffer(&self.photons.counter)),
+                    ("Input", Bind::BufferRead(input.data())),
+                    ("InputCounter", Bind::BufferRead(input.counter())),
+                    ("Output", Bind::Buffer(out.data())),
+                    ("OutputCounter", Bind::Buffer(out.counter())),
+                    ("Photons", Bind::Buffer(self.photons.data())),
+                    ("PhotonCounter", Bind::Buffer(self.photons.counter())),
                 ]);
                 binds.extend(self.refractors.binds(inp.nearest));
                 // The input's count is read as dispatch arguments too.
-                let arguments = [Use::buffer(&input.counter, Access::INDIRECT)];
-                f.pass(&name(Stage::AdaptiveTraverse)).bind(traverse, binds).uses(arguments).record(|cmd| {
-                    cmd.push(&push)?;
-                    cmd.dispatch_indirect(&input.counter, 16)?;
-                    Ok(())
-                })?;
+                f.pass(&name(Stage::AdaptiveTraverse)).bind(traverse, binds).uses([input.arguments_use()]).record(
+                    |cmd| {
+                        cmd.push(&push)?;
+                        input.dispatch(cmd)
+                    },
+                )?;
                 if !last {
-                    f.pass(&name(Stage::AdaptiveFinalize))
-                        .bind(finalize, [("Counter", Bind::Buffer(&out.counter))])
-                        .record(|cmd| {
-                            cmd.dispatch(1, 1, 1);
-                            Ok(())
-                        })?;
+                    finalize.record(f, &name(Stage::AdaptiveFinalize), out)?;
                 }
             }
             Kernels::Xfb(x) => {
@@ -359,49 +328,31 @@ impl AdaptiveCaustics {
         f: &mut Frame,
         name: &str,
         pipeline: &Pipeline,
-        inp: &Inputs,
+        inp: &FrameInputs,
         push: &AdaptiveConstants,
         from: &Xfb,
         to: XfbOut,
     ) -> Result<()> {
-        let input = from.input;
         let from_hits = from.stride == HITS_BYTES;
         let mut binds = self.textures(inp);
-        let mut uses = vec![];
         if from_hits {
-            binds.push(("Hits", Bind::BufferRead(&input.data)));
-        } else {
-            uses.push(Use::buffer(&input.data, Access::VERTEX_INPUT));
+            binds.push(("Hits", Bind::BufferRead(from.input.data())));
         }
         binds.extend(self.refractors.binds(inp.nearest));
-        if !from.seeded {
-            uses.push(Use::buffer(&input.counter, Access::INDIRECT));
-        }
         let out = match to {
             XfbOut::List(s) => s,
             XfbOut::Photons => &self.photons,
         };
-        uses.push(Use::buffer(&out.data, Access::XFB_WRITE));
-        uses.push(Use::buffer(&out.counter, Access::XFB_COUNTER));
-        f.pass(name).bind(pipeline, binds).uses(uses).record(|cmd| {
+        // Clusters are drawn as vertices; cluster hits are read by index. Either from the byte
+        // count, in elements of the stream's own size (`from.stride`).
+        let step = StepInput { stream: from.input, seeded: from.seeded, as_vertices: !from_hits };
+        // The photons are appended to what earlier steps wrote (their counter was zeroed for this
+        // light or batch).
+        let append = matches!(to, XfbOut::Photons);
+        f.pass(name).bind(pipeline, binds).uses(out.capture_uses(step)).record(|cmd| {
             cmd.begin_rendering(&Targets::none())?;
             cmd.push(push)?;
-            if !from_hits {
-                cmd.bind_vertex_buffer(&input.data, 0)?;
-            }
-            cmd.bind_xfb_buffers(&[&out.data])?;
-            match to {
-                // The photons are appended to what earlier steps wrote (their counter was zeroed
-                // for this light or batch).
-                XfbOut::Photons => cmd.begin_xfb(&[&out.counter], true)?,
-                XfbOut::List(_) => cmd.begin_xfb(&[], false)?,
-            }
-            if from.seeded {
-                cmd.draw(input.capacity, 1, 0, 0);
-            } else {
-                cmd.draw_indirect_byte_count(1, &input.counter, from.stride as u32)?;
-            }
-            cmd.end_xfb(&[&out.counter])?;
+            out.capture(cmd, step, append)?;
             cmd.end_rendering();
             Ok(())
         })?;
@@ -417,7 +368,7 @@ impl AdaptiveCaustics {
         Ok((0..self.lights.max(1) as usize)
             .map(|l| {
                 let at = |i: usize| raw.get(l * 2 * levels + i).copied().unwrap_or(0) as u64;
-                let mut clusters = vec![self.clusters[0].capacity as u64];
+                let mut clusters = vec![self.clusters[0].capacity() as u64];
                 clusters.extend((1..levels).map(at));
                 // Photons so far after each step; each batch starts from none at level B.
                 let so_far = |k: usize| at(levels + k);

@@ -53,6 +53,16 @@ impl std::fmt::Display for FrameMode {
     }
 }
 
+/// What one frame does.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FrameStep {
+    /// Keep the previous frame's photon buffer (static lighting); ignored on the first frame,
+    /// after a pose moved the lights or meshes, and with more than one light.
+    pub reuse_photons: bool,
+    /// Pipeline-statistics queries around every pass (where the device has them).
+    pub pipeline_statistics: bool,
+}
+
 /// A renderer's throughput frames: the ring and, per slot, a staging buffer for what the host
 /// uploads per frame (made by the first frame that needs it).
 pub(crate) struct Slots {
