@@ -219,11 +219,22 @@ pub fn read_exr(path: &Path) -> Result<ImageF32> {
 /// try to allocate them all, and an allocation that fails aborts the process.
 pub const MAX_EXR_SAMPLES: u64 = 1 << 28;
 
-/// Reads the headers alone and refuses sizes beyond [`MAX_EXR_SAMPLES`].
+/// Reads the headers alone and refuses sizes beyond [`MAX_EXR_SAMPLES`] and the lossy
+/// compressions B44, B44A, DWAA and DWAB: on malformed blocks the exr crate's decoders for
+/// these panic in a worker thread (B44) or allocate gigabytes (DWA), and either aborts the
+/// process (found by fuzzing, `fuzz/README.md`). causticlab writes lossless ZIP.
 fn check_exr_header(path: &Path) -> Result<()> {
+    use exr::compression::Compression;
     let meta = exr::meta::MetaData::read_from_file(path, false)?;
     let mut samples: u64 = 0;
     for h in meta.headers.iter() {
+        if let Compression::B44 | Compression::B44A | Compression::DWAA(_) | Compression::DWAB(_) = h.compression {
+            bail!(
+                "its {} is lossy: this reader refuses B44 and DWA compression (their decoder can crash on a \
+                 damaged file); save it without compression or with RLE, ZIP, PIZ or PXR24",
+                h.compression
+            );
+        }
         let (w, ht) = (h.layer_size.width() as u64, h.layer_size.height() as u64);
         let channels = h.channels.list.len() as u64;
         let part = w.saturating_mul(ht).saturating_mul(channels);

@@ -175,6 +175,47 @@ fn exr_header_claiming_a_huge_image_is_refused_before_reading_pixels() {
     assert!(err.contains("huge.exr") && err.contains("1000000x1000000") && err.contains("claims"), "{err}");
 }
 
+/// B44, B44A, DWAA and DWAB files are refused by the header check, naming the file and the
+/// compression, even well-formed ones (their decoders abort the process on damaged blocks,
+/// `fuzz_regressions/exr/`); the lossless ones are read.
+#[test]
+fn exr_lossy_b44_and_dwa_compression_is_refused_lossless_is_read() {
+    use exr::prelude::*;
+    let dir = TempDir::new("exr-lossy");
+    let size = (16usize, 16usize);
+    for (name, compression, read) in [
+        ("b44", Compression::B44, false),
+        ("b44a", Compression::B44A, false),
+        ("dwaa", Compression::DWAA(None), false),
+        ("dwab", Compression::DWAB(None), false),
+        ("piz", Compression::PIZ, true),
+        ("zip", Compression::ZIP16, true),
+        ("rle", Compression::RLE, true),
+    ] {
+        let path = dir.0.join(format!("{name}.exr"));
+        let encoding = Encoding { compression, ..Encoding::UNCOMPRESSED };
+        let channel = AnyChannel::new("R", FlatSamples::F16(vec![f16::from_f32(0.5); 256]));
+        let layer = exr::prelude::Layer::new(
+            size,
+            LayerAttributes::default(),
+            encoding,
+            AnyChannels::sort(SmallVec::from_vec(vec![channel])),
+        );
+        Image::from_layer(layer).write().to_file(&path).unwrap();
+        match read_exr(&path) {
+            Ok(img) => {
+                assert!(read, "{name}: read, should be refused");
+                assert_eq!(img.layers[0].data, vec![0.5; 256], "{name}");
+            }
+            Err(e) => {
+                let e = format!("{e:#}");
+                assert!(!read, "{name}: refused, should be read: {e}");
+                assert!(e.contains(&format!("{name}.exr")) && e.contains(&format!("{name} compression")), "{e}");
+            }
+        }
+    }
+}
+
 /// Independent ACES (Narkowicz) + sRGB in f64, for expected codes.
 fn expected_code(linear: f64) -> u8 {
     let x = linear;
