@@ -44,8 +44,10 @@ float texel_solid_angle(vec2 ndc, vec4 plane) {
 }
 
 // Where point `p` lands in light `cl`'s caustic map, in texels (texel (i, j) spans [i, i + 1) x
-// [j, j + 1)); false behind the light, where `t` means nothing. Every caustic technique's
-// photons, splats and clusters land by this projection.
+// [j, j + 1)); false behind the light, where `t` means nothing. Splats, hierarchy texels,
+// adaptive clusters and max-distance radii land by it; what needs the normalised device
+// coordinates instead (a texel's solid angle, a texture lookup, a rasterized position) projects
+// with caustic_view_proj itself.
 bool caustic_map_texel(CausticLight cl, vec3 p, out vec2 t) {
     vec4 clip = cl.caustic_view_proj * vec4(p, 1.0);
     t = (clip.xy / clip.w * 0.5 + 0.5) * cl.caustic_plane.y;

@@ -1,8 +1,8 @@
-// Compute splat: the modern path beside the point splat (photons/splat.vert + splat.frag). One
+// Compute splat: the modern path beside the point splat (shared/splat.vert + splat.frag). One
 // invocation per photon (a photon-buffer texel, an entry of the hierarchical traversal's final
 // list with HIERARCHY, or an output photon of the adaptive traversal with ADAPTIVE_PHOTONS) adds
 // its kernel, weighted as the point splat's fragments are, to a float buffer with atomics;
-// photons/splat_resolve.comp then stores the buffer in the caustic map. The texels, weights and layers are those of the point splat (shared/splat_photon.glsl),
+// shared/splat_resolve.comp then stores the buffer in the caustic map. The texels, weights and layers are those of the point splat (shared/splat_photon.glsl),
 // so both give the same caustic map up to the order of the float additions.
 #version 450
 #extension GL_EXT_shader_atomic_float : require

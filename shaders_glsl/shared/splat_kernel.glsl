@@ -1,6 +1,6 @@
 // The splat kernel (Shah et al.'s point splats; Wyman & Davis 2006 "points"): Gaussian with
 // sigma = r/2, or box, over the texel centres within r of the photon. Shared by the point splat
-// (photons/splat.vert, splat.frag) and the compute splat (shared/splat.comp). Needs
+// (shared/splat.vert, splat.frag) and the compute splat (shared/splat.comp). Needs
 // common/caustics.glsl (splat.y: 0 Gaussian, 1 box).
 #ifndef SPLAT_KERNEL_GLSL
 #define SPLAT_KERNEL_GLSL

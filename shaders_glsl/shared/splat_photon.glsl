@@ -1,4 +1,4 @@
-// One photon's splat, shared by the point splat (photons/splat.vert + splat.frag) and the compute
+// One photon's splat, shared by the point splat (shared/splat.vert + splat.frag) and the compute
 // splat (shared/splat.comp) so that both deposit the same power in the same texels: where the
 // photon lands in the caustic map, its radius and layer, and its power divided by the kernel's
 // sum over the texel centres it covers (a photon deposits exactly its power).

@@ -24,7 +24,7 @@ layout(binding = 7, rgba32f) uniform writeonly image2D out_power;
 layout(binding = 8, rgba32f) uniform writeonly image2D out_position;
 layout(binding = 9, rgba32f) uniform writeonly image2D out_texels;
 
-// The caustic-map texel photon position `p` lands in (as in photons/splat.vert); photons
+// The caustic-map texel photon position `p` lands in (as in shared/splat.vert); photons
 // behind the light's caustic frustum get texel (-1, -1).
 vec2 caustic_texel(vec3 p, uint l) {
     vec2 t;

@@ -1,5 +1,5 @@
 // The `splats` dump of hcm: each entry of the traversal's final list as the splat passes
-// (photons/splat.vert, splat.comp) splat it, from the same shared/splat_photon.glsl: where it
+// (shared/splat.vert, splat.comp) splat it, from the same shared/splat_photon.glsl: where it
 // lands, its radius and layer, its power. Three vec4 per entry:
 // - (centre x, centre y, radius, layer), centre and radius in texels of the base caustic map
 //   (the layer holds the splat at 1/2^layer of both; radius 0: all in the nearest texel);

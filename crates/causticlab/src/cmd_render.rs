@@ -32,7 +32,9 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             )
             .into());
         }
-        if n == caustics::techniques::wyman_nichols2009::deferred_photons::DUMP && technique.has_photon_buffer() {
+        if n == caustics::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP
+            && technique.has_photon_buffer()
+        {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of --photon-refraction deferred, not of `{}`",
                 scene.caustics.photon_refraction

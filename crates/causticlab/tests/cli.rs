@@ -572,7 +572,7 @@ fn render_help_lists_every_enumerated_value_under_its_group() {
         ("--technique", Technique::NAMES),
         ("--splat-kernel", SplatKernel::NAMES),
         ("--intersect", Intersect::NAMES),
-        ("--path", wyman2008::TraversalPath::NAMES),
+        ("--path", caustics::techniques::shared::settings::TraversalPath::NAMES),
         ("--cluster", wyman2008::Cluster::NAMES),
         ("--splat", wyman2008::SplatMode::NAMES),
         ("--varying-radius", wyman2008::VaryingRadius::NAMES),

@@ -150,10 +150,17 @@ impl CompactStream {
     /// elements uploaded once): transform feedback's byte count, or the compute path's
     /// [`AppendCounter::full`].
     pub fn upload_seeded_counter(&self, ctx: &Context, count: u32) -> Result<()> {
+        let bytes = count as u64 * self.element_bytes;
+        if count > self.capacity || bytes > u32::MAX as u64 {
+            return Err(crate::VkError::Invalid(format!(
+                "a seed of {count} elements in a stream of {} (of {} bytes each)",
+                self.capacity, self.element_bytes
+            )));
+        }
         let mut header = AppendCounter::full(count);
         header.capacity = self.capacity;
         if self.path == CompactionPath::TransformFeedback {
-            header.count = count * self.element_bytes as u32;
+            header.count = bytes as u32;
         }
         ctx.upload_buffer(&self.counter, bytemuck::bytes_of(&header))
     }
@@ -228,7 +235,8 @@ impl CompactStream {
         cmd.end_xfb(&[&self.counter])
     }
 
-    /// What [`CompactStream::capture`] reads of `from` and writes.
+    /// What [`CompactStream::capture`] reads of `from` (its elements as vertices, its counter as
+    /// draw arguments) and writes; a kernel that reads `from`'s elements by index binds them.
     pub fn capture_uses<'a>(&'a self, from: StepInput<'a>) -> Vec<Use<'a>> {
         let mut uses = vec![];
         if from.as_vertices {

@@ -45,7 +45,7 @@ pub const LIGHT_SPACE_DUMPS: &[&str] = &[
     "splats",
     "adaptive_geometry",
     "adaptive_lists",
-    crate::techniques::wyman_nichols2009::deferred_photons::DUMP,
+    crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP,
 ];
 
 /// Whether the eye-render buffer `name` belongs to the other refraction than `refraction`.

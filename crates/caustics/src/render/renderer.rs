@@ -545,7 +545,7 @@ impl<'c> MeshRenderer<'c> {
             let Some(c) = &self.caustic else { break };
             for (i, name) in wanted.iter().enumerate() {
                 let img = match (*name, &c.hierarchy) {
-                    (wn2009::deferred_photons::DUMP, _) => match &c.deferred_photons {
+                    (wn2009::settings::DEFERRED_PHOTONS_DUMP, _) => match &c.deferred_photons {
                         Some(d) => d.dump(self.ctx)?,
                         None => continue,
                     },

@@ -9,7 +9,8 @@ use std::path::Path;
 /// The papers' folders under `techniques/`.
 pub const PAPERS: &[&str] = &["shah2007", "trendall_stewart2000", "wyman2008", "wyman_davis2006", "wyman_nichols2009"];
 
-/// One dependency: the part `from` names an item of the part `to` at `at` (file:line).
+/// One dependency: the part `from` names an item of the part `to` (maybe itself) at `at`
+/// (file:line).
 #[derive(Debug, Clone)]
 pub struct Dep {
     pub from: String,
@@ -327,11 +328,13 @@ pub fn dependencies(files: &BTreeMap<String, String>) -> Vec<Dep> {
         while let Some(k) = text[search..].find("use ").map(|k| search + k) {
             search = k + 4;
             let before = text[..k].trim_end();
-            let starts_item = before.is_empty()
-                || before.ends_with([';', '{', '}', ']'])
-                || before.ends_with("pub")
-                || before.ends_with("pub(crate)")
-                || before.ends_with("pub(super)");
+            // `pub`, `pub(crate)`, `pub(super)`, `pub(in path)` before it: a re-export.
+            let visibility = before.rfind("pub").filter(|&p| {
+                let v = &before[p..];
+                v == "pub" || v.starts_with("pub(") && v.ends_with(')') && !v.contains([';', '{', '}'])
+            });
+            let item_start = visibility.map_or(before, |p| before[..p].trim_end());
+            let starts_item = item_start.is_empty() || item_start.ends_with([';', '{', '}', ']']);
             if !starts_item || k > 0 && is_ident(text[..k].chars().last().unwrap()) {
                 continue;
             }
@@ -341,7 +344,9 @@ pub fn dependencies(files: &BTreeMap<String, String>) -> Vec<Dep> {
             use_paths(&text[k + 4..end], &[], &mut paths);
             for (segs, name) in paths {
                 let Some(abs) = reader.resolve(&segs) else { continue };
-                if !modules.contains(&abs) || name.is_none() {
+                // A module brought in is followed where it is used; one re-exported is a
+                // dependency itself.
+                if !modules.contains(&abs) || name.is_none() || visibility.is_some() {
                     found.push((abs.clone(), k));
                 }
                 if let Some(name) = name {
@@ -349,7 +354,10 @@ pub fn dependencies(files: &BTreeMap<String, String>) -> Vec<Dep> {
                 }
             }
         }
-        // Paths written in the code: `crate::a::b`, `super::x`, `alias::y`.
+        // Paths written in the code: `crate::a::b`, `super::x`, `alias::y` (not the path of a
+        // `pub(in path)` visibility, which names where an item is seen, not what it uses).
+        let visibility_paths: Vec<std::ops::Range<usize>> =
+            text.match_indices("pub(in ").map(|(p, _)| p..text[p..].find(')').map_or(text.len(), |e| p + e)).collect();
         let chars: Vec<(usize, char)> = text.char_indices().collect();
         let mut i = 0;
         while i < chars.len() {
@@ -358,7 +366,7 @@ pub fn dependencies(files: &BTreeMap<String, String>) -> Vec<Dep> {
                 let p = chars[i - 1].1;
                 !is_ident(p) && p != ':'
             };
-            if !(prev_ok && is_ident(ch)) || use_spans.iter().any(|s| s.contains(&at)) {
+            if !(prev_ok && is_ident(ch)) || use_spans.iter().chain(&visibility_paths).any(|s| s.contains(&at)) {
                 i += 1;
                 continue;
             }
@@ -384,17 +392,10 @@ pub fn dependencies(files: &BTreeMap<String, String>) -> Vec<Dep> {
             }
             i = j.max(i + 1);
         }
+        // Every dependency, within a part too: the paper rule applies between settings modules.
         for (abs, at) in found {
             let to = part(&abs, &top_level);
-            if to != from {
-                deps.push(Dep {
-                    from: from.clone(),
-                    to,
-                    at: format!("{rel}:{}", line(at)),
-                    file: rel.clone(),
-                    path: abs,
-                });
-            }
+            deps.push(Dep { from: from.clone(), to, at: format!("{rel}:{}", line(at)), file: rel.clone(), path: abs });
         }
     }
     deps
@@ -421,7 +422,7 @@ pub fn problems(deps: &[Dep]) -> Vec<String> {
         }
     }
     let mut graph: BTreeMap<&str, BTreeMap<&str, &str>> = BTreeMap::new();
-    for d in deps {
+    for d in deps.iter().filter(|d| d.from != d.to) {
         graph.entry(&d.from).or_default().entry(&d.to).or_insert(&d.at);
         graph.entry(&d.to).or_default();
     }
@@ -447,7 +448,7 @@ pub fn problems(deps: &[Dep]) -> Vec<String> {
 pub fn out_of_order(deps: &[Dep], layers: &[&[&str]]) -> Vec<String> {
     let rank = |p: &str| layers.iter().position(|l| l.contains(&p));
     let mut out = vec![];
-    for d in deps {
+    for d in deps.iter().filter(|d| d.from != d.to) {
         match (rank(&d.from), rank(&d.to)) {
             (Some(a), Some(b)) if b < a => {}
             (Some(a), Some(b)) if a == b && d.from.starts_with("techniques::") => {} // see problems()

@@ -111,7 +111,34 @@ fn test_code_and_strings_are_not_dependencies() {
         ("render/mod.rs", "use crate::scene::Scene;\n"),
     ]);
     let deps = layers::dependencies(&files);
-    let to_render: BTreeSet<_> = deps.iter().filter(|d| d.to == "render").map(|d| d.at.clone()).collect();
+    let to_render: BTreeSet<_> =
+        deps.iter().filter(|d| d.to == "render" && d.from != "render").map(|d| d.at.clone()).collect();
     assert!(to_render.is_empty(), "test code or a string read as a dependency: {to_render:?}");
     assert!(layers::problems(&deps).is_empty());
+}
+
+/// The paper rule holds inside the settings layer too (every paper's `settings.rs` is one part),
+/// and a module re-exported under `pub(in path)` is a dependency while the visibility's path
+/// is not.
+#[test]
+fn settings_importing_another_papers_settings_and_re_exports_are_reported() {
+    let files = tree(&[
+        ("techniques/mod.rs", "pub mod wyman2008;\npub mod wyman_nichols2009;\npub mod shared;\n"),
+        ("techniques/wyman2008/mod.rs", "pub mod settings;\n"),
+        ("techniques/wyman2008/settings.rs", "pub enum Cluster {}\n"),
+        ("techniques/wyman_nichols2009/mod.rs", "pub mod settings;\n"),
+        ("techniques/wyman_nichols2009/settings.rs", "use crate::techniques::wyman2008::settings::Cluster;\n"),
+        (
+            "techniques/shared/mod.rs",
+            "pub(in crate::techniques) use crate::techniques::wyman2008;\npub(in crate::techniques) fn f() {}\n",
+        ),
+    ]);
+    let deps = layers::dependencies(&files);
+    let all = layers::problems(&deps).join("\n");
+    assert!(
+        all.contains("techniques/wyman_nichols2009/settings.rs:1: wyman_nichols2009 imports another paper"),
+        "{all}"
+    );
+    assert!(all.contains("techniques/shared/mod.rs:1: shared imports a paper"), "{all}");
+    assert!(!all.contains("shared/mod.rs:2"), "a visibility path read as a dependency: {all}");
 }

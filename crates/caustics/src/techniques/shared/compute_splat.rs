@@ -74,7 +74,7 @@ pub struct Batch {
 enum ListDispatch {
     /// The compute traversal's append counter holds them (vkcore/compact_finalize.comp).
     AppendCounter,
-    /// The xfb traversal's counter holds bytes: photons/splat_args.comp turns them into work
+    /// The xfb traversal's counter holds bytes: shared/splat_args.comp turns them into work
     /// groups in this buffer.
     ByteCount(Box<(Pipeline, Buffer)>),
 }

@@ -20,9 +20,10 @@ use vkcore::{Buffer, ImageView, Sampler};
 
 use crate::image_io::{ImageF32, Layer};
 
-/// What every caustic pass may read of the frame besides its own resources: the uniforms, the
-/// scene's meshes, the samplers, the spot textures and the receiver positions. The one type of
-/// inputs every stage (photon source, selection, deposit) records with.
+/// What every light-space caustic pass may read of the frame besides its own resources: the
+/// uniforms, the scene's meshes, the samplers, the spot textures and the receiver positions.
+/// The one type of inputs the photon sources, selections and deposits record with (the eye
+/// view's deferred refraction and the pool have their own: they read the eye's targets).
 pub struct FrameInputs<'a> {
     pub frame_uniforms: &'a Buffer,
     pub caustic_uniforms: &'a Buffer,

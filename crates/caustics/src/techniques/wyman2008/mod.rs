@@ -19,11 +19,12 @@ mod traversal;
 
 pub use entry::{pack_entry, unpack_entry, ENTRY_BYTES, MAX_SIDE};
 pub use pyramid::levels;
-pub use settings::{Cluster, SplatMode, TraversalPath, VaryingRadius, DUMPS, PAPER};
+pub use settings::{Cluster, SplatMode, VaryingRadius, DUMPS, PAPER};
 pub use traversal::lists_image;
 
 use crate::gpu::Target;
 use crate::techniques::shared::pipelines::point_splat_desc;
+use crate::techniques::shared::settings::TraversalPath;
 use crate::techniques::shared::targets::COLOR;
 use anyhow::Result;
 use pyramid::Pyramid;

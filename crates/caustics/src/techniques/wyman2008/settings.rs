@@ -8,7 +8,6 @@
 pub const MULTIRES_LEVELS: u32 = 4;
 
 use super::super::value_enum::value_enum;
-pub use crate::techniques::shared::settings::TraversalPath;
 
 /// The paper, as tables and `--help` cite it.
 pub const PAPER: &str = "Wyman 2008, hierarchical caustic maps";
@@ -75,8 +74,8 @@ mod tests {
 
     #[test]
     fn names_round_trip() {
-        for p in TraversalPath::ALL {
-            assert_eq!(TraversalPath::parse(p.name()), Some(*p));
+        for p in crate::techniques::shared::settings::TraversalPath::ALL {
+            assert_eq!(crate::techniques::shared::settings::TraversalPath::parse(p.name()), Some(*p));
         }
         assert_eq!("varying-multires".parse::<SplatMode>(), Ok(SplatMode::VaryingMultires));
         assert!("lsat".parse::<Cluster>().unwrap_err().contains("none, last, all"));

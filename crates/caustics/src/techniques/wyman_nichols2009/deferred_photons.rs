@@ -30,8 +30,6 @@ use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use vkcore::{Access, Bind, Context, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Use};
 
-pub use super::settings::DEFERRED_PHOTONS_DUMP as DUMP;
-
 pub struct DeferredPhotons {
     /// The indices of the specular meshes (the scene's objects), in the scene's order.
     specular: Vec<usize>,
