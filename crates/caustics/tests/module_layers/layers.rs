@@ -128,42 +128,37 @@ fn blank(src: &str) -> String {
             }
             i = end;
         } else if c[i] == '"' {
-            keep(&mut out, c[i]);
-            i += 1;
-            while i < c.len() && c[i] != '"' {
-                if c[i] == '\\' {
-                    keep(&mut out, c[i]);
-                    i += 1;
-                }
-                if i < c.len() {
-                    keep(&mut out, c[i]);
-                    i += 1;
-                }
-            }
-            if i < c.len() {
-                keep(&mut out, c[i]);
-                i += 1;
-            }
+            i = blank_quoted(&c, i, '"', &mut out);
         } else if c[i] == '\'' && (c.get(i + 2) == Some(&'\'') || c.get(i + 1) == Some(&'\\')) {
             // A char literal ('x', '\n', '\u{..}'), not a lifetime.
-            keep(&mut out, c[i]);
-            i += 1;
-            while i < c.len() && c[i] != '\'' {
-                if c[i] == '\\' {
-                    keep(&mut out, c[i]);
-                    i += 1;
-                }
-                keep(&mut out, c[i]);
-                i += 1;
-            }
-            keep(&mut out, c[i]);
-            i += 1;
+            i = blank_quoted(&c, i, '\'', &mut out);
         } else {
             out.push(c[i]);
             i += 1;
         }
     }
     out
+}
+
+/// Blanks the literal that opens with `quote` at `c[i]` (escapes skipped, an unclosed one
+/// running to the end) into `out`; returns the index after it.
+fn blank_quoted(c: &[char], mut i: usize, quote: char, out: &mut String) -> usize {
+    let mut keep = |ch: char| out.push(if ch == '\n' { '\n' } else { ' ' });
+    keep(c[i]);
+    i += 1;
+    while i < c.len() && c[i] != quote {
+        if c[i] == '\\' && i + 1 < c.len() {
+            keep(c[i]);
+            i += 1;
+        }
+        keep(c[i]);
+        i += 1;
+    }
+    if i < c.len() {
+        keep(c[i]);
+        i += 1;
+    }
+    i
 }
 
 fn is_ident(ch: char) -> bool {

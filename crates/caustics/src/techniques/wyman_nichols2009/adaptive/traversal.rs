@@ -5,7 +5,7 @@
 //! memory limit, breadth-first to level B, then batch after batch below it, each splatted
 //! before the next (Sec. 4.3).
 
-use super::photon::{unpack_cell, AdaptivePhoton, CLUSTER_BYTES, HITS_BYTES};
+use super::photon::{unpack_cell, AdaptivePhoton};
 use super::{AdaptiveCaustics, Kernels};
 use crate::gpu::{AdaptiveConstants, BatchConstants, CountConstants};
 use crate::gpu::{BatchPart, PassName, Stage};
@@ -30,14 +30,6 @@ pub struct Splat<'a> {
     pub cmap: &'a ImageView,
     /// How many: 4 for the multi-resolution map (varying-multires splats), else 1.
     pub layers: u32,
-}
-
-/// What a transform-feedback kernel reads: a stream of elements of `stride` bytes (clusters or
-/// cluster hits); `seeded`: the coarse grid's clusters, drawn by their number.
-struct Xfb<'a> {
-    input: &'a CompactStream,
-    seeded: bool,
-    stride: u64,
 }
 
 /// Where a transform-feedback kernel writes.
@@ -264,7 +256,9 @@ impl AdaptiveCaustics {
                 }
             }
             Kernels::Xfb(x) => {
-                let clusters = Xfb { input, seeded, stride: CLUSTER_BYTES };
+                // Clusters are drawn as vertices (`seeded`: the coarse grid's, by their number);
+                // cluster hits are read by index.
+                let clusters = StepInput { stream: input, seeded, as_vertices: true };
                 match (converge, last) {
                     (false, false) => self.record_xfb(
                         f,
@@ -280,7 +274,7 @@ impl AdaptiveCaustics {
                     }
                     (true, _) => {
                         let hits = self.hits.as_ref().ok_or_else(|| anyhow::anyhow!("no hits stream"))?;
-                        let from_hits = Xfb { input: hits, seeded: false, stride: HITS_BYTES };
+                        let from_hits = StepInput { stream: hits, seeded: false, as_vertices: false };
                         // Sec. 4.1's three kernels: hit positions, the converged stream, subdivision.
                         self.record_xfb(
                             f,
@@ -330,29 +324,25 @@ impl AdaptiveCaustics {
         pipeline: &Pipeline,
         inp: &FrameInputs,
         push: &AdaptiveConstants,
-        from: &Xfb,
+        from: &StepInput,
         to: XfbOut,
     ) -> Result<()> {
-        let from_hits = from.stride == HITS_BYTES;
         let mut binds = self.textures(inp);
-        if from_hits {
-            binds.push(("Hits", Bind::BufferRead(from.input.data())));
+        if !from.as_vertices {
+            binds.push(("Hits", Bind::BufferRead(from.stream.data())));
         }
         binds.extend(self.refractors.binds(inp.nearest));
         let out = match to {
             XfbOut::List(s) => s,
             XfbOut::Photons => &self.photons,
         };
-        // Clusters are drawn as vertices; cluster hits are read by index. Either from the byte
-        // count, in elements of the stream's own size (`from.stride`).
-        let step = StepInput { stream: from.input, seeded: from.seeded, as_vertices: !from_hits };
         // The photons are appended to what earlier steps wrote (their counter was zeroed for this
         // light or batch).
         let append = matches!(to, XfbOut::Photons);
-        f.pass(name).bind(pipeline, binds).uses(out.capture_uses(step)).record(|cmd| {
+        f.pass(name).bind(pipeline, binds).uses(out.capture_uses(*from)).record(|cmd| {
             cmd.begin_rendering(&Targets::none())?;
             cmd.push(push)?;
-            out.capture(cmd, step, append)?;
+            out.capture(cmd, *from, append)?;
             cmd.end_rendering();
             Ok(())
         })?;
