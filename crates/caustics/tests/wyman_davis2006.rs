@@ -400,3 +400,23 @@ fn every_variant_adds_two_lights_up() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The eye's photon images are written by the methods that draw photons as points (eye points,
+/// gathers) and dumped for them only: quads are drawn straight into the caustic irradiance, so
+/// their `eye_caustic` is its main layer alone (it once also held the never-written photon
+/// images: whatever memory they were given), while eye points dump photons.
+#[test]
+fn the_eye_caustic_dump_holds_only_the_layers_its_method_writes() {
+    let names = |img: &ImageF32| img.layers.iter().map(|l| l.name.clone()).collect::<Vec<_>>();
+    let mut quads = load("sphere_on_plane", Technique::WdQuads, 64);
+    quads.caustics.space = caustics::techniques::wyman_davis2006::settings::Space::Eye;
+    let dumps = render(&quads, 1, &["eye_caustic"]);
+    assert_eq!(names(get(&dumps, "eye_caustic")), [None]);
+    let points = load("sphere_on_plane", Technique::WdEyePoints, 64);
+    let dumps = render(&points, 1, &["eye_caustic"]);
+    let eye = get(&dumps, "eye_caustic");
+    assert_eq!(names(eye), [None, Some("photons".to_string()), Some("direction".to_string())]);
+    let (photons, n) = layer(eye, Some("photons"));
+    let count: f64 = photons.chunks(n).map(|p| p[3] as f64).sum();
+    assert!(count > 0.0, "no photon in the eye's view");
+}

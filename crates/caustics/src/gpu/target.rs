@@ -29,3 +29,33 @@ impl Target {
         Target::new(ctx, ImageDesc::new_2d(name, DEPTH, w, h))
     }
 }
+
+impl Target {
+    /// Mip 0 of array layer `layer_index` as a dump layer: the channels at `pick` of each
+    /// texel (of any float format), under `names`.
+    pub fn read_layer(
+        &self,
+        ctx: &Context,
+        layer_index: u32,
+        name: Option<&str>,
+        names: &[&str],
+        pick: &[usize],
+    ) -> Result<crate::image_io::Layer> {
+        read_image_layer(ctx, &self.image, layer_index, name, names, pick)
+    }
+}
+
+/// [`Target::read_layer`] of any image.
+pub fn read_image_layer(
+    ctx: &Context,
+    image: &Image,
+    layer_index: u32,
+    name: Option<&str>,
+    names: &[&str],
+    pick: &[usize],
+) -> Result<crate::image_io::Layer> {
+    let texels = ctx.read_image_f32(image, 0, layer_index)?;
+    let stride = texels.len() / (image.desc.width * image.desc.height) as usize;
+    let data = texels.chunks(stride).flat_map(|px| pick.iter().map(move |&c| px[c])).collect();
+    Ok(crate::image_io::Layer::new(name, names, data))
+}

@@ -118,7 +118,7 @@ impl<'c> Renderer<'c> {
     /// The hierarchy of `hcm` (None for the other techniques).
     pub fn hierarchy(&self) -> Option<&Hierarchy> {
         match self {
-            Renderer::Mesh(r) => r.hierarchy(),
+            Renderer::Mesh(r) => r.caustics().and_then(|c| c.hierarchy()),
             Renderer::Pool(_) => None,
         }
     }
@@ -126,7 +126,7 @@ impl<'c> Renderer<'c> {
     /// The adaptive caustic maps of `adaptive` (None for the other techniques).
     pub fn adaptive(&self) -> Option<&crate::techniques::AdaptiveCaustics> {
         match self {
-            Renderer::Mesh(r) => r.adaptive(),
+            Renderer::Mesh(r) => r.caustics().and_then(|c| c.adaptive()),
             Renderer::Pool(_) => None,
         }
     }

@@ -1,11 +1,12 @@
 //! Reads intermediate buffers back as named EXR layers (`--dump`).
 
 use super::targets::{EyeTargets, Target};
+use crate::gpu::target::read_image_layer;
 use crate::image_io::{ImageF32, Layer};
 use crate::techniques::wyman_nichols2009::DeferredRefraction;
 use crate::techniques::{CausticTargets, PhotonTargets};
 use anyhow::Result;
-use vkcore::{Context, Image};
+use vkcore::Context;
 
 const FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
@@ -18,22 +19,7 @@ pub(crate) fn layer(
     names: &[&str],
     pick: &[usize],
 ) -> Result<Layer> {
-    image_layer(ctx, &t.image, layer_index, name, names, pick)
-}
-
-/// [`layer`] of any image (mip 0): its texels, of any float format.
-fn image_layer(
-    ctx: &Context,
-    image: &Image,
-    layer_index: u32,
-    name: Option<&str>,
-    names: &[&str],
-    pick: &[usize],
-) -> Result<Layer> {
-    let texels = ctx.read_image_f32(image, 0, layer_index)?;
-    let stride = texels.len() / (image.desc.width * image.desc.height) as usize;
-    let data = texels.chunks(stride).flat_map(|px| pick.iter().map(move |&c| px[c])).collect();
-    Ok(Layer::new(name, names, data))
+    t.read_layer(ctx, layer_index, name, names, pick)
 }
 
 pub(crate) fn image(t: &Target, layers: Vec<Layer>) -> ImageF32 {
@@ -137,7 +123,7 @@ pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, name: &st
             "refractor_geometry" => {
                 for (face, l) in [("front", 2 * k), ("back", 2 * k + 1)] {
                     let (surface, depth) = (format!("layer{k}.{face}"), format!("layer{k}.{face}_depth"));
-                    layers.push(image_layer(
+                    layers.push(read_image_layer(
                         ctx,
                         &d.surfaces,
                         l,
@@ -145,14 +131,14 @@ pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, name: &st
                         &["NX", "NY", "NZ", "distance"],
                         &[0, 1, 2, 3],
                     )?);
-                    layers.push(image_layer(ctx, &d.depths, l, Some(&depth), &["depth", "thickness"], &[0, 1])?);
+                    layers.push(read_image_layer(ctx, &d.depths, l, Some(&depth), &["depth", "thickness"], &[0, 1])?);
                 }
             }
             "refraction_layers" => {
                 let n = Some(format!("layer{k}"));
                 layers.push(match &d.results {
                     Some(r) if k + 1 < d.layers.len() as u32 => {
-                        image_layer(ctx, r, k, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?
+                        read_image_layer(ctx, r, k, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?
                     }
                     _ => layer(ctx, &t.final_image, 0, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?,
                 });
@@ -161,55 +147,4 @@ pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, name: &st
         }
     }
     Ok(image(&t.final_image, layers))
-}
-
-/// The photon buffer or its back faces (`name`) as they are now: the light that rendered them
-/// last. Layers are unprefixed; [`for_light`] names them.
-pub fn photon_targets(ctx: &Context, p: &PhotonTargets, name: &str) -> Result<ImageF32> {
-    Ok(match name {
-        "photon_back_faces" => image(
-            &p.back_faces,
-            vec![layer(ctx, &p.back_faces, 0, None, &["NX", "NY", "NZ", "distance"], &[0, 1, 2, 3])?],
-        ),
-        "photon_buffer" => image(
-            &p.position,
-            vec![
-                layer(ctx, &p.position, 0, Some("position"), &["X", "Y", "Z", "valid"], &[0, 1, 2, 3])?,
-                layer(ctx, &p.direction, 0, Some("direction"), &["X", "Y", "Z", "W"], &[0, 1, 2, 3])?,
-                layer(ctx, &p.power, 0, Some("power"), &["R", "G", "B"], &[0, 1, 2])?,
-            ],
-        ),
-        other => anyhow::bail!("no photon buffer called `{other}`"),
-    })
-}
-
-/// `img`'s layers renamed for light `l`: `light<l>` (the main layer) or `light<l>.<name>`.
-pub fn for_light(img: ImageF32, l: u32) -> ImageF32 {
-    let layers = img
-        .layers
-        .into_iter()
-        .map(|mut layer| {
-            layer.name = Some(match layer.name {
-                None => format!("light{l}"),
-                Some(n) => format!("light{l}.{n}"),
-            });
-            layer
-        })
-        .collect();
-    ImageF32 { layers, ..img }
-}
-
-/// `a` with `b`'s layers added (the same size: one buffer of several lights).
-pub fn merge(a: Option<ImageF32>, b: ImageF32) -> Result<ImageF32> {
-    let Some(mut a) = a else { return Ok(b) };
-    anyhow::ensure!(
-        (a.width, a.height) == (b.width, b.height),
-        "merging {}x{} and {}x{} dumps",
-        a.width,
-        a.height,
-        b.width,
-        b.height
-    );
-    a.layers.extend(b.layers);
-    Ok(a)
 }

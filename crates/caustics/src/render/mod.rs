@@ -35,18 +35,7 @@ pub const EYE_DUMPS: &[&str] = &[
     "receiver",
 ];
 
-/// The light-space buffers that serve every light in turn (dumped light by light, layers
-/// `light<l>.<layer>`; see `Renderer::dumps`).
-pub const LIGHT_SPACE_DUMPS: &[&str] = &[
-    "photon_back_faces",
-    "photon_buffer",
-    "hierarchy",
-    "hierarchy_lists",
-    "splats",
-    "adaptive_geometry",
-    "adaptive_lists",
-    crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP,
-];
+pub use crate::techniques::LIGHT_SPACE_DUMPS;
 
 /// Whether the eye-render buffer `name` belongs to the other refraction than `refraction`.
 pub(crate) fn other_refractions(name: &str, refraction: Refraction) -> bool {

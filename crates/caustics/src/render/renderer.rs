@@ -7,15 +7,9 @@ use crate::gpu::frame_mode::{FrameMode, FrameStep, Slots};
 use crate::gpu::{self, setup, Stage};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
-use crate::techniques::shah2007::VertexPhotons;
-use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
-use crate::techniques::wyman2008::{self, Hierarchy};
-use crate::techniques::wyman_davis2006::{EyeView, ImageSpace};
-use crate::techniques::wyman_nichols2009::adaptive::Part;
-use crate::techniques::wyman_nichols2009::{
-    self as wn2009, deferred_refraction, AdaptiveCaustics, DeferredPhotons, DeferredRefraction, Refraction,
-};
-use crate::techniques::{self, CausticFrame, CopyType, PhotonCopy, SplatPath, Technique};
+use crate::techniques::stages::{self, CausticPipeline};
+use crate::techniques::wyman_nichols2009::{deferred_refraction, DeferredRefraction, Refraction};
+use crate::techniques::{self, CopyType, EyeView};
 use anyhow::{Context as _, Result};
 use vkcore::{Access, Buffer, Context, Filter, Frame, FrameOptions, FrameReport, Memory, Sampler, ShaderCompiler, Use};
 
@@ -26,27 +20,6 @@ pub struct RendererOptions {
     pub photon_copy: Option<CopyType>,
     /// One-shot frames timed pass by pass, or a ring of frames in flight (`crate::gpu::frame_mode`).
     pub frame_mode: FrameMode,
-}
-
-struct CausticResources {
-    pipelines: techniques::CausticPipelines,
-    photons: techniques::PhotonTargets,
-    vertex_areas: Vec<Option<Buffer>>,
-    splat_vertices: Buffer,
-    /// Vertices per instance of the instanced photon fetch (`splat_vertices` holds 0..this).
-    instance_vertices: u32,
-    copy: Option<PhotonCopy>,
-    vertex_photons: Option<VertexPhotons>,
-    hierarchy: Option<Hierarchy>,
-    /// Wyman & Nichols 2009's adaptive caustic maps.
-    adaptive: Option<AdaptiveCaustics>,
-    /// Wyman & Nichols 2009's deferred caustic maps (`photon_refraction = deferred`).
-    deferred_photons: Option<DeferredPhotons>,
-    /// What the `splats` dump reads the hierarchy's splats with (built by the first such dump).
-    footprints: Option<SplatFootprints>,
-    compute_splat: Option<techniques::ComputeSplat>,
-    /// Wyman & Davis 2006's eye-space points, quads and gathers.
-    image_space: Option<ImageSpace>,
 }
 
 pub struct MeshRenderer<'c> {
@@ -74,7 +47,8 @@ pub struct MeshRenderer<'c> {
     caustic_targets: techniques::CausticTargets,
     nearest: Sampler,
     linear: Sampler,
-    caustic: Option<CausticResources>,
+    /// The technique's caustic stages (none without caustics or specular objects).
+    caustic: Option<CausticPipeline>,
     specular_vertices: u32,
     photons_ready: bool,
     /// `--refraction deferred`: its passes and buffers.
@@ -98,20 +72,7 @@ impl<'c> MeshRenderer<'c> {
             )
             .into());
         }
-        if opts.photon_copy.is_some() && !technique.splats_the_photon_buffer() {
-            return Err(crate::input_error!(
-                "photon_copy: copying the photon buffer into a vertex array needs a photon-buffer technique \
-                 (wd-points or shah), not `{technique}`"
-            )
-            .into());
-        }
-        if opts.photon_copy.is_some() && settings.splat_path == SplatPath::Compute {
-            return Err(crate::input_error!(
-                "photon_copy: the copied vertex array is splatted as points; it has no compute splat \
-                 (splat_path = \"compute\")"
-            )
-            .into());
-        }
+        stages::check_photon_copy(settings, opts.photon_copy)?;
         let active = technique.has_caustics() && techniques::uniforms::specular_bounds(scene).is_some();
         let pipelines = pipelines::EyePipelines::new(ctx, shaders)?;
         let meshes = setup::upload_meshes(ctx, scene)?;
@@ -157,79 +118,10 @@ impl<'c> MeshRenderer<'c> {
                 bytemuck::cast_slice(&spot[l as usize * n..(l as usize + 1) * n]),
             )?;
         }
-        let vertex_photons = technique == Technique::ShahVertex;
-        let specular_vertices: u32 = meshes
-            .iter()
-            .filter(|m| m.kind() != gpu::MATERIAL_DIFFUSE)
-            .map(|m| (m.vertices.size() / std::mem::size_of::<gpu::MeshVertex>() as u64) as u32)
-            .sum();
-        let caustic = if active {
-            let adaptive = technique == Technique::Adaptive;
-            let photon_side = match () {
-                _ if vertex_photons => (specular_vertices as f64).sqrt().ceil() as u32,
-                // No photon buffer: its targets are placeholders.
-                _ if adaptive => 1,
-                _ => settings.photons,
-            };
-            let vertex_areas = if vertex_photons {
-                setup::vertex_areas(ctx, scene)?
-            } else {
-                scene.objects.iter().map(|_| None).collect()
-            };
-            let ids: Vec<u32> = (0..settings.instance_vertices).collect();
-            let copy = match opts.photon_copy {
-                Some(ty) => Some(PhotonCopy::new(ctx, shaders, ty, photon_side)?),
-                None => None,
-            };
-            let hierarchy = if technique == Technique::Hcm {
-                let lights = scene.lights.len() as u32;
-                Some(Hierarchy::new(ctx, shaders, photon_side, lights, settings.path, settings.cluster)?)
-            } else {
-                None
-            };
-            let adaptive = if adaptive {
-                Some(AdaptiveCaustics::new(ctx, shaders, settings, scene.lights.len() as u32, &meshes)?)
-            } else {
-                None
-            };
-            let deferred_photons = match settings.photon_refraction {
-                Refraction::Deferred if technique.has_photon_buffer() => {
-                    Some(DeferredPhotons::new(ctx, shaders, settings.photons, &meshes)?)
-                }
-                _ => None,
-            };
-            let compute_splat = if settings.splat_path == SplatPath::Compute {
-                let (side, layers) = (settings.caustic_map_resolution, settings.caustic_levels());
-                let list = match (&hierarchy, &adaptive) {
-                    (Some(h), _) => Some(h.splat_list()),
-                    (None, Some(a)) => Some(a.splat_list()),
-                    (None, None) => None,
-                };
-                Some(techniques::ComputeSplat::new(ctx, shaders, side, layers, list)?)
-            } else {
-                None
-            };
-            Some(CausticResources {
-                pipelines: techniques::CausticPipelines::new(ctx, shaders)?,
-                vertex_photons: if vertex_photons { Some(VertexPhotons::new(ctx, shaders)?) } else { None },
-                photons: techniques::PhotonTargets::new(
-                    ctx,
-                    if adaptive.is_some() { 1 } else { settings.photons },
-                    photon_side,
-                )?,
-                vertex_areas,
-                splat_vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
-                instance_vertices: settings.instance_vertices,
-                copy,
-                footprints: None,
-                hierarchy,
-                adaptive,
-                deferred_photons,
-                compute_splat,
-                image_space: ImageSpace::new(ctx, shaders, scene)?,
-            })
-        } else {
-            None
+        let specular_vertices = stages::specular_vertices(&meshes);
+        let caustic = match active {
+            true => Some(CausticPipeline::new(ctx, shaders, scene, &meshes, opts.photon_copy)?),
+            false => None,
         };
         let refraction_order = deferred_refraction::back_to_front(scene);
         let deferred = match settings.refraction {
@@ -401,7 +293,6 @@ impl<'c> MeshRenderer<'c> {
 
     /// Every pass of one frame after its uniforms: eye-space backgrounds, caustics, the eye.
     fn record_frame(&self, f: &mut Frame, step: FrameStep) -> Result<()> {
-        let image_space = self.caustic.as_ref().and_then(|c| c.image_space.as_ref());
         let eye_inputs = eye::EyeInputs {
             uniforms: &self.uniforms[self.slot],
             caustic_uniforms: &self.caustic_uniforms[self.slot],
@@ -409,27 +300,22 @@ impl<'c> MeshRenderer<'c> {
             meshes: &self.meshes,
             nearest: &self.nearest,
             linear: &self.linear,
-            receiver_view_caustic: image_space.and_then(|i| i.receiver_caustic()),
+            receiver_view_caustic: self.caustic.as_ref().and_then(|c| c.receiver_caustic()),
             deferred: self.deferred.as_ref().map(|d| (d, self.refraction_order.as_slice())),
         };
-        // Eye-space caustics are drawn into the eye's view: the background and its geometry
-        // buffer first.
-        let eye_space = image_space.is_some_and(|i| i.eye_space());
+        // Caustics deposited in the eye's view are drawn into it: the background and its
+        // geometry buffer first.
+        let eye_space = self.caustic.as_ref().is_some_and(|c| c.eye_space());
         if eye_space {
             eye::record_shadows_and_background(f, &self.pipelines, &self.targets, &eye_inputs)?;
         }
         match &self.caustic {
             Some(c) => {
-                let view = self.eye_view();
-                let frame = CausticFrame {
-                    // One photon buffer serves every light: only one light's can be kept.
-                    reuse_photons: step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1,
-                    image_space: c.image_space.as_ref().map(|i| (i, Some(view))),
-                    ..self.caustic_frame(c)
-                };
-                let inputs = self.caustic_inputs(c);
-                let passes = self.caustic_passes(c, &inputs);
-                techniques::record_caustics(f, &passes, self.targets.shadow.lights, frame)?;
+                // One photon buffer serves every light: only one light's can be kept.
+                let reuse = step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1;
+                let inputs = self.caustic_inputs();
+                let lights = self.targets.shadow.lights;
+                c.record(f, &inputs, &self.caustic_targets, lights, Some(self.eye_view()), reuse)?;
             }
             None => techniques::record_cleared(f, &self.caustic_targets)?,
         }
@@ -446,7 +332,7 @@ impl<'c> MeshRenderer<'c> {
         dumps::final_image(self.ctx, &self.targets)
     }
 
-    /// The eye's view as this frame renders it (for eye-space caustics).
+    /// The eye's view as this frame renders it (for caustics deposited in it).
     fn eye_view(&self) -> EyeView<'_> {
         let fu = setup::frame_uniforms(&self.scene);
         EyeView {
@@ -459,44 +345,17 @@ impl<'c> MeshRenderer<'c> {
         }
     }
 
-    fn caustic_passes<'a>(
-        &'a self,
-        c: &'a CausticResources,
-        inputs: &'a techniques::FrameInputs<'a>,
-    ) -> techniques::CausticPasses<'a> {
-        techniques::CausticPasses {
-            pipelines: &c.pipelines,
-            targets: &self.caustic_targets,
-            photons: &c.photons,
-            inputs,
-        }
-    }
-
-    fn caustic_inputs<'a>(&'a self, c: &'a CausticResources) -> techniques::FrameInputs<'a> {
+    /// What the caustic stages read of the frame: the uniforms of the slot in use, the meshes,
+    /// samplers, spot textures and receiver positions.
+    fn caustic_inputs(&self) -> techniques::FrameInputs<'_> {
         techniques::FrameInputs {
             frame_uniforms: &self.uniforms[self.slot],
             caustic_uniforms: &self.caustic_uniforms[self.slot],
             meshes: &self.meshes,
-            vertex_areas: &c.vertex_areas,
-            splat_vertices: &c.splat_vertices,
-            instance_vertices: c.instance_vertices,
             nearest: &self.nearest,
             spot_textures: &self.targets.spot_textures.view,
             linear: &self.linear,
             receiver_positions: &self.caustic_targets.receiver_positions.view,
-        }
-    }
-
-    fn caustic_frame<'a>(&self, c: &'a CausticResources) -> CausticFrame<'a> {
-        CausticFrame {
-            reuse_photons: false,
-            copy: c.copy.as_ref(),
-            vertex_photons: c.vertex_photons.as_ref(),
-            hierarchy: c.hierarchy.as_ref(),
-            adaptive: c.adaptive.as_ref(),
-            deferred_photons: c.deferred_photons.as_ref(),
-            compute_splat: c.compute_splat.as_ref(),
-            image_space: None,
         }
     }
 
@@ -506,10 +365,9 @@ impl<'c> MeshRenderer<'c> {
     }
 
     /// The named intermediate buffers of the last frame, as (name, image), skipping those this
-    /// render has none of. One photon buffer, back-face target and hierarchy serve every light
-    /// in turn (`super::LIGHT_SPACE_DUMPS`), so a frame leaves only its last light's there:
-    /// with several lights, each light's light-space passes are recorded again alone (the same
-    /// inputs, so the same buffers) and read back. Their layers are named `light<l>.<layer>`.
+    /// render has none of. The light-space buffers (`techniques::LIGHT_SPACE_DUMPS`) serve every
+    /// light in turn and are read light by light by the caustic stages
+    /// (`CausticPipeline::light_space_dumps`): layers `light<l>.<layer>`.
     pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
         let mut unique: Vec<&String> = vec![];
         for n in names {
@@ -517,79 +375,35 @@ impl<'c> MeshRenderer<'c> {
                 unique.push(n);
             }
         }
-        let light_space = |n: &str| super::LIGHT_SPACE_DUMPS.contains(&n);
+        let light_space = |n: &str| techniques::LIGHT_SPACE_DUMPS.contains(&n);
         let declared = super::dumps_for(&self.scene.caustics);
-        let has = |n: &str| {
-            declared.contains(&n)
-                && match (wyman2008::DUMPS.contains(&n), wn2009::settings::ADAPTIVE_DUMPS.contains(&n)) {
-                    (true, _) => self.hierarchy().is_some(),
-                    (_, true) => self.adaptive().is_some(),
-                    _ => self.caustic.is_some(),
-                }
-        };
-        let wanted: Vec<&str> = unique.iter().map(|n| n.as_str()).filter(|n| light_space(n) && has(n)).collect();
+        let wanted: Vec<&str> = unique
+            .iter()
+            .map(|n| n.as_str())
+            .filter(|n| declared.contains(n) && self.caustic.as_ref().is_some_and(|c| c.has_light_space_dump(n)))
+            .collect();
         anyhow::ensure!(
             wanted.is_empty() || self.pending_uniforms.is_none(),
             "dumps: the renderer moved to a new pose after its last frame; render a frame first"
         );
-        if let Some(c) = self.caustic.as_mut().filter(|c| c.footprints.is_none() && wanted.contains(&"splats")) {
-            c.footprints = Some(SplatFootprints::new(self.ctx, self.shaders)?);
+        if let Some(c) = self.caustic.as_mut() {
+            c.prepare_dumps(self.ctx, self.shaders, &wanted)?;
         }
-        let mut per_light: Vec<Option<ImageF32>> = vec![None; wanted.len()];
-        let (mut lists, mut splats, mut adaptive_lists) = (vec![], vec![], vec![]);
-        let lights = self.targets.shadow.lights;
-        for l in 0..if wanted.is_empty() { 0 } else { lights } {
-            if lights > 1 {
-                self.record_light_space_alone(l)?;
+        let mut read = match &self.caustic {
+            Some(c) => {
+                let lights = self.targets.shadow.lights;
+                c.light_space_dumps(self.ctx, &self.caustic_inputs(), &self.caustic_targets, lights, &wanted)?
             }
-            let Some(c) = &self.caustic else { break };
-            for (i, name) in wanted.iter().enumerate() {
-                let img = match (*name, &c.hierarchy) {
-                    (wn2009::settings::DEFERRED_PHOTONS_DUMP, _) => match &c.deferred_photons {
-                        Some(d) => d.dump(self.ctx)?,
-                        None => continue,
-                    },
-                    // Deferred photons: the back faces are the geometry buffers' back layer.
-                    ("photon_back_faces", _) if c.deferred_photons.is_some() => {
-                        c.deferred_photons.as_ref().context("deferred photons")?.dump_back_faces(self.ctx)?
-                    }
-                    ("adaptive_geometry", _) => match &c.adaptive {
-                        Some(a) => a.dump_geometry(self.ctx)?,
-                        None => continue,
-                    },
-                    ("adaptive_lists", _) => {
-                        if let Some(a) = &c.adaptive {
-                            adaptive_lists.push(self.adaptive_lists(c, a, l)?);
-                        }
-                        continue;
-                    }
-                    ("hierarchy", Some(h)) => h.dump_levels(self.ctx)?,
-                    ("hierarchy_lists", Some(h)) => {
-                        lists.push(h.read_lists(self.ctx)?);
-                        continue;
-                    }
-                    ("splats", Some(h)) => {
-                        let footprints = c.footprints.as_ref().context("no splat footprints pipeline")?;
-                        let inputs = self.caustic_inputs(c);
-                        splats.push(footprints.read(self.ctx, h, &inputs, &c.photons, l)?);
-                        continue;
-                    }
-                    _ => dumps::photon_targets(self.ctx, &c.photons, name)?,
-                };
-                per_light[i] = Some(dumps::merge(per_light[i].take(), dumps::for_light(img, l))?);
-            }
-        }
+            None => vec![],
+        };
         let mut out = vec![];
         for name in unique {
-            let img = match wanted.iter().position(|w| w == name) {
-                Some(_) if name == "hierarchy_lists" => Some(wyman2008::lists_image(&lists)),
-                Some(_) if name == "adaptive_lists" => Some(wn2009::adaptive::lists_image(&adaptive_lists)),
-                Some(_) if name == "splats" => Some(splat_footprints::splats_image(&splats)),
-                Some(i) => per_light[i].take(),
+            let img = match read.iter().position(|(n, _)| n == name) {
+                Some(i) => Some(read.swap_remove(i).1),
                 None if light_space(name) => None,
-                None if !super::dumps_for(&self.scene.caustics).contains(&name.as_str()) => None,
-                None if name == "eye_caustic" => match self.caustic.as_ref().and_then(|c| c.image_space.as_ref()) {
-                    Some(is) => is.dump_eye(self.ctx)?,
+                None if !declared.contains(&name.as_str()) => None,
+                None if name == "eye_caustic" => match &self.caustic {
+                    Some(c) => c.dump(self.ctx, name)?,
                     None => None,
                 },
                 None => match &self.deferred {
@@ -597,7 +411,7 @@ impl<'c> MeshRenderer<'c> {
                         Some(dumps::deferred(self.ctx, d, &self.targets, name)?)
                     }
                     _ => {
-                        let photons = self.caustic.as_ref().map(|c| &c.photons);
+                        let photons = self.caustic.as_ref().map(|c| c.photon_targets());
                         dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)?
                     }
                 },
@@ -607,45 +421,6 @@ impl<'c> MeshRenderer<'c> {
             }
         }
         Ok(out)
-    }
-
-    /// Light `l`'s adaptive lists, after its light-space passes were recorded last. A batched
-    /// traversal leaves only its last batch's, so it is recorded again part by part, and each
-    /// part read back: the breadth-first levels, then batch after batch. Level B's list is
-    /// written once, so every batch selects its slice of the same list (the compute path
-    /// appends in no fixed order: a traversal recorded again per batch could slice another).
-    fn adaptive_lists(
-        &self,
-        c: &CausticResources,
-        a: &AdaptiveCaustics,
-        l: u32,
-    ) -> Result<wn2009::adaptive::LightLists> {
-        if !a.plan().batched() {
-            return a.read_lists(self.ctx, None);
-        }
-        let inputs = self.caustic_inputs(c);
-        let passes = self.caustic_passes(c, &inputs);
-        let mut lists = vec![];
-        let parts = std::iter::once(Part::Breadth).chain((0..a.plan().batches).map(Part::Batch));
-        for part in parts {
-            let mut f = self.ctx.frame(FrameOptions::default())?;
-            techniques::record_adaptive_part(&mut f, &passes, a, l, part)?;
-            f.submit()?;
-            lists.extend(a.read_lists(self.ctx, Some(part))?);
-        }
-        Ok(lists)
-    }
-
-    /// Records light `l`'s light-space passes (`techniques::record_light_space`) alone, as
-    /// the last frame recorded them, and waits for them.
-    fn record_light_space_alone(&mut self, l: u32) -> Result<()> {
-        let Some(c) = &self.caustic else { return Ok(()) };
-        let mut f = self.ctx.frame(FrameOptions::default())?;
-        let inputs = self.caustic_inputs(c);
-        let frame = self.caustic_frame(c);
-        techniques::record_light_space(&mut f, &self.caustic_passes(c, &inputs), l, frame)?;
-        f.submit()?;
-        Ok(())
     }
 
     /// Photons emitted per frame over all lights (0 without a caustic technique).
@@ -673,61 +448,27 @@ impl<'c> MeshRenderer<'c> {
         Ok(Some(valid_photons_in(&img)?))
     }
 
-    /// The hierarchy of `hcm` (None for the other techniques).
-    pub fn hierarchy(&self) -> Option<&Hierarchy> {
-        self.caustic.as_ref().and_then(|c| c.hierarchy.as_ref())
+    /// The technique's caustic stages (None without caustics or specular objects).
+    pub fn caustics(&self) -> Option<&CausticPipeline> {
+        self.caustic.as_ref()
     }
 
-    /// The adaptive caustic maps of `adaptive` (None for the other techniques).
-    pub fn adaptive(&self) -> Option<&AdaptiveCaustics> {
-        self.caustic.as_ref().and_then(|c| c.adaptive.as_ref())
-    }
-
-    /// Per light, the sizes of the traversal's lists of the last frame: `hcm`'s from its 16²
-    /// level down to the splatted list; `adaptive`'s pending clusters of each level (0 to L),
-    /// then the photons it splatted. None for the other techniques.
+    /// Per light, the sizes of the traversal's lists of the last frame
+    /// (`CausticPipeline::list_sizes`); None for the other techniques.
     pub fn list_sizes(&self) -> Result<Option<Vec<Vec<u64>>>> {
-        if let Some(h) = self.hierarchy() {
-            return Ok(Some(h.list_sizes(self.ctx)?));
+        match &self.caustic {
+            Some(c) => c.list_sizes(self.ctx),
+            None => Ok(None),
         }
-        let Some(a) = self.adaptive() else { return Ok(None) };
-        let counts = a.level_counts(self.ctx)?;
-        Ok(Some(
-            counts
-                .into_iter()
-                .map(|(mut clusters, emitted)| {
-                    clusters.push(emitted.iter().sum());
-                    clusters
-                })
-                .collect(),
-        ))
     }
 
-    /// Points drawn (or compute-splat invocations) per frame over all lights: every
-    /// photon-buffer texel for the dense techniques (invalid ones are culled in the vertex
-    /// shader; the instanced draw rounds up to whole instances), the final list
-    /// of the last traversal for `hcm` and the output photons for `adaptive` (read back from
-    /// the GPU: Wyman & Nichols 2009 Table 1's "photons splatted").
+    /// Points drawn (or compute-splat invocations) per frame over all lights
+    /// (`CausticPipeline::splats_drawn`).
     pub fn splats_drawn(&self) -> Result<u64> {
-        if let Some(sizes) = self.list_sizes()? {
-            return Ok(sizes.iter().map(|s| s.last().copied().unwrap_or(0)).sum());
+        match &self.caustic {
+            Some(c) => c.splats_drawn(self.ctx, self.targets.shadow.lights),
+            None => Ok(0),
         }
-        Ok(match &self.caustic {
-            Some(c) => {
-                let per_light = match (&c.copy, &c.compute_splat) {
-                    (Some(copy), _) => copy.vertices() as u64,
-                    // One invocation per photon-buffer texel.
-                    (None, Some(_)) => (c.photons.width * c.photons.width) as u64,
-                    (None, None) => {
-                        let total = c.photons.width * c.photons.width;
-                        let per = c.instance_vertices;
-                        (total.div_ceil(per) * per) as u64
-                    }
-                };
-                per_light * self.targets.shadow.lights as u64
-            }
-            None => 0,
-        })
     }
 }
 

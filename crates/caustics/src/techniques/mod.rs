@@ -11,16 +11,17 @@
 //! | `pool-convolution` | Trendall & Stewart 2000, pool caustics as convolutions | [`trendall_stewart2000`] |
 //!
 //! Stages that several papers share (photon emission, the point and compute splats, the
-//! caustic-map targets and uniforms) are in [`shared`]; [`record`] records a frame's caustic
-//! passes for whichever technique is chosen. Every technique writes power (W) into caustic-map
+//! caustic-map targets and uniforms) are in [`shared`]; a technique is a choice of a photon
+//! source, a selection and a deposit ([`stages`]), whose [`CausticPipeline`] records a frame's
+//! caustic passes. Every technique writes power (W) into caustic-map
 //! texels; `common/caustic_lookup.glsl` turns that into irradiance with the texel's area on the
 //! receiver (Wyman & Davis 2006, Eq. 5-8).
 
 mod mirrored;
-pub mod record;
 pub mod settings;
 pub mod shah2007;
 pub mod shared;
+pub mod stages;
 mod technique;
 pub mod trendall_stewart2000;
 pub mod uniforms;
@@ -29,13 +30,14 @@ pub mod wyman2008;
 pub mod wyman_davis2006;
 pub mod wyman_nichols2009;
 
-pub use record::{
-    record_adaptive_part, record_caustics, record_cleared, record_light_space, CausticFrame, CausticPasses, FrameInputs,
-};
 pub use settings::{CausticOverrides, CausticSettings};
+pub use shared::splat::record_cleared;
+pub use shared::{CausticPasses, EyeView, FrameInputs};
 pub use shared::{
     CausticPipelines, CausticTargets, ComputeSplat, Intersect, PhotonTargets, PhotonView, SplatKernel, SplatPath,
 };
+pub use stages::{CausticPipeline, LIGHT_SPACE_DUMPS};
 pub use technique::Technique;
 pub use wyman2008::photon_copy::{CopyType, PhotonCopy};
+pub use wyman2008::Hierarchy;
 pub use wyman_nichols2009::{AdaptiveCaustics, Metric, Refraction};

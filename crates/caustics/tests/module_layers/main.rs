@@ -1,7 +1,7 @@
 //! The module layers of `caustics` (issue 26, item 6), checked on the source rather than by
 //! reading it:
 //! - no cycle between its parts: the top-level modules (`render`, `scene`, `gpu`, ...), the
-//!   techniques' registry (`techniques/{record,uniforms}.rs`), each paper's folder, `shared`, and
+//!   techniques' registry (`techniques/{mod,uniforms}.rs`, `techniques/stages/`), each paper's folder, `shared`, and
 //!   the settings layer (every `settings.rs`, `technique.rs`, `value_enum.rs`, and the pure
 //!   arithmetic their validation runs: what a scene file names, below `scene`, so that the scene
 //!   description does not depend on the passes);
@@ -141,4 +141,24 @@ fn settings_importing_another_papers_settings_and_re_exports_are_reported() {
     );
     assert!(all.contains("techniques/shared/mod.rs:1: shared imports a paper"), "{all}");
     assert!(!all.contains("shared/mod.rs:2"), "a visibility path read as a dependency: {all}");
+}
+
+/// `MeshRenderer` knows no paper (issue 26, item 1): the caustic techniques reach it as one
+/// `techniques::CausticPipeline` of stages. The one paper it names is Wyman & Nichols 2009's
+/// deferred refraction: the eye render's refraction (`--refraction`), not a caustic stage.
+#[test]
+fn the_mesh_renderer_names_no_paper_but_the_eyes_deferred_refraction() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let deps = layers::dependencies(&layers::read_tree(&src));
+    let from_renderer: Vec<_> = deps.iter().filter(|d| d.file == "render/renderer.rs").collect();
+    assert!(from_renderer.iter().any(|d| d.to == "techniques"), "no dependency of renderer.rs read");
+    let eye_refraction = ["deferred_refraction", "DeferredRefraction", "Refraction"];
+    let papers: Vec<String> = from_renderer
+        .iter()
+        .filter(|d| d.to.starts_with("techniques::") || d.to == "settings")
+        .filter(|d| layers::PAPERS.iter().any(|p| d.path.iter().any(|s| s == p)))
+        .filter(|d| !d.path.iter().any(|s| eye_refraction.contains(&s.as_str())))
+        .map(|d| format!("{}: {}", d.at, d.path.join("::")))
+        .collect();
+    assert!(papers.is_empty(), "render/renderer.rs names papers:\n{}", papers.join("\n"));
 }

@@ -15,24 +15,28 @@ pub use settings::{PAPER, VERTEX_PHOTON_FEATURES};
 use super::shared::photon_buffer::trace_binds;
 use super::shared::CausticPasses;
 use crate::gpu::mesh_pipeline::mesh_layout;
+use crate::gpu::setup::vertex_areas;
 use crate::gpu::{mesh_uses, MeshConstants, Stage, MATERIAL_DIFFUSE};
+use crate::scene::Scene;
 use anyhow::Result;
-use vkcore::{Access, Bind, Context, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology, Use};
+use vkcore::{Access, Bind, Buffer, Context, Frame, GraphicsDesc, Pipeline, ShaderCompiler, Targets, Topology, Use};
 
 /// Shah's first pass: a photon per vertex of the specular meshes.
 pub struct VertexPhotons {
     pipeline: Pipeline,
+    /// Per object: a third of each vertex's triangle areas (None for diffuse objects).
+    areas: Vec<Option<Buffer>>,
 }
 
 impl VertexPhotons {
     /// The vertex-photon pipeline: a point per vertex, rasterization discarded, each photon
-    /// stored into the photon buffer's images.
-    pub fn new(ctx: &Context, sh: &ShaderCompiler) -> Result<VertexPhotons> {
+    /// stored into the photon buffer's images; and the vertex areas of `scene`'s specular objects.
+    pub fn new(ctx: &Context, sh: &ShaderCompiler, scene: &Scene) -> Result<VertexPhotons> {
         let mut d = GraphicsDesc::new("vertex_photons", sh.compile("shah2007/vertex_photons.vert", &[])?, None);
         d.vertex_layout = Some(mesh_layout());
         d.topology = Topology::Points;
         d.rasterizer_discard = true;
-        Ok(VertexPhotons { pipeline: Pipeline::graphics(ctx, &d)? })
+        Ok(VertexPhotons { pipeline: Pipeline::graphics(ctx, &d)?, areas: vertex_areas(ctx, scene)? })
     }
 
     /// Light `l`'s photons: clears the photon buffer, then traces a photon per vertex of every
@@ -53,7 +57,7 @@ impl VertexPhotons {
         let specular: Vec<_> = inp
             .meshes
             .iter()
-            .zip(inp.vertex_areas)
+            .zip(&self.areas)
             .filter_map(|(m, areas)| Some((m, areas.as_ref()?)).filter(|(m, _)| m.kind() != MATERIAL_DIFFUSE))
             .collect();
         let sets: Vec<_> = specular

@@ -28,12 +28,6 @@ pub struct FrameInputs<'a> {
     pub frame_uniforms: &'a Buffer,
     pub caustic_uniforms: &'a Buffer,
     pub meshes: &'a [GpuMesh],
-    /// Per mesh: a third of each vertex's triangle areas (vertex photons only).
-    pub vertex_areas: &'a [Option<Buffer>],
-    /// 0..instance_vertices, for instanced photon fetch.
-    pub splat_vertices: &'a Buffer,
-    /// Vertices per instance of the instanced fetch (Wyman 2008 Sec. 4).
-    pub instance_vertices: u32,
     pub nearest: &'a Sampler,
     /// The spot lights' projected textures (one layer per light) and the linear sampler they
     /// are read with (`common/spot_texture.glsl`): they weight every photon's power.
@@ -41,6 +35,20 @@ pub struct FrameInputs<'a> {
     pub linear: &'a Sampler,
     /// Every light's receiver positions (layer per light: where photons land).
     pub receiver_positions: &'a ImageView,
+}
+
+/// The eye's view as the eye render made it this frame, for deposits into it (Wyman & Davis
+/// 2006's eye-space techniques).
+#[derive(Clone, Copy)]
+pub struct EyeView<'a> {
+    pub view_proj: glam::Mat4,
+    pub eye: glam::Vec3,
+    /// The eye's geometry buffer (first diffuse surface: world position, w = 1 on a surface;
+    /// normal; albedo) and its radiance, to which the caustics are added.
+    pub position: &'a ImageView,
+    pub normal: &'a ImageView,
+    pub albedo: &'a ImageView,
+    pub background: &'a ImageView,
 }
 
 /// What every caustic pass of a light records with: the technique's pipelines, the caustic-map
@@ -51,6 +59,18 @@ pub struct CausticPasses<'a> {
     pub targets: &'a CausticTargets,
     pub photons: &'a PhotonTargets,
     pub inputs: &'a FrameInputs<'a>,
+}
+
+/// One light's part of a light-space dump (`--dump`), as the stage that owns the buffer read
+/// it after the light's passes. One set of light-space buffers serves every light in turn, so
+/// a dump is read light by light and put together by `super::stages`.
+pub enum LightDump {
+    /// An image of this light: its layers become `light<l>` (the unnamed one) and
+    /// `light<l>.<name>`, beside the other lights' in one image of the same size.
+    Image(ImageF32),
+    /// Lists of records (`channels.len()` values each), named as layers under `light<l>.` (an
+    /// empty name: `light<l>` itself), laid out over all lights by [`records_image`].
+    Records { channels: &'static [&'static str], lists: Vec<(String, Vec<Vec<f32>>)> },
 }
 
 /// Lists of records as one image for the dumps: a record (of `channels.len()` values) per pixel

@@ -1,4 +1,4 @@
-//! Pipelines of the caustic techniques.
+//! Pipelines of the photon buffer's light-space passes, and the point splat's description.
 
 use crate::gpu::formats::COLOR;
 use crate::gpu::mesh_pipeline::{mesh_pipeline, MeshPass};
@@ -11,7 +11,6 @@ pub struct CausticPipelines {
     pub receiver_positions: Pipeline,
     pub back_faces: Pipeline,
     pub photon_buffer: Pipeline,
-    pub splat: Pipeline,
 }
 
 /// The point splat's pipeline description (`shared/splat.vert`, `shared/splat.frag`): points
@@ -73,7 +72,6 @@ impl CausticPipelines {
                     cull: Cull::Back,
                 },
             )?,
-            splat: Pipeline::graphics(ctx, &point_splat_desc(sh)?)?,
         })
     }
 }

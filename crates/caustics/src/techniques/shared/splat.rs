@@ -3,13 +3,16 @@
 //! fetched instanced from the photon buffer (Wyman 2008 Sec. 4). The copy path of Wyman 2008
 //! Table 1 splats from a vertex array instead (`wyman2008::photon_copy`).
 
+use super::pipelines::point_splat_desc;
 use super::targets::CausticTargets;
 use super::CausticPasses;
 use crate::gpu::PassName;
 use crate::gpu::SplatConstants;
 use crate::gpu::Stage;
 use anyhow::Result;
-use vkcore::{Access, Bind, CompactStream, Frame, ImageView, Named, Pipeline, Targets, Use};
+use vkcore::{
+    Access, Bind, Buffer, CompactStream, Context, Frame, ImageView, Named, Pipeline, ShaderCompiler, Targets, Use,
+};
 
 /// Where a list's point splat lands: light `light`'s caustic map `cmap`, its `layers` layers
 /// (the multi-resolution map's, else 1), cleared first or added to.
@@ -47,32 +50,57 @@ pub(crate) fn record_list_splat<'a>(
     Ok(())
 }
 
-/// Splats light `l`'s photons into its caustic-map layer, fetched instanced from the photon
-/// texture (Wyman 2008 Sec. 4).
-pub(crate) fn record_splat(f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
-    let (p, ct, pt, inp) = (c.pipelines, c.targets, c.photons, c.inputs);
-    let (cmap, _, _) = &ct.per_light[l as usize];
-    let binds = [
-        ("frame", Bind::Uniform(inp.frame_uniforms)),
-        ("caustics", Bind::Uniform(inp.caustic_uniforms)),
-        ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
-        ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
-    ];
-    f.pass(&Stage::Splat.light(l))
-        .bind(&p.splat, binds)
-        .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(inp.splat_vertices, Access::VERTEX_INPUT)])
-        .record(|cmd| {
-            cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
-            cmd.push(&SplatConstants { light: l, vertices_per_instance: inp.instance_vertices })?;
-            cmd.bind_vertex_buffer(inp.splat_vertices, 0)?;
-            let total = pt.width * pt.width;
-            // Wyman 2008 Sec. 4: one small vertex buffer drawn instanced; the vertex shader
-            // finds its photon from gl_InstanceIndex and the vertex's index.
-            cmd.draw(inp.instance_vertices, total.div_ceil(inp.instance_vertices), 0, 0);
-            cmd.end_rendering();
-            Ok(())
-        })?;
-    Ok(())
+/// The point splat of the photon buffer: a point per photon-buffer texel, fetched instanced
+/// from the photon texture (Wyman 2008 Sec. 4: one small vertex buffer of `0..per_instance`
+/// drawn instanced; the vertex shader finds its photon from gl_InstanceIndex and the vertex's
+/// index).
+pub struct PointSplat {
+    pipeline: Pipeline,
+    vertices: Buffer,
+    per_instance: u32,
+}
+
+impl PointSplat {
+    /// `per_instance`: vertices per instance (`caustics.instance_vertices`).
+    pub fn new(ctx: &Context, sh: &ShaderCompiler, per_instance: u32) -> Result<PointSplat> {
+        let ids: Vec<u32> = (0..per_instance).collect();
+        Ok(PointSplat {
+            pipeline: Pipeline::graphics(ctx, &point_splat_desc(sh)?)?,
+            vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
+            per_instance,
+        })
+    }
+
+    /// Points drawn for `photons` photons: whole instances.
+    pub fn points(&self, photons: u32) -> u64 {
+        (photons.div_ceil(self.per_instance) * self.per_instance) as u64
+    }
+
+    /// Splats light `l`'s photons into its caustic-map layer.
+    pub fn record(&self, f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+        let (ct, pt, inp) = (c.targets, c.photons, c.inputs);
+        let (cmap, _, _) = &ct.per_light[l as usize];
+        let binds = [
+            ("frame", Bind::Uniform(inp.frame_uniforms)),
+            ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+            ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
+            ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
+        ];
+        let per_instance = self.per_instance;
+        f.pass(&Stage::Splat.light(l))
+            .bind(&self.pipeline, binds)
+            .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(&self.vertices, Access::VERTEX_INPUT)])
+            .record(|cmd| {
+                cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;
+                cmd.push(&SplatConstants { light: l, vertices_per_instance: per_instance })?;
+                cmd.bind_vertex_buffer(&self.vertices, 0)?;
+                let total = pt.width * pt.width;
+                cmd.draw(per_instance, total.div_ceil(per_instance), 0, 0);
+                cmd.end_rendering();
+                Ok(())
+            })?;
+        Ok(())
+    }
 }
 
 /// With technique `none`: clears the (1x1) caustic map and receiver positions the eye passes bind.

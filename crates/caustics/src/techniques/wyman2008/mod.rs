@@ -20,7 +20,7 @@ mod traversal;
 pub use entry::{pack_entry, unpack_entry, ENTRY_BYTES, MAX_SIDE};
 pub use pyramid::levels;
 pub use settings::{Cluster, SplatMode, VaryingRadius, DUMPS, PAPER};
-pub use traversal::lists_image;
+pub use traversal::{list_records, LIST_CHANNELS};
 
 use crate::gpu::Target;
 use crate::techniques::shared::pipelines::point_splat_desc;

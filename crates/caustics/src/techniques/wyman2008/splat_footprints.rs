@@ -6,7 +6,6 @@
 use super::Hierarchy;
 use crate::gpu::FootprintConstants;
 use crate::gpu::Stage;
-use crate::image_io::ImageF32;
 use crate::techniques::shared::compute_splat::{groups, Photons};
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::FrameInputs;
@@ -79,16 +78,8 @@ impl SplatFootprints {
     }
 }
 
-/// `splats.exr` from each light's footprints: layer `light<l>`, an entry per pixel in row-major
+/// One light's part of `splats.exr` (layer `light<l>`): a footprint per pixel in row-major
 /// order (the order of `light<l>.list0` in `hierarchy_lists.exr`), channels [`CHANNELS`].
-pub fn splats_image(per_light: &[Vec<Footprint>]) -> ImageF32 {
-    let lists = per_light
-        .iter()
-        .enumerate()
-        .map(|(l, splats)| {
-            let records = splats.iter().map(|s| s[..CHANNELS.len()].to_vec()).collect();
-            (format!("light{l}"), records)
-        })
-        .collect();
-    crate::techniques::shared::records_image(lists, &CHANNELS)
+pub fn splat_records(splats: &[Footprint]) -> Vec<Vec<f32>> {
+    splats.iter().map(|s| s[..CHANNELS.len()].to_vec()).collect()
 }

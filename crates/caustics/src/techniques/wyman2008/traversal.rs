@@ -9,7 +9,6 @@ use super::entry::unpack_entry;
 use super::Hierarchy;
 use crate::gpu::Stage;
 use crate::gpu::TraverseConstants;
-use crate::image_io::ImageF32;
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::FrameInputs;
 use anyhow::Result;
@@ -114,16 +113,14 @@ impl Hierarchy {
     }
 }
 
-/// `hierarchy_lists.exr` from each light's [`Hierarchy::read_lists`]: layer `light<l>.list<k>`
-/// holds light l's list k, an entry per pixel in row-major order: x, y, level, final (1 = a
-/// cluster of converging photons), valid (1 = an entry; the rest of the image is padding).
-pub fn lists_image(per_light: &[Vec<Vec<[u32; 4]>>]) -> ImageF32 {
-    let mut lists = vec![];
-    for (l, light) in per_light.iter().enumerate() {
-        for (k, list) in light.iter().enumerate() {
-            let records = list.iter().map(|e| vec![e[0] as f32, e[1] as f32, e[2] as f32, e[3] as f32, 1.0]).collect();
-            lists.push((format!("light{l}.list{k}"), records));
-        }
-    }
-    crate::techniques::shared::records_image(lists, &["x", "y", "level", "final", "valid"])
+/// The channels of `hierarchy_lists.exr` ([`list_records`]).
+pub const LIST_CHANNELS: [&str; 5] = ["x", "y", "level", "final", "valid"];
+
+/// One light's part of `hierarchy_lists.exr`, from its [`Hierarchy::read_lists`]: list k as
+/// layer `list<k>` (under `light<l>.`), an entry per pixel in row-major order: x, y, level,
+/// final (1 = a cluster of converging photons), valid (1 = an entry; the rest of the image is
+/// padding). The layout over all lights: `crate::techniques::shared::records_image`.
+pub fn list_records(lists: &[Vec<[u32; 4]>]) -> Vec<(String, Vec<Vec<f32>>)> {
+    let record = |e: &[u32; 4]| vec![e[0] as f32, e[1] as f32, e[2] as f32, e[3] as f32, 1.0];
+    lists.iter().enumerate().map(|(k, list)| (format!("list{k}"), list.iter().map(record).collect())).collect()
 }

@@ -29,13 +29,12 @@ pub mod temporal;
 pub mod views;
 
 pub use settings::PAPER;
-pub use views::EyeView;
 
 use crate::gpu::{ImageSpaceConstants, Stage, Target};
 use crate::image_io::{ImageF32, Layer};
 use crate::scene::Scene;
 use crate::techniques::settings::CausticSettings;
-use crate::techniques::shared::CausticPasses;
+use crate::techniques::shared::{CausticPasses, EyeView};
 use crate::techniques::technique::Technique;
 use anyhow::{Context as _, Result};
 use glam::{Mat4, Vec3};
@@ -317,12 +316,17 @@ impl ImageSpace {
     }
 
     /// The `eye_caustic` dump: the eye's caustic irradiance (main layer, W/m^2, and the photons
-    /// of the neighbourhood), this frame's eye-space photons and their directions.
+    /// of the neighbourhood), and where photons are drawn as points (eye points, gathers) this
+    /// frame's eye-space photons and their directions. Quads are drawn straight into the
+    /// caustic irradiance: their views' photon images are never written.
     pub fn dump_eye(&self, ctx: &Context) -> Result<Option<ImageF32>> {
         let Some(b) = &self.eye else { return Ok(None) };
         let mut layers = vec![];
         if let Some(c) = &b.caustic {
             layers.push(read(ctx, c, 0, None, &["R", "G", "B", "photons"])?);
+        }
+        if self.points.is_none() {
+            return Ok(Some(ImageF32 { width: b.width, height: b.height, layers }));
         }
         let slot = (self.history.slot() + self.history.layers() - 1) % self.history.layers();
         layers.push(read(ctx, &b.photons, slot, Some("photons"), &["R", "G", "B", "count"])?);

@@ -36,19 +36,6 @@ pub fn photon_view_binds<'a>(
     binds
 }
 
-/// The eye's view as the eye render made it this frame.
-#[derive(Clone, Copy)]
-pub struct EyeView<'a> {
-    pub view_proj: Mat4,
-    pub eye: Vec3,
-    /// The eye's geometry buffer (first diffuse surface: world position, w = 1 on a surface;
-    /// normal; albedo) and its radiance, to which the caustics are added.
-    pub position: &'a ImageView,
-    pub normal: &'a ImageView,
-    pub albedo: &'a ImageView,
-    pub background: &'a ImageView,
-}
-
 /// Photons, directions and caustic irradiance of one view.
 pub struct ViewBuffers {
     /// rgb power (W), a: photons; one layer per history frame (per light and frame in light space).

@@ -36,7 +36,7 @@ mod traversal;
 
 pub use batches::BatchPlan;
 pub use photon::{pack_cell, unpack_cell, AdaptivePhoton};
-pub use traversal::{lists_image, LightLists, Listed, Part, Splat};
+pub use traversal::{list_records, LightLists, Listed, Part, Splat, LIST_CHANNELS};
 
 use super::geometry_buffers::LightGeometryBuffers;
 use super::refractor_layers::{specular_objects, RefractorLayers, MAX_REFRACTORS};

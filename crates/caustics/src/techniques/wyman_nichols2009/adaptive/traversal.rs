@@ -9,7 +9,6 @@ use super::photon::{unpack_cell, AdaptivePhoton};
 use super::{AdaptiveCaustics, Kernels};
 use crate::gpu::{AdaptiveConstants, BatchConstants, CountConstants};
 use crate::gpu::{BatchPart, PassName, Stage};
-use crate::image_io::ImageF32;
 use crate::techniques::shared::compute_splat::{groups, ComputeSplat};
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::FrameInputs;
@@ -379,7 +378,7 @@ impl AdaptiveCaustics {
     }
 
     /// The lists of the light traversed last, named as `adaptive_lists.exr`'s layers under
-    /// `light<l>.` ([`lists_image`]). `part`: what was recorded last; `None`, the whole
+    /// `light<l>.` ([`list_records`]). `part`: what was recorded last; `None`, the whole
     /// traversal of an unbatched plan: every level's pending clusters `clusters<k>`, the
     /// `photons`. [`Part::Breadth`] (batched plans): levels 0 to B's `clusters<k>`, the photons
     /// of clusters converged above B, `breadth.photons`. [`Part::Batch`]: the batch's slice of
@@ -426,35 +425,29 @@ pub enum Listed {
 /// One light's lists, named as their layers under `light<l>.`.
 pub type LightLists = Vec<(String, Listed)>;
 
-/// `adaptive_lists.exr` from each light's lists ([`AdaptiveCaustics::read_lists`]): a layer
-/// `light<l>.<name>` per list. Clusters: x, y, level of a pending cluster (the cluster of photons
-/// (2x + i, 2y + j) of level k); photons: x, y, level of their cell, where they land X, Y, Z,
-/// power R, G, B, varying splat radius `footprint`. A record per pixel in row-major order,
-/// valid = 1 for a record (the rest of the image is padding).
-pub fn lists_image(per_light: &[LightLists]) -> ImageF32 {
-    let mut lists = vec![];
-    for (l, named) in per_light.iter().enumerate() {
-        for (name, list) in named {
-            let records = match list {
-                Listed::Clusters(c) => c
-                    .iter()
-                    .map(|c| vec![c[0] as f32, c[1] as f32, c[2] as f32, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0])
-                    .collect(),
-                Listed::Photons(p) => p
-                    .iter()
-                    .map(|p| {
-                        let c = p.cell();
-                        let [x, y, z] = p.position;
-                        let [r, g, b] = p.power;
-                        vec![c[0] as f32, c[1] as f32, c[2] as f32, x, y, z, r, g, b, p.footprint, 1.0]
-                    })
-                    .collect(),
-            };
-            lists.push((format!("light{l}.{name}"), records));
-        }
-    }
-    crate::techniques::shared::records_image(
-        lists,
-        &["x", "y", "level", "X", "Y", "Z", "R", "G", "B", "footprint", "valid"],
-    )
+/// The channels of `adaptive_lists.exr` ([`list_records`]).
+pub const LIST_CHANNELS: [&str; 11] = ["x", "y", "level", "X", "Y", "Z", "R", "G", "B", "footprint", "valid"];
+
+/// One light's part of `adaptive_lists.exr`, from its lists ([`AdaptiveCaustics::read_lists`]):
+/// a layer per list under `light<l>.`. Clusters: x, y, level of a pending cluster (the cluster
+/// of photons (2x + i, 2y + j) of level k); photons: x, y, level of their cell, where they land
+/// X, Y, Z, power R, G, B, varying splat radius `footprint`. A record per pixel in row-major
+/// order, valid = 1 for a record (the rest of the image is padding).
+pub fn list_records(named: &LightLists) -> Vec<(String, Vec<Vec<f32>>)> {
+    let records = |list: &Listed| match list {
+        Listed::Clusters(c) => c
+            .iter()
+            .map(|c| vec![c[0] as f32, c[1] as f32, c[2] as f32, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0])
+            .collect(),
+        Listed::Photons(p) => p
+            .iter()
+            .map(|p| {
+                let c = p.cell();
+                let [x, y, z] = p.position;
+                let [r, g, b] = p.power;
+                vec![c[0] as f32, c[1] as f32, c[2] as f32, x, y, z, r, g, b, p.footprint, 1.0]
+            })
+            .collect(),
+    };
+    named.iter().map(|(name, list)| (name.clone(), records(list))).collect()
 }

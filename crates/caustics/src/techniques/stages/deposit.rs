@@ -1,0 +1,130 @@
+//! The deposit: how the selected photons become light, in a light's caustic map or in the
+//! eye's view.
+
+use super::Selection;
+use crate::image_io::ImageF32;
+use crate::scene::Scene;
+use crate::techniques::shared::compute_splat::Photons;
+use crate::techniques::shared::splat::PointSplat;
+use crate::techniques::shared::{CausticPasses, ComputeSplat, EyeView, SplatPath};
+use crate::techniques::wyman_davis2006::ImageSpace;
+use crate::techniques::wyman_nichols2009::adaptive;
+use anyhow::Result;
+use vkcore::{Context, Frame, ImageView, ShaderCompiler};
+
+/// How the selected photons become light.
+// One per renderer: boxing the larger variants would save nothing.
+#[allow(clippy::large_enum_variant)]
+pub enum Deposit {
+    /// Points blended into the light's caustic map: the photon buffer's texels instanced (Wyman
+    /// 2008 Sec. 4), or the selection's own splat of its list or vertex array.
+    Points(PointSplat),
+    /// A compute shader adding each photon's kernel into the caustic map with atomics
+    /// (`splat_path = compute`: the modern path beside the papers' point splats).
+    Compute(ComputeSplat),
+    /// Wyman & Davis 2006's eye-space points, quads and gathers (Sec. 3.2), or their quads and
+    /// gathers into the caustic map (light space).
+    ImageSpace(ImageSpace),
+}
+
+impl Deposit {
+    pub fn new(ctx: &Context, sh: &ShaderCompiler, scene: &Scene, selection: &Selection) -> Result<Deposit> {
+        if let Some(is) = ImageSpace::new(ctx, sh, scene)? {
+            return Ok(Deposit::ImageSpace(is));
+        }
+        let s = &scene.caustics;
+        Ok(match s.splat_path {
+            SplatPath::Compute => {
+                let (side, layers) = (s.caustic_map_resolution, s.caustic_levels());
+                Deposit::Compute(ComputeSplat::new(ctx, sh, side, layers, selection.splat_list())?)
+            }
+            SplatPath::Raster => Deposit::Points(PointSplat::new(ctx, sh, s.instance_vertices)?),
+        })
+    }
+
+    /// Light `l`'s deposit of what `selection` selected (with `reuse`, from the photons kept
+    /// from the last frame). `eye`: the eye's view, for deposits into it.
+    pub fn record(
+        &self,
+        f: &mut Frame,
+        c: &CausticPasses,
+        selection: &Selection,
+        l: u32,
+        eye: Option<EyeView>,
+        reuse: bool,
+    ) -> Result<()> {
+        let (inp, pt) = (c.inputs, c.photons);
+        let cmap = &c.targets.per_light[l as usize].0;
+        let own_deposit = || anyhow::anyhow!("the adaptive traversal deposits its photons batch by batch itself");
+        match self {
+            Deposit::ImageSpace(is) => is.record_light(f, c, l, eye, reuse),
+            Deposit::Points(points) => match selection {
+                Selection::Dense => points.record(f, c, l),
+                Selection::Copy(copy) => copy.record_splat(f, inp, cmap, l),
+                Selection::Hierarchy(h, _) => h.record_splat(f, inp, pt, cmap, c.targets.levels, l),
+                Selection::Adaptive(_) => Err(own_deposit()),
+            },
+            Deposit::Compute(cs) => {
+                let photons = match selection {
+                    Selection::Dense => Photons::Dense,
+                    Selection::Hierarchy(h, _) => h.final_list(),
+                    Selection::Copy(_) => anyhow::bail!("the copied vertex array has no compute splat"),
+                    Selection::Adaptive(_) => return Err(own_deposit()),
+                };
+                cs.record(f, inp, pt, &photons, cmap, l)
+            }
+        }
+    }
+
+    /// After every light's deposit: the eye-space caustics added to the eye's radiance.
+    pub fn record_after_lights(
+        &self,
+        f: &mut Frame,
+        c: &CausticPasses,
+        eye: Option<EyeView>,
+        reuse: bool,
+    ) -> Result<()> {
+        match self {
+            Deposit::ImageSpace(is) => is.record_after_lights(f, c, eye, reuse),
+            Deposit::Points(_) | Deposit::Compute(_) => Ok(()),
+        }
+    }
+
+    /// Where the adaptive traversal splats light `l`'s batches: the compute splat, else its
+    /// own point splat.
+    pub fn adaptive_splat<'a>(&'a self, c: &CausticPasses<'a>, l: u32) -> adaptive::Splat<'a> {
+        adaptive::Splat {
+            inputs: c.inputs,
+            compute: match self {
+                Deposit::Compute(cs) => Some(cs),
+                Deposit::Points(_) | Deposit::ImageSpace(_) => None,
+            },
+            photon_targets: c.photons,
+            cmap: &c.targets.per_light[l as usize].0,
+            layers: c.targets.levels,
+        }
+    }
+
+    /// Whether the caustics are deposited in the eye's view (the eye's background and geometry
+    /// buffer are drawn first).
+    pub fn eye_space(&self) -> bool {
+        matches!(self, Deposit::ImageSpace(is) if is.eye_space())
+    }
+
+    /// The caustic irradiance of the receiver view, which the receiver map reads (eye space).
+    pub fn receiver_caustic(&self) -> Option<&ImageView> {
+        match self {
+            Deposit::ImageSpace(is) => is.receiver_caustic(),
+            Deposit::Points(_) | Deposit::Compute(_) => None,
+        }
+    }
+
+    /// The dump `name` of the eye's view that this stage owns (`eye_caustic`; None where it has
+    /// none).
+    pub fn dump(&self, ctx: &Context, name: &str) -> Result<Option<ImageF32>> {
+        match (self, name) {
+            (Deposit::ImageSpace(is), "eye_caustic") => is.dump_eye(ctx),
+            _ => Ok(None),
+        }
+    }
+}

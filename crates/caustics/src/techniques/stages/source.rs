@@ -1,0 +1,85 @@
+//! The photon source: where a light's photons come from, before any is selected or deposited.
+
+use crate::gpu::GpuMesh;
+use crate::image_io::ImageF32;
+use crate::scene::Scene;
+use crate::techniques::shah2007::VertexPhotons;
+use crate::techniques::shared::{photon_buffer, CausticPasses};
+use crate::techniques::wyman_nichols2009::{DeferredPhotons, Refraction};
+use crate::techniques::Technique;
+use anyhow::Result;
+use vkcore::{Context, Frame, ShaderCompiler};
+
+/// Where a light's photons come from.
+// One per renderer: boxing the larger variants would save nothing.
+#[allow(clippy::large_enum_variant)]
+pub enum Source {
+    /// The photon buffer by rasterizing the specular objects from the light: a photon per
+    /// light-space texel (Wyman & Davis 2006 Sec. 3.1; Shah et al.'s first pass as the
+    /// tutorial draws it).
+    Rasterized,
+    /// The photon buffer by deferred shading of light-space geometry buffers
+    /// (`photon_refraction = deferred`, Wyman & Nichols 2009 Sec. 3.2 and 3.1.1).
+    Deferred(DeferredPhotons),
+    /// A photon per vertex of the specular meshes (Shah et al.'s original first pass).
+    PerVertex(VertexPhotons),
+    /// Photons created from light-space geometry buffers while the adaptive traversal refines
+    /// them (Wyman & Nichols 2009 Sec. 3.2): the geometry buffers are the traversal's
+    /// (`super::Selection::Adaptive`), drawn by its first pass; this stage draws the receivers.
+    GeometryBuffers,
+}
+
+impl Source {
+    pub fn new(ctx: &Context, sh: &ShaderCompiler, scene: &Scene, meshes: &[GpuMesh]) -> Result<Source> {
+        let s = &scene.caustics;
+        Ok(match s.technique {
+            Technique::ShahVertex => Source::PerVertex(VertexPhotons::new(ctx, sh, scene)?),
+            Technique::Adaptive => Source::GeometryBuffers,
+            t if t.has_photon_buffer() && s.photon_refraction == Refraction::Deferred => {
+                Source::Deferred(DeferredPhotons::new(ctx, sh, s.photons, meshes)?)
+            }
+            _ => Source::Rasterized,
+        })
+    }
+
+    /// Light `l`'s receiver positions and photons (the refractors' back faces first where the
+    /// photons are traced through them).
+    pub fn record(&self, f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+        match self {
+            Source::Rasterized => {
+                photon_buffer::record_light_views(f, c, l)?;
+                photon_buffer::record_photon_buffer(f, c, l)
+            }
+            // Wyman & Nichols 2009 Sec. 3.2: the geometry buffers hold the back faces.
+            Source::Deferred(dp) => {
+                photon_buffer::record_receiver_positions(f, c, l)?;
+                dp.record(f, c, l)
+            }
+            Source::PerVertex(vp) => {
+                photon_buffer::record_light_views(f, c, l)?;
+                vp.record(f, c, l)
+            }
+            Source::GeometryBuffers => photon_buffer::record_receiver_positions(f, c, l),
+        }
+    }
+
+    /// The light-space dump `name` that this stage owns, as its buffers hold it now (None:
+    /// not this stage's).
+    pub fn dump(&self, ctx: &Context, name: &str) -> Result<Option<ImageF32>> {
+        Ok(match (self, name) {
+            (Source::Deferred(d), crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP) => {
+                Some(d.dump(ctx)?)
+            }
+            // Deferred photons: the back faces are the geometry buffers' back layer.
+            (Source::Deferred(d), "photon_back_faces") => Some(d.dump_back_faces(ctx)?),
+            _ => None,
+        })
+    }
+
+    /// Whether this stage has the light-space buffer `name` (a name it owns but does not
+    /// have, it never dumps).
+    pub fn has_dump(&self, name: &str) -> bool {
+        name != crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP
+            || matches!(self, Source::Deferred(_))
+    }
+}
