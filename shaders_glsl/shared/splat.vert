@@ -10,7 +10,9 @@
 //   Sec. 3.1-3.2), each picking its layer of the multi-resolution map (Sec. 3.3) with gl_Layer;
 // - ADAPTIVE_PHOTONS: one vertex per photon the adaptive traversal output (Wyman & Nichols 2009
 //   Sec. 3.2, step 3), its position, power and varying splat radius read as vertex attributes,
-//   picking its layer of the multi-resolution map as HIERARCHY's entries do.
+//   picking its layer of the multi-resolution map as HIERARCHY's entries do;
+// - THIN_LENS: the default path, each splat sized by a per-photon thin-lens model
+//   (wyman2008/thin_lens.glsl; Wyman 2008 Fig. 7's second column).
 // shared/splat.comp deposits the same splats from a compute shader.
 #version 450
 #if defined(HIERARCHY) || defined(ADAPTIVE_PHOTONS)
@@ -58,10 +60,17 @@ layout(location = 0) in uint a_vertex;
 // Wyman 2008 Sec. 4: a small vertex buffer drawn instanced.
 // With as many vertices as the photon buffer is wide this is the paper's s = gl_VertexID,
 // t = gl_InstanceID; other sizes index the buffer row by row.
-bool fetch_photon(out vec4 pos, out vec3 power) {
-    return photon_of_texel(gl_InstanceIndex * constants.vertices_per_instance + a_vertex, pos, power);
+uint photon_id() { return gl_InstanceIndex * constants.vertices_per_instance + a_vertex; }
+bool fetch_photon(out vec4 pos, out vec3 power) { return photon_of_texel(photon_id(), pos, power); }
+#ifdef THIN_LENS
+// The photon's texel, which the thin-lens radius reads its ray from.
+uvec4 entry() {
+    uint width = uint(textureSize(photon_position, 0).x);
+    return uvec4(photon_id() % width, photon_id() / width, 0u, 0u);
 }
+#else
 uvec4 entry() { return uvec4(0u); }
+#endif
 #endif
 layout(location = 0) flat out vec4 v_power;     // (power, photons) / (sum of kernel weights)
 layout(location = 1) flat out vec2 v_centre;    // photon position in caustic-map pixels

@@ -4,7 +4,7 @@
 // sum over the texel centres it covers (a photon deposits exactly its power).
 // Needs common/caustics.glsl; binds photon_position and photon_power at 2-3 and, with
 // HIERARCHY, the photon hierarchy at 4-5 (PHOTON_VERTEX_ARRAY and ADAPTIVE_PHOTONS bring their
-// own photons). Varying splats (caustics.splat.w) with HIERARCHY and ADAPTIVE_PHOTONS.
+// own photons). Varying splats (caustics.splat.w) with HIERARCHY, ADAPTIVE_PHOTONS and THIN_LENS.
 #ifndef SPLAT_PHOTON_GLSL
 #define SPLAT_PHOTON_GLSL
 #include "shared/splat_kernel.glsl"
@@ -56,6 +56,11 @@ float splat_radius_of(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) { retur
 // An adaptive photon's varying splat radius came with it (entry.x: its footprint's bits, Wyman &
 // Nichols 2009 Sec. 3.2.2, wyman_nichols2009/adaptive.glsl `with_footprints`): 1 texel at least.
 float splat_radius_of(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) { return max(uintBitsToFloat(entry.x), 1.0); }
+#define VARYING_SPLATS
+#elif defined(THIN_LENS)
+// The photon buffer's photons sized by a per-photon thin-lens model (entry.xy: the texel).
+#include "wyman2008/thin_lens.glsl"
+float splat_radius_of(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) { return thin_lens_radius(ivec2(entry.xy), p, cl); }
 #define VARYING_SPLATS
 #endif
 

@@ -202,10 +202,11 @@ fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
         sizes.push(("caustics.caustic_map_resolution", c.caustic_map_resolution));
         sizes.push(("caustics.photons", c.photons));
         // A splat is a point of 2 ceil(r) + 2 pixels (shared/splat_photon.glsl). Varying splats
-        // reach r < 40 texels in one map (wider ones are discarded) and r < 5 in their layer of
-        // the multi-resolution map. The compute splat draws no points.
+        // reach r < 40 texels in one map (wider ones are discarded; thin-lens splats are kept
+        // under it) and r < 5 in their layer of the multi-resolution map. The compute splat
+        // draws no points.
         let (key, what, point) = match c.splat {
-            SplatMode::VaryingSingle => ("caustics.splat", c.splat.to_string(), 82.0),
+            SplatMode::VaryingSingle | SplatMode::ThinLens => ("caustics.splat", c.splat.to_string(), 82.0),
             SplatMode::VaryingMultires => ("caustics.splat", c.splat.to_string(), 12.0),
             SplatMode::Fixed => {
                 ("caustics.splat_radius", c.splat_radius.to_string(), 2.0 * c.splat_radius.ceil() + 2.0)

@@ -115,8 +115,9 @@ caustic_settings! {
     /// hcm: converging-photon clustering (Wyman 2008 Sec. 3.2); default none.
     cluster: Cluster = Cluster::None, only Hcm;
     /// hcm, adaptive: splat sizes (Wyman 2008 Sec. 3.3; for adaptive, its photons' divergence
-    /// into the multi-resolution map, Wyman & Nichols 2009 Sec. 3.2.2); default fixed.
-    splat: SplatMode = SplatMode::Fixed, only Hcm | Adaptive;
+    /// into the multi-resolution map, Wyman & Nichols 2009 Sec. 3.2.2); shah, wd-points: fixed
+    /// or thin-lens (Wyman 2008 Fig. 7); default fixed.
+    splat: SplatMode = SplatMode::Fixed, only Hcm | Adaptive | Shah | WdPoints;
     /// hcm with varying splats: the radius estimator (Wyman 2008 Sec. 3.3); default max-distance.
     varying_radius: VaryingRadius = VaryingRadius::MaxDistance, only Hcm;
     /// How photons are splatted: points (raster, the papers') or a compute shader with float
@@ -273,6 +274,20 @@ impl CausticSettings {
                 "photon_fov",
                 format!("sets the field of view of photon_view `fixed-fov`, not of `{}`", self.photon_view),
             )?;
+        }
+        if !self.splat.sizes_splats_of(self.technique) {
+            let which = match self.splat {
+                SplatMode::ThinLens => "sizes the photon buffer's point splats (technique shah or wd-points)",
+                _ => "sizes the splats of technique hcm or adaptive",
+            };
+            bad("splat", format!("`{}` {which}, not those of `{}`", self.splat, self.technique))?;
+        }
+        if self.splat == SplatMode::ThinLens && self.splat_path == SplatPath::Compute {
+            bad("splat", "`thin-lens` sizes point splats; it has no compute splat (splat_path = \"compute\")".into())?;
+        }
+        if self.splat == SplatMode::ThinLens && self.photon_refraction == Refraction::Deferred {
+            let why = "its lens is the light-space back faces, which deferred photons keep in their geometry buffers";
+            bad("splat", format!("`thin-lens` needs photon_refraction `forward`: {why}"))?;
         }
         if self.varying_radius != VaryingRadius::MaxDistance && self.splat == SplatMode::Fixed {
             let what = "sizes varying splats (technique hcm with splat varying-single or varying-multires)";

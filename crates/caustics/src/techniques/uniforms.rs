@@ -110,11 +110,12 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
         settings.splat_radius,
         if settings.splat_kernel == SplatKernel::Box { 1.0 } else { 0.0 },
         settings.back_face_iterations as f32,
-        // Splat sizes of hcm and adaptive (Wyman 2008 Sec. 3.3): 0 fixed, 1 varying in one map,
-        // 2 varying in the multi-resolution map (caustics.glsl SPLAT_*).
+        // Splat sizes (Wyman 2008 Sec. 3.3, Fig. 7): 0 fixed, 1 varying in one map (by the
+        // neighbours or the thin lens), 2 varying in the multi-resolution map (caustics.glsl SPLAT_*).
         match (settings.technique, settings.splat) {
             (Technique::Hcm | Technique::Adaptive, SplatMode::VaryingSingle) => 1.0,
             (Technique::Hcm | Technique::Adaptive, SplatMode::VaryingMultires) => 2.0,
+            (Technique::Shah | Technique::WdPoints, SplatMode::ThinLens) => 1.0,
             _ => 0.0,
         },
     ];

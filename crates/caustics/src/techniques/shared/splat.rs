@@ -63,29 +63,41 @@ pub struct PointSplat {
 impl PointSplat {
     /// `per_instance`: vertices per instance (`caustics.instance_vertices`).
     pub fn new(ctx: &Context, sh: &ShaderCompiler, per_instance: u32) -> Result<PointSplat> {
-        let ids: Vec<u32> = (0..per_instance).collect();
-        Ok(PointSplat {
-            pipeline: Pipeline::graphics(ctx, &point_splat_desc(sh)?)?,
-            vertices: ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?,
-            per_instance,
-        })
+        Self::with_pipeline(ctx, Pipeline::graphics(ctx, &point_splat_desc(sh)?)?, per_instance)
     }
 
-    /// Points drawn for `photons` photons: whole instances.
-    pub fn points(&self, photons: u32) -> u64 {
-        (photons.div_ceil(self.per_instance) * self.per_instance) as u64
+    /// The same instanced draw through another pipeline of [`point_splat_desc`]'s shape (its
+    /// vertex shader `shared/splat.vert` compiled with other defines, reading more bindings:
+    /// see [`Self::record_with`]).
+    pub fn with_pipeline(ctx: &Context, pipeline: Pipeline, per_instance: u32) -> Result<PointSplat> {
+        let ids: Vec<u32> = (0..per_instance).collect();
+        let vertices = ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?;
+        Ok(PointSplat { pipeline, vertices, per_instance })
     }
 
     /// Splats light `l`'s photons into its caustic-map layer.
     pub fn record(&self, f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+        self.record_with(f, c, l, [])
+    }
+
+    /// [`Self::record`], the pipeline also bound to `more` (after the uniforms and the photon
+    /// buffer's position and power).
+    pub fn record_with<'a>(
+        &'a self,
+        f: &mut Frame,
+        c: &CausticPasses<'a>,
+        l: u32,
+        more: impl IntoIterator<Item = Named<'a>>,
+    ) -> Result<()> {
         let (ct, pt, inp) = (c.targets, c.photons, c.inputs);
         let (cmap, _, _) = &ct.per_light[l as usize];
-        let binds = [
+        let mut binds = vec![
             ("frame", Bind::Uniform(inp.frame_uniforms)),
             ("caustics", Bind::Uniform(inp.caustic_uniforms)),
             ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
             ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
         ];
+        binds.extend(more);
         let per_instance = self.per_instance;
         f.pass(&Stage::Splat.light(l))
             .bind(&self.pipeline, binds)

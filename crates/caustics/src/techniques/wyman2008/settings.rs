@@ -7,6 +7,7 @@
 /// (`MULTIRES_LEVELS` in `shaders_glsl/common/caustics.glsl`).
 pub const MULTIRES_LEVELS: u32 = 4;
 
+use super::super::technique::Technique;
 use super::super::value_enum::value_enum;
 
 /// The paper, as tables and `--help` cite it.
@@ -39,7 +40,7 @@ impl Cluster {
 }
 
 value_enum! {
-    /// Splat sizes (Sec. 3.3; `caustics.splat`, `--splat`).
+    /// Splat sizes (Sec. 3.3 and Fig. 7; `caustics.splat`, `--splat`).
     pub enum SplatMode {
         /// Every splat `splat_radius` wide.
         Fixed = "fixed",
@@ -47,6 +48,23 @@ value_enum! {
         VaryingSingle = "varying-single",
         /// That radius, each splat in layer i = trunc(log2(max(1, D/5))) of a multi-resolution map.
         VaryingMultires = "varying-multires",
+        /// shah, wd-points: a radius from a per-photon thin-lens model (Fig. 7's second column,
+        /// Wyman & Dachsbacher's), in one caustic map.
+        ThinLens = "thin-lens",
+    }
+}
+
+impl SplatMode {
+    /// Whether `technique`'s splats can be sized so: the hierarchy's and the adaptive photons'
+    /// by their neighbours (Sec. 3.3), the photon buffer's points by the thin lens.
+    pub fn sizes_splats_of(self, technique: Technique) -> bool {
+        match self {
+            SplatMode::Fixed => true,
+            SplatMode::VaryingSingle | SplatMode::VaryingMultires => {
+                matches!(technique, Technique::Hcm | Technique::Adaptive)
+            }
+            SplatMode::ThinLens => matches!(technique, Technique::Shah | Technique::WdPoints),
+        }
     }
 }
 
