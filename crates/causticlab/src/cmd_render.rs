@@ -201,16 +201,11 @@ fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
     } else if c.technique.has_caustics() {
         sizes.push(("caustics.caustic_map_resolution", c.caustic_map_resolution));
         sizes.push(("caustics.photons", c.photons));
-        // A splat is a point of 2 ceil(r) + 2 pixels (shared/splat_photon.glsl). Varying splats
-        // reach r < 40 texels in one map (wider ones are discarded; thin-lens splats are kept
-        // under it) and r < 5 in their layer of the multi-resolution map. The compute splat
-        // draws no points.
-        let (key, what, point) = match c.splat {
-            SplatMode::VaryingSingle | SplatMode::ThinLens => ("caustics.splat", c.splat.to_string(), 82.0),
-            SplatMode::VaryingMultires => ("caustics.splat", c.splat.to_string(), 12.0),
-            SplatMode::Fixed => {
-                ("caustics.splat_radius", c.splat_radius.to_string(), 2.0 * c.splat_radius.ceil() + 2.0)
-            }
+        // The compute splat draws no points.
+        let point = c.splat.largest_point(c.splat_radius);
+        let (key, what) = match c.splat {
+            SplatMode::Fixed => ("caustics.splat_radius", c.splat_radius.to_string()),
+            _ => ("caustics.splat", c.splat.to_string()),
         };
         if c.splat_path == SplatPath::Raster && point > info.point_size_range[1] {
             return Err(input_error!(

@@ -58,6 +58,15 @@ impl AppendCounter {
     /// Byte offset of [`AppendCounter::draw`].
     pub const DRAW_OFFSET: u64 = std::mem::offset_of!(AppendCounter, draw) as u64;
 
+    /// Bytes of the header the append step counts in (`count`, `capacity`, `pad`): what a reset
+    /// writes (finalize writes the arguments after it).
+    pub const HEADER_BYTES: usize = std::mem::offset_of!(AppendCounter, dispatch);
+
+    /// An empty stream of `capacity` slots.
+    pub fn empty(capacity: u32) -> AppendCounter {
+        AppendCounter { count: 0, capacity, pad: [0; 2], dispatch: [0; 4], draw: [0; 4] }
+    }
+
     /// A stream of `count` elements already in place (a seed, uploaded once), with the arguments
     /// finalize would have written.
     pub fn full(count: u32) -> AppendCounter {
@@ -175,8 +184,8 @@ impl CompactStream {
                 Ok(())
             }
             CompactionPath::Compute => {
-                let header: Vec<u8> = [0u32, self.capacity, 0, 0].iter().flat_map(|x| x.to_le_bytes()).collect();
-                cmd.update_buffer(&self.counter, 0, &header)
+                let empty = AppendCounter::empty(self.capacity);
+                cmd.update_buffer(&self.counter, 0, &bytemuck::bytes_of(&empty)[..AppendCounter::HEADER_BYTES])
             }
         }
     }

@@ -60,6 +60,31 @@ mod tests {
         assert!(wrong.is_empty(), "{}", wrong.join("\n"));
     }
 
+    /// `SplatMode::uniform` packs the splat sizes as `common/caustics.glsl`'s SPLAT_* read
+    /// them (float defines), and only for the techniques each mode sizes.
+    #[test]
+    fn splat_modes_pack_as_the_shaders_read_them() {
+        use crate::techniques::wyman2008::settings::SplatMode;
+        use crate::techniques::Technique;
+        let text = shader("common/caustics.glsl");
+        let float = |name: &str| -> f32 {
+            let line = text.lines().find(|l| l.split_whitespace().take(2).eq(["#define", name]));
+            let v = line.and_then(|l| l.split_whitespace().nth(2)).unwrap_or_else(|| panic!("no #define {name}"));
+            v.parse().unwrap_or_else(|e| panic!("#define {name} {v}: {e}"))
+        };
+        let cases = [
+            (SplatMode::Fixed, Technique::Hcm, "SPLAT_FIXED"),
+            (SplatMode::VaryingSingle, Technique::Hcm, "SPLAT_VARYING_SINGLE"),
+            (SplatMode::VaryingMultires, Technique::Adaptive, "SPLAT_VARYING_MULTIRES"),
+            (SplatMode::ThinLens, Technique::WdPoints, "SPLAT_VARYING_SINGLE"),
+            (SplatMode::ThinLens, Technique::Hcm, "SPLAT_FIXED"),
+            (SplatMode::VaryingMultires, Technique::Shah, "SPLAT_FIXED"),
+        ];
+        for (mode, technique, name) in cases {
+            assert_eq!(mode.uniform(technique), float(name), "{mode} with {technique}");
+        }
+    }
+
     #[test]
     fn the_layered_trace_declares_buffers_for_max_refractors() {
         // deferred_photon_layers.glsl declares each object's buffers with LAYER_BINDINGS(k).

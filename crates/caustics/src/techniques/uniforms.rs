@@ -6,9 +6,9 @@ use super::shared::{Intersect, PhotonView, SplatKernel};
 use crate::gpu::setup::perspective;
 use crate::gpu::MAX_LIGHTS;
 use crate::scene::{Light, LightKind, MaterialKind, Scene};
-use crate::techniques::wyman2008::settings::{SplatMode, VaryingRadius};
+use crate::techniques::wyman2008::settings::VaryingRadius;
 use crate::techniques::wyman_davis2006::{self, settings::Reflection};
-use crate::techniques::{CausticSettings, Technique};
+use crate::techniques::CausticSettings;
 use anyhow::Result;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
@@ -110,14 +110,8 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
         settings.splat_radius,
         if settings.splat_kernel == SplatKernel::Box { 1.0 } else { 0.0 },
         settings.back_face_iterations as f32,
-        // Splat sizes (Wyman 2008 Sec. 3.3, Fig. 7): 0 fixed, 1 varying in one map (by the
-        // neighbours or the thin lens), 2 varying in the multi-resolution map (caustics.glsl SPLAT_*).
-        match (settings.technique, settings.splat) {
-            (Technique::Hcm | Technique::Adaptive, SplatMode::VaryingSingle) => 1.0,
-            (Technique::Hcm | Technique::Adaptive, SplatMode::VaryingMultires) => 2.0,
-            (Technique::Shah | Technique::WdPoints, SplatMode::ThinLens) => 1.0,
-            _ => 0.0,
-        },
+        // Splat sizes (Wyman 2008 Sec. 3.3, Fig. 7).
+        settings.splat.uniform(settings.technique),
     ];
     let Some((centre, radius)) = specular_bounds(scene) else { return Ok(u) };
     if !settings.technique.has_caustics() {

@@ -66,6 +66,30 @@ impl SplatMode {
             SplatMode::ThinLens => matches!(technique, Technique::Shah | Technique::WdPoints),
         }
     }
+
+    /// The caustic uniforms' `splat.w` for `technique` (`common/caustics.glsl` SPLAT_*): 0 fixed,
+    /// 1 varying in one map (by the neighbours or the thin lens), 2 varying in the
+    /// multi-resolution map; fixed where the mode does not size `technique`'s splats.
+    pub fn uniform(self, technique: Technique) -> f32 {
+        match self {
+            _ if !self.sizes_splats_of(technique) => 0.0,
+            SplatMode::Fixed => 0.0,
+            SplatMode::VaryingSingle | SplatMode::ThinLens => 1.0,
+            SplatMode::VaryingMultires => 2.0,
+        }
+    }
+
+    /// The widest point a splat of this mode draws, in pixels, with `splat_radius` for fixed
+    /// splats: 2 ceil(r) + 2 (`shared/splat_photon.glsl`). Varying splats reach r < 40 texels in
+    /// one map (wider ones are dropped; thin-lens splats are kept under it) and r < 5 in their
+    /// layer of the multi-resolution map.
+    pub fn largest_point(self, splat_radius: f32) -> f32 {
+        match self {
+            SplatMode::Fixed => 2.0 * splat_radius.ceil() + 2.0,
+            SplatMode::VaryingSingle | SplatMode::ThinLens => 82.0,
+            SplatMode::VaryingMultires => 12.0,
+        }
+    }
 }
 
 value_enum! {

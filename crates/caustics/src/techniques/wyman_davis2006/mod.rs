@@ -60,22 +60,33 @@ struct ReceiverView {
     tolerance: [f32; 2],
 }
 
+/// How the photons become light (Sec. 3.2).
+enum Draw {
+    /// Drawn as points into a view's photon buffer, then gathered from it (radius 0 for
+    /// `wd-eye-points`: each pixel lit by its own photons; Fig. 4, Sec. 3.2.2).
+    PointsGathered { points: Pipeline, gather: Pipeline },
+    /// Polygons between adjacent photons, drawn straight into the caustic (Sec. 3.2.1).
+    Quads(quads::QuadPipelines),
+}
+
+/// Where they are drawn (one per renderer: boxing the eye's variant would save nothing).
+#[allow(clippy::large_enum_variant)]
+enum DrawnInto {
+    /// The eye's view, then added to the eye's radiance by the shading pass; and, where the
+    /// scene has a receiver map, the receiver view with the pipeline of its geometry.
+    Eye { eye: ViewBuffers, shade: Pipeline, receiver: Option<(ReceiverView, Pipeline)> },
+    /// The light's caustic map; the gathers first count the photons in their own buffers
+    /// (history layers per light), which quads do not need.
+    Light { counts: Option<ViewBuffers> },
+}
+
 /// The GPU resources of `wd-eye-points`, `wd-quads` and `wd-gather`.
 pub struct ImageSpace {
     method: Method,
     /// The equation that lights the photons (Eq. 9-11 or 3-4).
     lighting: u32,
-    /// Points into a view (eye space) or into a caustic map (light-space gather).
-    points: Option<Pipeline>,
-    quads: Option<quads::QuadPipelines>,
-    gather: Option<Pipeline>,
-    shade: Option<Pipeline>,
-    receiver_geometry: Option<Pipeline>,
-    /// The eye's view (eye space).
-    eye: Option<ViewBuffers>,
-    receiver: Option<ReceiverView>,
-    /// The light-space gather's photon counts: history layers per light.
-    light: Option<ViewBuffers>,
+    draw: Draw,
+    into: DrawnInto,
     history: History,
     tolerance: [f32; 2],
 }
@@ -105,54 +116,57 @@ impl ImageSpace {
         };
         let camera = (scene.camera.width, scene.camera.height);
         let layers = history.layers();
-        let eye = match eye_space {
-            // A light's photons have their own history layers (light * layers + slot), so
-            // each light is gathered from its own photons.
-            true => Some(ViewBuffers::new(ctx, "eye", camera, layers * lights, true)?),
-            false => None,
+        let draw = match gathers {
+            true => Draw::PointsGathered {
+                points: points::pipeline(ctx, sh, light_space)?,
+                gather: gather::pipeline(ctx, sh, light_space)?,
+            },
+            false => Draw::Quads(quads::pipeline(ctx, sh, light_space)?),
         };
-        let receiver = match (eye_space, &scene.receiver_map, views::receiver_view_proj(scene)) {
-            (true, Some(r), Some(view_proj)) => {
-                let size = (r.resolution, r.resolution);
-                Some(ReceiverView {
-                    buffers: ViewBuffers::new(ctx, "receiver view", size, layers * lights, true)?,
-                    position: Target::color(ctx, "receiver view position", r.resolution, r.resolution)?,
-                    normal: Target::color(ctx, "receiver view normal", r.resolution, r.resolution)?,
-                    view_proj,
-                    tolerance: views::tolerance(scene, true),
-                })
+        let into = match eye_space {
+            true => {
+                // A light's photons have their own history layers (light * layers + slot), so
+                // each light is gathered from its own photons.
+                let eye = ViewBuffers::new(ctx, "eye", camera, layers * lights, true)?;
+                let receiver = match (&scene.receiver_map, views::receiver_view_proj(scene)) {
+                    (Some(r), Some(view_proj)) => {
+                        let size = (r.resolution, r.resolution);
+                        let view = ReceiverView {
+                            buffers: ViewBuffers::new(ctx, "receiver view", size, layers * lights, true)?,
+                            position: Target::color(ctx, "receiver view position", r.resolution, r.resolution)?,
+                            normal: Target::color(ctx, "receiver view normal", r.resolution, r.resolution)?,
+                            view_proj,
+                            tolerance: views::tolerance(scene, true),
+                        };
+                        Some((view, gather::receiver_view_pipeline(ctx, sh)?))
+                    }
+                    _ => None,
+                };
+                DrawnInto::Eye { eye, shade: gather::shade_pipeline(ctx, sh)?, receiver }
             }
-            _ => None,
+            false => {
+                let m = s.caustic_map_resolution;
+                let counts = match gathers {
+                    true => Some(ViewBuffers::new(ctx, "light-space", (m, m), layers * lights, false)?),
+                    false => None,
+                };
+                DrawnInto::Light { counts }
+            }
         };
-        let m = s.caustic_map_resolution;
-        let light = match (light_space, gathers) {
-            (true, true) => Some(ViewBuffers::new(ctx, "light-space", (m, m), layers * lights, false)?),
-            _ => None,
-        };
-        Ok(Some(ImageSpace {
-            method,
-            lighting,
-            points: if gathers { Some(points::pipeline(ctx, sh, light_space)?) } else { None },
-            quads: if gathers { None } else { Some(quads::pipeline(ctx, sh, light_space)?) },
-            gather: if gathers { Some(gather::pipeline(ctx, sh, light_space)?) } else { None },
-            shade: if eye_space { Some(gather::shade_pipeline(ctx, sh)?) } else { None },
-            receiver_geometry: if receiver.is_some() { Some(gather::receiver_view_pipeline(ctx, sh)?) } else { None },
-            eye,
-            receiver,
-            light,
-            history,
-            tolerance: views::tolerance(scene, false),
-        }))
+        Ok(Some(ImageSpace { method, lighting, draw, into, history, tolerance: views::tolerance(scene, false) }))
     }
 
     /// Whether the caustics are rendered in the eye's view.
     pub fn eye_space(&self) -> bool {
-        !matches!(self.method, Method::Quads(Space::Light) | Method::Gather(Space::Light))
+        matches!(self.into, DrawnInto::Eye { .. })
     }
 
     /// The caustic irradiance of the receiver view, which the receiver map reads (eye space).
     pub fn receiver_caustic(&self) -> Option<&ImageView> {
-        self.receiver.as_ref().and_then(|r| r.buffers.caustic.as_ref()).map(|t| &t.view)
+        match &self.into {
+            DrawnInto::Eye { receiver: Some((r, _)), .. } => r.buffers.caustic.as_ref().map(|t| &t.view),
+            _ => None,
+        }
     }
 
     /// Light `l`'s constants: its photons have their own history layers, from `l * layers`
@@ -186,64 +200,67 @@ impl ImageSpace {
         reuse: bool,
     ) -> Result<()> {
         let first = l == 0;
-        if self.eye_space() {
-            let eye = eye.context("eye-space caustics need the eye's view")?;
-            if let (true, Some(r), Some(p)) = (first, &self.receiver, &self.receiver_geometry) {
-                record_receiver_geometry(f, c, p, r)?;
-            }
-            let eye_buffers = self.eye.as_ref().context("no eye-space buffers")?;
-            let eye_base = views::view_constants(eye.view_proj, eye.eye, self.tolerance, false);
-            let mut targets = vec![("eye", eye_buffers, (eye.position, eye.normal), eye_base)];
-            if let Some(r) = &self.receiver {
-                let base = views::view_constants(r.view_proj, Vec3::ZERO, r.tolerance, true);
-                targets.push(("receiver", &r.buffers, (&r.position.view, &r.normal.view), base));
-            }
-            for (view, buffers, geometry, base) in targets {
-                let k = self.constants(base, c, l, 0);
-                match (&self.points, &self.quads) {
-                    (Some(p), _) => {
-                        // Light l's photons, gathered at once into the view's caustic (lights
-                        // after the first add to it: gather.comp).
-                        let into = points::PointsInto {
-                            name: Stage::WdPhotons.pass().view(view).light(l),
-                            buffers,
-                            slot: k.slot,
-                            geometry,
-                            clear: true,
-                        };
-                        points::record(f, c, p, into, k)?;
-                        let g = self.gather.as_ref().context("no gather pipeline")?;
-                        let radius = if self.method == Method::EyePoints { 0 } else { gather::RADIUS };
-                        let kg = self.constants(base, c, l, radius);
-                        let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
-                        gather::record(
-                            f,
-                            &Stage::WdGather.pass().view(view).light(l),
-                            c,
-                            g,
-                            buffers,
-                            geometry,
-                            out,
-                            kg,
-                        )?;
-                    }
-                    (None, Some(q)) => {
-                        let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
-                        quads::record(f, &Stage::WdQuads.pass().view(view).light(l), c, q, out, geometry, first, k)?;
-                    }
-                    (None, None) => anyhow::bail!("image-space caustics without a pipeline"),
+        let (eye_buffers, receiver) = match &self.into {
+            DrawnInto::Eye { eye, receiver, .. } => (eye, receiver),
+            DrawnInto::Light { counts } => return self.record_light_space(f, c, l, counts.as_ref(), reuse),
+        };
+        let eye = eye.context("eye-space caustics need the eye's view")?;
+        if let (true, Some((r, p))) = (first, receiver) {
+            record_receiver_geometry(f, c, p, r)?;
+        }
+        let eye_base = views::view_constants(eye.view_proj, eye.eye, self.tolerance, false);
+        let mut targets = vec![("eye", eye_buffers, (eye.position, eye.normal), eye_base)];
+        if let Some((r, _)) = receiver {
+            let base = views::view_constants(r.view_proj, Vec3::ZERO, r.tolerance, true);
+            targets.push(("receiver", &r.buffers, (&r.position.view, &r.normal.view), base));
+        }
+        for (view, buffers, geometry, base) in targets {
+            let k = self.constants(base, c, l, 0);
+            let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
+            match &self.draw {
+                Draw::PointsGathered { points: p, gather: g } => {
+                    // Light l's photons, gathered at once into the view's caustic (lights
+                    // after the first add to it: gather.comp).
+                    let into = points::PointsInto {
+                        name: Stage::WdPhotons.pass().view(view).light(l),
+                        buffers,
+                        slot: k.slot,
+                        geometry,
+                        clear: true,
+                    };
+                    points::record(f, c, p, into, k)?;
+                    let radius = if self.method == Method::EyePoints { 0 } else { gather::RADIUS };
+                    let kg = self.constants(base, c, l, radius);
+                    let name = Stage::WdGather.pass().view(view).light(l);
+                    gather::record(f, &name, c, g, buffers, geometry, out, kg)?;
+                }
+                Draw::Quads(q) => {
+                    quads::record(f, &Stage::WdQuads.pass().view(view).light(l), c, q, out, geometry, first, k)?;
                 }
             }
-            return Ok(());
         }
+        Ok(())
+    }
+
+    /// Light `l`'s quads or gather into its caustic-map layer (light space), skipped when the
+    /// photons were kept (`reuse`: the lighting did not change). `counts`: the gathers'.
+    fn record_light_space(
+        &self,
+        f: &mut Frame,
+        c: &CausticPasses,
+        l: u32,
+        counts: Option<&ViewBuffers>,
+        reuse: bool,
+    ) -> Result<()> {
         if reuse {
             return Ok(());
         }
         let cmap = &c.targets.per_light[l as usize].0;
         let rpos = &c.targets.per_light[l as usize].1;
         let base = ImageSpaceConstants::default();
-        match (&self.points, &self.gather, &self.quads, &self.light) {
-            (Some(p), Some(g), _, Some(buffers)) => {
+        match &self.draw {
+            Draw::PointsGathered { points: p, gather: g } => {
+                let buffers = counts.context("no light-space photon counts")?;
                 let k = self.constants(base, c, l, gather::RADIUS);
                 let into = points::PointsInto {
                     name: Stage::WdPhotons.pass().view("light_space").light(l),
@@ -253,31 +270,14 @@ impl ImageSpace {
                     clear: true,
                 };
                 points::record(f, c, p, into, k)?;
-                gather::record(
-                    f,
-                    &Stage::WdGather.pass().view("light_space").light(l),
-                    c,
-                    g,
-                    buffers,
-                    (rpos, rpos),
-                    cmap,
-                    k,
-                )?;
+                let name = Stage::WdGather.pass().view("light_space").light(l);
+                gather::record(f, &name, c, g, buffers, (rpos, rpos), cmap, k)?;
             }
-            (_, _, Some(q), _) => {
+            Draw::Quads(q) => {
                 let k = self.constants(base, c, l, 0);
-                quads::record(
-                    f,
-                    &Stage::WdQuads.pass().view("light_space").light(l),
-                    c,
-                    q,
-                    cmap,
-                    (rpos, rpos),
-                    true,
-                    k,
-                )?;
+                let name = Stage::WdQuads.pass().view("light_space").light(l);
+                quads::record(f, &name, c, q, cmap, (rpos, rpos), true, k)?;
             }
-            _ => anyhow::bail!("light-space caustics without a pipeline"),
         }
         Ok(())
     }
@@ -292,15 +292,13 @@ impl ImageSpace {
         eye: Option<EyeView>,
         reuse: bool,
     ) -> Result<()> {
-        if !self.eye_space() {
+        let DrawnInto::Eye { eye: eye_buffers, shade, .. } = &self.into else {
             if !reuse {
                 self.history.advance();
             }
             return Ok(());
-        }
+        };
         let eye = eye.context("eye-space caustics need the eye's view")?;
-        let eye_buffers = self.eye.as_ref().context("no eye-space buffers")?;
-        let shade = self.shade.as_ref().context("no shading pipeline")?;
         let caustic = &eye_buffers.caustic.as_ref().context("no caustic image")?.view;
         let binds = [
             ("background", vkcore::Bind::Storage(eye.background)),
@@ -320,12 +318,12 @@ impl ImageSpace {
     /// frame's eye-space photons and their directions. Quads are drawn straight into the
     /// caustic irradiance: their views' photon images are never written.
     pub fn dump_eye(&self, ctx: &Context) -> Result<Option<ImageF32>> {
-        let Some(b) = &self.eye else { return Ok(None) };
+        let DrawnInto::Eye { eye: b, .. } = &self.into else { return Ok(None) };
         let mut layers = vec![];
         if let Some(c) = &b.caustic {
             layers.push(read(ctx, c, 0, None, &["R", "G", "B", "photons"])?);
         }
-        if self.points.is_none() {
+        if let Draw::Quads(_) = self.draw {
             return Ok(Some(ImageF32 { width: b.width, height: b.height, layers }));
         }
         let slot = (self.history.slot() + self.history.layers() - 1) % self.history.layers();
