@@ -3,8 +3,9 @@
 // photon lands in the caustic map, its radius and layer, and its power divided by the kernel's
 // sum over the texel centres it covers (a photon deposits exactly its power).
 // Needs common/caustics.glsl; binds photon_position and photon_power at 2-3 and, with
-// HIERARCHY, the photon hierarchy at 4-5 (PHOTON_VERTEX_ARRAY and ADAPTIVE_PHOTONS bring their
-// own photons). Varying splats (caustics.splat.w) with HIERARCHY, ADAPTIVE_PHOTONS and THIN_LENS.
+// HIERARCHY, the photon hierarchy at 4-5, with THIN_LENS, the photons' directions and the
+// light-space back faces at 4-5 (PHOTON_VERTEX_ARRAY and ADAPTIVE_PHOTONS bring their own
+// photons). Varying splats (caustics.splat.w) with HIERARCHY, ADAPTIVE_PHOTONS and THIN_LENS.
 #ifndef SPLAT_PHOTON_GLSL
 #define SPLAT_PHOTON_GLSL
 #include "shared/splat_kernel.glsl"

@@ -4,9 +4,10 @@
 // among the five in shared/papers; this is the model as causticlab builds it from that
 // description (docs/papers.md says so):
 // - the specular objects are one thin lens, rotationally symmetric about the light's axis (the
-//   photon frustum's: from the light through the centre of the objects' bounds), met where the
-//   photon leaves them: on its light ray at the light-space back face (Wyman 2005's exit-point
-//   estimate d_V). A photon without a back face (a mirror) keeps the constant radius;
+//   fitted photon frustum's: from the light through the centre of the objects' bounds, hence
+//   `photon_view = fitted`), met where the photon leaves them: on its light ray at the
+//   light-space back face (Wyman 2005's exit-point estimate d_V). A photon whose light ray
+//   meets no back face (a mirror's, unless a refractor lies behind it) keeps the constant radius;
 // - the photon's beam is as wide there as its photon-buffer texel's solid angle spans at that
 //   distance, and converges toward where the photon's exit ray crosses the axis (its focus),
 //   diverging past it: photons that leave at height h from the axis with a radial direction

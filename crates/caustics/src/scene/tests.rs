@@ -326,6 +326,10 @@ fn thin_lens_splats_belong_to_the_photon_buffers_points() {
             "technique = \"shah\"\nsplat = \"thin-lens\"\nphoton_refraction = \"deferred\"",
             &["caustics.splat", "photon_refraction", "forward"],
         ),
+        (
+            "technique = \"wd-points\"\nsplat = \"thin-lens\"\nphoton_view = \"shadow-map\"",
+            &["caustics.splat", "fitted"],
+        ),
     ];
     for (i, (text, needles)) in cases.iter().enumerate() {
         let s = load_text(&format!("thin_lens{i}.toml"), &with(text)).expect("loads on its own");

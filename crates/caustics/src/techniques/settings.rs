@@ -285,6 +285,10 @@ impl CausticSettings {
         if self.splat == SplatMode::ThinLens && self.splat_path == SplatPath::Compute {
             bad("splat", "`thin-lens` sizes point splats; it has no compute splat (splat_path = \"compute\")".into())?;
         }
+        if self.splat == SplatMode::ThinLens && self.photon_view != PhotonView::Fitted {
+            let why = "its lens's axis is the fitted view's, from the light through the specular objects' centre";
+            bad("splat", format!("`thin-lens` needs photon_view `fitted`, not `{}`: {why}", self.photon_view))?;
+        }
         if self.splat == SplatMode::ThinLens && self.photon_refraction == Refraction::Deferred {
             let why = "its lens is the light-space back faces, which deferred photons keep in their geometry buffers";
             bad("splat", format!("`thin-lens` needs photon_refraction `forward`: {why}"))?;

@@ -6,8 +6,8 @@
 //!
 //! | technique | source | selection | deposit |
 //! |---|---|---|---|
-//! | `shah`, `wd-points` | `Rasterized` (or `Deferred`) | `Dense` (or `Copy`) | `Points` or `Compute` |
-//! | `shah-vertex` | `PerVertex` | `Dense` (or `Copy`) | `Points` or `Compute` |
+//! | `shah`, `wd-points` | `Rasterized` (or `Deferred`) | `Dense` (or `Copy`) | `Points`, `Compute` or `ThinLens` |
+//! | `shah-vertex` | `PerVertex` | `Dense` | `Points` or `Compute` |
 //! | `wd-eye-points`, `wd-quads`, `wd-gather` | `Rasterized` (or `Deferred`) | `Dense` | `ImageSpace` |
 //! | `hcm` | `Rasterized` (or `Deferred`) | `Hierarchy` | `Points` or `Compute` |
 //! | `adaptive` | `GeometryBuffers` | `Adaptive` | `Points` or `Compute` |
@@ -25,7 +25,7 @@ pub use source::Source;
 use super::settings::CausticSettings;
 use super::shared::{CausticPasses, CausticPipelines, CausticTargets, EyeView, FrameInputs, PhotonTargets, SplatPath};
 use super::wyman2008::photon_copy::CopyType;
-use super::wyman2008::Hierarchy;
+use super::wyman2008::{Hierarchy, SplatMode};
 use super::wyman_nichols2009::AdaptiveCaustics;
 use super::Technique;
 use crate::gpu::{self, BatchPart, GpuMesh};
@@ -54,6 +54,13 @@ pub fn check_photon_copy(settings: &CausticSettings, copy: Option<CopyType>) -> 
         return Err(crate::input_error!(
             "photon_copy: copying the photon buffer into a vertex array needs a photon-buffer technique \
              (wd-points or shah), not `{technique}`"
+        )
+        .into());
+    }
+    if copy.is_some() && settings.splat == SplatMode::ThinLens {
+        return Err(crate::input_error!(
+            "photon_copy: thin-lens splats (splat = \"thin-lens\") size the photon buffer's own points, not a \
+             copy of them into a vertex array"
         )
         .into());
     }
