@@ -138,9 +138,9 @@ impl Deposit {
     /// The dump `name` of the eye's view that this stage owns (`eye_caustic`; None where it has
     /// none).
     pub fn dump(&self, ctx: &Context, name: &str) -> Result<Option<ImageF32>> {
-        match (self, name) {
-            (Deposit::ImageSpace(is), "eye_caustic") => is.dump_eye(ctx),
-            _ => Ok(None),
+        match self {
+            Deposit::ImageSpace(is) if name == "eye_caustic" => is.dump_eye(ctx),
+            Deposit::ImageSpace(_) | Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) => Ok(None),
         }
     }
 }

@@ -75,10 +75,11 @@ impl Selection {
     /// Whether this stage has the light-space buffer `name` (it owns `hierarchy*` and `splats`
     /// with a hierarchy, `adaptive_*` with the adaptive traversal).
     pub fn has_dump(&self, name: &str) -> bool {
+        let (hierarchy, adaptive) = (wyman2008::DUMPS.contains(&name), ADAPTIVE_DUMPS.contains(&name));
         match self {
-            _ if wyman2008::DUMPS.contains(&name) => matches!(self, Selection::Hierarchy(..)),
-            _ if ADAPTIVE_DUMPS.contains(&name) => matches!(self, Selection::Adaptive(_)),
-            _ => true,
+            Selection::Hierarchy(..) => !adaptive,
+            Selection::Adaptive(_) => !hierarchy,
+            Selection::Dense | Selection::Copy(_) => !hierarchy && !adaptive,
         }
     }
 
@@ -96,21 +97,26 @@ impl Selection {
     /// passes were recorded last (None: not this stage's).
     pub fn dump(&self, ctx: &Context, c: &CausticPasses, name: &str, l: u32) -> Result<Option<LightDump>> {
         let records = |channels, lists| Some(LightDump::Records { channels, lists });
-        Ok(match (self, name) {
-            (Selection::Hierarchy(h, _), "hierarchy") => Some(LightDump::Image(h.dump_levels(ctx)?)),
-            (Selection::Hierarchy(h, _), "hierarchy_lists") => {
-                records(&wyman2008::LIST_CHANNELS, wyman2008::list_records(&h.read_lists(ctx)?))
-            }
-            (Selection::Hierarchy(h, footprints), "splats") => {
-                let footprints = footprints.as_ref().context("no splat footprints pipeline")?;
-                let splats = footprints.read(ctx, h, c.inputs, c.photons, l)?;
-                records(&splat_footprints::CHANNELS, vec![(String::new(), splat_footprints::splat_records(&splats))])
-            }
-            (Selection::Adaptive(a), "adaptive_geometry") => Some(LightDump::Image(a.dump_geometry(ctx)?)),
-            (Selection::Adaptive(a), "adaptive_lists") => {
-                records(&adaptive::LIST_CHANNELS, adaptive::list_records(&adaptive_lists(ctx, c, a, l)?))
-            }
-            _ => None,
+        Ok(match self {
+            Selection::Hierarchy(h, footprints) => match name {
+                "hierarchy" => Some(LightDump::Image(h.dump_levels(ctx)?)),
+                "hierarchy_lists" => records(&wyman2008::LIST_CHANNELS, wyman2008::list_records(&h.read_lists(ctx)?)),
+                "splats" => {
+                    let footprints = footprints.as_ref().context("no splat footprints pipeline")?;
+                    let splats = footprints.read(ctx, h, c.inputs, c.photons, l)?;
+                    let list = (String::new(), splat_footprints::splat_records(&splats));
+                    records(&splat_footprints::CHANNELS, vec![list])
+                }
+                _ => None,
+            },
+            Selection::Adaptive(a) => match name {
+                "adaptive_geometry" => Some(LightDump::Image(a.dump_geometry(ctx)?)),
+                "adaptive_lists" => {
+                    records(&adaptive::LIST_CHANNELS, adaptive::list_records(&adaptive_lists(ctx, c, a, l)?))
+                }
+                _ => None,
+            },
+            Selection::Dense | Selection::Copy(_) => None,
         })
     }
 }

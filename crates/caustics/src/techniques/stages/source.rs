@@ -5,6 +5,7 @@ use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::shah2007::VertexPhotons;
 use crate::techniques::shared::{photon_buffer, CausticPasses};
+use crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP;
 use crate::techniques::wyman_nichols2009::{DeferredPhotons, Refraction};
 use crate::techniques::Technique;
 use anyhow::Result;
@@ -66,20 +67,23 @@ impl Source {
     /// The light-space dump `name` that this stage owns, as its buffers hold it now (None:
     /// not this stage's).
     pub fn dump(&self, ctx: &Context, name: &str) -> Result<Option<ImageF32>> {
-        Ok(match (self, name) {
-            (Source::Deferred(d), crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP) => {
-                Some(d.dump(ctx)?)
-            }
-            // Deferred photons: the back faces are the geometry buffers' back layer.
-            (Source::Deferred(d), "photon_back_faces") => Some(d.dump_back_faces(ctx)?),
-            _ => None,
+        Ok(match self {
+            Source::Deferred(d) => match name {
+                DEFERRED_PHOTONS_DUMP => Some(d.dump(ctx)?),
+                // Deferred photons: the back faces are the geometry buffers' back layer.
+                "photon_back_faces" => Some(d.dump_back_faces(ctx)?),
+                _ => None,
+            },
+            Source::Rasterized | Source::PerVertex(_) | Source::GeometryBuffers => None,
         })
     }
 
     /// Whether this stage has the light-space buffer `name` (a name it owns but does not
     /// have, it never dumps).
     pub fn has_dump(&self, name: &str) -> bool {
-        name != crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP
-            || matches!(self, Source::Deferred(_))
+        match self {
+            Source::Deferred(_) => true,
+            Source::Rasterized | Source::PerVertex(_) | Source::GeometryBuffers => name != DEFERRED_PHOTONS_DUMP,
+        }
     }
 }
