@@ -31,6 +31,11 @@ impl Target {
 }
 
 impl Target {
+    /// A dump image of this target's size holding `layers` (read from it or its like).
+    pub fn as_image(&self, layers: Vec<crate::image_io::Layer>) -> crate::image_io::ImageF32 {
+        crate::image_io::ImageF32 { width: self.view.extent.0, height: self.view.extent.1, layers }
+    }
+
     /// Mip 0 of array layer `layer_index` as a dump layer: the channels at `pick` of each
     /// texel (of any float format), under `names`.
     pub fn read_layer(

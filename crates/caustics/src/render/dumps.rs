@@ -10,33 +10,17 @@ use vkcore::Context;
 
 const FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
-/// RGBA32F texels of `t` (mip 0, `layer`), keeping the channels at `pick` under `names`.
-pub(crate) fn layer(
-    ctx: &Context,
-    t: &Target,
-    layer_index: u32,
-    name: Option<&str>,
-    names: &[&str],
-    pick: &[usize],
-) -> Result<Layer> {
-    t.read_layer(ctx, layer_index, name, names, pick)
-}
-
-pub(crate) fn image(t: &Target, layers: Vec<Layer>) -> ImageF32 {
-    ImageF32 { width: t.view.extent.0, height: t.view.extent.1, layers }
-}
-
 /// The final linear radiance.
 pub fn final_image(ctx: &Context, t: &EyeTargets) -> Result<ImageF32> {
-    Ok(image(&t.final_image, vec![layer(ctx, &t.final_image, 0, None, &["R", "G", "B"], &[0, 1, 2])?]))
+    Ok(t.final_image.as_image(vec![t.final_image.read_layer(ctx, 0, None, &["R", "G", "B"], &[0, 1, 2])?]))
 }
 
 /// Every array layer of `t` as layers `light<l>` with the given channels.
 fn per_light(ctx: &Context, t: &Target, names: &[&str], pick: &[usize]) -> Result<ImageF32> {
     let layers = (0..t.image.desc.array_layers)
-        .map(|l| layer(ctx, t, l, Some(&format!("light{l}")), names, pick))
+        .map(|l| t.read_layer(ctx, l, Some(&format!("light{l}")), names, pick))
         .collect::<Result<Vec<_>>>()?;
-    Ok(image(t, layers))
+    Ok(t.as_image(layers))
 }
 
 /// The named intermediate buffer; None if this render has no such buffer (no receiver map, or
@@ -55,25 +39,25 @@ pub fn dump(
             for l in 0..t.shadow.lights {
                 for (f, face) in FACES.iter().enumerate() {
                     let n = format!("light{l}_{face}");
-                    layers.push(layer(ctx, &t.shadow.distance, 6 * l + f as u32, Some(&n), &["distance"], &[0])?);
+                    layers.push(t.shadow.distance.read_layer(ctx, 6 * l + f as u32, Some(&n), &["distance"], &[0])?);
                 }
             }
-            image(&t.shadow.distance, layers)
+            t.shadow.distance.as_image(layers)
         }
-        "background" => image(&t.background, vec![layer(ctx, &t.background, 0, None, &rgb, &[0, 1, 2])?]),
-        "eye_gbuffer" => image(
-            &t.position,
-            vec![
-                layer(ctx, &t.position, 0, Some("position"), &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?,
-                layer(ctx, &t.normal, 0, Some("normal"), &["X", "Y", "Z"], &[0, 1, 2])?,
-            ],
-        ),
-        "refractor_back_faces" => image(
-            &t.back_faces,
-            vec![layer(ctx, &t.back_faces, 0, None, &["NX", "NY", "NZ", "distance"], &[0, 1, 2, 3])?],
-        ),
+        "background" => t.background.as_image(vec![t.background.read_layer(ctx, 0, None, &rgb, &[0, 1, 2])?]),
+        "eye_gbuffer" => t.position.as_image(vec![
+            t.position.read_layer(ctx, 0, Some("position"), &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?,
+            t.normal.read_layer(ctx, 0, Some("normal"), &["X", "Y", "Z"], &[0, 1, 2])?,
+        ]),
+        "refractor_back_faces" => t.back_faces.as_image(vec![t.back_faces.read_layer(
+            ctx,
+            0,
+            None,
+            &["NX", "NY", "NZ", "distance"],
+            &[0, 1, 2, 3],
+        )?]),
         "refractor_front_faces" => {
-            image(&t.surface, vec![layer(ctx, &t.surface, 0, None, &["R", "G", "B", "A"], &[0, 1, 2, 3])?])
+            t.surface.as_image(vec![t.surface.read_layer(ctx, 0, None, &["R", "G", "B", "A"], &[0, 1, 2, 3])?])
         }
         "receiver" => match &t.receiver {
             None => return Ok(None),
@@ -83,14 +67,11 @@ pub fn dump(
                 let r = ctx.read_image_f32(&ratio.image, 0, 0)?;
                 let e = ctx.read_image_f32(&irradiance.image, 0, 0)?;
                 let main = r.chunks(4).zip(e.chunks(4)).flat_map(|(a, b)| [a[0], a[1], a[2], b[3]]).collect();
-                image(
-                    ratio,
-                    vec![
-                        Layer::new(None, &["R", "G", "B", "E0"], main),
-                        layer(ctx, irradiance, 0, Some("irradiance"), &rgb, &[0, 1, 2])?,
-                        layer(ctx, caustic, 0, Some("caustic"), &rgb, &[0, 1, 2])?,
-                    ],
-                )
+                ratio.as_image(vec![
+                    Layer::new(None, &["R", "G", "B", "E0"], main),
+                    irradiance.read_layer(ctx, 0, Some("irradiance"), &rgb, &[0, 1, 2])?,
+                    caustic.read_layer(ctx, 0, Some("caustic"), &rgb, &[0, 1, 2])?,
+                ])
             }
         },
         // Light-space buffers of the caustic techniques.
@@ -103,10 +84,10 @@ pub fn dump(
             let layers = (0..t.image.desc.array_layers)
                 .map(|i| {
                     let name = format!("light{}_level{}", i / ct.levels, i % ct.levels);
-                    layer(ctx, t, i, Some(&name), &["R", "G", "B", "photons"], &[0, 1, 2, 3])
+                    t.read_layer(ctx, i, Some(&name), &["R", "G", "B", "photons"], &[0, 1, 2, 3])
                 })
                 .collect::<Result<Vec<_>>>()?;
-            image(t, layers)
+            t.as_image(layers)
         }
         "caustic_map" => per_light(ctx, &ct.caustic_map, &["R", "G", "B", "photons"], &[0, 1, 2, 3])?,
         other => anyhow::bail!("no intermediate buffer called `{other}`"),
@@ -140,11 +121,11 @@ pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, name: &st
                     Some(r) if k + 1 < d.layers.len() as u32 => {
                         read_image_layer(ctx, r, k, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?
                     }
-                    _ => layer(ctx, &t.final_image, 0, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?,
+                    _ => t.final_image.read_layer(ctx, 0, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?,
                 });
             }
             other => anyhow::bail!("no deferred refraction buffer called `{other}`"),
         }
     }
-    Ok(image(&t.final_image, layers))
+    Ok(t.final_image.as_image(layers))
 }

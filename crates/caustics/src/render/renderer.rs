@@ -334,9 +334,8 @@ impl<'c> MeshRenderer<'c> {
 
     /// The eye's view as this frame renders it (for caustics deposited in it).
     fn eye_view(&self) -> EyeView<'_> {
-        let fu = setup::frame_uniforms(&self.scene);
         EyeView {
-            view_proj: glam::Mat4::from_cols_array(&fu.view_proj),
+            view_proj: glam::Mat4::from_cols_array(&self.current_uniforms.0.view_proj),
             eye: self.scene.camera.eye,
             position: &self.targets.position.view,
             normal: &self.targets.normal.view,

@@ -91,16 +91,15 @@ impl PointSplat {
     ) -> Result<()> {
         let (ct, pt, inp) = (c.targets, c.photons, c.inputs);
         let (cmap, _, _) = &ct.per_light[l as usize];
-        let mut binds = vec![
+        let binds = [
             ("frame", Bind::Uniform(inp.frame_uniforms)),
             ("caustics", Bind::Uniform(inp.caustic_uniforms)),
             ("photon_position", Bind::Sampled(&pt.position.view, inp.nearest)),
             ("photon_power", Bind::Sampled(&pt.power.view, inp.nearest)),
         ];
-        binds.extend(more);
         let per_instance = self.per_instance;
         f.pass(&Stage::Splat.light(l))
-            .bind(&self.pipeline, binds)
+            .bind(&self.pipeline, binds.into_iter().chain(more))
             .uses([Use::view(cmap, Access::COLOR_ATTACHMENT), Use::buffer(&self.vertices, Access::VERTEX_INPUT)])
             .record(|cmd| {
                 cmd.begin_rendering(&Targets::color(cmap, Some([0.0; 4])))?;

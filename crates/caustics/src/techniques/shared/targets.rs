@@ -74,21 +74,20 @@ impl PhotonTargets {
     /// The photon buffer or its back faces (`name`) as they are now: the light that rendered
     /// them last. Layers are unprefixed (`super::super::stages` names them per light).
     pub fn dump(&self, ctx: &Context, name: &str) -> Result<ImageF32> {
-        let image = |t: &Target, layers| ImageF32 { width: t.view.extent.0, height: t.view.extent.1, layers };
         let xyzw = [0, 1, 2, 3];
         Ok(match name {
-            "photon_back_faces" => image(
-                &self.back_faces,
-                vec![self.back_faces.read_layer(ctx, 0, None, &["NX", "NY", "NZ", "distance"], &xyzw)?],
-            ),
-            "photon_buffer" => image(
-                &self.position,
-                vec![
-                    self.position.read_layer(ctx, 0, Some("position"), &["X", "Y", "Z", "valid"], &xyzw)?,
-                    self.direction.read_layer(ctx, 0, Some("direction"), &["X", "Y", "Z", "W"], &xyzw)?,
-                    self.power.read_layer(ctx, 0, Some("power"), &["R", "G", "B"], &[0, 1, 2])?,
-                ],
-            ),
+            "photon_back_faces" => self.back_faces.as_image(vec![self.back_faces.read_layer(
+                ctx,
+                0,
+                None,
+                &["NX", "NY", "NZ", "distance"],
+                &xyzw,
+            )?]),
+            "photon_buffer" => self.position.as_image(vec![
+                self.position.read_layer(ctx, 0, Some("position"), &["X", "Y", "Z", "valid"], &xyzw)?,
+                self.direction.read_layer(ctx, 0, Some("direction"), &["X", "Y", "Z", "W"], &xyzw)?,
+                self.power.read_layer(ctx, 0, Some("power"), &["R", "G", "B"], &[0, 1, 2])?,
+            ]),
             other => anyhow::bail!("no photon buffer called `{other}`"),
         })
     }

@@ -51,8 +51,11 @@ impl CausticPipeline {
         lights: u32,
         wanted: &[&str],
     ) -> Result<Vec<(String, ImageF32)>> {
+        if wanted.is_empty() {
+            return Ok(vec![]);
+        }
         let mut collected: Vec<Option<Collected>> = wanted.iter().map(|_| None).collect();
-        for l in 0..if wanted.is_empty() { 0 } else { lights } {
+        for l in 0..lights {
             if lights > 1 {
                 let mut f = ctx.frame(FrameOptions::default())?;
                 self.record_light_space(&mut f, inputs, targets, l)?;

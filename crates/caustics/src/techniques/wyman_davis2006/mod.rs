@@ -31,7 +31,7 @@ pub mod views;
 pub use settings::PAPER;
 
 use crate::gpu::{ImageSpaceConstants, Stage, Target};
-use crate::image_io::{ImageF32, Layer};
+use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::settings::CausticSettings;
 use crate::techniques::shared::{CausticPasses, EyeView};
@@ -318,17 +318,18 @@ impl ImageSpace {
     /// frame's eye-space photons and their directions. Quads are drawn straight into the
     /// caustic irradiance: their views' photon images are never written.
     pub fn dump_eye(&self, ctx: &Context) -> Result<Option<ImageF32>> {
+        const RGBA: [usize; 4] = [0, 1, 2, 3];
         let DrawnInto::Eye { eye: b, .. } = &self.into else { return Ok(None) };
         let mut layers = vec![];
         if let Some(c) = &b.caustic {
-            layers.push(read(ctx, c, 0, None, &["R", "G", "B", "photons"])?);
+            layers.push(c.read_layer(ctx, 0, None, &["R", "G", "B", "photons"], &RGBA)?);
         }
         if let Draw::Quads(_) = self.draw {
             return Ok(Some(ImageF32 { width: b.width, height: b.height, layers }));
         }
         let slot = (self.history.slot() + self.history.layers() - 1) % self.history.layers();
-        layers.push(read(ctx, &b.photons, slot, Some("photons"), &["R", "G", "B", "count"])?);
-        layers.push(read(ctx, &b.directions, 0, Some("direction"), &["X", "Y", "Z", "cos_direct"])?);
+        layers.push(b.photons.read_layer(ctx, slot, Some("photons"), &["R", "G", "B", "count"], &RGBA)?);
+        layers.push(b.directions.read_layer(ctx, 0, Some("direction"), &["X", "Y", "Z", "cos_direct"], &RGBA)?);
         Ok(Some(ImageF32 { width: b.width, height: b.height, layers }))
     }
 }
@@ -345,9 +346,4 @@ fn record_receiver_geometry(f: &mut Frame, c: &CausticPasses, p: &Pipeline, r: &
         Ok(())
     })?;
     Ok(())
-}
-
-/// All four channels of `layer` of `t` as a dump layer.
-fn read(ctx: &Context, t: &Target, layer: u32, name: Option<&str>, channels: &[&str]) -> Result<Layer> {
-    Ok(Layer::new(name, channels, ctx.read_image_f32(&t.image, 0, layer)?))
 }
