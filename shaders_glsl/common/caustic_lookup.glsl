@@ -49,9 +49,8 @@ vec3 caustic_irradiance(vec3 p, vec3 n) {
     vec3 e = vec3(0.0);
     for (uint l = 0u; l < caustics.settings.x; ++l) {
         CausticLight cl = caustics.lights[l];
-        vec4 clip = cl.caustic_view_proj * vec4(p, 1.0);
-        if (clip.w <= 0.0) continue;
-        vec2 ndc = clip.xy / clip.w;
+        vec2 ndc;
+        if (!caustic_map_ndc(cl, p, ndc)) continue;
         if (any(greaterThan(abs(ndc), vec2(1.0)))) continue;
         ivec2 texel = ivec2(clamp((ndc * 0.5 + 0.5) * cl.caustic_plane.y, vec2(0.0), vec2(cl.caustic_plane.y - 1.0)));
         vec4 first = texelFetch(receiver_positions, ivec3(texel, int(l)), 0);

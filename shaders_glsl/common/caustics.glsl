@@ -43,15 +43,24 @@ float texel_solid_angle(vec2 ndc, vec4 plane) {
     return s * s / pow(1.0 + dot(xy, xy), 1.5);
 }
 
+// Where point `p` lands in light `cl`'s caustic map (and receiver positions), in normalised
+// device coordinates; false behind the light, where `ndc` means nothing. The caustic-map
+// lookup, a texel's solid angle (varying splat radii), Wyman & Davis 2006's light-space points
+// and quads and the receiver search project by it.
+bool caustic_map_ndc(CausticLight cl, vec3 p, out vec2 ndc) {
+    vec4 clip = cl.caustic_view_proj * vec4(p, 1.0);
+    ndc = clip.xy / clip.w;
+    return clip.w > 0.0;
+}
+
 // Where point `p` lands in light `cl`'s caustic map, in texels (texel (i, j) spans [i, i + 1) x
 // [j, j + 1)); false behind the light, where `t` means nothing. Splats, hierarchy texels,
-// adaptive clusters and max-distance radii land by it; what needs the normalised device
-// coordinates instead (a texel's solid angle, a texture lookup, a rasterized position) projects
-// with caustic_view_proj itself.
+// adaptive clusters and max-distance radii land by it.
 bool caustic_map_texel(CausticLight cl, vec3 p, out vec2 t) {
-    vec4 clip = cl.caustic_view_proj * vec4(p, 1.0);
-    t = (clip.xy / clip.w * 0.5 + 0.5) * cl.caustic_plane.y;
-    return clip.w > 0.0;
+    vec2 ndc;
+    bool in_front = caustic_map_ndc(cl, p, ndc);
+    t = (ndc * 0.5 + 0.5) * cl.caustic_plane.y;
+    return in_front;
 }
 
 // The varying splat radius "based on the maximum distance between adjacent photons rather than

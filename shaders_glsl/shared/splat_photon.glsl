@@ -3,9 +3,9 @@
 // photon lands in the caustic map, its radius and layer, and its power divided by the kernel's
 // sum over the texel centres it covers (a photon deposits exactly its power).
 // Needs common/caustics.glsl; binds photon_position and photon_power at 2-3 and, with
-// HIERARCHY, the photon hierarchy at 4-5, with THIN_LENS, the photons' directions and the
-// light-space back faces at 4-5 (PHOTON_VERTEX_ARRAY and ADAPTIVE_PHOTONS bring their own
-// photons). Varying splats (caustics.splat.w) with HIERARCHY, ADAPTIVE_PHOTONS and THIN_LENS.
+// HIERARCHY, the photon hierarchy at 4-5 (PHOTON_VERTEX_ARRAY and ADAPTIVE_PHOTONS bring their
+// own photons; TEXEL_RADIUS's shader binds what its radius reads, from 4 on). Varying splats
+// (caustics.splat.w) with HIERARCHY, ADAPTIVE_PHOTONS and TEXEL_RADIUS.
 #ifndef SPLAT_PHOTON_GLSL
 #define SPLAT_PHOTON_GLSL
 #include "shared/splat_kernel.glsl"
@@ -58,10 +58,11 @@ float splat_radius_of(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) { retur
 // Nichols 2009 Sec. 3.2.2, wyman_nichols2009/adaptive.glsl `with_footprints`): 1 texel at least.
 float splat_radius_of(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) { return max(uintBitsToFloat(entry.x), 1.0); }
 #define VARYING_SPLATS
-#elif defined(THIN_LENS)
-// The photon buffer's photons sized by a per-photon thin-lens model (entry.xy: the texel).
-#include "wyman2008/thin_lens.glsl"
-float splat_radius_of(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) { return thin_lens_radius(ivec2(entry.xy), p, cl); }
+#elif defined(TEXEL_RADIUS)
+// The photon buffer's photons, each sized by its photon-buffer texel (entry.xy) and where it
+// landed (`p`): `texel_radius` is the including shader's (shared/splat_points.glsl).
+float texel_radius(ivec2 texel, vec3 p, CausticLight cl);
+float splat_radius_of(uvec4 entry, vec3 p, vec2 centre, CausticLight cl) { return texel_radius(ivec2(entry.xy), p, cl); }
 #define VARYING_SPLATS
 #endif
 

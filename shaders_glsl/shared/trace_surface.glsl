@@ -45,7 +45,8 @@ vec2 project_ndc(mat4 m, vec3 p, out bool inside) {
 }
 
 vec4 receiver_at(uint l, vec3 p, out bool inside) {
-    vec2 ndc = project_ndc(caustics.lights[l].caustic_view_proj, p, inside);
+    vec2 ndc;
+    inside = caustic_map_ndc(caustics.lights[l], p, ndc) && all(lessThanEqual(abs(ndc), vec2(1.0)));
     return texture(receiver_positions, vec3(ndc * 0.5 + 0.5, float(l)));
 }
 

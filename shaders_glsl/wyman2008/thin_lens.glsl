@@ -46,8 +46,9 @@ float thin_lens_radius(ivec2 t, vec3 hit, CausticLight cl) {
     // On the axis the focus is undefined: the beam keeps its width.
     float spread = h > 1e-6 * back ? abs(1.0 + dot(d, radial / h) * s / h) : 1.0;
     float beam = sqrt(texel_solid_angle(ndc, cl.photon_plane)) * back * spread;
-    vec4 clip = cl.caustic_view_proj * vec4(hit, 1.0);
-    float texel = sqrt(texel_solid_angle(clip.xy / clip.w, cl.caustic_plane)) * distance(hit, light);
+    vec2 landed;
+    caustic_map_ndc(cl, hit, landed);
+    float texel = sqrt(texel_solid_angle(landed, cl.caustic_plane)) * distance(hit, light);
     return clamp(0.5 * beam / texel, 1.0, THIN_LENS_MAX_RADIUS);
 }
 #endif

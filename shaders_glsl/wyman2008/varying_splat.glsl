@@ -63,8 +63,9 @@ float beam_area_radius(ivec2 t, vec3 p, CausticLight cl) {
     int n = textureSize(photon_position, 0).x;
     float w_i = texel_solid_angle((vec2(t) + 0.5) / float(n) * 2.0 - 1.0, cl.photon_plane);
     float r_i = sqrt(area / float(quads) / (w_i * d * d));
-    vec4 clip = cl.caustic_view_proj * vec4(p, 1.0);
-    float w_c = texel_solid_angle(clip.xy / clip.w, cl.caustic_plane);
+    vec2 ndc;
+    caustic_map_ndc(cl, p, ndc);
+    float w_c = texel_solid_angle(ndc, cl.caustic_plane);
     return r_i * sqrt(w_i / w_c);
 }
 

@@ -24,10 +24,12 @@ void main() {
     v_power = texelFetch(photon_power, texel, 0).rgb;
     if (pos.w < 0.5) return;
 #ifdef LIGHT_SPACE
-    vec4 clip = caustics.lights[constants.light].caustic_view_proj * vec4(pos.xyz, 1.0);
+    vec2 ndc;
+    if (!caustic_map_ndc(caustics.lights[constants.light], pos.xyz, ndc)) return;
 #else
     vec4 clip = constants.view_proj * vec4(pos.xyz, 1.0);
-#endif
     if (clip.w <= 0.0) return;
-    gl_Position = vec4(clip.xy / clip.w, 0.5, 1.0);
+    vec2 ndc = clip.xy / clip.w;
+#endif
+    gl_Position = vec4(ndc, 0.5, 1.0);
 }

@@ -127,9 +127,9 @@ void main() {
     intensity *= 0.25;
     vec3 centre = 0.25 * (p[0] + p[1] + p[2] + p[3]);
     float span = max(distance(p[2], p[0]), distance(p[3], p[1]));
-    vec4 clip_c = cl.caustic_view_proj * vec4(centre, 1.0);
-    if (clip_c.w <= 0.0) return;
-    vec4 seen = texture(receiver_positions, clip_c.xy / clip_c.w * 0.5 + 0.5);
+    vec2 ndc_c;
+    if (!caustic_map_ndc(cl, centre, ndc_c)) return;
+    vec4 seen = texture(receiver_positions, ndc_c * 0.5 + 0.5);
     float d_centre = distance(centre, cl.position.xyz);
     float d_seen = distance(seen.xyz, cl.position.xyz);
     if (seen.w < 0.5 || abs(d_seen - d_centre) > 0.05 * span + 0.02 * d_centre) return;

@@ -101,15 +101,3 @@ fn every_instance_size_splats_the_same_photons() {
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
 }
-
-/// Thin-lens splats size the photon buffer's own points: with a copy into a vertex array the
-/// renderer refuses, naming both.
-#[test]
-fn a_copy_has_no_thin_lens_splats() {
-    let (ctx, sh) = context();
-    let mut s = scene();
-    s.caustics.splat = "thin-lens".parse().expect("a known name");
-    let opts = RendererOptions { photon_copy: Some(CopyType::Float32ToFloat32), ..Default::default() };
-    let err = Renderer::new(&ctx, &sh, &s, &opts).err().map(|e| e.to_string()).unwrap_or_default();
-    assert!(err.contains("thin-lens") && err.contains("photon_copy"), "{err}");
-}

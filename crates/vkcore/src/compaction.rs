@@ -226,8 +226,29 @@ impl CompactStream {
     /// from the start, or with `append` after what earlier steps wrote. This stream's counter
     /// holds the bytes written afterwards.
     pub fn capture(&self, cmd: &mut Cmd, from: StepInput, append: bool) -> Result<()> {
-        if from.as_vertices {
-            cmd.bind_vertex_buffer(&from.stream.data, 0)?;
+        let vertices = from.as_vertices.then_some(&from.stream.data);
+        self.capture_drawn(cmd, vertices, append, |cmd| {
+            if from.seeded {
+                cmd.draw(from.stream.capacity, 1, 0, 0);
+                Ok(())
+            } else {
+                from.stream.draw(cmd)
+            }
+        })
+    }
+
+    /// The capture itself, for [`Self::capture`] and [`Compactor`]'s xfb step: `vertices` as
+    /// vertex buffer 0, this stream's data captured from the start (or with `append` after what
+    /// is there) while `draw` draws the points; the counter holds the bytes written afterwards.
+    fn capture_drawn(
+        &self,
+        cmd: &mut Cmd,
+        vertices: Option<&Buffer>,
+        append: bool,
+        draw: impl FnOnce(&mut Cmd) -> Result<()>,
+    ) -> Result<()> {
+        if let Some(v) = vertices {
+            cmd.bind_vertex_buffer(v, 0)?;
         }
         cmd.bind_xfb_buffers(&[&self.data])?;
         if append {
@@ -236,11 +257,7 @@ impl CompactStream {
             // No counter buffers at begin: capture starts at offset 0.
             cmd.begin_xfb(&[], false)?;
         }
-        if from.seeded {
-            cmd.draw(from.stream.capacity, 1, 0, 0);
-        } else {
-            from.stream.draw(cmd)?;
-        }
+        draw(cmd)?;
         cmd.end_xfb(&[&self.counter])
     }
 
@@ -391,18 +408,16 @@ impl Compactor {
             }
             return frame.pass(name).bind(p, []).uses(uses).record(|cmd| {
                 cmd.begin_rendering(&Targets::none())?;
-                cmd.bind_vertex_buffer(input, 0)?;
-                cmd.bind_xfb_buffers(&[&out.data])?;
                 if let Some((pool, i)) = query {
                     cmd.begin_query(pool, i)?;
                 }
-                // No counter buffers at begin: capture starts at offset 0.
-                cmd.begin_xfb(&[], false)?;
-                match &src {
-                    Source::Array(_, n) => cmd.draw(*n, 1, 0, 0),
-                    Source::Stream(s) => cmd.draw_indirect_byte_count(1, &s.counter, ELEMENT_BYTES as u32)?,
-                }
-                cmd.end_xfb(&[&out.counter])?;
+                out.capture_drawn(cmd, Some(input), false, |cmd| match &src {
+                    Source::Array(_, n) => {
+                        cmd.draw(*n, 1, 0, 0);
+                        Ok(())
+                    }
+                    Source::Stream(s) => s.draw(cmd),
+                })?;
                 if let Some((pool, i)) = query {
                     cmd.end_query(pool, i)?;
                 }

@@ -188,7 +188,6 @@ mod tests {
             ("shared/splat.vert", &[("PHOTON_VERTEX_ARRAY", "1"), ("PHOTON_HALF", "1")]),
             ("shared/splat.vert", &[("HIERARCHY", "1")]),
             ("shared/splat.vert", &[("ADAPTIVE_PHOTONS", "1")]),
-            ("shared/splat.vert", &[("THIN_LENS", "1")]),
         ]);
     }
 

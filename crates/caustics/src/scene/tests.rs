@@ -313,38 +313,6 @@ fn hierarchy_settings_belong_to_hcm() {
     );
 }
 
-/// Thin-lens splats (Wyman 2008 Fig. 7) size the photon buffer's points: shah and wd-points
-/// only, on the raster path, with the back faces the forward photon buffer draws.
-#[test]
-fn thin_lens_splats_belong_to_the_photon_buffers_points() {
-    let with = |caustics: &str| format!("{BASE}\n[caustics]\n{caustics}\n");
-    let cases: Vec<(&str, &[&str])> = vec![
-        ("technique = \"hcm\"\nsplat = \"thin-lens\"", &["caustics.splat", "thin-lens", "shah or wd-points", "hcm"]),
-        ("technique = \"shah-vertex\"\nsplat = \"thin-lens\"", &["caustics.splat", "shah-vertex"]),
-        ("technique = \"wd-points\"\nsplat = \"thin-lens\"\nsplat_path = \"compute\"", &["caustics.splat", "compute"]),
-        (
-            "technique = \"shah\"\nsplat = \"thin-lens\"\nphoton_refraction = \"deferred\"",
-            &["caustics.splat", "photon_refraction", "forward"],
-        ),
-        (
-            "technique = \"wd-points\"\nsplat = \"thin-lens\"\nphoton_view = \"shadow-map\"",
-            &["caustics.splat", "fitted"],
-        ),
-    ];
-    for (i, (text, needles)) in cases.iter().enumerate() {
-        let s = load_text(&format!("thin_lens{i}.toml"), &with(text)).expect("loads on its own");
-        let err = s.caustics.validate_combination("scene.toml", "caustics.").expect_err(text).to_string();
-        for n in *needles {
-            assert!(err.contains(n), "{text}: `{err}` does not name {n}");
-        }
-    }
-    for t in ["shah", "wd-points"] {
-        let text = with(&format!("technique = \"{t}\"\nsplat = \"thin-lens\""));
-        let s = load_text(&format!("thin_lens_{t}.toml"), &text).expect("loads");
-        s.caustics.validate_combination("scene.toml", "caustics.").unwrap_or_else(|e| panic!("thin-lens on {t}: {e}"));
-    }
-}
-
 /// A pool scene (Trendall & Stewart 2000): no objects or lights, a `[pool]` instead.
 const POOL: &str = r#"
 [camera]

@@ -114,10 +114,10 @@ caustic_settings! {
     path: TraversalPath = TraversalPath::Xfb, only Hcm | Adaptive;
     /// hcm: converging-photon clustering (Wyman 2008 Sec. 3.2); default none.
     cluster: Cluster = Cluster::None, only Hcm;
-    /// hcm, adaptive: splat sizes (Wyman 2008 Sec. 3.3; for adaptive, its photons' divergence
-    /// into the multi-resolution map, Wyman & Nichols 2009 Sec. 3.2.2); shah, wd-points: fixed
-    /// or thin-lens (Wyman 2008 Fig. 7); default fixed.
-    splat: SplatMode = SplatMode::Fixed, only Hcm | Adaptive | Shah | WdPoints;
+    /// Splat sizes (Wyman 2008 Sec. 3.3 and Fig. 7; for adaptive, its photons' divergence into
+    /// the multi-resolution map, Wyman & Nichols 2009 Sec. 3.2.2): each size says whose splats
+    /// it sizes (`SplatMode::sizes_splats_of`, so the key has no owners here); default fixed.
+    splat: SplatMode = SplatMode::Fixed;
     /// hcm with varying splats: the radius estimator (Wyman 2008 Sec. 3.3); default max-distance.
     varying_radius: VaryingRadius = VaryingRadius::MaxDistance, only Hcm;
     /// How photons are splatted: points (raster, the papers') or a compute shader with float
@@ -275,23 +275,18 @@ impl CausticSettings {
                 format!("sets the field of view of photon_view `fixed-fov`, not of `{}`", self.photon_view),
             )?;
         }
-        if !self.splat.sizes_splats_of(self.technique) {
-            let which = match self.splat {
-                SplatMode::ThinLens => "sizes the photon buffer's point splats (technique shah or wd-points)",
-                _ => "sizes the splats of technique hcm or adaptive",
-            };
-            bad("splat", format!("`{}` {which}, not those of `{}`", self.splat, self.technique))?;
+        let (splat, needs) = (self.splat, self.splat.needs());
+        if !splat.sizes_splats_of(self.technique) {
+            bad("splat", format!("`{splat}` {}, not those of `{}`", needs.sizes, self.technique))?;
         }
-        if self.splat == SplatMode::ThinLens && self.splat_path == SplatPath::Compute {
-            bad("splat", "`thin-lens` sizes point splats; it has no compute splat (splat_path = \"compute\")".into())?;
+        if let (Some(why), SplatPath::Compute) = (needs.points, self.splat_path) {
+            bad("splat", format!("`{splat}` {why} (splat_path = \"compute\")"))?;
         }
-        if self.splat == SplatMode::ThinLens && self.photon_view != PhotonView::Fitted {
-            let why = "its lens's axis is the fitted view's, from the light through the specular objects' centre";
-            bad("splat", format!("`thin-lens` needs photon_view `fitted`, not `{}`: {why}", self.photon_view))?;
+        if let Some(why) = needs.fitted_view.filter(|_| self.photon_view != PhotonView::Fitted) {
+            bad("splat", format!("`{splat}` needs photon_view `fitted`, not `{}`: {why}", self.photon_view))?;
         }
-        if self.splat == SplatMode::ThinLens && self.photon_refraction == Refraction::Deferred {
-            let why = "its lens is the light-space back faces, which deferred photons keep in their geometry buffers";
-            bad("splat", format!("`thin-lens` needs photon_refraction `forward`: {why}"))?;
+        if let Some(why) = needs.forward_photons.filter(|_| self.photon_refraction != Refraction::Forward) {
+            bad("splat", format!("`{splat}` needs photon_refraction `forward`: {why}"))?;
         }
         if self.varying_radius != VaryingRadius::MaxDistance && self.splat == SplatMode::Fixed {
             let what = "sizes varying splats (technique hcm with splat varying-single or varying-multires)";

@@ -178,13 +178,13 @@ impl ComputeSplat {
         let texels = pt.width * pt.width;
         // Check before recording anything.
         let kind = self.list.as_ref().map(|(_, kind)| *kind);
-        match (photons, kind) {
-            (Photons::Dense, None)
-            | (Photons::List { .. }, Some(ListKind::HierarchyEntries))
-            | (Photons::Adaptive { .. }, Some(ListKind::AdaptivePhotons)) => {}
-            (_, kind) => {
-                anyhow::bail!("compute splat: built for {kind:?} (None: the photon texture), given other photons")
-            }
+        let given = match photons {
+            Photons::Dense => None,
+            Photons::List { .. } => Some(ListKind::HierarchyEntries),
+            Photons::Adaptive { .. } => Some(ListKind::AdaptivePhotons),
+        };
+        if kind != given {
+            anyhow::bail!("compute splat: built for {kind:?} (None: the photon texture), given {given:?}");
         }
         if batch.first {
             f.pass(&Stage::SplatClear.light(l)).uses([Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)]).record(

@@ -67,8 +67,8 @@ impl PointSplat {
     }
 
     /// The same instanced draw through another pipeline of [`point_splat_desc`]'s shape (its
-    /// vertex shader `shared/splat.vert` compiled with other defines, reading more bindings:
-    /// see [`Self::record_with`]).
+    /// vertex shader a deposit's own, `shared/splat_points.glsl` with its radius, reading more
+    /// bindings: see [`Self::record_with`]).
     pub fn with_pipeline(ctx: &Context, pipeline: Pipeline, per_instance: u32) -> Result<PointSplat> {
         let ids: Vec<u32> = (0..per_instance).collect();
         let vertices = ctx.buffer_with_data("splat vertices", bytemuck::cast_slice(&ids))?;

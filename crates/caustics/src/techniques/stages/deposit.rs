@@ -39,10 +39,8 @@ impl Deposit {
         }
         let s = &scene.caustics;
         if s.splat == SplatMode::ThinLens {
-            if !matches!(selection, Selection::Dense) {
-                let why = "sizes the photon buffer's own points, not a copy of them into a vertex array (photon_copy)";
-                return Err(crate::input_error!("splat `thin-lens` {why}").into());
-            }
+            // The settings' checks refused the others (`SplatMode::needs`, `check_photon_copy`).
+            anyhow::ensure!(matches!(selection, Selection::Dense), "thin-lens splats are the photon buffer's points");
             return Ok(Deposit::ThinLens(ThinLensSplat::new(ctx, sh, s.instance_vertices)?));
         }
         Ok(match s.splat_path {

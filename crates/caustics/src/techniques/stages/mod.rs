@@ -25,7 +25,7 @@ pub use source::Source;
 use super::settings::CausticSettings;
 use super::shared::{CausticPasses, CausticPipelines, CausticTargets, EyeView, FrameInputs, PhotonTargets, SplatPath};
 use super::wyman2008::photon_copy::CopyType;
-use super::wyman2008::{Hierarchy, SplatMode};
+use super::wyman2008::Hierarchy;
 use super::wyman_nichols2009::AdaptiveCaustics;
 use super::Technique;
 use crate::gpu::{self, BatchPart, GpuMesh};
@@ -57,12 +57,8 @@ pub fn check_photon_copy(settings: &CausticSettings, copy: Option<CopyType>) -> 
         )
         .into());
     }
-    if copy.is_some() && settings.splat == SplatMode::ThinLens {
-        return Err(crate::input_error!(
-            "photon_copy: thin-lens splats (splat = \"thin-lens\") size the photon buffer's own points, not a \
-             copy of them into a vertex array"
-        )
-        .into());
+    if let Some(why) = settings.splat.needs().own_points.filter(|_| copy.is_some()) {
+        return Err(crate::input_error!("photon_copy: `{}` splats (splat = \"{0}\") {why}", settings.splat).into());
     }
     if copy.is_some() && settings.splat_path == SplatPath::Compute {
         return Err(crate::input_error!(

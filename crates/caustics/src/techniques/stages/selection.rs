@@ -42,13 +42,15 @@ impl Selection {
     ) -> Result<Selection> {
         let s = &scene.caustics;
         let lights = scene.lights.len() as u32;
-        Ok(match (s.technique, copy) {
-            (Technique::Hcm, _) => {
+        Ok(match s.technique {
+            Technique::Hcm => {
                 Selection::Hierarchy(Hierarchy::new(ctx, sh, photon_side, lights, s.path, s.cluster)?, None)
             }
-            (Technique::Adaptive, _) => Selection::Adaptive(AdaptiveCaustics::new(ctx, sh, s, lights, meshes)?),
-            (_, Some(ty)) => Selection::Copy(PhotonCopy::new(ctx, sh, ty, photon_side)?),
-            (_, None) => Selection::Dense,
+            Technique::Adaptive => Selection::Adaptive(AdaptiveCaustics::new(ctx, sh, s, lights, meshes)?),
+            _ => match copy {
+                Some(ty) => Selection::Copy(PhotonCopy::new(ctx, sh, ty, photon_side)?),
+                None => Selection::Dense,
+            },
         })
     }
 

@@ -45,22 +45,39 @@ impl CopyType {
             _ => None,
         }
     }
-    pub fn source_is_half(self) -> bool {
-        self != CopyType::Float32ToFloat32
-    }
     /// The vertex array holds 16-bit floats.
     pub fn vertices_are_half(self) -> bool {
         self == CopyType::Half16ToHalf16
     }
 }
 
+/// What the copy reads (photon position and power), by the source's data type.
+// One per renderer: boxing the larger variants would save nothing.
+#[allow(clippy::large_enum_variant)]
+enum CopySource {
+    /// The 32-bit photon buffer itself.
+    Float32,
+    /// 16-bit images the photon buffer is converted into first, copied as they are.
+    Half16([Target; 2]),
+    /// 16-bit images, blitted into 32-bit ones (`wide`) before the copy (16-to-32: the
+    /// conversion the driver makes).
+    Half16Widened { half: [Target; 2], wide: [Target; 2] },
+}
+
+impl CopySource {
+    /// The 16-bit images `photon_buffer.to_16bit` writes, for 16-bit sources.
+    fn half(&self) -> Option<&[Target; 2]> {
+        match self {
+            CopySource::Float32 => None,
+            CopySource::Half16(half) | CopySource::Half16Widened { half, .. } => Some(half),
+        }
+    }
+}
+
 /// The images and buffers of the copy path for one photon buffer size.
 pub struct PhotonCopy {
     pub ty: CopyType,
-    /// 16-bit photon position and power (16-bit sources only).
-    half: Option<[Target; 2]>,
-    /// 32-bit images the 16-to-32 conversion blits into before copying.
-    wide: Option<[Target; 2]>,
+    source: CopySource,
     /// The vertex array of photon positions.
     pub positions: Buffer,
     /// Photon powers, one texel per vertex.
@@ -73,28 +90,28 @@ pub struct PhotonCopy {
 impl PhotonCopy {
     pub fn new(ctx: &Context, sh: &ShaderCompiler, ty: CopyType, width: u32) -> Result<PhotonCopy> {
         let img = |name: &str, f: Format| Target::new(ctx, ImageDesc::new_2d(name, f, width, width));
-        let half = if ty.source_is_half() {
-            Some([
+        let half = || -> Result<[Target; 2]> {
+            Ok([
                 img("photon position (16-bit)", Format::R16G16B16A16_SFLOAT)?,
                 img("photon power (16-bit)", Format::R16G16B16A16_SFLOAT)?,
             ])
-        } else {
-            None
         };
-        let wide = if ty == CopyType::Half16ToFloat32 {
-            Some([
-                img("photon position (converted)", Format::R32G32B32A32_SFLOAT)?,
-                img("photon power (converted)", Format::R32G32B32A32_SFLOAT)?,
-            ])
-        } else {
-            None
+        let source = match ty {
+            CopyType::Float32ToFloat32 => CopySource::Float32,
+            CopyType::Half16ToHalf16 => CopySource::Half16(half()?),
+            CopyType::Half16ToFloat32 => CopySource::Half16Widened {
+                half: half()?,
+                wide: [
+                    img("photon position (converted)", Format::R32G32B32A32_SFLOAT)?,
+                    img("photon power (converted)", Format::R32G32B32A32_SFLOAT)?,
+                ],
+            },
         };
         let texel = if ty.vertices_are_half() { 8 } else { 16 };
         let bytes = width as u64 * width as u64 * texel;
         Ok(PhotonCopy {
             ty,
-            half,
-            wide,
+            source,
             positions: Buffer::new(ctx, "photon vertex array", bytes, Memory::Gpu)?,
             powers: Buffer::new(ctx, "photon power array", bytes, Memory::Gpu)?,
             width,
@@ -147,7 +164,7 @@ impl PhotonCopy {
     /// Records `photon_buffer.to_16bit.light<l>` (16-bit sources) and `photon_copy.light<l>`.
     pub fn record(&self, f: &mut Frame, pt: &PhotonTargets, l: u32) -> Result<()> {
         let src32 = [&pt.position, &pt.power];
-        if let Some(half) = &self.half {
+        if let Some(half) = self.source.half() {
             let mut uses: Vec<Use> = src32.iter().map(|t| Use::view(&t.view, Access::TRANSFER_READ)).collect();
             uses.extend(half.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)));
             f.pass(&Stage::PhotonBufferTo16bit.light(l)).uses(uses).record(|cmd| {
@@ -159,8 +176,8 @@ impl PhotonCopy {
         }
         let dst = [&self.positions, &self.powers];
         let mut uses: Vec<Use> = dst.iter().map(|b| Use::buffer(b, Access::TRANSFER_WRITE)).collect();
-        match (&self.half, &self.wide) {
-            (Some(half), Some(wide)) => {
+        match &self.source {
+            CopySource::Half16Widened { half, wide } => {
                 uses.extend(half.iter().map(|t| Use::view(&t.view, Access::TRANSFER_READ)));
                 uses.extend(wide.iter().map(|t| Use::view(&t.view, Access::TRANSFER_WRITE)));
                 f.pass(&Stage::PhotonCopy.light(l)).uses(uses).record(|cmd| {
@@ -175,8 +192,8 @@ impl PhotonCopy {
                     Ok(())
                 })?;
             }
-            (source, _) => {
-                let src: Vec<&Target> = match source {
+            CopySource::Float32 | CopySource::Half16(_) => {
+                let src: Vec<&Target> = match self.source.half() {
                     Some(half) => half.iter().collect(),
                     None => src32.to_vec(),
                 };

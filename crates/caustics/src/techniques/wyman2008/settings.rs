@@ -54,6 +54,22 @@ value_enum! {
     }
 }
 
+/// What a splat mode needs of the other settings, each with the reason an error gives
+/// (`CausticSettings::validate_combination` checks them, `stages::check_photon_copy` the last).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SplatNeeds {
+    /// Whose splats it sizes (when `technique` is not among [`SplatMode::sizes_splats_of`]'s).
+    pub sizes: &'static str,
+    /// The point splat: it has no compute splat (`splat_path = "compute"`).
+    pub points: Option<&'static str>,
+    /// `photon_view = "fitted"`.
+    pub fitted_view: Option<&'static str>,
+    /// `photon_refraction = "forward"`: the photon buffer's own light-space back faces.
+    pub forward_photons: Option<&'static str>,
+    /// The photon buffer itself, not its copy into a vertex array (`photon_copy`).
+    pub own_points: Option<&'static str>,
+}
+
 impl SplatMode {
     /// Whether `technique`'s splats can be sized so: the hierarchy's and the adaptive photons'
     /// by their neighbours (Sec. 3.3), the photon buffer's points by the thin lens.
@@ -64,6 +80,27 @@ impl SplatMode {
                 matches!(technique, Technique::Hcm | Technique::Adaptive)
             }
             SplatMode::ThinLens => matches!(technique, Technique::Shah | Technique::WdPoints),
+        }
+    }
+
+    /// What this mode needs of the other settings.
+    pub fn needs(self) -> SplatNeeds {
+        match self {
+            SplatMode::Fixed => SplatNeeds::default(),
+            SplatMode::VaryingSingle | SplatMode::VaryingMultires => {
+                SplatNeeds { sizes: "sizes the splats of technique hcm or adaptive", ..SplatNeeds::default() }
+            }
+            SplatMode::ThinLens => SplatNeeds {
+                sizes: "sizes the photon buffer's point splats (technique shah or wd-points)",
+                points: Some("sizes point splats; it has no compute splat"),
+                fitted_view: Some(
+                    "its lens's axis is the fitted view's, from the light through the specular objects' centre",
+                ),
+                forward_photons: Some(
+                    "its lens is the light-space back faces, which deferred photons keep in their geometry buffers",
+                ),
+                own_points: Some("sizes the photon buffer's own points, not a copy of them into a vertex array"),
+            },
         }
     }
 
