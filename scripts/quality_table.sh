@@ -27,6 +27,7 @@ for s in "${scenes[@]}"; do
   variants=(
     "shah|shah|--technique shah"
     "wd-points|wd-points|--technique wd-points"
+    "wd-points thin-lens (Wyman 2008 Fig. 7)|wd-points-thin-lens|--technique wd-points --splat thin-lens"
     "shah-vertex|shah-vertex|--technique shah-vertex"
     "hcm (compute, combine last)|hcm|--technique hcm --path compute --cluster last"
     "hcm varying multi-res (max distance)|hcm-varying|--technique hcm --path compute --cluster last --splat varying-multires"
@@ -50,7 +51,8 @@ print(f"# Caustic quality: `{scene}` against the exact CPU photon reference\n")
 print(f"Device: {device or 'default device'}; commit {commit}; {datetime.date.today()}. "
       f"Reference: `causticlab reference --photons {ref_photons} --fresnel false` (seed 1); all techniques "
       "`--fresnel false` (two refractions, all power transmitted), default splat (Gaussian, radius 1.5 texels; "
-      "the `hcm varying` rows size each splat from its neighbours instead), "
+      "the `hcm varying` rows size each splat from its neighbours instead, the `thin-lens` row from a per-photon "
+      "thin-lens model), "
       "caustic map 1024^2, 4 back-face iterations. Regenerate: `bash scripts/quality_table.sh " + scene + "`.\n")
 print("Errors are over the texels where either receiver map differs from 1 by more than 0.05 "
       "(see `causticlab compare`). `shah-vertex` traces one photon per mesh vertex, so its photon count is "

@@ -40,6 +40,8 @@ cases=(
     "wd-points:--technique wd-points"
     "wd-points-compute-splat:--technique wd-points --splat-path compute"
     "wd-points-box:--technique wd-points --splat-kernel box --splat-radius 3"
+    "wd-points-thin-lens:--technique wd-points --splat thin-lens"
+    "shah-thin-lens:--technique shah --splat thin-lens"
     "wd-points-deferred-photons:--technique wd-points --photon-refraction deferred"
     "wd-points-deferred-refraction:--technique wd-points --refraction deferred"
     "wd-points-fixed-fov:--technique wd-points --photon-view fixed-fov"
@@ -86,6 +88,7 @@ cases+=("adaptive-compute-compute-splat:--technique adaptive --path compute --sp
 more=(
     "two_lights:shah:--technique shah"
     "two_lights:wd-points:--technique wd-points"
+    "two_lights:shah-thin-lens:--technique shah --splat thin-lens"
     "two_lights:wd-quads-light:--technique wd-quads --space light"
     "two_lights:wd-gather-eye:--technique wd-gather"
     "two_lights:hcm-xfb:--technique hcm --path xfb --cluster last"

@@ -7,6 +7,8 @@ use crate::scene::Scene;
 use crate::techniques::shared::compute_splat::Photons;
 use crate::techniques::shared::splat::PointSplat;
 use crate::techniques::shared::{CausticPasses, ComputeSplat, EyeView, SplatPath};
+use crate::techniques::wyman2008::thin_lens::ThinLensSplat;
+use crate::techniques::wyman2008::SplatMode;
 use crate::techniques::wyman_davis2006::ImageSpace;
 use crate::techniques::wyman_nichols2009::adaptive;
 use anyhow::Result;
@@ -22,6 +24,9 @@ pub enum Deposit {
     /// A compute shader adding each photon's kernel into the caustic map with atomics
     /// (`splat_path = compute`: the modern path beside the papers' point splats).
     Compute(ComputeSplat),
+    /// The photon buffer's points, each sized by a per-photon thin-lens model (`splat =
+    /// thin-lens`, Wyman 2008 Fig. 7).
+    ThinLens(ThinLensSplat),
     /// Wyman & Davis 2006's eye-space points, quads and gathers (Sec. 3.2), or their quads and
     /// gathers into the caustic map (light space).
     ImageSpace(ImageSpace),
@@ -33,6 +38,11 @@ impl Deposit {
             return Ok(Deposit::ImageSpace(is));
         }
         let s = &scene.caustics;
+        if s.splat == SplatMode::ThinLens {
+            // The settings' checks refused the others (`SplatMode::needs`, `check_photon_copy`).
+            anyhow::ensure!(matches!(selection, Selection::Dense), "thin-lens splats are the photon buffer's points");
+            return Ok(Deposit::ThinLens(ThinLensSplat::new(ctx, sh, s.instance_vertices)?));
+        }
         Ok(match s.splat_path {
             SplatPath::Compute => {
                 let (side, layers) = (s.caustic_map_resolution, s.caustic_levels());
@@ -73,6 +83,10 @@ impl Deposit {
                 };
                 cs.record(f, inp, pt, &photons, cmap, l)
             }
+            Deposit::ThinLens(tl) => match selection {
+                Selection::Dense => tl.record(f, c, l),
+                _ => anyhow::bail!("thin-lens splats are the photon buffer's points"),
+            },
         }
     }
 
@@ -86,7 +100,7 @@ impl Deposit {
     ) -> Result<()> {
         match self {
             Deposit::ImageSpace(is) => is.record_after_lights(f, c, eye, reuse),
-            Deposit::Points(_) | Deposit::Compute(_) => Ok(()),
+            Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) => Ok(()),
         }
     }
 
@@ -97,7 +111,7 @@ impl Deposit {
             inputs: c.inputs,
             compute: match self {
                 Deposit::Compute(cs) => Some(cs),
-                Deposit::Points(_) | Deposit::ImageSpace(_) => None,
+                Deposit::Points(_) | Deposit::ImageSpace(_) | Deposit::ThinLens(_) => None,
             },
             photon_targets: c.photons,
             cmap: &c.targets.per_light[l as usize].0,
@@ -115,7 +129,7 @@ impl Deposit {
     pub fn receiver_caustic(&self) -> Option<&ImageView> {
         match self {
             Deposit::ImageSpace(is) => is.receiver_caustic(),
-            Deposit::Points(_) | Deposit::Compute(_) => None,
+            Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) => None,
         }
     }
 
@@ -124,7 +138,7 @@ impl Deposit {
     pub fn dump(&self, ctx: &Context, name: &str) -> Result<Option<ImageF32>> {
         match self {
             Deposit::ImageSpace(is) if name == "eye_caustic" => is.dump_eye(ctx),
-            Deposit::ImageSpace(_) | Deposit::Points(_) | Deposit::Compute(_) => Ok(None),
+            Deposit::ImageSpace(_) | Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) => Ok(None),
         }
     }
 }

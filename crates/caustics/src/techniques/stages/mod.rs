@@ -6,7 +6,7 @@
 //!
 //! | technique | source | selection | deposit |
 //! |---|---|---|---|
-//! | `shah`, `wd-points` | `Rasterized` (or `Deferred`) | `Dense` (or `Copy`) | `Points` or `Compute` |
+//! | `shah`, `wd-points` | `Rasterized` (or `Deferred`) | `Dense` (or `Copy`) | `Points`, `Compute` or `ThinLens` |
 //! | `shah-vertex` | `PerVertex` | `Dense` | `Points` or `Compute` |
 //! | `wd-eye-points`, `wd-quads`, `wd-gather` | `Rasterized` (or `Deferred`) | `Dense` | `ImageSpace` |
 //! | `hcm` | `Rasterized` (or `Deferred`) | `Hierarchy` | `Points` or `Compute` |

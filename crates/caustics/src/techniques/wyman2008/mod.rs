@@ -4,7 +4,7 @@
 //! valid photons reach the splat ([`splat`]). Converging photons (every photon below a node
 //! lands in one caustic-map texel) can be clustered into one photon with their summed power
 //! (Sec. 3.2). Splat sizes may vary with the photons' neighbours, in one map or a
-//! multi-resolution map (Sec. 3.3). Sec. 4's faster photon fetch is [`photon_copy`]'s
+//! multi-resolution map (Sec. 3.3); [`thin_lens`] is Fig. 7's thin-lens baseline. Sec. 4's faster photon fetch is [`photon_copy`]'s
 //! counterpart, the instanced fetch of `techniques::shared`.
 //!
 //! Shaders: `shaders_glsl/wyman2008/`.
@@ -15,6 +15,7 @@ mod pyramid;
 pub mod settings;
 mod splat;
 pub mod splat_footprints;
+pub mod thin_lens;
 mod traversal;
 
 pub use entry::{pack_entry, unpack_entry, ENTRY_BYTES, MAX_SIDE};

@@ -48,6 +48,9 @@ value_enum! {
         VaryingSingle = "varying-single",
         /// That radius, each splat in layer i = trunc(log2(max(1, D/5))) of a multi-resolution map.
         VaryingMultires = "varying-multires",
+        /// shah, wd-points: a radius from a per-photon thin-lens model (Fig. 7's second column,
+        /// Wyman & Dachsbacher's), in one caustic map.
+        ThinLens = "thin-lens",
     }
 }
 
@@ -69,13 +72,14 @@ pub struct SplatNeeds {
 
 impl SplatMode {
     /// Whether `technique`'s splats can be sized so: the hierarchy's and the adaptive photons'
-    /// by their neighbours (Sec. 3.3).
+    /// by their neighbours (Sec. 3.3), the photon buffer's points by the thin lens.
     pub fn sizes_splats_of(self, technique: Technique) -> bool {
         match self {
             SplatMode::Fixed => true,
             SplatMode::VaryingSingle | SplatMode::VaryingMultires => {
                 matches!(technique, Technique::Hcm | Technique::Adaptive)
             }
+            SplatMode::ThinLens => matches!(technique, Technique::Shah | Technique::WdPoints),
         }
     }
 
@@ -86,29 +90,40 @@ impl SplatMode {
             SplatMode::VaryingSingle | SplatMode::VaryingMultires => {
                 SplatNeeds { sizes: "sizes the splats of technique hcm or adaptive", ..SplatNeeds::default() }
             }
+            SplatMode::ThinLens => SplatNeeds {
+                sizes: "sizes the photon buffer's point splats (technique shah or wd-points)",
+                points: Some("sizes point splats; it has no compute splat"),
+                fitted_view: Some(
+                    "its lens's axis is the fitted view's, from the light through the specular objects' centre",
+                ),
+                forward_photons: Some(
+                    "its lens is the light-space back faces, which deferred photons keep in their geometry buffers",
+                ),
+                own_points: Some("sizes the photon buffer's own points, not a copy of them into a vertex array"),
+            },
         }
     }
 
     /// The caustic uniforms' `splat.w` for `technique` (`common/caustics.glsl` SPLAT_*): 0 fixed,
-    /// 1 varying in one map, 2 varying in the
+    /// 1 varying in one map (by the neighbours or the thin lens), 2 varying in the
     /// multi-resolution map; fixed where the mode does not size `technique`'s splats.
     pub fn uniform(self, technique: Technique) -> f32 {
         match self {
             _ if !self.sizes_splats_of(technique) => 0.0,
             SplatMode::Fixed => 0.0,
-            SplatMode::VaryingSingle => 1.0,
+            SplatMode::VaryingSingle | SplatMode::ThinLens => 1.0,
             SplatMode::VaryingMultires => 2.0,
         }
     }
 
     /// The widest point a splat of this mode draws, in pixels, with `splat_radius` for fixed
     /// splats: 2 ceil(r) + 2 (`shared/splat_photon.glsl`). Varying splats reach r < 40 texels in
-    /// one map (wider ones are dropped) and r < 5 in their
+    /// one map (wider ones are dropped; thin-lens splats are kept under it) and r < 5 in their
     /// layer of the multi-resolution map.
     pub fn largest_point(self, splat_radius: f32) -> f32 {
         match self {
             SplatMode::Fixed => 2.0 * splat_radius.ceil() + 2.0,
-            SplatMode::VaryingSingle => 82.0,
+            SplatMode::VaryingSingle | SplatMode::ThinLens => 82.0,
             SplatMode::VaryingMultires => 12.0,
         }
     }
