@@ -13,14 +13,15 @@
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
 #include "wyman_davis2006/image_space.glsl"
-#ifndef LIGHT_SPACE
+#ifdef LIGHT_SPACE
+layout(binding = 7) uniform sampler2D receiver_positions;   // light l's first diffuse surfaces
+#else
 layout(binding = 5) uniform sampler2D view_position;
 layout(binding = 6) uniform sampler2D view_normal;
 #endif
 layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_direction;
 layout(location = 2) flat in vec3 v_intensity;
-layout(location = 3) flat in vec3 v_normal;
 layout(location = 0) out vec4 o_caustic;
 
 void main() {
@@ -28,7 +29,10 @@ void main() {
     vec3 d_photon = normalize(v_direction);
 #ifdef LIGHT_SPACE
     vec3 p = v_position;
-    vec3 n = v_normal;
+    // Eq. 3's N: the surface the light sees in this texel, from the receiver positions (as the
+    // light-space gather's), not the polygon's own normal, which points anywhere once the
+    // polygon folds into a sliver at a caustic.
+    vec3 n = normal_from_positions(receiver_positions, ivec2(gl_FragCoord.xy), cl.position.xyz);
 #else
     ivec2 t = ivec2(gl_FragCoord.xy);
     vec4 surface = texelFetch(view_position, t, 0);

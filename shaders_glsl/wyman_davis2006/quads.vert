@@ -35,6 +35,11 @@
 // shared evenly by the fragments the line produces (one per pixel along its major axis).
 // The three variants split the blocks between them by the same tests, so each block is drawn
 // exactly once.
+//
+// QUAD_POLYGONS (`quad_draw = "polygons"`): the paper's way, every block as its two triangles
+// whatever its size (only a polygon of no solid angle, whose R is infinite, is not drawn), the
+// points and lines not drawn at all; the error of its hit-or-miss polygons is what the quality
+// table measures beside the exact variant.
 #version 450
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
@@ -47,7 +52,6 @@ layout(binding = 7) uniform sampler2D receiver_positions;   // light l's first d
 layout(location = 0) out vec3 v_position;
 layout(location = 1) out vec3 v_direction;
 layout(location = 2) flat out vec3 v_intensity;   // R * mean(Phi_k / w_k): W/sr the polygon carries; QUAD_POINTS: its power I w_B (W)
-layout(location = 3) flat out vec3 v_normal;      // the polygon's, towards the light
 
 // Corners of the two triangles of a block: (0,0) (1,0) (1,1) and (0,0) (1,1) (0,1).
 const ivec2 CORNERS[6] = ivec2[](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 0), ivec2(1, 1), ivec2(0, 1));
@@ -107,7 +111,6 @@ void main() {
     v_position = vec3(0.0);
     v_direction = vec3(0.0);
     v_intensity = vec3(0.0);
-    v_normal = vec3(0.0, 1.0, 0.0);
     vec3 p[4];
     vec3 u[4];
     vec3 intensity = vec3(0.0);
@@ -133,11 +136,6 @@ void main() {
     float d_centre = distance(centre, cl.position.xyz);
     float d_seen = distance(seen.xyz, cl.position.xyz);
     if (seen.w < 0.5 || abs(d_seen - d_centre) > 0.05 * span + 0.02 * d_centre) return;
-    vec3 diagonals = cross(p[2] - p[0], p[3] - p[1]);
-    if (dot(diagonals, diagonals) > 0.0) {
-        vec3 normal = normalize(diagonals);
-        v_normal = dot(normal, cl.position.xyz - centre) < 0.0 ? -normal : normal;
-    }
     // Eq. 1-2: R = w_B / w_P. The beam's corners are the four photon texels' centres, so it
     // spans one texel, centred on the block's shared corner.
     vec2 corner = vec2(base + 1) / float(n) * 2.0 - 1.0;
@@ -172,7 +170,11 @@ void main() {
     v_intensity = intensity * w_b;
     gl_Position = vec4(clip.xy / clip.w, 0.5, 1.0);
 #else
+#ifdef QUAD_POLYGONS
+    if (!(w_p > 0.0)) return;
+#else
     if (small || sliver) return;
+#endif
     ivec2 c = base + CORNERS[gl_VertexIndex % 6];
     vec3 here = texelFetch(photon_position, c, 0).xyz;
     v_position = here;

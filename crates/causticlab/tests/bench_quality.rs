@@ -20,18 +20,53 @@ fn quick_quality_compares_with_the_reference() {
 fn quick_quality_wd2006_compares_every_wyman_davis_technique_with_the_reference() {
     let (_, r) = quick_run("quality_wd2006.toml");
     let cells = r["cells"].as_array().expect("cells");
-    assert_eq!(cells.len(), 3 * 6 * 2, "3 scenes x 6 techniques x 2 photon counts");
+    assert_eq!(cells.len(), 3 * 13 * 2, "3 scenes x 13 technique columns x 2 photon counts");
     for cell in cells {
         let rmse = metric(cell, "rel. RMSE").unwrap_or(f64::NAN);
         let flux = metric(cell, "flux ratio").unwrap_or(f64::NAN);
         assert!(rmse.is_finite() && rmse > 0.0, "{}: rel. RMSE {rmse}", cell["cell"]);
-        // Eye-space quads on ring_cardioid are off by up to 3x in flux (an open issue, see
-        // results/quality/wyman_davis2006.md); everything else is within 40% at
-        // the quick run's 64² photons (gather eye on ring_cardioid: 0.72).
-        let scene = cell["cell"]["scene"].as_str().unwrap_or_default();
-        let ring_quads = scene.ends_with("ring_cardioid.toml") && cell["cell"]["technique_label"] == "quads eye";
-        if !ring_quads {
+        // The paper's polygon quads land hit-or-miss under a pixel: their flux is what the table
+        // measures (0.5-3.1 in the quick run). Everything else is within 40% at the quick run's
+        // 64²-128² photons (gather eye on ring_cardioid with Eq. 10: 0.65).
+        let label = cell["cell"]["technique_label"].as_str().unwrap_or_default();
+        if label.ends_with("polygons") {
+            assert!(flux.is_finite() && flux > 0.0, "{}: flux ratio {flux}", cell["cell"]);
+        } else {
             assert!((0.6..1.4).contains(&flux), "{}: flux ratio {flux}", cell["cell"]);
+        }
+    }
+    let flux = |scene: &str, label: &str, photons: u64| -> f64 {
+        let c = cells
+            .iter()
+            .find(|c| {
+                c["cell"]["technique_label"] == label
+                    && c["cell"]["photons"] == photons
+                    && c["cell"]["scene"].as_str().is_some_and(|s| s.ends_with(scene))
+            })
+            .unwrap_or_else(|| panic!("no cell {scene} {label} {photons}"));
+        metric(c, "flux ratio").expect("flux ratio")
+    };
+    for scene in ["sphere_on_plane.toml", "sphere_oblique.toml"] {
+        for photons in [64, 128] {
+            // The paper's lighting (Eq. 10, Eq. 3) re-lights each photon by cos(photon) /
+            // cos(direct), less than 1 where the sphere bends the light: it keeps less flux than
+            // the light's direction (Eq. 11, Eq. 4) does.
+            for (paper, direct) in [
+                ("eye points Eq. 10", "eye points Eq. 11"),
+                ("quads eye Eq. 3", "quads eye Eq. 4"),
+                ("quads light Eq. 3", "quads light Eq. 4"),
+                ("gather eye Eq. 10", "gather eye Eq. 11"),
+                ("gather light Eq. 10", "gather light Eq. 11"),
+            ] {
+                let (p, d) = (flux(scene, paper, photons), flux(scene, direct, photons));
+                assert!(d > 1.05 * p, "{scene} {photons}²: {paper} keeps {p}, {direct} {d}");
+            }
+            // The polygons are not the exact variant's points and lines.
+            for space in ["eye", "light"] {
+                let (exact, polygons) = (format!("quads {space} Eq. 3"), format!("quads {space} Eq. 3 polygons"));
+                let (e, p) = (flux(scene, &exact, photons), flux(scene, &polygons, photons));
+                assert!((e - p).abs() > 1e-3, "{scene} {photons}²: {polygons} keeps {p}, as {exact} does");
+            }
         }
     }
 }

@@ -10,7 +10,7 @@ use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath, Tra
 use super::technique::Technique;
 use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNEL};
 use super::wyman2008::settings::{Cluster, SplatMode, VaryingRadius};
-use super::wyman_davis2006::settings::{GatherLighting, QuadLighting, Reflection, Space, TemporalFilter};
+use super::wyman_davis2006::settings::{GatherLighting, QuadDraw, QuadLighting, Reflection, Space, TemporalFilter};
 use super::wyman_nichols2009::adaptive::batches as wn2009_batches;
 use super::wyman_nichols2009::settings::{self as wn2009, Metric, Refraction};
 use super::{shared, wyman2008, wyman_davis2006};
@@ -138,6 +138,10 @@ caustic_settings! {
     gather_lighting: GatherLighting = GatherLighting::Eq10, only WdEyePoints | WdGather;
     /// wd-quads: Eq. 3 (the photons' stored directions) or Eq. 4 (the light's); default eq3.
     quad_lighting: QuadLighting = QuadLighting::Eq3, only WdQuads;
+    /// wd-quads: every quad as its polygon whatever its size (polygons, the paper's) or with the
+    /// quads under a pixel as points and slivers as lines carrying their power (exact); default
+    /// exact.
+    quad_draw: QuadDraw = QuadDraw::Exact, only WdQuads;
     /// Where mirrored photons land: depth-search (the ray/receiver intersection in effect) or
     /// plane (Wyman & Davis 2006 Sec. 4: one background plane); default depth-search.
     reflection: Reflection = Reflection::DepthSearch;

@@ -121,7 +121,7 @@ impl ImageSpace {
                 points: points::pipeline(ctx, sh, light_space)?,
                 gather: gather::pipeline(ctx, sh, light_space)?,
             },
-            false => Draw::Quads(quads::pipeline(ctx, sh, light_space)?),
+            false => Draw::Quads(quads::pipeline(ctx, sh, light_space, s.quad_draw)?),
         };
         let into = match eye_space {
             true => {

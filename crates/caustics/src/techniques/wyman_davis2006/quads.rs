@@ -5,8 +5,10 @@
 //! of the view are drawn by a second pipeline as one point each, carrying the beam's whole
 //! power (`QUAD_POINTS`, see quads.vert): the rasterizer would hit or miss them whole; slivers
 //! (a pixel or more long, under one wide) by a third as a line sharing that power among its
-//! fragments (`QUAD_LINES`).
+//! fragments (`QUAD_LINES`). With `quad_draw = "polygons"` every quad is its polygon whatever its
+//! size, as the paper draws them (`QUAD_POLYGONS`).
 
+use super::settings::QuadDraw;
 use crate::gpu::formats::COLOR;
 use crate::gpu::ImageSpaceConstants;
 use crate::techniques::shared::CausticPasses;
@@ -19,7 +21,9 @@ use vkcore::{
 /// How the quads' pipelines draw a block's polygon (same bindings and push constants).
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Primitive {
-    /// Two triangles: polygons a pixel or more wide (Eq. 1-4 as the paper draws them).
+    /// Two triangles: every polygon (Eq. 1-4 as the paper draws them).
+    Polygons,
+    /// Two triangles: polygons a pixel or more wide.
     Triangles,
     /// One point with the beam's power: polygons under a pixel.
     Points,
@@ -27,20 +31,22 @@ enum Primitive {
     Lines,
 }
 
-/// The quads' three pipelines, one per [`Primitive`].
-pub struct QuadPipelines {
-    triangles: Pipeline,
-    points: Pipeline,
-    lines: Pipeline,
+/// The quads' pipelines, by [`QuadDraw`].
+pub enum QuadPipelines {
+    /// Every quad as two triangles.
+    Polygons(Pipeline),
+    /// Each quad as two triangles, a point or a line ([`Primitive`]).
+    Exact { triangles: Pipeline, points: Pipeline, lines: Pipeline },
 }
 
-pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result<QuadPipelines> {
+pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool, draw: QuadDraw) -> Result<QuadPipelines> {
     let build = |primitive: Primitive| -> Result<Pipeline> {
         let mut defines: Vec<(&str, &str)> = vec![];
         if light_space {
             defines.push(("LIGHT_SPACE", "1"));
         }
         let (define, topology, base) = match primitive {
+            Primitive::Polygons => (Some("QUAD_POLYGONS"), Topology::Triangles, "wd.quads.polygons"),
             Primitive::Triangles => (None, Topology::Triangles, "wd.quads"),
             Primitive::Points => (Some("QUAD_POINTS"), Topology::Points, "wd.quads.points"),
             Primitive::Lines => (Some("QUAD_LINES"), Topology::Lines, "wd.quads.lines"),
@@ -60,10 +66,13 @@ pub fn pipeline(ctx: &Context, sh: &ShaderCompiler, light_space: bool) -> Result
         d.color_formats = vec![COLOR];
         Ok(Pipeline::graphics(ctx, &d)?)
     };
-    Ok(QuadPipelines {
-        triangles: build(Primitive::Triangles)?,
-        points: build(Primitive::Points)?,
-        lines: build(Primitive::Lines)?,
+    Ok(match draw {
+        QuadDraw::Polygons => QuadPipelines::Polygons(build(Primitive::Polygons)?),
+        QuadDraw::Exact => QuadPipelines::Exact {
+            triangles: build(Primitive::Triangles)?,
+            points: build(Primitive::Points)?,
+            lines: build(Primitive::Lines)?,
+        },
     })
 }
 
@@ -81,29 +90,33 @@ pub fn record(
     constants: ImageSpaceConstants,
 ) -> Result<()> {
     let (pt, inp) = (c.photons, c.inputs);
-    // The three pipelines share their bindings.
-    let mut binds = super::views::photon_view_binds(c, &pipelines.triangles, geometry);
+    let first = match pipelines {
+        QuadPipelines::Polygons(polygons) => polygons,
+        QuadPipelines::Exact { triangles, .. } => triangles,
+    };
+    // The pipelines share their bindings.
+    let mut binds = super::views::photon_view_binds(c, first, geometry);
     binds.push(("receiver_positions", Bind::Sampled(&c.targets.per_light[constants.light as usize].1, inp.nearest)));
     let n = pt.width;
-    f.pass(name).bind(&pipelines.triangles, binds.clone()).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(
-        |cmd| {
-            cmd.begin_rendering(&Targets::color(out, if clear { Some([0.0; 4]) } else { None }))?;
-            cmd.push(&constants)?;
-            // Two triangles for each of the (N - 1)^2 blocks of 2x2 photons.
-            cmd.draw((n - 1) * (n - 1) * 6, 1, 0, 0);
+    f.pass(name).bind(first, binds.clone()).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(|cmd| {
+        cmd.begin_rendering(&Targets::color(out, if clear { Some([0.0; 4]) } else { None }))?;
+        cmd.push(&constants)?;
+        // Two triangles for each of the (N - 1)^2 blocks of 2x2 photons.
+        cmd.draw((n - 1) * (n - 1) * 6, 1, 0, 0);
+        if let QuadPipelines::Exact { points, lines, .. } = pipelines {
             // One point for each block under a pixel.
-            cmd.bind_pipeline(&pipelines.points);
+            cmd.bind_pipeline(points);
             cmd.bind(&binds)?;
             cmd.push(&constants)?;
             cmd.draw((n - 1) * (n - 1), 1, 0, 0);
             // A line (two vertices) for each sliver.
-            cmd.bind_pipeline(&pipelines.lines);
+            cmd.bind_pipeline(lines);
             cmd.bind(&binds)?;
             cmd.push(&constants)?;
             cmd.draw((n - 1) * (n - 1) * 2, 1, 0, 0);
-            cmd.end_rendering();
-            Ok(())
-        },
-    )?;
+        }
+        cmd.end_rendering();
+        Ok(())
+    })?;
     Ok(())
 }

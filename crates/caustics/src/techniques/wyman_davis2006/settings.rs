@@ -68,6 +68,19 @@ value_enum! {
     }
 }
 
+value_enum! {
+    /// How a caustic quad is drawn (`caustics.quad_draw`, `--quad-draw`; Sec. 3.2.1).
+    pub enum QuadDraw {
+        /// Every quad as its polygon whatever its size, as the paper draws them: one under a
+        /// pixel is hit or missed whole by the rasterizer, so its beam's power lands on the
+        /// pixel centres it happens to cover (the paper's error, measured in the quality table).
+        Polygons = "polygons",
+        /// Polygons a pixel or more wide; one under a pixel as a point and a sliver as a line
+        /// carrying its beam's whole power (quads.vert), so that every quad deposits its power.
+        Exact = "exact",
+    }
+}
+
 impl GatherLighting {
     /// The equation number the shaders switch on.
     pub fn equation(self) -> u32 {
