@@ -84,6 +84,45 @@ mod tests {
         }
     }
 
+    /// The value of `#define name value` in `file` as a float.
+    fn define_float(file: &str, name: &str) -> f32 {
+        let text = shader(file);
+        let line = text.lines().find(|l| l.split_whitespace().take(2).eq(["#define", name]));
+        let v = line.and_then(|l| l.split_whitespace().nth(2)).unwrap_or_else(|| panic!("{file}: no #define {name}"));
+        v.parse().unwrap_or_else(|e| panic!("{file}: #define {name} {v}: {e}"))
+    }
+
+    /// `SplatMode::largest_point`, which `causticlab render` checks against the device's point
+    /// sizes, is the widest point `shared/splat_photon.glsl` draws: 2 ceil(r) + 2 pixels, a
+    /// varying splat being dropped from r = D 2^L / 2 on (D = MULTIRES_MAX_DIAMETER, L =
+    /// MULTIRES_LEVELS) and under D in its level of the multi-resolution map.
+    #[test]
+    fn the_largest_points_follow_the_splats_drop_rule() {
+        use crate::techniques::wyman2008::settings::SplatMode;
+        let d = define_float("common/caustics.glsl", "MULTIRES_MAX_DIAMETER");
+        let levels = define("common/caustics.glsl", "MULTIRES_LEVELS") as i32;
+        let point = |r: f32| 2.0 * r.ceil() + 2.0;
+        let dropped = 0.5 * d * 2f32.powi(levels);
+        assert_eq!(SplatMode::VaryingSingle.largest_point(1.5), point(dropped));
+        assert_eq!(SplatMode::VaryingMultires.largest_point(1.5), point(d));
+        assert_eq!(SplatMode::Fixed.largest_point(3.2), point(3.2));
+    }
+
+    /// The codes the photon buffer's `direction.W` gives a lost photon (`shared/trace_surface.glsl`)
+    /// are the ones `docs/dumps.md` tells a reader of the dump.
+    #[test]
+    fn the_lost_photon_codes_are_the_documented_ones() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/dumps.md");
+        let docs = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        for (name, why) in
+            [("PHOTON_LOST_TIR", "total internal reflection"), ("PHOTON_LOST_NO_RECEIVER", "no receiver found")]
+        {
+            let code = define_float("shared/trace_surface.glsl", name);
+            let text = format!("{code} {why}");
+            assert!(docs.contains(&text), "docs/dumps.md does not say `{text}` ({name})");
+        }
+    }
+
     #[test]
     fn the_layered_trace_declares_buffers_for_max_refractors() {
         // deferred_photon_layers.glsl declares each object's buffers with LAYER_BINDINGS(k).
