@@ -162,6 +162,31 @@ fn relit(cos_photon: f64, cos_direct: f64) -> f64 {
     }
 }
 
+/// A photon of light 0 as the photon buffer dump holds it.
+struct Photon {
+    landed: bool,
+    position: DVec3,
+    /// Incident direction (travelling).
+    direction: DVec3,
+    /// Mean of its RGB power, W.
+    power: f64,
+}
+
+fn photon_records(photons: &ImageF32) -> Vec<Photon> {
+    let (pos, np) = layer(photons, Some("light0.position"));
+    let (dir, nd) = layer(photons, Some("light0.direction"));
+    let (pow, nw) = layer(photons, Some("light0.power"));
+    let v3 = |d: &[f32], i: usize| DVec3::new(d[i] as f64, d[i + 1] as f64, d[i + 2] as f64);
+    (0..(photons.width * photons.height) as usize)
+        .map(|i| Photon {
+            landed: pos[i * np + 3] > 0.5,
+            position: v3(pos, i * np),
+            direction: v3(dir, i * nd),
+            power: mean3(&pow[i * nw..]),
+        })
+        .collect()
+}
+
 /// The flux Eq. 9 and Eq. 10 keep of Eq. 11's, predicted on the CPU from the photon buffer
 /// alone: each photon on the receiver rectangle (normal +y) re-lit by cos(photon) /
 /// cos(direct) (Eq. 9), or each receiver-map texel's photons by the cosine of their
@@ -170,28 +195,22 @@ fn predicted_relighting(scene: &Scene, photons: &ImageF32) -> (f64, f64) {
     let r = scene.receiver_map.as_ref().expect("a receiver map");
     let light = scene.lights[0].position.as_dvec3();
     let n = DVec3::Y;
-    let (pos, np) = layer(photons, Some("light0.position"));
-    let (dir, nd) = layer(photons, Some("light0.direction"));
-    let (pow, nw) = layer(photons, Some("light0.power"));
     let res = r.resolution as usize;
     // Per texel: (power, sum of m * (-d), sum of m * cos(direct)).
     let mut texels = vec![(0.0f64, DVec3::ZERO, 0.0f64); res * res];
     let (mut all, mut eq9) = (0.0, 0.0);
-    for i in 0..(photons.width * photons.height) as usize {
-        let p = &pos[i * np..i * np + 4];
-        let u = (p[0] - r.x_range[0]) as f64 / (r.x_range[1] - r.x_range[0]) as f64;
-        let v = (p[2] - r.z_range[0]) as f64 / (r.z_range[1] - r.z_range[0]) as f64;
-        if p[3] < 0.5 || !(0.0..1.0).contains(&u) || !(0.0..1.0).contains(&v) {
+    for p in photon_records(photons) {
+        let u = (p.position.x - r.x_range[0] as f64) / (r.x_range[1] - r.x_range[0]) as f64;
+        let v = (p.position.z - r.z_range[0] as f64) / (r.z_range[1] - r.z_range[0]) as f64;
+        if !p.landed || !(0.0..1.0).contains(&u) || !(0.0..1.0).contains(&v) {
             continue;
         }
-        let at = DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64);
-        let d = DVec3::new(dir[i * nd] as f64, dir[i * nd + 1] as f64, dir[i * nd + 2] as f64);
-        let m = mean3(&pow[i * nw..]);
-        let cos_direct = n.dot((light - at).normalize());
+        let m = p.power;
+        let cos_direct = n.dot((light - p.position).normalize());
         all += m;
-        eq9 += m * relit(n.dot(-d), cos_direct);
+        eq9 += m * relit(n.dot(-p.direction), cos_direct);
         let t = &mut texels[(v * res as f64) as usize * res + (u * res as f64) as usize];
-        *t = (t.0 + m, t.1 - m * d, t.2 + m * cos_direct);
+        *t = (t.0 + m, t.1 - m * p.direction, t.2 + m * cos_direct);
     }
     let eq10: f64 = texels
         .iter()
@@ -247,29 +266,23 @@ fn predicted_quad_relighting(scene: &Scene, photons: &ImageF32) -> f64 {
     let r = scene.receiver_map.as_ref().expect("a receiver map");
     let light = scene.lights[0].position.as_dvec3();
     let n = DVec3::Y;
-    let (pos, np) = layer(photons, Some("light0.position"));
-    let (dir, nd) = layer(photons, Some("light0.direction"));
-    let (pow, nw) = layer(photons, Some("light0.power"));
+    let all_photons = photon_records(photons);
     let w = photons.width as usize;
     let (mut all, mut eq3) = (0.0, 0.0);
     for y in 0..w - 1 {
         for x in 0..w - 1 {
-            let block = [y * w + x, y * w + x + 1, (y + 1) * w + x, (y + 1) * w + x + 1];
-            if block.iter().any(|&i| pos[i * np + 3] < 0.5) {
+            let block = [y * w + x, y * w + x + 1, (y + 1) * w + x, (y + 1) * w + x + 1].map(|i| &all_photons[i]);
+            if block.iter().any(|p| !p.landed) {
                 continue;
             }
-            let at = |i: usize| DVec3::new(pos[i * np] as f64, pos[i * np + 1] as f64, pos[i * np + 2] as f64);
-            let centre = block.iter().map(|&i| at(i)).sum::<DVec3>() / 4.0;
+            let centre = block.iter().map(|p| p.position).sum::<DVec3>() / 4.0;
             let inside = (centre.x - r.x_range[0] as f64) * (centre.x - r.x_range[1] as f64) < 0.0
                 && (centre.z - r.z_range[0] as f64) * (centre.z - r.z_range[1] as f64) < 0.0;
             if !inside {
                 continue;
             }
-            let d: DVec3 = block
-                .iter()
-                .map(|&i| DVec3::new(dir[i * nd] as f64, dir[i * nd + 1] as f64, dir[i * nd + 2] as f64))
-                .sum();
-            let m = block.iter().map(|&i| mean3(&pow[i * nw..])).sum::<f64>() / 4.0;
+            let d: DVec3 = block.iter().map(|p| p.direction).sum();
+            let m = block.iter().map(|p| p.power).sum::<f64>() / 4.0;
             all += m;
             eq3 += m * relit(n.dot(-d.normalize()), n.dot((light - centre).normalize()));
         }
