@@ -9,6 +9,7 @@
 #define CAUSTIC_BEAM_AREA 4u        // settings.w bit: varying splats by Eq. 1-2, else max distance
 #define CAUSTIC_EYE_SPACE 8u        // settings.w bit: caustics rendered in the eye's view (Wyman & Davis 2006)
 #define CAUSTIC_REFLECTION_PLANE 16u  // settings.w bit: mirrored photons land on one plane (Wyman & Davis 2006 Sec. 4)
+#define CAUSTIC_ONE_REFRACTION 32u    // settings.w bit: refracted once, then straight on (the caustics mapping tutorial)
 #define SPLAT_FIXED 0.0
 #define SPLAT_VARYING_SINGLE 1.0
 #define SPLAT_VARYING_MULTIRES 2.0

@@ -111,27 +111,37 @@ Photon trace_photon_through(uint l, vec3 p1, vec3 n1, float d_n, float omega, Sp
         float cos_i = dot(-v, n1);
         vec3 t1 = refract(v, n1, 1.0 / ior);
         bool inside;
-        vec2 ndc = project_ndc(cl.photon_view_proj, p1, inside);
-        vec4 back = texture(light_back_faces, ndc * 0.5 + 0.5);
-        float d_v = max(back.w - distance(p1, cl.position.xyz), 0.0);
-        vec3 p2 = p1 + wyman2005_distance(cos_i, t1, n1, d_v, d_n) * t1;
-        // Beyond the paper (caustics.back_face_iterations > 0): refine the exit point against
-        // the back faces the light sees, rayGeo's iteration applied to the back-face distances.
-        // Wyman's d estimate alone falls short near the silhouette, where the chord is long but
-        // d_V is ~0, and the wrong back-face normal then reports total internal reflection.
-        for (uint k = 0u; k < uint(caustics.splat.z); ++k) {
-            vec3 dir_l = normalize(p2 - cl.position.xyz);
-            vec2 nk = project_ndc(cl.photon_view_proj, p2, inside);
-            vec4 bk = texture(light_back_faces, nk * 0.5 + 0.5);
-            if (bk.w <= 0.0) break;
-            p2 = p1 + distance(p1, cl.position.xyz + dir_l * bk.w) * t1;
+        if ((caustics.settings.w & CAUSTIC_ONE_REFRACTION) != 0u) {
+            // The caustics mapping tutorial's path (`refractions = one`): refracted where the
+            // light meets the object, then straight on through it, the receivers searched from
+            // there (its psIntersectPts); only that interface's Fresnel transmittance.
+            if ((caustics.settings.w & CAUSTIC_FRESNEL) != 0u) power *= 1.0 - dielectric_fresnel(cos_i, 1.0 / ior);
+            power *= m.colour;
+            o = p1;
+            d = normalize(t1);
+        } else {
+            vec2 ndc = project_ndc(cl.photon_view_proj, p1, inside);
+            vec4 back = texture(light_back_faces, ndc * 0.5 + 0.5);
+            float d_v = max(back.w - distance(p1, cl.position.xyz), 0.0);
+            vec3 p2 = p1 + wyman2005_distance(cos_i, t1, n1, d_v, d_n) * t1;
+            // Beyond the paper (caustics.back_face_iterations > 0): refine the exit point against
+            // the back faces the light sees, rayGeo's iteration applied to the back-face distances.
+            // Wyman's d estimate alone falls short near the silhouette, where the chord is long but
+            // d_V is ~0, and the wrong back-face normal then reports total internal reflection.
+            for (uint k = 0u; k < uint(caustics.splat.z); ++k) {
+                vec3 dir_l = normalize(p2 - cl.position.xyz);
+                vec2 nk = project_ndc(cl.photon_view_proj, p2, inside);
+                vec4 bk = texture(light_back_faces, nk * 0.5 + 0.5);
+                if (bk.w <= 0.0) break;
+                p2 = p1 + distance(p1, cl.position.xyz + dir_l * bk.w) * t1;
+            }
+            vec2 ndc2 = project_ndc(cl.photon_view_proj, p2, inside);
+            vec3 n2 = texture(light_back_faces, ndc2 * 0.5 + 0.5).xyz;
+            if (!exit_refractor(t1, n1, n2, cos_i, ior, m.colour, power, d)) {   // total internal reflection: lost
+                return lost_photon(power, PHOTON_LOST_TIR);
+            }
+            o = p2;
         }
-        vec2 ndc2 = project_ndc(cl.photon_view_proj, p2, inside);
-        vec3 n2 = texture(light_back_faces, ndc2 * 0.5 + 0.5).xyz;
-        if (!exit_refractor(t1, n1, n2, cos_i, ior, m.colour, power, d)) {   // total internal reflection: lost
-            return lost_photon(power, PHOTON_LOST_TIR);
-        }
-        o = p2;
     }
     vec3 hit;
     bool found;

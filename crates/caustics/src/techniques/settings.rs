@@ -6,6 +6,7 @@
 //! - [`CausticSettings::validate_combination`]: a setting that belongs to some techniques only
 //!   (`only Hcm`) is refused, with its key, for the others.
 
+use super::shah2007::settings::Refractions;
 use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath, TraversalPath};
 use super::technique::Technique;
 use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNEL};
@@ -94,6 +95,9 @@ caustic_settings! {
     caustic_map_resolution: u32 = 1024;
     /// rayGeo iterations (Shah) or bisection refinements (Wyman & Davis), 1..=64; default 4.
     iterations: u32 = 4;
+    /// shah, shah-vertex: refract into and out of the object (two, default) or once where the
+    /// light meets it, as the caustics mapping tutorial does (one).
+    refractions: Refractions = Refractions::Two, only Shah | ShahVertex;
     /// Fresnel transmittance at both interfaces (true/false); default true.
     fresnel: bool = true;
     /// Refinements of the photon's exit point against the light-space back faces, 0..=16; 0 is

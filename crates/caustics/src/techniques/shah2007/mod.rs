@@ -8,6 +8,13 @@
 //!   (`shaders_glsl/shah2007/ray_geo.glsl`, `iterations` steps), splatted as Gaussian points.
 //! - `shah-vertex`: Shah's original first pass, a photon per vertex of the specular meshes
 //!   (here, [`record_vertex_photons`]), each with a third of its triangles' area.
+//!
+//! Where the defaults differ from the tutorial (`docs/papers.md` says so too): photons refract
+//! into and out of the object (the tutorial once, where the light meets it: `refractions =
+//! "one"`), rayGeo runs 4 iterations (the tutorial 1: `iterations = 1`), and the caustic map
+//! holds power that the lookup turns into irradiance (the tutorial shades with
+//! `diffuse * pow(caustic, 1.3)` on top of the diffuse term, a display curve on map values of
+//! no unit, not reproduced).
 
 pub mod settings;
 pub use settings::{PAPER, VERTEX_PHOTON_FEATURES};

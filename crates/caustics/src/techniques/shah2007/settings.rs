@@ -1,6 +1,7 @@
 //! What Shah et al.'s techniques declare: the paper and the features the vertex-photon pass
 //! needs (a leaf module: the technique enum reads it).
 
+use super::super::value_enum::value_enum;
 use vkcore::Feature;
 
 /// The paper, as tables and `--help` cite it.
@@ -9,3 +10,16 @@ pub const PAPER: &str = "Shah, Konttinen & Pattanaik 2007, caustics mapping";
 /// What the vertex-photon pass needs: it writes the photon buffer from the vertex stage.
 pub const VERTEX_PHOTON_FEATURES: &[Feature] =
     &[Feature::ShaderOutputLayer, Feature::LargePoints, Feature::VertexPipelineStoresAndAtomics];
+
+value_enum! {
+    /// Where a photon refracts (`caustics.refractions`, `--refractions`).
+    pub enum Refractions {
+        /// Into the object and out of it, at the light-space back faces (Wyman 2005's exit
+        /// estimate): causticlab's choice for every photon-buffer technique.
+        Two = "two",
+        /// Once, where the light meets the object, then straight on through it: the caustics
+        /// mapping tutorial's path (its `psIntersectPts` refracts with `refract(lightDir, normal,
+        /// g_refIndex)` and searches from there), a thin-object approximation.
+        One = "one",
+    }
+}
