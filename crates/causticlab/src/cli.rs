@@ -178,6 +178,11 @@ pub struct ReferenceArgs {
     /// Most specular interactions per photon (with --fresnel true).
     #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
     pub max_bounces: u32,
+    /// With --fresnel true: trace the light a refractive object reflects off its outside (true),
+    /// or leave it out (false), keeping only the light that enters the object, the only light
+    /// the image-space techniques draw.
+    #[arg(long, default_value_t = true, action = clap::ArgAction::Set)]
+    pub outside_reflection: bool,
     /// Worker threads (0 = all cores).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,

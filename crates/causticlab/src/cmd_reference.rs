@@ -15,6 +15,7 @@ struct Record {
     seed: u64,
     fresnel: bool,
     max_bounces: u32,
+    outside_reflection: bool,
     smooth_normals: bool,
     seconds: f64,
     photons_traced: u64,
@@ -44,6 +45,7 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
         seed: args.seed,
         fresnel: args.fresnel.unwrap_or(scene.caustics.fresnel),
         max_bounces: args.max_bounces,
+        outside_reflection: args.outside_reflection,
         threads: args.threads,
         smooth_normals: !args.facet_normals,
     };
@@ -59,6 +61,7 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
         seed: opts.seed,
         fresnel: opts.fresnel,
         max_bounces: opts.max_bounces,
+        outside_reflection: opts.outside_reflection,
         smooth_normals: opts.smooth_normals,
         seconds,
         photons_traced: r.photons_traced,

@@ -24,7 +24,9 @@
 //!     dielectrics). The transmission colour is applied on every exit.
 //!   - `fresnel = true`: exact unpolarised dielectric Fresnel; reflect with probability `F`
 //!     (Russian roulette, power unchanged), TIR reflects; at most `max_bounces` specular
-//!     interactions (a photon that would need more is dropped).
+//!     interactions (a photon that would need more is dropped). `outside_reflection = false`
+//!     drops the photons reflected off a refractive object's outside (none of the image-space
+//!     techniques draws that light).
 //!   - `fresnel = false` (what the image-space techniques approximate): all power is
 //!     transmitted, the path is two refractions (or one mirror reflection); a photon that
 //!     meets TIR is dropped and its power added to `lost_tir`; after the second refraction
@@ -71,6 +73,10 @@ pub struct ReferenceOptions {
     pub fresnel: bool,
     /// Maximum number of specular interactions per photon.
     pub max_bounces: u32,
+    /// With `fresnel`: trace the light a refractive object reflects off its outside (true, the
+    /// physics), or drop it (false: counted in `lost_other`), leaving the paths that enter the
+    /// object, the only ones the image-space techniques draw.
+    pub outside_reflection: bool,
     /// Worker threads; 0 = `available_parallelism`.
     pub threads: usize,
     /// Scatter about the interpolated vertex normals (the smooth surface a mesh stands for, as
@@ -80,7 +86,15 @@ pub struct ReferenceOptions {
 
 impl Default for ReferenceOptions {
     fn default() -> Self {
-        Self { photons: 1 << 22, seed: 1, fresnel: false, max_bounces: 8, threads: 0, smooth_normals: true }
+        Self {
+            photons: 1 << 22,
+            seed: 1,
+            fresnel: false,
+            max_bounces: 8,
+            outside_reflection: true,
+            threads: 0,
+            smooth_normals: true,
+        }
     }
 }
 
@@ -187,7 +201,8 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
     let rx = Receiver::new(spec, 1e-4 * diag.max(1e-6));
     let n = rx.n;
 
-    let tracer = Tracer::new(scene, &bvh, rx, opts.fresnel, opts.max_bounces, eps, opts.smooth_normals);
+    let mut tracer = Tracer::new(scene, &bvh, rx, opts.fresnel, opts.max_bounces, eps, opts.smooth_normals);
+    tracer.outside_reflection = opts.outside_reflection;
     let dispersive = tracer.surfaces.iter().any(|s| match s {
         Surface::Refractive { ior, .. } => ior[0] != ior[1] || ior[1] != ior[2],
         _ => false,

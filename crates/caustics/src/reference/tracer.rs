@@ -61,6 +61,9 @@ pub(crate) struct Tracer<'a> {
     pub receiver: Receiver,
     pub fresnel: bool,
     pub max_bounces: u32,
+    /// With `fresnel`: whether light reflected off a refractive object's outside (where it would
+    /// enter) is traced on; false drops it (see [`super::ReferenceOptions::outside_reflection`]).
+    pub outside_reflection: bool,
     /// Ray offset (absolute, world units) against self-intersection.
     pub eps: f32,
 }
@@ -97,7 +100,7 @@ impl<'a> Tracer<'a> {
                 })
                 .collect()
         });
-        Tracer { bvh, normals, shading, surfaces, receiver, fresnel, max_bounces, eps }
+        Tracer { bvh, normals, shading, surfaces, receiver, fresnel, max_bounces, outside_reflection: true, eps }
     }
 
     /// The normal photons scatter about at `hit`, on the same side as the geometric normal.
@@ -196,6 +199,9 @@ impl<'a> Tracer<'a> {
                         false
                     };
                     if reflect_now {
+                        if entering && !self.outside_reflection {
+                            return Fate::Lost;
+                        }
                         dir = reflect(dir, n).normalize();
                     } else {
                         match refract(dir, n, n_i / n_t) {
