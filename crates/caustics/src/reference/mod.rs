@@ -201,8 +201,7 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
     let rx = Receiver::new(spec, 1e-4 * diag.max(1e-6));
     let n = rx.n;
 
-    let mut tracer = Tracer::new(scene, &bvh, rx, opts.fresnel, opts.max_bounces, eps, opts.smooth_normals);
-    tracer.outside_reflection = opts.outside_reflection;
+    let tracer = Tracer::new(scene, &bvh, rx, opts, eps);
     let dispersive = tracer.surfaces.iter().any(|s| match s {
         Surface::Refractive { ior, .. } => ior[0] != ior[1] || ior[1] != ior[2],
         _ => false,

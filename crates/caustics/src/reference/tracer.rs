@@ -4,6 +4,7 @@
 use super::emit::Pcg32;
 use super::optics::{fresnel_dielectric, reflect, refract};
 use super::receiver::Receiver;
+use super::ReferenceOptions;
 use crate::bvh::{Bvh, Hit};
 use crate::scene::{MaterialKind, Scene};
 use glam::DVec3;
@@ -72,14 +73,14 @@ pub(crate) struct Tracer<'a> {
 const MAX_SKIPS: u32 = 256;
 
 impl<'a> Tracer<'a> {
+    /// The tracer of `opts`' physics (`fresnel`, `max_bounces`, `outside_reflection`,
+    /// `smooth_normals`).
     pub(crate) fn new(
         scene: &Scene,
         bvh: &'a Bvh,
         receiver: Receiver,
-        fresnel: bool,
-        max_bounces: u32,
+        opts: &ReferenceOptions,
         eps: f32,
-        smooth: bool,
     ) -> Tracer<'a> {
         let normals = bvh
             .triangles()
@@ -90,7 +91,7 @@ impl<'a> Tracer<'a> {
             })
             .collect();
         let surfaces = scene.objects.iter().map(|o| Surface::of(&scene.material_of(o).kind)).collect();
-        let shading = smooth.then(|| {
+        let shading = opts.smooth_normals.then(|| {
             bvh.triangles()
                 .iter()
                 .map(|t| {
@@ -100,7 +101,17 @@ impl<'a> Tracer<'a> {
                 })
                 .collect()
         });
-        Tracer { bvh, normals, shading, surfaces, receiver, fresnel, max_bounces, outside_reflection: true, eps }
+        Tracer {
+            bvh,
+            normals,
+            shading,
+            surfaces,
+            receiver,
+            fresnel: opts.fresnel,
+            max_bounces: opts.max_bounces,
+            outside_reflection: opts.outside_reflection,
+            eps,
+        }
     }
 
     /// The normal photons scatter about at `hit`, on the same side as the geometric normal.

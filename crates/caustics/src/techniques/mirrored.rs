@@ -67,12 +67,7 @@ mod tests {
     fn splat_modes_pack_as_the_shaders_read_them() {
         use crate::techniques::wyman2008::settings::SplatMode;
         use crate::techniques::Technique;
-        let text = shader("common/caustics.glsl");
-        let float = |name: &str| -> f32 {
-            let line = text.lines().find(|l| l.split_whitespace().take(2).eq(["#define", name]));
-            let v = line.and_then(|l| l.split_whitespace().nth(2)).unwrap_or_else(|| panic!("no #define {name}"));
-            v.parse().unwrap_or_else(|e| panic!("#define {name} {v}: {e}"))
-        };
+        let float = |name: &str| define_float("common/caustics.glsl", name);
         let cases = [
             (SplatMode::Fixed, Technique::Hcm, "SPLAT_FIXED"),
             (SplatMode::VaryingSingle, Technique::Hcm, "SPLAT_VARYING_SINGLE"),

@@ -193,10 +193,7 @@ impl PhotonCopy {
                 })?;
             }
             CopySource::Float32 | CopySource::Half16(_) => {
-                let src: Vec<&Target> = match self.source.half() {
-                    Some(half) => half.iter().collect(),
-                    None => src32.to_vec(),
-                };
+                let src = self.source.half().map_or(src32, |[position, power]| [position, power]);
                 uses.extend(src.iter().map(|t| Use::view(&t.view, Access::TRANSFER_READ)));
                 f.pass(&Stage::PhotonCopy.light(l)).uses(uses).record(|cmd| {
                     for (s, b) in src.iter().zip(dst) {

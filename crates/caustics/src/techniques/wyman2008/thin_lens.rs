@@ -2,8 +2,8 @@
 //! the second column of Wyman 2008 Fig. 7): the photon buffer's point splat with each splat's
 //! radius from the photon's own ray through a thin lens (`shaders_glsl/wyman2008/thin_lens.glsl`
 //! states the model; `thin_lens_splat.vert` is the point splat's vertex shader with it), into
-//! the single caustic map. What it needs of the other settings is [`SplatMode::needs`]'s. The baseline Sec. 3.3 improves on: it reads
-//! no neighbouring photon.
+//! the single caustic map. What it needs of the other settings is [`SplatMode::needs`]'s. The
+//! baseline Sec. 3.3 improves on: it reads no neighbouring photon.
 
 #[cfg(doc)]
 use super::settings::SplatMode;

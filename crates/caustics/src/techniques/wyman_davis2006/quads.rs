@@ -90,15 +90,15 @@ pub fn record(
     constants: ImageSpaceConstants,
 ) -> Result<()> {
     let (pt, inp) = (c.photons, c.inputs);
-    let first = match pipelines {
+    let triangles = match pipelines {
         QuadPipelines::Polygons(polygons) => polygons,
         QuadPipelines::Exact { triangles, .. } => triangles,
     };
     // The pipelines share their bindings.
-    let mut binds = super::views::photon_view_binds(c, first, geometry);
+    let mut binds = super::views::photon_view_binds(c, triangles, geometry);
     binds.push(("receiver_positions", Bind::Sampled(&c.targets.per_light[constants.light as usize].1, inp.nearest)));
     let n = pt.width;
-    f.pass(name).bind(first, binds.clone()).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(|cmd| {
+    f.pass(name).bind(triangles, binds.clone()).uses([Use::view(out, Access::COLOR_ATTACHMENT)]).record(|cmd| {
         cmd.begin_rendering(&Targets::color(out, if clear { Some([0.0; 4]) } else { None }))?;
         cmd.push(&constants)?;
         // Two triangles for each of the (N - 1)^2 blocks of 2x2 photons.
