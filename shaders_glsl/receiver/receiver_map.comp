@@ -31,7 +31,7 @@ void main() {
     for (uint l = 0u; l < frame.counts.x; ++l) e0 += unoccluded_irradiance(l, p, up);
     vec3 ec = (caustics.settings.w & CAUSTIC_EYE_SPACE) != 0u
         ? texelFetch(receiver_view_caustic, ivec3(ij, 0), 0).rgb
-        : caustic_irradiance(p, up);
+        : caustic_irradiance_over(p, vec3(0.5 * (r.y - r.x) / float(n), 0.0, 0.0), vec3(0.0, 0.0, 0.5 * (r.w - r.z) / float(n)), up);
     vec3 e = direct_irradiance(p, up) + ec;
     vec3 ratio = vec3(e0.r > 0.0 ? e.r / e0.r : 0.0, e0.g > 0.0 ? e.g / e0.g : 0.0, e0.b > 0.0 ? e.b / e0.b : 0.0);
     imageStore(ratio_map, ij, vec4(ratio, 1.0));

@@ -254,9 +254,16 @@ pub const METRIC_KINDS: &[&str] = &[
     "valid_fraction",
     "rel_rmse",
     "flux_ratio",
+    "peak_ratio",
+    "peak_offset",
     "photon_storage",
     "photon_batches",
 ];
+
+/// Whether metric `kind` compares the receiver map with the CPU reference (`[quality]`).
+pub fn is_quality_metric(kind: &str) -> bool {
+    matches!(kind, "rel_rmse" | "flux_ratio" | "peak_ratio" | "peak_offset")
+}
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]

@@ -23,7 +23,8 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         }
         // A share of the photon buffer, as a percentage with three significant digits.
         "valid_fraction" => format!("{}%", significant(100.0 * v)),
-        "rel_rmse" | "flux_ratio" => format!("{v:.4}"),
+        "rel_rmse" | "flux_ratio" | "peak_ratio" => format!("{v:.4}"),
+        "peak_offset" => format!("{v:.1}"),
         "photon_storage" => significant(v),
         _ => format!("{v}"),
     }

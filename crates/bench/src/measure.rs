@@ -90,7 +90,7 @@ impl<'a> Runner<'a> {
     }
 
     fn needs_quality(&self) -> bool {
-        self.config.config.metrics.iter().any(|m| m.kind == "rel_rmse" || m.kind == "flux_ratio")
+        self.config.config.metrics.iter().any(|m| crate::config::is_quality_metric(&m.kind))
     }
 
     fn needs_valid_photons(&self) -> bool {

@@ -141,6 +141,8 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
             "photon_storage" => exact(k, run.photon_storage.map(|b| b as f64 / (1024.0 * 1024.0))),
             "photon_batches" => exact(k, run.photon_batches.map(f64::from)),
             "flux_ratio" => exact(k, run.quality.as_ref().map(|q| q.caustic_flux_ratio)),
+            "peak_ratio" => exact(k, run.quality.as_ref().map(|q| q.peak_ratio)),
+            "peak_offset" => exact(k, run.quality.as_ref().map(|q| q.peak_offset_texels)),
             _ => exact(k, None),
         };
         out.insert(m.label.clone(), v);

@@ -274,7 +274,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             return Err(bad(key, format!("{n}: must be between 1 and 2^30")));
         }
     }
-    let quality = c.metrics.iter().any(|m| m.kind == "rel_rmse" || m.kind == "flux_ratio");
+    let quality = c.metrics.iter().any(|m| crate::config::is_quality_metric(&m.kind));
     if quality && [&r.light_path, &r.camera_path, &r.object_path].iter().any(|p| *p != "static") {
         return Err(bad(
             "run",

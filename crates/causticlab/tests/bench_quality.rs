@@ -92,3 +92,27 @@ fn quick_quality_adaptive_compares_every_technique_with_the_reference() {
         assert_eq!(splats("max-error"), splats("max-error · varying multi-res"), "{photons}");
     }
 }
+
+#[test]
+fn quick_quality_faithful_scores_every_paper_default_on_four_scenes() {
+    // Q4: every technique with its paper's defaults and the faithful variants, on the sphere
+    // scenes, the coffee-cup caustic and the underwater pool: every cell has an error, a flux
+    // ratio and a peak; the tutorial's Shah and the polygon quads are cells of their own.
+    let (_, r) = quick_run("quality_faithful.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 4 * 13 * 2, "4 scenes x 13 technique rows x 2 photon counts");
+    for cell in cells {
+        let get = |m: &str| metric(cell, m).unwrap_or(f64::NAN);
+        let (rmse, flux, peak, offset) = (get("rel. RMSE"), get("flux ratio"), get("peak ratio"), get("peak offset"));
+        assert!(rmse.is_finite() && rmse > 0.0, "{}: rel. RMSE {rmse}", cell["cell"]);
+        assert!(flux.is_finite() && flux > 0.0, "{}: flux ratio {flux}", cell["cell"]);
+        assert!(peak.is_finite() && peak > 0.0, "{}: peak ratio {peak}", cell["cell"]);
+        assert!(offset.is_finite() && offset >= 0.0, "{}: peak offset {offset}", cell["cell"]);
+    }
+    let scenes: std::collections::BTreeSet<&str> =
+        cells.iter().filter_map(|c| c["cell"]["scene"].as_str()).map(|s| s.rsplit('/').next().unwrap_or(s)).collect();
+    assert_eq!(
+        scenes.into_iter().collect::<Vec<_>>(),
+        ["ring_cardioid.toml", "sphere_oblique.toml", "sphere_on_plane.toml", "underwater.toml"]
+    );
+}

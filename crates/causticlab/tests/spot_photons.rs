@@ -96,21 +96,25 @@ fn every_photon_technique_weights_its_photons_by_the_spot_texture() {
     let apart = distance(&ignored, &want, &want);
     assert!(apart > 0.5, "the untextured caustic is too close to the textured one ({apart}): {want:?} {ignored:?}");
     // (name, flags, photons per side, largest relative RMSE against the reference). Measured on
-    // lavapipe: quadrant distance 0.020-0.029 (the flux the techniques lose, as without a
-    // texture), 0.9997-1.0 to the untextured reference; relative RMSE 0.076-0.080 (shah-vertex:
-    // 0.157, within its conformance bound, 0.16); flux ratio 0.975-0.986. With the texture ignored by
-    // the photons (the cone only): distance 0.97-0.99, relative RMSE 1.03-1.18, flux ratio 1.95.
+    // lavapipe: quadrant distance 0.019-0.023, 0.9993-0.9995 to the untextured reference;
+    // relative RMSE 0.096-0.101 (shah-vertex: 0.107); flux ratio 0.995-1.002. (Before the
+    // receiver map averaged the caustic map over each of its texels, the RMSE read 0.076-0.080
+    // and the flux 0.975-0.986: point samples of the caustic map missed part of its focus, where
+    // the texture's four quadrants meet, and the averaged map's error there, a few texels over
+    // and under the reference's, weighs more in the RMSE while the flux and peak come closer.)
+    // With the texture ignored by the photons (the cone only): distance 0.97-0.99, relative RMSE
+    // 1.03-1.18, flux ratio 1.95.
     let cases: [(&str, &[&str], &str, f64); 8] = [
-        ("wd-points", &["--technique", "wd-points"], PHOTONS, 0.10),
+        ("wd-points", &["--technique", "wd-points"], PHOTONS, 0.12),
         // The photon buffer by deferred shading (Wyman & Nichols 2009's deferred caustic maps).
-        ("wd-points-deferred", &["--technique", "wd-points", "--photon-refraction", "deferred"], PHOTONS, 0.10),
-        ("shah", &["--technique", "shah"], PHOTONS, 0.10),
-        ("hcm", &["--technique", "hcm", "--cluster", "last", "--splat", "fixed"], PHOTONS, 0.10),
-        ("shah-vertex", &["--technique", "shah-vertex"], PHOTONS, 0.19),
-        ("adaptive-xfb", &["--technique", "adaptive", "--path", "xfb"], PHOTONS, 0.10),
-        ("adaptive-compute", &["--technique", "adaptive", "--path", "compute"], PHOTONS, 0.10),
+        ("wd-points-deferred", &["--technique", "wd-points", "--photon-refraction", "deferred"], PHOTONS, 0.12),
+        ("shah", &["--technique", "shah"], PHOTONS, 0.12),
+        ("hcm", &["--technique", "hcm", "--cluster", "last", "--splat", "fixed"], PHOTONS, 0.12),
+        ("shah-vertex", &["--technique", "shah-vertex"], PHOTONS, 0.13),
+        ("adaptive-xfb", &["--technique", "adaptive", "--path", "xfb"], PHOTONS, 0.12),
+        ("adaptive-compute", &["--technique", "adaptive", "--path", "compute"], PHOTONS, 0.12),
         // Clusters converge from the 512² level on: one photon with its four photons' power.
-        ("adaptive-max-error", &["--technique", "adaptive", "--metric", "max-error"], "512", 0.10),
+        ("adaptive-max-error", &["--technique", "adaptive", "--metric", "max-error"], "512", 0.12),
     ];
     let mut failures = vec![];
     for (name, args, photons, rel_rmse) in cases {
@@ -133,7 +137,7 @@ fn every_photon_technique_weights_its_photons_by_the_spot_texture() {
             f("caustic_flux_ratio")
         );
         let flux = f("caustic_flux_ratio");
-        if !(to_want < 0.04 && to_ignored > 0.5 && f("rel_rmse") < rel_rmse && (0.95..=1.02).contains(&flux)) {
+        if !(to_want < 0.04 && to_ignored > 0.5 && f("rel_rmse") < rel_rmse && (0.97..=1.03).contains(&flux)) {
             failures.push(format!(
                 "{name}: quadrant distances {to_want}, {to_ignored}\n got {got:?}\n want {want:?}\n {c}"
             ));

@@ -14,6 +14,8 @@ pub mod procedural;
 pub mod schema;
 pub mod search_path;
 pub mod spot_projector;
+pub mod water;
+pub mod water_surface;
 
 pub use crate::techniques::settings::{CausticOverrides, CausticSettings};
 pub use glam::Vec3;

@@ -2,7 +2,7 @@
 
 use super::load::{Ctx, MAX_SUBDIVISIONS};
 use super::schema::{self, FitOrigin, Numbers, ShapeType};
-use super::{obj, procedural, Material, ModelSearchPath, Object};
+use super::{obj, procedural, water, Material, ModelSearchPath, Object};
 use glam::{Affine3A, Mat3, Vec3};
 
 pub(super) fn build_object(
@@ -33,6 +33,7 @@ pub(super) fn build_object(
         ShapeType::Ring => &["radius", "height", "thickness", "segments"],
         ShapeType::Octahedron => &["radius"],
         ShapeType::Obj => &["file", "fit_size", "fit_origin"],
+        ShapeType::Water => &["file", "segments"],
     };
     if let Some(bad) = o.present_shape_keys().into_iter().find(|f| !allowed.contains(f)) {
         return Err(
@@ -120,6 +121,20 @@ pub(super) fn build_object(
             };
             fit = Affine3A::from_scale(Vec3::splat(scale)) * Affine3A::from_translation(-origin);
             mesh
+        }
+        ShapeType::Water => {
+            let file =
+                o.file.as_deref().ok_or_else(|| ctx.err(&k("file"), "required for shape \"water\" (a pool scene)"))?;
+            let path = ctx.file.parent().unwrap_or(std::path::Path::new("")).join(file);
+            if !path.is_file() {
+                return Err(ctx.err(&k("file"), format!("pool scene {} not found", path.display())));
+            }
+            let pool = super::Scene::load(&path).map_err(|e| ctx.err(&k("file"), format!("{e:#}")))?.pool.ok_or_else(
+                || ctx.err(&k("file"), format!("{} has no [pool] to take the water's surface from", path.display())),
+            )?;
+            let seg = o.segments.clone().unwrap_or(Numbers(vec![256.0]));
+            let seg = ctx.counts(&k("segments"), &seg, 1, 1, water::MAX_WATER_SEGMENTS)?;
+            water::water(&pool, seg[0])
         }
     };
     let transform = object_transform(ctx, &key, o)? * fit;

@@ -86,6 +86,7 @@ pub enum ShapeType {
     Ring,
     Octahedron,
     Obj,
+    Water,
 }
 
 impl ShapeType {
@@ -99,6 +100,7 @@ impl ShapeType {
             ShapeType::Ring => "ring",
             ShapeType::Octahedron => "octahedron",
             ShapeType::Obj => "obj",
+            ShapeType::Water => "water",
         }
     }
 }

@@ -32,7 +32,8 @@ pub mod settings;
 pub mod targets;
 pub mod uniforms;
 pub mod view;
-pub mod water_surface;
+// The height field lives with the scene (`shape = "water"` builds its mesh from it too).
+pub use crate::scene::water_surface;
 
 pub use renderer::PoolRenderer;
 pub use settings::{Precision, DUMPS, PAPER};

@@ -6,7 +6,7 @@
 //! from it. The paper evaluates it with a distance texture T and a colour table holding one row
 //! of h; the GPU pass (`height_field.frag`) evaluates the same function per texel.
 
-use crate::scene::{PoolSpec, Wave};
+use super::{PoolSpec, Wave};
 use glam::DVec2;
 
 /// One source of waves: an impulse, or its mirror image through a wall.
