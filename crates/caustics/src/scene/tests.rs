@@ -402,3 +402,40 @@ fn pool_settings_belong_to_pool_convolution() {
         &["precision", "fp16"],
     );
 }
+
+#[test]
+fn water_errors_name_the_file_and_key() {
+    let water = |rest: &str| format!("{BASE}\n[[objects]]\nshape = \"water\"\nmaterial = \"glass\"\n{rest}\n");
+    expect_error("nowater.toml", &water("file = \"nothere.toml\""), &["objects[1].file", "nothere.toml", "not found"]);
+    expect_error("nofile.toml", &water(""), &["objects[1].file", "required", "pool scene"]);
+    expect_error("radius.toml", &water("file = \"p.toml\"\nradius = 1"), &["objects[1].radius", "\"water\""]);
+    // A scene beside it with no [pool], and one whose [pool] is broken.
+    let dir = temp_dir();
+    std::fs::write(dir.join("mesh.toml"), BASE).unwrap();
+    let pool = std::fs::read_to_string(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/pool_overhead.toml"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("pool.toml"), &pool).unwrap();
+    std::fs::write(dir.join("badpool.toml"), pool.replace("side = 1.0", "side = -1.0")).unwrap();
+    let load = |name: &str, rest: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, water(rest)).unwrap();
+        Scene::load(&path)
+    };
+    let msg = |r: anyhow::Result<Scene>| match r {
+        Ok(_) => panic!("loaded without error"),
+        Err(e) => e.downcast_ref::<InputError>().expect("InputError").0.clone(),
+    };
+    let m = msg(load("w1.toml", "file = \"mesh.toml\""));
+    assert!(m.contains("w1.toml") && m.contains("objects[1].file") && m.contains("no [pool]"), "{m}");
+    let m = msg(load("w2.toml", "file = \"badpool.toml\""));
+    assert!(m.contains("w2.toml") && m.contains("badpool.toml") && m.contains("pool.side"), "{m}");
+    for segments in ["0", "5000", "2.5"] {
+        let m = msg(load("w3.toml", &format!("file = \"pool.toml\"\nsegments = {segments}")));
+        assert!(m.contains("objects[1].segments"), "{m}");
+    }
+    // And a good one: 8² cells, 128 triangles on top, 4 x 8 wall quads and their 32 bottom fans.
+    let s = load("w4.toml", "file = \"pool.toml\"\nsegments = 8").expect("a water scene");
+    assert_eq!(s.objects[1].mesh.triangle_count(), 128 + 64 + 32);
+}
