@@ -21,7 +21,7 @@ use glam::{DVec3, Vec3};
 pub const MAX_WATER_SEGMENTS: u32 = 2048;
 
 /// The closed water volume of `pool` with its surface on a `segments`² grid: smooth normals on
-/// top (from the height field's central differences), flat ones on the walls and bottom; wound
+/// top (the height field's gradient), flat ones on the walls and bottom; wound
 /// counter-clockwise seen from outside.
 pub fn water(pool: &PoolSpec, segments: u32) -> Mesh {
     let n = segments as usize;
@@ -33,7 +33,8 @@ pub fn water(pool: &PoolSpec, segments: u32) -> Mesh {
     let mut mesh = Mesh::default();
 
     // The surface: (n + 1)² vertices, row j at z_j, column i at x_i.
-    let e = 0.25 * cell;
+    // The normal is the height field's gradient at the vertex (a step far under a cell).
+    let e = 1e-6 * pool.side;
     for j in 0..=n {
         for i in 0..=n {
             let (x, z) = (coord(i), coord(j));
