@@ -79,16 +79,16 @@ vec3 caustic_irradiance(vec3 p, vec3 n) {
     return e;
 }
 
-// Area of the convex polygon `q[0..n)` (counter-clockwise or not) clipped to the square
-// [lo, lo + 1]^2, by Sutherland-Hodgman against its four sides.
-float area_in_texel(vec2 q[4], vec2 lo) {
+// Area of the convex quadrilateral `q` (either winding) clipped to the rectangle [lo, hi], by
+// Sutherland-Hodgman against its four sides.
+float area_in_rect(vec2 q[4], vec2 lo, vec2 hi) {
     vec2 a[8];
     vec2 b[8];
     for (int k = 0; k < 4; ++k) a[k] = q[k];
     int n = 4;
     for (int side = 0; side < 4; ++side) {
         int axis = side & 1;
-        float bound = side < 2 ? lo[axis] : lo[axis] + 1.0;
+        float bound = side < 2 ? lo[axis] : hi[axis];
         float keep = side < 2 ? 1.0 : -1.0;  // inside: keep * (x - bound) >= 0
         int m = 0;
         for (int k = 0; k < n; ++k) {
@@ -123,8 +123,11 @@ float area_in_texel(vec2 q[4], vec2 lo) {
 // in the caustic map (a perspective projection keeps edges straight) and each texel's share is
 // its area inside that quadrilateral. A receiver texel inside one caustic-map texel gets what
 // `caustic_irradiance` gives at its centre; summed over the receiver grid, every caustic-map
-// texel inside it gives back its power. Up to MAX_TEXELS_ACROSS texels a side are read, so a
-// map far finer than the receiver grid is averaged over the receiver texel's central part only.
+// texel inside it gives back its power. Up to MAX_TEXELS_ACROSS texels a side are read (a
+// bounded loop): a map so much finer than the receiver grid is averaged over the receiver
+// texel's central MAX_TEXELS_ACROSS² texels, whose mean stands for the whole texel's, an
+// approximation (on sphere_on_plane with a 16² receiver map and a 2048² caustic map, 83 texels
+// a side, the caustic flux read 0.75 of the reference's): make the receiver map finer.
 #define MAX_TEXELS_ACROSS 48
 vec3 caustic_irradiance_over(vec3 p, vec3 half_u, vec3 half_v, vec3 n) {
     vec3 e = vec3(0.0);
@@ -146,17 +149,24 @@ vec3 caustic_irradiance_over(vec3 p, vec3 half_u, vec3 half_v, vec3 n) {
         vec3 to_light = cl.position.xyz - p;
         float d = length(to_light);
         float cos_theta = max(dot(n, to_light / d), 0.0);
+        // Where the texels read do not cover the quadrilateral's part inside the map (more than
+        // MAX_TEXELS_ACROSS a side), their shares are scaled up to it.
+        float inside = area_in_rect(q, vec2(0.0), vec2(size));
+        float read = area_in_rect(q, vec2(t0), vec2(t1 + 1));
+        float scale = read > 0.0 ? inside / read : 0.0;
+        vec3 el = vec3(0.0);
         for (int y = t0.y; y <= t1.y; ++y) {
             for (int x = t0.x; x <= t1.x; ++x) {
-                float share = area_in_texel(q, vec2(x, y)) / quad_area;
+                float share = area_in_rect(q, vec2(x, y), vec2(x + 1, y + 1)) / quad_area;
                 if (share <= 0.0) continue;
                 vec4 first = texelFetch(receiver_positions, ivec3(x, y, int(l)), 0);
                 vec2 centre = (vec2(x, y) + 0.5) / size * 2.0 - 1.0;
                 float w = texel_solid_angle(centre, cl.caustic_plane);
                 if (!on_first_surface(first, p, d, w, cos_theta, length(half_u + half_v))) continue;
-                e += share * caustic_power(ivec2(x, y), l, size) * cos_theta / (w * d * d);
+                el += share * caustic_power(ivec2(x, y), l, size) * cos_theta / (w * d * d);
             }
         }
+        e += el * scale;
     }
     return e;
 }
