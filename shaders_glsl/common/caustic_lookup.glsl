@@ -59,6 +59,17 @@ bool on_first_surface(vec4 first, vec3 p, float d, float w, float cos_theta, flo
     return first.w >= 0.5 && distance(first.xyz, p) <= reach + 2.0 * across / max(cos_theta, 0.1);
 }
 
+// The irradiance base-resolution texel `texel` of light `l`'s caustic map gives point `p` (`d`
+// from the light, its normal at `cos_theta` to it), or none where `p` is not on the first
+// surface the light sees there (`reach`: see `on_first_surface`).
+vec3 texel_irradiance(CausticLight cl, uint l, ivec2 texel, vec3 p, float d, float cos_theta, float reach) {
+    vec4 first = texelFetch(receiver_positions, ivec3(texel, int(l)), 0);
+    vec2 centre = (vec2(texel) + 0.5) / cl.caustic_plane.y * 2.0 - 1.0;
+    float w = texel_solid_angle(centre, cl.caustic_plane);
+    if (!on_first_surface(first, p, d, w, cos_theta, reach)) return vec3(0.0);
+    return caustic_power(texel, l, cl.caustic_plane.y) * cos_theta / (w * d * d);
+}
+
 vec3 caustic_irradiance(vec3 p, vec3 n) {
     vec3 e = vec3(0.0);
     for (uint l = 0u; l < caustics.settings.x; ++l) {
@@ -67,14 +78,10 @@ vec3 caustic_irradiance(vec3 p, vec3 n) {
         if (!caustic_map_ndc(cl, p, ndc)) continue;
         if (any(greaterThan(abs(ndc), vec2(1.0)))) continue;
         ivec2 texel = ivec2(clamp((ndc * 0.5 + 0.5) * cl.caustic_plane.y, vec2(0.0), vec2(cl.caustic_plane.y - 1.0)));
-        vec4 first = texelFetch(receiver_positions, ivec3(texel, int(l)), 0);
         vec3 to_light = cl.position.xyz - p;
         float d = length(to_light);
         float cos_theta = max(dot(n, to_light / d), 0.0);
-        vec2 centre = (vec2(texel) + 0.5) / cl.caustic_plane.y * 2.0 - 1.0;
-        float w = texel_solid_angle(centre, cl.caustic_plane);
-        if (!on_first_surface(first, p, d, w, cos_theta, 0.0)) continue;
-        e += caustic_power(texel, l, cl.caustic_plane.y) * cos_theta / (w * d * d);
+        e += texel_irradiance(cl, l, texel, p, d, cos_theta, 0.0);
     }
     return e;
 }
@@ -154,16 +161,12 @@ vec3 caustic_irradiance_over(vec3 p, vec3 half_u, vec3 half_v, vec3 n) {
         float inside = area_in_rect(q, vec2(0.0), vec2(size));
         float read = area_in_rect(q, vec2(t0), vec2(t1 + 1));
         float scale = read > 0.0 ? inside / read : 0.0;
+        float reach = length(half_u + half_v);
         vec3 el = vec3(0.0);
         for (int y = t0.y; y <= t1.y; ++y) {
             for (int x = t0.x; x <= t1.x; ++x) {
                 float share = area_in_rect(q, vec2(x, y), vec2(x + 1, y + 1)) / quad_area;
-                if (share <= 0.0) continue;
-                vec4 first = texelFetch(receiver_positions, ivec3(x, y, int(l)), 0);
-                vec2 centre = (vec2(x, y) + 0.5) / size * 2.0 - 1.0;
-                float w = texel_solid_angle(centre, cl.caustic_plane);
-                if (!on_first_surface(first, p, d, w, cos_theta, length(half_u + half_v))) continue;
-                el += share * caustic_power(ivec2(x, y), l, size) * cos_theta / (w * d * d);
+                if (share > 0.0) el += share * texel_irradiance(cl, l, ivec2(x, y), p, d, cos_theta, reach);
             }
         }
         e += el * scale;
