@@ -8,7 +8,7 @@ use super::{
 use crate::input_error;
 use glam::Vec3;
 use std::fmt::Display;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Largest resolution accepted for images and maps.
 pub const MAX_RESOLUTION: u32 = 16384;
@@ -23,6 +23,16 @@ pub(super) struct Ctx<'a> {
 impl Ctx<'_> {
     pub(super) fn err(&self, key: &str, msg: impl Display) -> anyhow::Error {
         anyhow::Error::new(input_error!("{}: key `{key}`: {msg}", self.file.display()))
+    }
+
+    /// The file `name` relative to the scene file's folder (key `key`); an error saying that
+    /// the `what` is not found unless it is a file.
+    pub(super) fn beside(&self, key: &str, name: &str, what: &str) -> anyhow::Result<PathBuf> {
+        let path = self.file.parent().unwrap_or(Path::new("")).join(name);
+        if !path.is_file() {
+            return Err(self.err(key, format!("{what} {} not found", path.display())));
+        }
+        Ok(path)
     }
 
     pub(super) fn finite(&self, key: &str, v: f32) -> anyhow::Result<f32> {
@@ -187,16 +197,7 @@ fn build_light(ctx: &Ctx, key: &str, l: &schema::LightDef) -> anyhow::Result<Lig
             }
             let texture = match &l.texture {
                 None => None,
-                Some(t) => {
-                    let dir = ctx.file.parent().unwrap_or(Path::new(""));
-                    let p = dir.join(t);
-                    if !p.is_file() {
-                        return Err(
-                            ctx.err(&format!("{key}.texture"), format!("texture file {} not found", p.display()))
-                        );
-                    }
-                    Some(p)
-                }
+                Some(t) => Some(ctx.beside(&format!("{key}.texture"), t, "texture file")?),
             };
             LightKind::Spot { direction: d.normalize(), cone_angle_deg: a, texture }
         }

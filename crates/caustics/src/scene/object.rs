@@ -125,10 +125,7 @@ pub(super) fn build_object(
         ShapeType::Water => {
             let file =
                 o.file.as_deref().ok_or_else(|| ctx.err(&k("file"), "required for shape \"water\" (a pool scene)"))?;
-            let path = ctx.file.parent().unwrap_or(std::path::Path::new("")).join(file);
-            if !path.is_file() {
-                return Err(ctx.err(&k("file"), format!("pool scene {} not found", path.display())));
-            }
+            let path = ctx.beside(&k("file"), file, "pool scene")?;
             let pool = super::Scene::load(&path).map_err(|e| ctx.err(&k("file"), format!("{e:#}")))?.pool.ok_or_else(
                 || ctx.err(&k("file"), format!("{} has no [pool] to take the water's surface from", path.display())),
             )?;

@@ -185,13 +185,7 @@ pub(super) fn build_pool(ctx: &Ctx, p: &PoolDef) -> anyhow::Result<PoolSpec> {
     }
     let light_texture = match &p.light_texture {
         None => None,
-        Some(t) => {
-            let path = ctx.file.parent().unwrap_or(std::path::Path::new("")).join(t);
-            if !path.is_file() {
-                return Err(ctx.err(&key("light_texture"), format!("texture file {} not found", path.display())));
-            }
-            Some(path)
-        }
+        Some(t) => Some(ctx.beside(&key("light_texture"), t, "texture file")?),
     };
     let scattering = positive("scattering", p.scattering)?;
     let exponent = p.exponent.unwrap_or(2.0 * scattering);
