@@ -5,17 +5,14 @@
 //! layer on.
 
 use caustics::image_io::ImageF32;
-use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
 use glam::DVec3;
-use std::path::PathBuf;
 
 mod common;
-use common::context;
+use common::{render_dumps, shipped};
 
 fn scene(technique: &str, refractions: &str) -> Scene {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
-    let mut s = Scene::load(&p).expect("shipped scene");
+    let mut s = shipped("sphere_on_plane.toml");
     s.caustics.technique = technique.parse().expect("a known name");
     s.caustics.refractions = refractions.parse().expect("a known name");
     s.caustics.photons = 64;
@@ -25,13 +22,7 @@ fn scene(technique: &str, refractions: &str) -> Scene {
 }
 
 fn photon_buffer(scene: &Scene) -> ImageF32 {
-    let (ctx, sh) = context();
-    let mut r = Renderer::new(&ctx, &sh, scene, &RendererOptions::default()).expect("renderer");
-    r.frame(FrameStep::default()).expect("frame");
-    let mut dumps = r.dumps(&["photon_buffer".to_string()]).expect("dumps");
-    let log = ctx.validation_log();
-    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
-    dumps.remove(0).1
+    render_dumps(scene, 1, &["photon_buffer"]).remove(0).1
 }
 
 /// Snell's law for the unit direction `v` entering through the unit normal `n` (against `v`)

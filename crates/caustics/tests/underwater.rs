@@ -19,16 +19,13 @@
 use caustics::compare::compare;
 use caustics::image_io::ImageF32;
 use caustics::reference::{trace_reference, ReferenceOptions};
-use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
-use std::path::PathBuf;
 
 mod common;
-use common::context;
+use common::{render_dumps, shipped};
 
 fn scene(technique: &str) -> Scene {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/underwater.toml");
-    let mut s = Scene::load(&p).expect("shipped scene");
+    let mut s = shipped("underwater.toml");
     s.caustics.technique = technique.parse().expect("a known name");
     s.caustics.photons = 512;
     s.caustics.caustic_map_resolution = 1024;
@@ -41,13 +38,7 @@ fn scene(technique: &str) -> Scene {
 }
 
 fn receiver(scene: &Scene) -> ImageF32 {
-    let (ctx, sh) = context();
-    let mut r = Renderer::new(&ctx, &sh, scene, &RendererOptions::default()).expect("renderer");
-    r.frame(FrameStep::default()).expect("frame");
-    let mut dumps = r.dumps(&["receiver".to_string()]).expect("dumps");
-    let log = ctx.validation_log();
-    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
-    dumps.remove(0).1
+    render_dumps(scene, 1, &["receiver"]).remove(0).1
 }
 
 /// The smallest and largest E/E0 of a receiver map's main layer (mean of R, G, B).

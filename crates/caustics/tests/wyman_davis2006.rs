@@ -25,7 +25,7 @@ use glam::{DVec2, DVec3, Mat4, Vec4};
 use std::path::PathBuf;
 
 mod common;
-use common::context;
+use common::{context, render_dumps as render};
 
 fn load(name: &str, technique: Technique, photons: u32) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{name}.toml"));
@@ -37,19 +37,6 @@ fn load(name: &str, technique: Technique, photons: u32) -> Scene {
     s.camera.width = 128;
     s.camera.height = 128;
     s
-}
-
-/// Renders `frames` frames of `scene` and returns the named dumps.
-fn render(scene: &Scene, frames: u32, names: &[&str]) -> Vec<(String, ImageF32)> {
-    let (ctx, sh) = context();
-    let mut r = Renderer::new(&ctx, &sh, scene, &RendererOptions::default()).expect("renderer");
-    for _ in 0..frames {
-        r.frame(FrameStep::default()).expect("frame");
-    }
-    let dumps = r.dumps(&names.iter().map(|s| s.to_string()).collect::<Vec<_>>()).expect("dumps");
-    let log = ctx.validation_log();
-    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
-    dumps
 }
 
 fn get<'a>(dumps: &'a [(String, ImageF32)], name: &str) -> &'a ImageF32 {

@@ -13,7 +13,6 @@
 //! every block whose four photons landed (checked to be over 10% more).
 
 use caustics::image_io::ImageF32;
-use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
 use caustics::techniques::wyman_davis2006::settings::{QuadLighting, Space};
 use caustics::techniques::Technique;
@@ -21,7 +20,7 @@ use glam::DVec3;
 use std::path::PathBuf;
 
 mod common;
-use common::context;
+use common::render_dumps;
 
 const STRIPS: usize = 11;
 const STRIP_WIDTH: f64 = 0.1;
@@ -129,12 +128,7 @@ fn map_power(cmap: &ImageF32) -> f64 {
 #[test]
 fn a_quad_spanning_two_surfaces_is_culled_and_one_on_a_single_surface_is_not() {
     let scene = scene();
-    let (ctx, sh) = context();
-    let mut r = Renderer::new(&ctx, &sh, &scene, &RendererOptions::default()).expect("renderer");
-    r.frame(FrameStep::default()).expect("frame");
-    let dumps = r.dumps(&["photon_buffer".to_string(), "caustic_map".to_string()]).expect("dumps");
-    let log = ctx.validation_log();
-    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+    let dumps = render_dumps(&scene, 1, &["photon_buffer", "caustic_map"]);
     let (kept, all) = predicted(&scene, &dumps[0].1);
     let held = map_power(&dumps[1].1);
     println!("caustic map {held:.5} W; blocks the rule keeps {kept:.5} W; every landed block {all:.5} W");

@@ -23,3 +23,19 @@ pub fn shipped(name: &str) -> Scene {
     let p = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes").join(name);
     Scene::load(&p).unwrap_or_else(|e| panic!("shipped scene {name}: {e:#}"))
 }
+
+/// Renders `frames` frames of `scene` on a fresh validated context and returns the named dumps,
+/// failing on any validation message.
+#[allow(dead_code)] // not every test crate that shares this module renders through it
+pub fn render_dumps(scene: &Scene, frames: u32, names: &[&str]) -> Vec<(String, caustics::image_io::ImageF32)> {
+    use caustics::render::{FrameStep, Renderer, RendererOptions};
+    let (ctx, sh) = context();
+    let mut r = Renderer::new(&ctx, &sh, scene, &RendererOptions::default()).expect("renderer");
+    for _ in 0..frames {
+        r.frame(FrameStep::default()).expect("frame");
+    }
+    let dumps = r.dumps(&names.iter().map(|s| s.to_string()).collect::<Vec<_>>()).expect("dumps");
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+    dumps
+}
