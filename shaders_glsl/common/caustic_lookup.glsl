@@ -4,10 +4,12 @@
 // area A = w d^2 / cos(theta) on the receiver (Wyman & Davis 2006, Eq. 5-8), so
 // E = power cos(theta) / (w d^2). A point receives a texel's light only if it is the first
 // diffuse surface the light sees there (the receiver-positions map, `on_first_surface`), like a
-// shadow map.
+// shadow map. With CAUSTIC_TUTORIAL_LOOKUP (`lookup = "tutorial"`), the caustics mapping
+// tutorial's lookup instead (`tutorial_lookup`).
 #ifndef CAUSTIC_LOOKUP_GLSL
 #define CAUSTIC_LOOKUP_GLSL
 #include "common/caustics.glsl"
+#include "common/lighting.glsl"
 layout(binding = CAUSTIC_MAP_BINDING) uniform sampler2DArray caustic_map;
 layout(binding = RECEIVER_POSITIONS_BINDING) uniform sampler2DArray receiver_positions;
 
@@ -70,6 +72,23 @@ vec3 texel_irradiance(CausticLight cl, uint l, ivec2 texel, vec3 p, float d, flo
     return caustic_power(texel, l, cl.caustic_plane.y) * cos_theta / (w * d * d);
 }
 
+// The light that caustic irradiance `e` from light `l` at `p` (normal `n`) adds. Physical: `e`.
+// The tutorial's lookup (its get_caustics and psDiffuse): the Lambert term of the light, unshadowed,
+// times pow(c, 1.3), c the caustic map's value. The tutorial's map holds 1000 * (4 / g_ppRes) per
+// photon (a light intensity over the grid's resolution), a scale with no unit tuned by sliders; here c is e over the light's
+// unoccluded irradiance E0, the light-space concentration P / (w I) (a texel's power over the
+// power the light sends through its solid angle w directly), which is 1 where the caustic is as
+// bright as the light unrefracted: the physical lookup is E0 c, the tutorial's E0 pow(c, 1.3).
+vec3 tutorial_lookup(uint l, vec3 e, vec3 p, vec3 n) {
+    vec3 e0 = unoccluded_irradiance(l, p, n);
+    vec3 c = vec3(e0.r > 0.0 ? e.r / e0.r : 0.0, e0.g > 0.0 ? e.g / e0.g : 0.0, e0.b > 0.0 ? e.b / e0.b : 0.0);
+    return e0 * pow(c, vec3(1.3));
+}
+
+vec3 looked_up(uint l, vec3 e, vec3 p, vec3 n) {
+    return (caustics.settings.w & CAUSTIC_TUTORIAL_LOOKUP) != 0u ? tutorial_lookup(l, e, p, n) : e;
+}
+
 vec3 caustic_irradiance(vec3 p, vec3 n) {
     vec3 e = vec3(0.0);
     for (uint l = 0u; l < caustics.settings.x; ++l) {
@@ -81,7 +100,7 @@ vec3 caustic_irradiance(vec3 p, vec3 n) {
         vec3 to_light = cl.position.xyz - p;
         float d = length(to_light);
         float cos_theta = max(dot(n, to_light / d), 0.0);
-        e += texel_irradiance(cl, l, texel, p, d, cos_theta, 0.0);
+        e += looked_up(l, texel_irradiance(cl, l, texel, p, d, cos_theta, 0.0), p, n);
     }
     return e;
 }
@@ -169,7 +188,7 @@ vec3 caustic_irradiance_over(vec3 p, vec3 half_u, vec3 half_v, vec3 n) {
                 if (share > 0.0) el += share * texel_irradiance(cl, l, ivec2(x, y), p, d, cos_theta, reach);
             }
         }
-        e += el * scale;
+        e += looked_up(l, el * scale, p, n);
     }
     return e;
 }

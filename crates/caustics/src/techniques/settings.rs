@@ -6,7 +6,7 @@
 //! - [`CausticSettings::validate_combination`]: a setting that belongs to some techniques only
 //!   (`only Hcm`) is refused, with its key, for the others.
 
-use super::shah2007::settings::Refractions;
+use super::shah2007::settings::{Lookup, Refractions};
 use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath, TraversalPath};
 use super::technique::Technique;
 use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNEL};
@@ -98,6 +98,13 @@ caustic_settings! {
     /// shah, shah-vertex: refract into and out of the object (two, default) or once where the
     /// light meets it, as the caustics mapping tutorial does (one).
     refractions: Refractions = Refractions::Two, only Shah | ShahVertex;
+    /// shah, shah-vertex: how the caustic map becomes light, physical (irradiance, the default)
+    /// or the tutorial's `diffuse * pow(caustic, 1.3)` (tutorial).
+    lookup: Lookup = Lookup::Physical, only Shah | ShahVertex;
+    /// shah, shah-vertex: the caustics mapping tutorial as written, true or false (default):
+    /// sets refractions = one, iterations = 1 and lookup = tutorial wherever the same table or
+    /// command line leaves them unset; a contrary value of any of them is refused.
+    faithful: bool = false, only Shah | ShahVertex;
     /// Fresnel transmittance at both interfaces (true/false); default true.
     fresnel: bool = true;
     /// Refinements of the photon's exit point against the light-space back faces, 0..=16; 0 is
@@ -199,6 +206,12 @@ impl CausticOverrides {
     /// Settings that follow from others set in the same table or command line: `max_level`
     /// without `photons` sets `photons` to 64 × 2^max_level.
     fn apply_derived(&self, s: &mut CausticSettings) {
+        if self.faithful == Some(true) {
+            let (refractions, iterations, lookup) = CausticSettings::TUTORIAL;
+            s.refractions = self.refractions.unwrap_or(refractions);
+            s.iterations = self.iterations.unwrap_or(iterations);
+            s.lookup = self.lookup.unwrap_or(lookup);
+        }
         if let (Some(Some(level)), None) = (self.max_level, self.photons) {
             if level <= wn2009::MAX_LEVEL {
                 s.photons = wn2009::TOP_PHOTONS << level;
@@ -208,6 +221,11 @@ impl CausticOverrides {
 }
 
 impl CausticSettings {
+    /// What `faithful = true` means (the caustics mapping tutorial): one refraction, where the
+    /// light meets the object (its `psIntersectPts`); rayGeo with 1 iteration (`num_iter`); and
+    /// its `psDiffuse` lookup.
+    pub const TUTORIAL: (Refractions, u32, Lookup) = (Refractions::One, 1, Lookup::Tutorial);
+
     /// The geometry buffers' side for technique `adaptive`: gbuffer_scale × the caustic map's
     /// resolution (Wyman & Nichols 2009 Sec. 3.2).
     pub fn gbuffer_side(&self) -> u32 {
@@ -269,13 +287,28 @@ impl CausticSettings {
         let bad = |k: &str, msg: String| -> anyhow::Result<()> {
             Err(crate::input_error!("{origin}: key `{key}{k}` (or flag --{}): {msg}", k.replace('_', "-")).into())
         };
-        if let Some((k, value)) = self.foreign_settings().first() {
+        // `faithful` sets other keys, which would be foreign too: it is the one to name.
+        let foreign = self.foreign_settings();
+        if let Some((k, value)) = foreign.iter().find(|(k, _)| *k == "faithful").or(foreign.first()) {
             let owners: Vec<&str> = Self::OWNED
                 .iter()
                 .find(|(name, _)| name == k)
                 .map(|(_, t)| t.iter().map(|t| t.name()).collect())
                 .unwrap_or_default();
             bad(k, format!("`{value}` is a setting of technique {}, not of `{}`", owners.join(", "), self.technique))?;
+        }
+        if self.faithful {
+            let (refractions, iterations, lookup) = Self::TUTORIAL;
+            let contrary = [
+                ("refractions", self.refractions != refractions, shown(&self.refractions)),
+                ("iterations", self.iterations != iterations, shown(&self.iterations)),
+                ("lookup", self.lookup != lookup, shown(&self.lookup)),
+            ];
+            if let Some((k, _, value)) = contrary.iter().find(|c| c.1) {
+                let tutorial =
+                    format!("refractions = \"{refractions}\", iterations = {iterations}, lookup = \"{lookup}\"");
+                bad(k, format!("`{value}` contradicts faithful = true (the tutorial's {tutorial}): set faithful = false to mix"))?;
+            }
         }
         if self.photon_fov != CausticSettings::default().photon_fov && self.photon_view != PhotonView::FixedFov {
             bad(

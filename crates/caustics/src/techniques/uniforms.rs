@@ -6,7 +6,7 @@ use super::shared::{Intersect, PhotonView, SplatKernel};
 use crate::gpu::setup::perspective;
 use crate::gpu::MAX_LIGHTS;
 use crate::scene::{Light, LightKind, MaterialKind, Scene};
-use crate::techniques::shah2007::settings::Refractions;
+use crate::techniques::shah2007::settings::{Lookup, Refractions};
 use crate::techniques::wyman2008::settings::VaryingRadius;
 use crate::techniques::wyman_davis2006::{self, settings::Reflection};
 use crate::techniques::CausticSettings;
@@ -41,6 +41,7 @@ pub const FLAG_BEAM_AREA: u32 = 4;
 pub const FLAG_EYE_SPACE: u32 = 8;
 pub const FLAG_REFLECTION_PLANE: u32 = 16;
 pub const FLAG_ONE_REFRACTION: u32 = 32;
+pub const FLAG_TUTORIAL_LOOKUP: u32 = 64;
 
 const _: () = assert!(std::mem::size_of::<CausticLightUniforms>() == 2 * 64 + 4 * 16);
 const _: () = assert!(std::mem::size_of::<CausticUniforms>() == 48 + MAX_LIGHTS * 192);
@@ -107,7 +108,8 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
         | if settings.varying_radius == VaryingRadius::BeamArea { FLAG_BEAM_AREA } else { 0 }
         | if settings.eye_space() { FLAG_EYE_SPACE } else { 0 }
         | if settings.reflection == Reflection::Plane { FLAG_REFLECTION_PLANE } else { 0 }
-        | if settings.refractions == Refractions::One { FLAG_ONE_REFRACTION } else { 0 };
+        | if settings.refractions == Refractions::One { FLAG_ONE_REFRACTION } else { 0 }
+        | if settings.lookup == Lookup::Tutorial { FLAG_TUTORIAL_LOOKUP } else { 0 };
     u.settings = [0, settings.photons, settings.iterations, flags];
     u.splat = [
         settings.splat_radius,
@@ -256,5 +258,6 @@ mod tests {
         assert!(src.contains(&format!("#define CAUSTIC_EYE_SPACE {FLAG_EYE_SPACE}u")));
         assert!(src.contains(&format!("#define CAUSTIC_REFLECTION_PLANE {FLAG_REFLECTION_PLANE}u")));
         assert!(src.contains(&format!("#define CAUSTIC_ONE_REFRACTION {FLAG_ONE_REFRACTION}u")));
+        assert!(src.contains(&format!("#define CAUSTIC_TUTORIAL_LOOKUP {FLAG_TUTORIAL_LOOKUP}u")));
     }
 }

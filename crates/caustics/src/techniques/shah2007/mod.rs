@@ -13,8 +13,8 @@
 //! into and out of the object (the tutorial once, where the light meets it: `refractions =
 //! "one"`), rayGeo runs 4 iterations (the tutorial 1: `iterations = 1`), and the caustic map
 //! holds power that the lookup turns into irradiance (the tutorial shades with
-//! `diffuse * pow(caustic, 1.3)` on top of the diffuse term, a display curve on map values of
-//! no unit, not reproduced).
+//! `diffuse * pow(caustic, 1.3)` on top of the diffuse term: `lookup = "tutorial"`,
+//! `common/caustic_lookup.glsl`'s `tutorial_lookup`). `faithful = true` sets all three.
 
 pub mod settings;
 pub use settings::{PAPER, VERTEX_PHOTON_FEATURES};

@@ -23,3 +23,17 @@ value_enum! {
         One = "one",
     }
 }
+
+value_enum! {
+    /// How the final render and the receiver map turn the caustic map into light
+    /// (`caustics.lookup`, `--lookup`).
+    pub enum Lookup {
+        /// The map's power per texel over the texel's footprint: irradiance in W/m²
+        /// (`shaders_glsl/common/caustic_lookup.glsl`), causticlab's choice.
+        Physical = "physical",
+        /// The tutorial's `psDiffuse`: the Lambert term times (1 + pow(c, 1.3)), c the map's
+        /// value; causticlab's c is the caustic irradiance over the light's unoccluded
+        /// irradiance (see `docs/papers.md`).
+        Tutorial = "tutorial",
+    }
+}
