@@ -183,6 +183,26 @@ impl Bvh {
         Bvh { nodes, triangles, edges, depth: max_depth }
     }
 
+    /// The hierarchy as the GPU photon tracer reads it (`shaders_glsl/photon_trace/bvh.glsl`):
+    /// per node `[min xyz, first, max xyz, count]` and per triangle `[v0 xyz, object, e1 xyz, 0,
+    /// e2 xyz, 0]`, the integers' bits stored in the `f32` slots (the shader declares them
+    /// `uint`), in this BVH's order.
+    pub fn flattened(&self) -> (Vec<[f32; 8]>, Vec<[f32; 12]>) {
+        let bits = f32::from_bits;
+        let nodes = self
+            .nodes
+            .iter()
+            .map(|n| [n.min.x, n.min.y, n.min.z, bits(n.first), n.max.x, n.max.y, n.max.z, bits(n.count)])
+            .collect();
+        let triangles = self
+            .triangles
+            .iter()
+            .zip(&self.edges)
+            .map(|(t, [v0, e1, e2])| [v0.x, v0.y, v0.z, bits(t.object), e1.x, e1.y, e1.z, 0.0, e2.x, e2.y, e2.z, 0.0])
+            .collect();
+        (nodes, triangles)
+    }
+
     /// Triangle `i` of the BVH's reordered list (the index reported in [`Hit::triangle`]).
     pub fn triangle(&self, i: u32) -> &Triangle {
         &self.triangles[i as usize]

@@ -50,6 +50,8 @@ stages! {
     /// Shah et al.'s photons per vertex, the buffer cleared first.
     VertexPhotonsClear => "vertex_photons.clear",
     VertexPhotons => "vertex_photons",
+    /// `photon-trace`: photons traced through the scene's BVH into the photon buffer.
+    PhotonTrace => "photon_trace",
     /// Deferred caustic maps (Wyman & Nichols 2009 Fig. 10): the light-space geometry buffers,
     /// then the full-screen pass writing the photon buffer.
     DeferredPhotonsGeometry => "deferred_photons.geometry",

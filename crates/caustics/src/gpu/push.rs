@@ -24,6 +24,21 @@ push_constants! {
 }
 
 push_constants! {
+    /// The GPU photon tracer (`photon_trace/trace.comp`).
+    pub struct PhotonTraceConstants {
+        /// xyz centre, w radius: the specular objects' bounding sphere.
+        pub sphere: [f32; 4],
+        pub light: u32,
+        pub seed: u32,
+        pub max_bounces: u32,
+        /// `PHOTON_TRACE_*`.
+        pub flags: u32,
+        /// Ray offset against self-intersection (world units).
+        pub eps: f32,
+    }
+}
+
+push_constants! {
     /// The point splat (`shared/splat.vert`).
     pub struct SplatConstants {
         pub light: u32,
@@ -178,6 +193,11 @@ mod tests {
             ("wyman_nichols2009/light_geometry.geom", &[]),
             ("wyman_nichols2009/light_geometry.frag", &[]),
         ]);
+    }
+
+    #[test]
+    fn photon_trace_constants() {
+        check::<PhotonTraceConstants>(&[("photon_trace/trace.comp", &[])]);
     }
 
     #[test]

@@ -174,6 +174,14 @@ impl<'c> MeshRenderer<'c> {
         }
         for (i, ((obj, old), mesh)) in scene.objects.iter().zip(&self.scene.objects).zip(&self.meshes).enumerate() {
             if obj.mesh.positions != old.mesh.positions || obj.mesh.normals != old.mesh.normals {
+                if self.scene.caustics.technique == crate::techniques::Technique::PhotonTrace {
+                    return Err(crate::input_error!(
+                        "technique photon-trace: object `{}` moves, and the tracer's BVH is built once, when the \
+                         renderer is made (moving objects are not supported yet)",
+                        obj.name
+                    )
+                    .into());
+                }
                 self.photons_ready = false;
                 if self.slots.is_some() {
                     // A throughput frame copies it from its slot's staging buffer.
@@ -437,7 +445,7 @@ impl<'c> MeshRenderer<'c> {
     /// of the light's view that the photon view spends on photons (Wyman & Nichols 2009 Table 1).
     /// `read`: the `photon_buffer` dump where the caller read it already (it is not read again).
     pub fn valid_photons(&mut self, read: Option<&ImageF32>) -> Result<Option<u64>> {
-        if !self.active || !self.scene.caustics.technique.has_photon_buffer() {
+        if !self.active || !self.scene.caustics.technique.writes_photon_buffer() {
             return Ok(None);
         }
         if let Some(img) = read {

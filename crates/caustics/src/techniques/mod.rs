@@ -9,6 +9,7 @@
 //! | `adaptive` | Wyman & Nichols 2009 Sec. 3.2-4.2, adaptive caustic maps | [`wyman_nichols2009`] |
 //! | (`--refraction deferred`, any technique) | Wyman & Nichols 2009 Sec. 3.1, deferred refraction | [`wyman_nichols2009`] |
 //! | `pool-convolution` | Trendall & Stewart 2000, pool caustics as convolutions | [`trendall_stewart2000`] |
+//! | `photon-trace` | beyond the papers: exact photon tracing on the GPU | [`photon_trace`] |
 //!
 //! Stages that several papers share (photon emission, the point and compute splats, the
 //! caustic-map targets and uniforms) are in [`shared`]; a technique is a choice of a photon
@@ -18,6 +19,7 @@
 //! receiver (Wyman & Davis 2006, Eq. 5-8).
 
 mod mirrored;
+pub mod photon_trace;
 pub mod settings;
 pub mod shah2007;
 pub mod shared;

@@ -185,6 +185,15 @@ caustic_settings! {
     /// Sec. 4.3, Fig. 8's overhead of batches), 1..=256; default 1 (batches only where the
     /// photon_memory_limit needs them). More are used where the limit needs more.
     photon_batches: u32 = 1, only Adaptive;
+    /// photon-trace: the seed of its photons' jitter and Russian roulette (the same seed, the
+    /// same photons); default 1.
+    seed: u32 = 1, only PhotonTrace;
+    /// photon-trace: the most specular interactions a photon may have before it is dropped,
+    /// 1..=64; default 8 (the CPU reference's).
+    max_bounces: u32 = 8, only PhotonTrace;
+    /// photon-trace with Fresnel: trace the light a refractive object reflects off its outside
+    /// (true, the physics, default) or drop it (false: what the image-space techniques draw).
+    outside_reflection: bool = true, only PhotonTrace;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.
     precision: Precision = Precision::Float, only PoolConvolution;
@@ -263,6 +272,7 @@ impl CausticSettings {
             Technique::Hcm => [shared::settings::DUMPS, wyman2008::settings::DUMPS].concat(),
             // No photon buffer: photons come from the geometry buffers (Wyman & Nichols 2009 Sec. 3.2).
             Technique::Adaptive => [&["receiver_positions", "caustic_map"], wn2009::ADAPTIVE_DUMPS].concat(),
+            Technique::PhotonTrace => super::photon_trace::settings::DUMPS.to_vec(),
             _ => shared::settings::DUMPS.to_vec(),
         };
         if self.technique.has_photon_buffer() && self.photon_refraction == Refraction::Deferred {
@@ -412,6 +422,10 @@ impl CausticSettings {
         }
         if self.technique == Technique::Adaptive {
             self.validate_adaptive(&bad)?;
+        }
+        if !(1..=super::photon_trace::settings::MAX_BOUNCES).contains(&self.max_bounces) {
+            let most = super::photon_trace::settings::MAX_BOUNCES;
+            bad("max_bounces", format!("must be between 1 and {most}, got {}", self.max_bounces))?;
         }
         if !(1..=64).contains(&self.iterations) {
             bad("iterations", format!("must be between 1 and 64, got {}", self.iterations))?;

@@ -5,7 +5,7 @@
 use super::settings::CausticSettings;
 use super::shared::settings::Intersect;
 use super::wyman_davis2006::settings::Space;
-use super::{shah2007, trendall_stewart2000, value_enum, wyman2008, wyman_davis2006, wyman_nichols2009};
+use super::{photon_trace, shah2007, trendall_stewart2000, value_enum, wyman2008, wyman_davis2006, wyman_nichols2009};
 use vkcore::Feature;
 
 value_enum::value_enum! {
@@ -33,6 +33,9 @@ value_enum::value_enum! {
         Adaptive = "adaptive",
         /// Trendall & Stewart 2000: pool caustics as three convolutions (pool scenes only).
         PoolConvolution = "pool-convolution",
+        /// Beyond the papers: photons traced exactly through a BVH of the scene by a compute
+        /// shader, splatted into the caustic map.
+        PhotonTrace = "photon-trace",
     }
 }
 
@@ -48,6 +51,7 @@ impl Technique {
             Technique::Hcm => wyman2008::settings::PAPER,
             Technique::Adaptive => wyman_nichols2009::settings::PAPER,
             Technique::PoolConvolution => trendall_stewart2000::settings::PAPER,
+            Technique::PhotonTrace => photon_trace::settings::PAPER,
         }
     }
 
@@ -67,8 +71,19 @@ impl Technique {
             | Technique::WdQuads
             | Technique::WdGather
             | Technique::Hcm => true,
-            Technique::None | Technique::ShahVertex | Technique::Adaptive | Technique::PoolConvolution => false,
+            Technique::PhotonTrace
+            | Technique::None
+            | Technique::ShahVertex
+            | Technique::Adaptive
+            | Technique::PoolConvolution => false,
         }
+    }
+
+    /// Whether its photons end in a photon buffer (position, direction, power per texel) that
+    /// the `photon_buffer` dump reads: the light-space photon buffer's techniques and
+    /// `photon-trace`, which traces its photons into the same layout.
+    pub fn writes_photon_buffer(self) -> bool {
+        self.has_photon_buffer() || self == Technique::PhotonTrace
     }
 
     /// Whether the technique renders the scene's meshes (every technique but `pool-convolution`,
@@ -86,9 +101,12 @@ impl Technique {
             | Technique::WdGather
             | Technique::Hcm
             | Technique::Adaptive => Intersect::WdDepthSearch,
-            Technique::None | Technique::Shah | Technique::ShahVertex | Technique::PoolConvolution => {
-                Intersect::ShahIterative
-            }
+            // photon-trace intersects the scene's triangles exactly, never a light-space map.
+            Technique::None
+            | Technique::Shah
+            | Technique::ShahVertex
+            | Technique::PoolConvolution
+            | Technique::PhotonTrace => Intersect::ShahIterative,
         }
     }
 
@@ -104,7 +122,7 @@ impl Technique {
         match self {
             Technique::None => &[Feature::ShaderOutputLayer],
             // Splats are points wider than one pixel.
-            Technique::Shah | Technique::WdPoints | Technique::Hcm => {
+            Technique::Shah | Technique::WdPoints | Technique::Hcm | Technique::PhotonTrace => {
                 &[Feature::ShaderOutputLayer, Feature::LargePoints]
             }
             Technique::ShahVertex => shah2007::settings::VERTEX_PHOTON_FEATURES,
@@ -144,6 +162,7 @@ impl Technique {
             | Technique::WdQuads
             | Technique::WdGather
             | Technique::Hcm
+            | Technique::PhotonTrace
             // Adaptive: the photon grid's, those of the dense buffer it stands in for.
             | Technique::Adaptive => settings.photons as u64 * settings.photons as u64,
         }

@@ -11,6 +11,7 @@
 //! | `wd-eye-points`, `wd-quads`, `wd-gather` | `Rasterized` (or `Deferred`) | `Dense` | `ImageSpace` |
 //! | `hcm` | `Rasterized` (or `Deferred`) | `Hierarchy` | `Points` or `Compute` |
 //! | `adaptive` | `GeometryBuffers` | `Adaptive` | `Points` or `Compute` |
+//! | `photon-trace` | `Traced` | `Dense` | `Points` or `Compute` |
 
 mod deposit;
 mod dumps;

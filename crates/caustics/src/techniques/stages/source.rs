@@ -3,6 +3,7 @@
 use crate::gpu::GpuMesh;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
+use crate::techniques::photon_trace::PhotonTracer;
 use crate::techniques::shah2007::VertexPhotons;
 use crate::techniques::shared::{photon_buffer, CausticPasses};
 use crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP;
@@ -28,6 +29,8 @@ pub enum Source {
     /// them (Wyman & Nichols 2009 Sec. 3.2): the geometry buffers are the traversal's
     /// (`super::Selection::Adaptive`), drawn by its first pass; this stage draws the receivers.
     GeometryBuffers,
+    /// Photons traced exactly through the scene's BVH (`photon-trace`, beyond the papers).
+    Traced(PhotonTracer),
 }
 
 impl Source {
@@ -36,6 +39,7 @@ impl Source {
         Ok(match s.technique {
             Technique::ShahVertex => Source::PerVertex(VertexPhotons::new(ctx, sh, scene)?),
             Technique::Adaptive => Source::GeometryBuffers,
+            Technique::PhotonTrace => Source::Traced(PhotonTracer::new(ctx, sh, scene, meshes)?),
             t if t.has_photon_buffer() && s.photon_refraction == Refraction::Deferred => {
                 Source::Deferred(DeferredPhotons::new(ctx, sh, s.photons, meshes)?)
             }
@@ -61,6 +65,7 @@ impl Source {
                 vp.record(f, c, l)
             }
             Source::GeometryBuffers => photon_buffer::record_receiver_positions(f, c, l),
+            Source::Traced(tracer) => tracer.record(f, c, l),
         }
     }
 
@@ -74,7 +79,7 @@ impl Source {
                 "photon_back_faces" => Some(d.dump_back_faces(ctx)?),
                 _ => None,
             },
-            Source::Rasterized | Source::PerVertex(_) | Source::GeometryBuffers => None,
+            Source::Rasterized | Source::PerVertex(_) | Source::GeometryBuffers | Source::Traced(_) => None,
         })
     }
 
@@ -84,6 +89,8 @@ impl Source {
         match self {
             Source::Deferred(_) => true,
             Source::Rasterized | Source::PerVertex(_) | Source::GeometryBuffers => name != DEFERRED_PHOTONS_DUMP,
+            // No back faces: photons cross the refractors' triangles themselves.
+            Source::Traced(_) => !matches!(name, DEFERRED_PHOTONS_DUMP | "photon_back_faces"),
         }
     }
 }

@@ -1,0 +1,140 @@
+//! `photon-trace`, beyond the papers: photons traced exactly on the GPU, the modern baseline the
+//! image-space techniques approximate (screen-space photon mapping, ray-guided water caustics).
+//! A compute shader (`shaders_glsl/photon_trace/trace.comp`) emits each light's photons over
+//! the cone that subtends the specular objects (stratified and seeded, each with the power a
+//! photon-buffer texel would carry: I(w) Omega / N²) and traces them through a bounding volume
+//! hierarchy of every triangle in the scene, the CPU reference's own [`Bvh`] flattened and
+//! uploaded, with the reference's physics (`crate::reference`): exact Snell about the smooth
+//! normal, Fresnel by Russian roulette and total internal reflection, mirrors, up to
+//! `max_bounces` interactions. Where a photon first reaches a diffuse surface it is written into
+//! the photon buffer, whose points the existing deposit stages splat into the caustic map.
+//!
+//! The BVH is built once, when the renderer is made: a pose that moves a mesh is refused
+//! (`Renderer::set_pose`). The hardware ray-tracing path (ray queries) would be another source
+//! beside this one; lavapipe has none.
+
+pub mod settings;
+
+use super::shared::photon_buffer::record_receiver_positions;
+use super::shared::CausticPasses;
+use super::uniforms::specular_bounds;
+use crate::bvh::{Bvh, Triangle};
+use crate::gpu::{GpuMesh, PhotonTraceConstants, Stage, MATERIAL_REFRACTIVE};
+use crate::scene::Scene;
+use anyhow::Result;
+use vkcore::{Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler};
+
+/// `PHOTON_TRACE_OUTSIDE_REFLECTION` in trace.comp.
+const FLAG_OUTSIDE_REFLECTION: u32 = 1;
+/// `PHOTON_TRACE_DISPERSIVE`: a material's IORs differ between channels.
+const FLAG_DISPERSIVE: u32 = 2;
+
+/// The tracer's pipeline and the scene as it reads it.
+pub struct PhotonTracer {
+    pipeline: Pipeline,
+    nodes: Buffer,
+    triangles: Buffer,
+    /// Per BVH triangle, its mesh's vertex normals at the three corners.
+    normals: Buffer,
+    /// Per object: material, IOR, colour (trace.comp's `Objects`).
+    objects: Buffer,
+    constants: PhotonTraceConstants,
+}
+
+impl PhotonTracer {
+    /// Builds the BVH of `scene`'s triangles and uploads it with the objects' materials
+    /// (`meshes`, uploaded from `scene`).
+    pub fn new(ctx: &Context, sh: &ShaderCompiler, scene: &Scene, meshes: &[GpuMesh]) -> Result<PhotonTracer> {
+        let s = &scene.caustics;
+        let mut tris = Vec::with_capacity(scene.triangle_count());
+        for (oi, obj) in scene.objects.iter().enumerate() {
+            let p = &obj.mesh.positions;
+            for (pi, [a, b, c]) in obj.mesh.triangles().enumerate() {
+                tris.push(Triangle { v: [p[a], p[b], p[c]], object: oi as u32, prim: pi as u32 });
+            }
+        }
+        let bvh = Bvh::build(tris);
+        if bvh.depth() > settings::MAX_BVH_DEPTH {
+            return Err(crate::input_error!(
+                "{}: technique photon-trace: the scene's BVH is {} levels deep, more than the shader's traversal \
+                 stack holds ({}); degenerate or duplicated triangles make it so",
+                scene.path.display(),
+                bvh.depth(),
+                settings::MAX_BVH_DEPTH
+            )
+            .into());
+        }
+        let (nodes, triangles) = bvh.flattened();
+        let normals: Vec<[f32; 4]> = bvh
+            .triangles()
+            .iter()
+            .flat_map(|t| {
+                let m = &scene.objects[t.object as usize].mesh;
+                let i = 3 * t.prim as usize;
+                [0, 1, 2].map(|k| m.normals[m.indices[i + k] as usize].extend(0.0).to_array())
+            })
+            .collect();
+        let objects: Vec<[f32; 4]> = meshes
+            .iter()
+            .flat_map(|m| {
+                let c = &m.constants;
+                [[f32::from_bits(c.material), 0.0, 0.0, 0.0], c.ior, c.colour]
+            })
+            .collect();
+        let dispersive = meshes.iter().any(|m| {
+            let ior = m.constants.ior;
+            m.constants.material == MATERIAL_REFRACTIVE && (ior[0] != ior[1] || ior[1] != ior[2])
+        });
+        // Buffers may not be empty: a scene without triangles gets one unused element each.
+        let upload = |name: &str, bytes: &[u8], element: usize| -> Result<Buffer> {
+            let data = if bytes.is_empty() { vec![0u8; element] } else { bytes.to_vec() };
+            Ok(ctx.buffer_with_data(name, &data)?)
+        };
+        // The reference's ray offset against self-intersection (`reference::trace_reference`).
+        let (lo, hi) = scene.bounds();
+        let max_abs = if lo.is_finite() && hi.is_finite() { lo.abs().max(hi.abs()).max_element() } else { 1.0 };
+        let (centre, radius) = specular_bounds(scene).unwrap_or((glam::Vec3::ZERO, 0.0));
+        Ok(PhotonTracer {
+            pipeline: Pipeline::compute(ctx, "photon_trace", &sh.compile("photon_trace/trace.comp", &[])?)?,
+            nodes: upload("photon_trace BVH nodes", bytemuck::cast_slice(&nodes), 32)?,
+            triangles: upload("photon_trace BVH triangles", bytemuck::cast_slice(&triangles), 48)?,
+            normals: upload("photon_trace shading normals", bytemuck::cast_slice(&normals), 16)?,
+            objects: upload("photon_trace objects", bytemuck::cast_slice(&objects), 48)?,
+            constants: PhotonTraceConstants {
+                sphere: centre.extend(radius).to_array(),
+                light: 0,
+                seed: s.seed,
+                max_bounces: s.max_bounces,
+                flags: if s.outside_reflection { FLAG_OUTSIDE_REFLECTION } else { 0 }
+                    | if dispersive { FLAG_DISPERSIVE } else { 0 },
+                eps: (1e-5 * max_abs).max(1e-6),
+            },
+        })
+    }
+
+    /// Light `l`'s receiver positions (for the caustic map's lookup), then its photons traced
+    /// into the photon buffer.
+    pub fn record(&self, f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
+        record_receiver_positions(f, c, l)?;
+        let (pt, inp) = (c.photons, c.inputs);
+        let binds = [
+            ("frame", Bind::Uniform(inp.frame_uniforms)),
+            ("caustics", Bind::Uniform(inp.caustic_uniforms)),
+            ("spot_textures", Bind::Sampled(inp.spot_textures, inp.linear)),
+            ("Nodes", Bind::BufferRead(&self.nodes)),
+            ("Triangles", Bind::BufferRead(&self.triangles)),
+            ("ShadingNormals", Bind::BufferRead(&self.normals)),
+            ("Objects", Bind::BufferRead(&self.objects)),
+            ("photon_position", Bind::Storage(&pt.position.view)),
+            ("photon_direction", Bind::Storage(&pt.direction.view)),
+            ("photon_power", Bind::Storage(&pt.power.view)),
+        ];
+        let side = pt.width;
+        f.pass(&Stage::PhotonTrace.light(l)).bind(&self.pipeline, binds).record(|cmd| {
+            cmd.push(&PhotonTraceConstants { light: l, ..self.constants })?;
+            cmd.dispatch(side.div_ceil(8), side.div_ceil(8), 1);
+            Ok(())
+        })?;
+        Ok(())
+    }
+}

@@ -1,0 +1,194 @@
+// `photon-trace`, beyond the papers: photons traced exactly through every triangle of the scene
+// on the GPU, with the physics of the CPU reference (`crates/caustics/src/reference`), into the
+// photon buffer that the caustic map's deposit stages splat like every other technique's.
+//
+// Emission: light l sends side² photons uniformly in solid angle over the cone from it that
+// subtends the specular objects' bounding sphere (the reference's cone per object, made one);
+// photon (i, j) is jittered inside stratum (i, j) of the (1 - cos, azimuth) square, so the
+// cone's solid angle Omega is split evenly and each photon carries I(w) Omega / side² (I the
+// light's radiant intensity towards w, spot cone and texture applied), the photon buffer's
+// power per photon. Seeded: the same seed gives the same photons, frame after frame.
+//
+// Transport, as `reference::tracer`: at a refractive surface exact Snell about the smooth
+// (interpolated) normal with the material's IOR (one RGB channel per photon, picked at random
+// and its power tripled, where a material's IORs differ); with Fresnel (settings.w
+// CAUSTIC_FRESNEL) the photon reflects with probability F (Russian roulette, power unchanged),
+// total internal reflection reflects, and with PHOTON_TRACE_OUTSIDE_REFLECTION off a photon
+// reflected off a refractive object's outside is dropped; without Fresnel every photon is
+// transmitted, a photon meeting total internal reflection is dropped, and after two refractions
+// (or one mirror) it goes straight to the first diffuse surface, the image-space model. Mirrors
+// reflect exactly, times their specular colour. The transmission colour applies on every exit.
+// After `max_bounces` specular interactions a photon is dropped. It lands on the first diffuse
+// surface it meets after at least one specular interaction; one whose first hit is diffuse (or
+// nothing) is direct light, not a caustic photon, and carries nothing.
+#version 450
+#define CAUSTICS_BINDING 1
+#define SPOT_BINDING 2
+#define NODES_BINDING 3
+#define TRIANGLES_BINDING 4
+#include "common/caustics.glsl"
+#include "common/spot_texture.glsl"
+#include "common/fresnel.glsl"
+#include "common/materials.glsl"
+#include "photon_trace/bvh.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+// Per BVH triangle, the mesh's vertex normals at its three corners.
+layout(std430, binding = 5) readonly buffer ShadingNormals { vec4 shading_normals[]; };
+// Per object: its MATERIAL_*, IOR and colour (the transmission colour of a refractive object,
+// the specular colour of a mirror).
+struct SceneObject {
+    uvec4 material;   // x: MATERIAL_*
+    vec4 ior;         // rgb
+    vec4 colour;      // rgb
+};
+layout(std430, binding = 6) readonly buffer Objects { SceneObject objects[]; };
+layout(binding = 7, rgba32f) uniform writeonly image2D photon_position;
+layout(binding = 8, rgba32f) uniform writeonly image2D photon_direction;
+layout(binding = 9, rgba32f) uniform writeonly image2D photon_power;
+
+layout(push_constant) uniform PhotonTraceConstants {
+    vec4 sphere;         // xyz centre, w radius: the specular objects' bounding sphere
+    uint light;
+    uint seed;
+    uint max_bounces;
+    uint flags;          // PHOTON_TRACE_*
+    float eps;           // ray offset against self-intersection (world units), the reference's
+} constants;
+
+#define PHOTON_TRACE_OUTSIDE_REFLECTION 1u
+#define PHOTON_TRACE_DISPERSIVE 2u
+// Why a photon carries nothing (direction.w), as shared/trace_surface.glsl says it.
+#define PHOTON_LOST_TIR 1.0
+#define PHOTON_LOST_OTHER 3.0
+// Specular surfaces passed through on the way to a diffuse one (the image-space model), at most.
+#define MAX_SKIPS 256u
+
+// PCG hash (Jarzynski & Olano 2020): a well-mixed 32-bit value of `v`.
+uint pcg_hash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// Uniform in [0, 1) from the photon's stream (`id`) and draw number `k`.
+float random01(uint id, uint k) {
+    uint h = pcg_hash(pcg_hash(pcg_hash(constants.seed) ^ id) + k * 0x9E3779B9u);
+    return float(h >> 8) * (1.0 / 16777216.0);
+}
+
+// An orthonormal pair perpendicular to unit `n` (Duff et al. 2017).
+void basis(vec3 n, out vec3 t, out vec3 b) {
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float c = n.x * n.y * a;
+    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+    b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+// The normal photons scatter about at a hit: the interpolated vertex normal on the side of the
+// geometric normal `ng` (the geometric one where they cancel).
+vec3 scatter_normal(RayHit h, vec3 ng) {
+    vec3 n = shading_normals[3u * h.triangle].xyz * (1.0 - h.u - h.v) + shading_normals[3u * h.triangle + 1u].xyz * h.u
+        + shading_normals[3u * h.triangle + 2u].xyz * h.v;
+    float len = length(n);
+    if (len == 0.0) return ng;
+    n /= len;
+    return dot(n, ng) < 0.0 ? -n : n;
+}
+
+void store(ivec2 texel, vec4 position, vec4 direction, vec4 power) {
+    imageStore(photon_position, texel, position);
+    imageStore(photon_direction, texel, direction);
+    imageStore(photon_power, texel, power);
+}
+
+void main() {
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    int side = imageSize(photon_position).x;
+    if (texel.x >= side || texel.y >= side) return;
+    uint l = constants.light;
+    uint id = (l * uint(side) + uint(texel.y)) * uint(side) + uint(texel.x);
+    vec3 light = frame.lights[l].position.xyz;
+    vec3 to_centre = constants.sphere.xyz - light;
+    float dist = length(to_centre);
+    // The cone subtending the sphere; every direction from inside it.
+    float cos_half = dist > constants.sphere.w ? sqrt(max(1.0 - pow(constants.sphere.w / dist, 2.0), 0.0)) : -1.0;
+    vec3 axis = dist > constants.sphere.w ? to_centre / dist : vec3(0.0, 1.0, 0.0);
+    vec3 t, b;
+    basis(axis, t, b);
+    float u1 = (float(texel.x) + random01(id, 0u)) / float(side);
+    float u2 = (float(texel.y) + random01(id, 1u)) / float(side);
+    float cos_t = 1.0 - u1 * (1.0 - cos_half);
+    float sin_t = sqrt(max(1.0 - cos_t * cos_t, 0.0));
+    float phi = 6.28318530717959 * u2;
+    vec3 d = normalize(t * (sin_t * cos(phi)) + b * (sin_t * sin(phi)) + axis * cos_t);
+    float omega = 6.28318530717959 * (1.0 - cos_half);
+    vec3 power = frame.lights[l].intensity.rgb * spot_emission(l, d) * omega / float(side * side);
+    int channel = 1;
+    if ((constants.flags & PHOTON_TRACE_DISPERSIVE) != 0u) {
+        channel = min(int(random01(id, 2u) * 3.0), 2);
+        vec3 only = vec3(0.0);
+        only[channel] = 3.0 * power[channel];
+        power = only;
+    }
+    bool fresnel = (caustics.settings.w & CAUSTIC_FRESNEL) != 0u;
+    vec3 o = light;
+    uint interactions = 0u;
+    uint refractions = 0u;
+    bool straight = false;
+    uint draw = 3u;
+    for (uint step = 0u; step < constants.max_bounces + MAX_SKIPS + 1u; ++step) {
+        RayHit h;
+        if (!bvh_intersect(o, d, constants.eps, 3.4e38, h)) break;
+        vec3 p = o + d * h.t;
+        BvhTriangle tri = bvh_triangle(h.triangle);
+        uint material = objects[tri.object].material.x;
+        if (straight && material != MATERIAL_DIFFUSE) {
+            o = p;
+            continue;
+        }
+        if (material == MATERIAL_DIFFUSE) {
+            if (interactions == 0u) break;
+            store(texel, vec4(p, 1.0), vec4(d, 0.0), vec4(power, 1.0));
+            return;
+        }
+        if (interactions >= constants.max_bounces) break;
+        vec3 ng = normalize(cross(tri.e1, tri.e2));
+        vec3 colour = objects[tri.object].colour.rgb;
+        if (material == MATERIAL_REFLECTIVE) {
+            d = normalize(reflect(d, scatter_normal(h, ng)));
+            power *= colour;
+            if (!fresnel) straight = true;
+        } else {
+            bool entering = dot(d, ng) < 0.0;
+            vec3 ns = scatter_normal(h, ng);
+            vec3 n = entering ? ns : -ns;
+            float ior = objects[tri.object].ior[channel];
+            float eta = entering ? 1.0 / ior : ior;
+            float cos_i = -dot(d, n);
+            bool reflect_now = fresnel && random01(id, draw++) < dielectric_fresnel(cos_i, eta);
+            if (reflect_now) {
+                if (entering && (constants.flags & PHOTON_TRACE_OUTSIDE_REFLECTION) == 0u) break;
+                d = normalize(reflect(d, n));
+            } else {
+                vec3 r = refract(d, n, eta);
+                if (r == vec3(0.0)) {
+                    if (!fresnel) {
+                        store(texel, vec4(0.0), vec4(0.0, 0.0, 0.0, PHOTON_LOST_TIR), vec4(power, 0.0));
+                        return;
+                    }
+                    d = normalize(reflect(d, n));
+                } else {
+                    d = normalize(r);
+                }
+                if (!entering && r != vec3(0.0)) power *= colour;
+                if (r != vec3(0.0)) ++refractions;
+                if (!fresnel && refractions >= 2u) straight = true;
+            }
+        }
+        ++interactions;
+        o = p;
+    }
+    // No caustic photon (direct light) or one lost on its way: it carries nothing here.
+    store(texel, vec4(0.0), vec4(0.0, 0.0, 0.0, interactions == 0u ? 0.0 : PHOTON_LOST_OTHER), vec4(power, 0.0));
+}
