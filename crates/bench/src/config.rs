@@ -244,6 +244,8 @@ fn default_copy() -> String {
 pub const METRIC_KINDS: &[&str] = &[
     "pass_ms",
     "pass_fps",
+    "pass_mphotons",
+    "frame_mphotons",
     "gpu_frame_ms",
     "frame_ms",
     "fps",
@@ -270,7 +272,7 @@ pub fn is_quality_metric(kind: &str) -> bool {
 pub struct MetricSpec {
     pub label: String,
     pub kind: String,
-    /// For `pass_ms` and `pass_fps`: pass names summed per frame; `*` matches any run of characters.
+    /// For `pass_ms`, `pass_fps` and `pass_mphotons`: pass names summed per frame; `*` matches any run of characters.
     #[serde(default)]
     pub passes: Vec<String>,
     /// For `frame_ms` and `fps`: passes whose GPU time is taken off each frame's wall time, for

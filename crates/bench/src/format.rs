@@ -17,7 +17,9 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         return "n/a".into();
     }
     match kind {
-        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" | "pass_fps" => significant(v),
+        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" | "pass_fps" | "pass_mphotons" | "frame_mphotons" => {
+            significant(v)
+        }
         "photons_emitted" | "splats_drawn" | "photons_processed" | "valid_photons" | "photon_batches" => {
             thousands(v.round() as u64)
         }
@@ -58,6 +60,7 @@ pub fn unit(kind: &str) -> &'static str {
     match kind {
         "pass_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
         "fps" | "pass_fps" => "fps",
+        "pass_mphotons" | "frame_mphotons" => "M photons/s",
         "photons_emitted" => "photons",
         "splats_drawn" | "photons_processed" => "points",
         "valid_photons" => "photons",

@@ -118,8 +118,18 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
         let v = match k {
             "pass_ms" => of_samples(k, pass_samples(run, &m.passes)),
             "pass_fps" => of_samples(k, pass_samples(run, &m.passes).iter().map(|ms| 1000.0 / ms).collect()),
+            // Millions of the frame's emitted photons per second of the passes.
+            "pass_mphotons" => of_samples(
+                k,
+                pass_samples(run, &m.passes).iter().map(|ms| run.photons_emitted as f64 / ms / 1000.0).collect(),
+            ),
             "gpu_frame_ms" => of_samples(k, pass_samples(run, &["*".to_string()])),
             "frame_ms" => of_samples(k, wall_ms(run, &m.exclude)),
+            // Millions of the frame's emitted photons per second of its host wall time.
+            "frame_mphotons" => of_samples(
+                k,
+                wall_ms(run, &m.exclude).iter().map(|ms| run.photons_emitted as f64 / ms / 1000.0).collect(),
+            ),
             "fps" => {
                 let wall = wall_ms(run, &m.exclude);
                 let mean = wall.iter().sum::<f64>() / wall.len().max(1) as f64;

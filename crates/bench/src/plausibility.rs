@@ -52,7 +52,7 @@ fn spread(c: &CellResult, metric: &str) -> Option<(f64, f64, f64)> {
 }
 
 fn lower_is_faster(kind: &str) -> bool {
-    !matches!(kind, "fps" | "pass_fps")
+    !matches!(kind, "fps" | "pass_fps" | "pass_mphotons" | "frame_mphotons")
 }
 
 /// Is `b` (with more work, or dynamic) clearly faster than `a`?

@@ -209,12 +209,12 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                 format!("unknown kind `{}`; expected one of {}", mt.kind, METRIC_KINDS.join(", ")),
             ));
         }
-        let per_pass = mt.kind == "pass_ms" || mt.kind == "pass_fps";
+        let per_pass = matches!(mt.kind.as_str(), "pass_ms" | "pass_fps" | "pass_mphotons");
         if per_pass == mt.passes.is_empty() {
             let msg = if mt.passes.is_empty() {
                 format!("kind {} needs `passes`", mt.kind)
             } else {
-                "only kinds pass_ms and pass_fps take `passes`".to_string()
+                "only kinds pass_ms, pass_fps and pass_mphotons take `passes`".to_string()
             };
             return Err(bad(&format!("metric[{i}].passes"), msg));
         }
@@ -244,8 +244,11 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                 ))
             }
         }
-        if !mt.exclude.is_empty() && mt.kind != "fps" && mt.kind != "frame_ms" {
-            return Err(bad(&format!("metric[{i}].exclude"), "only kinds fps and frame_ms take `exclude`".into()));
+        if !mt.exclude.is_empty() && !matches!(mt.kind.as_str(), "fps" | "frame_ms" | "frame_mphotons") {
+            return Err(bad(
+                &format!("metric[{i}].exclude"),
+                "only kinds fps, frame_ms and frame_mphotons take `exclude`".into(),
+            ));
         }
     }
 

@@ -334,6 +334,46 @@ fn quick_splat_paths_splat_the_same_photons_and_time_every_splat() {
 }
 
 #[test]
+fn quick_photon_trace_rate_times_the_trace_and_counts_every_emitted_photon() {
+    // T1: the tracer's pass and the whole frame are timed in every cell, and each rate is, frame
+    // for frame, the photons emitted (N², one light) over that frame's time (the JSON keeps six decimals).
+    let (_, r) = quick_run("photon_trace_rate.toml");
+    let samples = |c: &serde_json::Value, m: &str| -> Vec<f64> {
+        c["metrics"][m]["samples"].as_array().expect("samples").iter().filter_map(|v| v.as_f64()).collect()
+    };
+    for scene in ["sphere_on_plane.toml", "bunny_in_room.toml"] {
+        for photons in [64u64, 128] {
+            for t in ["Fresnel on", "Fresnel off"] {
+                let c = r["cells"]
+                    .as_array()
+                    .expect("cells")
+                    .iter()
+                    .find(|c| {
+                        c["cell"]["technique_label"] == t
+                            && c["cell"]["photons"].as_u64() == Some(photons)
+                            && c["cell"]["scene"].as_str().is_some_and(|s| s.ends_with(scene))
+                    })
+                    .unwrap_or_else(|| panic!("no cell {scene} {t} {photons}"));
+                for (time, rate) in [("Trace", "rate"), ("Frame", "frame rate")] {
+                    let (ms, per_s) = (samples(c, time), samples(c, rate));
+                    assert!(
+                        !ms.is_empty() && ms.len() == per_s.len(),
+                        "{scene} {t} {photons}: {time} {ms:?}, {rate} {per_s:?}"
+                    );
+                    for (ms, per_s) in ms.iter().zip(&per_s) {
+                        let expected = (photons * photons) as f64 / ms / 1000.0;
+                        assert!(
+                            *ms > 0.0 && (per_s / expected - 1.0).abs() < 1e-4,
+                            "{scene} {t} {photons}: {per_s} M/s over {ms} ms"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
 fn quick_trendall_stewart2000_table1_times_the_passes_and_the_height_field() {
     let (dir, r) = quick_run("trendall_stewart2000_table1.toml");
     let cells = r["cells"].as_array().expect("cells");

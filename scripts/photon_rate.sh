@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The exact photon tracers' rates on this machine, side by side: the GPU tracer
+# (`--technique photon-trace`, bench_configs/photon_trace_rate.toml, into results/<device>/) and
+# the CPU reference (`causticlab reference`, three runs per cell, the median), both on the glass
+# sphere and the glass bunny, Fresnel on and off. Writes results/photon_trace.md.
+#
+#   bash scripts/photon_rate.sh
+#
+# A timing run: build first, run it alone on a quiet machine from a clean commit (the bench
+# refuses busy cells), then commit the results.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bin=target/release/causticlab
+[ -x "$bin" ] || { echo "photon_rate.sh: build first: cargo build --release" >&2; exit 1; }
+photons=2048
+runs=3
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+"$bin" bench bench_configs/photon_trace_rate.toml | tee "$tmp/bench.log"
+table=$(grep -o 'results/[^ ]*/photon_trace_rate.json' "$tmp/bench.log" | tail -1)
+[ -n "$table" ] || { echo "photon_rate.sh: the bench wrote no photon_trace_rate.json" >&2; exit 1; }
+
+for scene in sphere_on_plane bunny_in_room; do
+    for fresnel in true false; do
+        for run in $(seq "$runs"); do
+            "$bin" reference --scene "scenes/$scene.toml" --photons $((photons * photons)) --fresnel "$fresnel" \
+                --out "$tmp/$scene-$fresnel-$run" > /dev/null
+        done
+    done
+done
+
+TMP="$tmp" TABLE="$table" PHOTONS="$photons" RUNS="$runs" \
+COMMIT="$(git describe --always --dirty --abbrev=7)" DATE="$(date -u +%Y-%m-%dT%H:%M:%SZ)" \
+CPU="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')" CORES="$(nproc)" \
+python3 - <<'EOF'
+import json, os, statistics
+tmp, n, runs = os.environ["TMP"], int(os.environ["PHOTONS"]), int(os.environ["RUNS"])
+bench = json.load(open(os.environ["TABLE"]))
+device = bench["meta"]["device"]
+def gpu(scene, label, metric):
+    for c in bench["cells"]:
+        cell = c["cell"]
+        if cell["scene"].endswith(scene + ".toml") and cell["technique_label"] == label and cell["photons"] == n:
+            return c["metrics"][metric]["value"]
+    raise SystemExit(f"no cell {scene} {label} {n}")
+rows = []
+for scene in ["sphere_on_plane", "bunny_in_room"]:
+    for fresnel, label in [("true", "Fresnel on"), ("false", "Fresnel off")]:
+        rates = []
+        for run in range(1, runs + 1):
+            r = json.load(open(f"{tmp}/{scene}-{fresnel}-{run}/reference.json"))
+            rates.append(r["photons_traced"] / r["seconds"] / 1e6)
+        cpu = statistics.median(rates)
+        frame = gpu(scene, label, "frame rate")
+        trace = gpu(scene, label, "rate")
+        rows.append(f"| `{scene}` | {label} | {cpu:.3f} ({min(rates):.3f}-{max(rates):.3f}) | {frame:.3f} | {frame / cpu:.2f} | {trace:.1f} |")
+out = f"""# The exact photon tracers' rates, GPU and CPU, on one machine
+
+Written by `bash scripts/photon_rate.sh` (commit {os.environ['COMMIT']}, {os.environ['DATE']}), on
+{os.environ['CPU']} ({os.environ['CORES']} cores); the GPU tracer on {device}.
+
+- **CPU reference**: `causticlab reference --photons {n * n}` (every core), end to end (BVH
+  build, tracing, binning into the receiver map), median of {runs} runs (the range in brackets).
+- **GPU tracer, whole frame**: `photon_trace_rate.toml`'s `frame rate` at {n}² photons: the photons
+  emitted per second of host wall time of a whole frame (the trace, the receiver positions, the
+  splat into a 1024² caustic map, the eye's view at 256²), a lower bound on the tracer's rate.
+- **GPU tracer, trace pass**: its `rate`, from the timestamps around the trace's dispatch. On
+  lavapipe these read near zero in most frames (see the table's notes): there the column does
+  not measure the trace.
+
+| scene | Fresnel | CPU reference, M photons/s | GPU tracer, whole frame, M photons/s | GPU / CPU | GPU trace pass (timestamps), M photons/s |
+|---|---|---|---|---|---|
+""" + "\n".join(rows) + f"""
+
+The table behind the GPU columns: [{os.path.relpath(os.environ['TABLE'].replace('.json', '.md'), 'results')}]({os.path.relpath(os.environ['TABLE'].replace('.json', '.md'), 'results')}).
+"""
+open("results/photon_trace.md", "w").write(out)
+print(out)
+EOF
