@@ -11,6 +11,7 @@
 #define CAUSTIC_REFLECTION_PLANE 16u  // settings.w bit: mirrored photons land on one plane (Wyman & Davis 2006 Sec. 4)
 #define CAUSTIC_ONE_REFRACTION 32u    // settings.w bit: refracted once, then straight on (the caustics mapping tutorial)
 #define CAUSTIC_TUTORIAL_LOOKUP 64u   // settings.w bit: the caustics mapping tutorial's psDiffuse lookup
+#define CAUSTIC_RECEIVER_FLUX 128u    // settings.w bit: the receiver map's caustic term from photon-trace's direct deposit
 #define SPLAT_FIXED 0.0
 #define SPLAT_VARYING_SINGLE 1.0
 #define SPLAT_VARYING_MULTIRES 2.0

@@ -21,7 +21,14 @@
 // After `max_bounces` specular interactions a photon is dropped. It lands on the first diffuse
 // surface it meets after at least one specular interaction; one whose first hit is diffuse (or
 // nothing) is direct light, not a caustic photon, and carries nothing.
+//
+// RECEIVER_DEPOSIT (`deposit = "receiver-map"`): a photon that lands on the receiver rectangle
+// (within `receiver_tolerance` of its plane) also adds its power to its receiver-map texel, as
+// the reference bins it (`reference::receiver::Receiver::texel_of`).
 #version 450
+#ifdef RECEIVER_DEPOSIT
+#extension GL_EXT_shader_atomic_float : require
+#endif
 #define CAUSTICS_BINDING 1
 #define SPOT_BINDING 2
 #define NODES_BINDING 3
@@ -45,6 +52,10 @@ layout(std430, binding = 6) readonly buffer Objects { SceneObject objects[]; };
 layout(binding = 7, rgba32f) uniform writeonly image2D photon_position;
 layout(binding = 8, rgba32f) uniform writeonly image2D photon_direction;
 layout(binding = 9, rgba32f) uniform writeonly image2D photon_power;
+#ifdef RECEIVER_DEPOSIT
+// Per receiver-map texel: power (W, rgb) and photon count, zeroed before the frame's first light.
+layout(std430, binding = 10) buffer ReceiverFlux { float receiver_flux[]; };
+#endif
 
 layout(push_constant) uniform PhotonTraceConstants {
     vec4 sphere;         // xyz centre, w radius: the specular objects' bounding sphere
@@ -53,6 +64,7 @@ layout(push_constant) uniform PhotonTraceConstants {
     uint max_bounces;
     uint flags;          // PHOTON_TRACE_*
     float eps;           // ray offset against self-intersection (world units), the reference's
+    float receiver_tolerance;  // how far from the receiver plane a photon lands on it
 } constants;
 
 #define PHOTON_TRACE_OUTSIDE_REFLECTION 1u
@@ -102,6 +114,23 @@ void store(ivec2 texel, vec4 position, vec4 direction, vec4 power) {
     imageStore(photon_power, texel, power);
 }
 
+#ifdef RECEIVER_DEPOSIT
+// Bins a photon landed at `p` with `power` into the receiver map, if it lies on its rectangle.
+void deposit_on_receiver(vec3 p, vec3 power) {
+    if (!(abs(p.y - frame.receiver.x) < constants.receiver_tolerance)) return;
+    vec4 r = frame.receiver_range;
+    vec2 f = vec2((p.x - r.x) / (r.y - r.x), (p.z - r.z) / (r.w - r.z));
+    if (any(lessThan(f, vec2(0.0))) || any(greaterThanEqual(f, vec2(1.0)))) return;
+    int n = int(frame.receiver.y);
+    ivec2 ij = min(ivec2(f * float(n)), ivec2(n - 1));
+    uint at = 4u * uint(ij.y * n + ij.x);
+    atomicAdd(receiver_flux[at], power.r);
+    atomicAdd(receiver_flux[at + 1u], power.g);
+    atomicAdd(receiver_flux[at + 2u], power.b);
+    atomicAdd(receiver_flux[at + 3u], 1.0);
+}
+#endif
+
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
     int side = imageSize(photon_position).x;
@@ -150,6 +179,9 @@ void main() {
         if (material == MATERIAL_DIFFUSE) {
             if (interactions == 0u) break;
             store(texel, vec4(p, 1.0), vec4(d, 0.0), vec4(power, 1.0));
+#ifdef RECEIVER_DEPOSIT
+            deposit_on_receiver(p, power);
+#endif
             return;
         }
         if (interactions >= constants.max_bounces) break;

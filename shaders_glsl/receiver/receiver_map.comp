@@ -17,6 +17,9 @@ layout(binding = 5, rgba32f) uniform writeonly image2D caustic_only;    // rgb c
 // Eye-space techniques (CAUSTIC_EYE_SPACE): the caustic irradiance their eye-space pass found
 // from the orthographic view straight down on the receiver plane, texel for texel.
 layout(binding = 9) uniform sampler2DArray receiver_view_caustic;
+// photon-trace's direct deposit (CAUSTIC_RECEIVER_FLUX): per texel, the power (W, rgb) of the
+// photons that landed in it, binned as the CPU reference bins them, and their count.
+layout(std430, binding = 10) readonly buffer ReceiverFlux { vec4 receiver_flux[]; };
 
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
@@ -29,9 +32,14 @@ void main() {
     vec3 up = vec3(0.0, 1.0, 0.0);
     vec3 e0 = vec3(0.0);
     for (uint l = 0u; l < frame.counts.x; ++l) e0 += unoccluded_irradiance(l, p, up);
-    vec3 ec = (caustics.settings.w & CAUSTIC_EYE_SPACE) != 0u
-        ? texelFetch(receiver_view_caustic, ivec3(ij, 0), 0).rgb
-        : caustic_irradiance_over(p, vec3(0.5 * (r.y - r.x) / float(n), 0.0, 0.0), vec3(0.0, 0.0, 0.5 * (r.w - r.z) / float(n)), up);
+    vec3 ec;
+    if ((caustics.settings.w & CAUSTIC_RECEIVER_FLUX) != 0u) {
+        ec = receiver_flux[ij.y * n + ij.x].rgb * float(n * n) / ((r.y - r.x) * (r.w - r.z));
+    } else if ((caustics.settings.w & CAUSTIC_EYE_SPACE) != 0u) {
+        ec = texelFetch(receiver_view_caustic, ivec3(ij, 0), 0).rgb;
+    } else {
+        ec = caustic_irradiance_over(p, vec3(0.5 * (r.y - r.x) / float(n), 0.0, 0.0), vec3(0.0, 0.0, 0.5 * (r.w - r.z) / float(n)), up);
+    }
     vec3 e = direct_irradiance(p, up) + ec;
     vec3 ratio = vec3(e0.r > 0.0 ? e.r / e0.r : 0.0, e0.g > 0.0 ? e.g / e0.g : 0.0, e0.b > 0.0 ? e.b / e0.b : 0.0);
     imageStore(ratio_map, ij, vec4(ratio, 1.0));

@@ -163,3 +163,80 @@ fn seeded_photons_are_the_same_every_frame_and_differ_by_seed() {
     let differ = bits(&once).iter().zip(bits(&other)).filter(|(x, y)| *x != y).count();
     assert!(differ > 1000, "seed 2 moved only {differ} values");
 }
+
+/// `deposit = "receiver-map"`: the receiver map's caustic term is the traced photons binned into
+/// its texels, as the reference bins its own. Checked against the photon buffer's photons binned
+/// here on the CPU (their power over the texel's area, texel for texel), and against the
+/// reference at the scene's own receiver resolution (flux within 0.5%; per-texel z-scores).
+#[test]
+fn the_direct_deposit_bins_the_photons_as_the_reference_does() {
+    let mut failures = vec![];
+    for name in ["sphere_on_plane.toml", "ring_cardioid.toml"] {
+        let mut s = scene(name, 1024, true);
+        s.caustics.deposit = "receiver-map".parse().expect("a known name");
+        let spec = s.receiver_map.clone().expect("a receiver map");
+        let n = spec.resolution as usize;
+        let (x0, x1, z0, z1) =
+            (spec.x_range[0] as f64, spec.x_range[1] as f64, spec.z_range[0] as f64, spec.z_range[1] as f64);
+        let area = (x1 - x0) * (z1 - z0) / (n * n) as f64;
+        let (lo, hi) = s.bounds();
+        let tolerance = 1e-4 * (hi - lo).length() as f64;
+        let gpu = render_dumps(&s, 1, &["receiver", "photon_buffer"]);
+        let (receiver, photons) = (&gpu[0].1, &gpu[1].1);
+        // The photons binned here: (x, y, z, landed) and (r, g, b).
+        let pos = photons.layer(Some("light0.position")).expect("positions");
+        let pow = photons.layer(Some("light0.power")).expect("power");
+        let mut binned = vec![0.0f64; n * n];
+        for (p, w) in pos.data.chunks_exact(pos.channels.len()).zip(pow.data.chunks_exact(pow.channels.len())) {
+            let (x, y, z) = (p[0] as f64, p[1] as f64, p[2] as f64);
+            if p[3] < 0.5 || (y - spec.plane_y as f64).abs() >= tolerance {
+                continue;
+            }
+            let (fx, fz) = ((x - x0) / (x1 - x0), (z - z0) / (z1 - z0));
+            if !((0.0..1.0).contains(&fx) && (0.0..1.0).contains(&fz)) {
+                continue;
+            }
+            let (i, j) = (((fx * n as f64) as usize).min(n - 1), ((fz * n as f64) as usize).min(n - 1));
+            binned[j * n + i] += (w[0] as f64 + w[1] as f64 + w[2] as f64) / 3.0 / area;
+        }
+        let e_gpu = caustic(receiver);
+        let lit = binned.iter().filter(|b| **b > 0.0).count();
+        assert!(lit > n * n / 10, "{name}: only {lit} texels lit");
+        // The same power in all (up to the order of float additions), and in each texel but
+        // where a photon within float rounding of a texel's edge fell on the other side here.
+        let (total_gpu, total_cpu) = (e_gpu.iter().sum::<f64>(), binned.iter().sum::<f64>());
+        assert!((total_gpu / total_cpu - 1.0).abs() < 1e-5, "{name}: {total_gpu} W/m² summed against {total_cpu}");
+        let phi_gpu = photon_powers(photons, None)[0];
+        let photon = phi_gpu / area;
+        let moved = e_gpu.iter().zip(&binned).filter(|(g, b)| (*g - *b).abs() > 1e-4 * b.max(photon)).count();
+        let worst = e_gpu.iter().zip(&binned).map(|(g, b)| (g - b).abs() / photon).fold(0.0, f64::max);
+        assert!(
+            moved * 200 <= n * n && worst <= 3.0,
+            "{name}: {moved} texels differ from the photons binned here, by up to {worst:.2} photons"
+        );
+        let worst = moved;
+
+        let r = reference(&s, 2_000_000, true);
+        let (c, _) = compare(receiver, &r.image).expect("compare");
+        let phi_ref = r.emitted_flux.iter().sum::<f64>() / 3.0 / r.photons_traced as f64;
+        let e_ref = caustic(&r.image);
+        let z: Vec<f64> = e_gpu
+            .iter()
+            .zip(&e_ref)
+            .filter(|(g, r)| **g > 0.0 || **r > 0.0)
+            .map(|(g, r)| (g - r) / ((g * phi_gpu + r * phi_ref) / area).sqrt())
+            .collect();
+        let rms_z = (z.iter().map(|v| v * v).sum::<f64>() / z.len() as f64).sqrt();
+        let beyond_4 = z.iter().filter(|v| v.abs() > 4.0).count();
+        println!(
+            "{name:22} {n}² texels, direct deposit: {worst} texels differ from the photons binned here by a photon at an edge; against the reference flux ratio {:.4}, rms z {rms_z:.2} over {} texels, |z| > 4: {beyond_4}",
+            c.caustic_flux_ratio,
+            z.len()
+        );
+        if (c.caustic_flux_ratio - 1.0).abs() > 0.005 || rms_z > 1.5 || beyond_4 * 100 > z.len() {
+            failures
+                .push(format!("{name}: flux ratio {}, rms z {rms_z:.2}, {beyond_4} beyond 4", c.caustic_flux_ratio));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

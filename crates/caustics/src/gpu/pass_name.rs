@@ -50,7 +50,9 @@ stages! {
     /// Shah et al.'s photons per vertex, the buffer cleared first.
     VertexPhotonsClear => "vertex_photons.clear",
     VertexPhotons => "vertex_photons",
-    /// `photon-trace`: photons traced through the scene's BVH into the photon buffer.
+    /// `photon-trace`: its direct deposit into the receiver map cleared before the frame's first
+    /// light, then photons traced through the scene's BVH into the photon buffer.
+    PhotonTraceClear => "photon_trace.clear",
     PhotonTrace => "photon_trace",
     /// Deferred caustic maps (Wyman & Nichols 2009 Fig. 10): the light-space geometry buffers,
     /// then the full-screen pass writing the photon buffer.

@@ -35,6 +35,8 @@ push_constants! {
         pub flags: u32,
         /// Ray offset against self-intersection (world units).
         pub eps: f32,
+        /// How far from the receiver plane a photon still lands on it (the reference's).
+        pub receiver_tolerance: f32,
     }
 }
 
@@ -197,7 +199,10 @@ mod tests {
 
     #[test]
     fn photon_trace_constants() {
-        check::<PhotonTraceConstants>(&[("photon_trace/trace.comp", &[])]);
+        check::<PhotonTraceConstants>(&[
+            ("photon_trace/trace.comp", &[]),
+            ("photon_trace/trace.comp", &[("RECEIVER_DEPOSIT", "1")]),
+        ]);
     }
 
     #[test]

@@ -122,6 +122,7 @@ pub fn record_after_background(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, 
                 "receiver_view_caustic",
                 Bind::Sampled(inp.receiver_view_caustic.unwrap_or(&t.no_receiver_view.view), inp.nearest),
             ),
+            ("ReceiverFlux", Bind::BufferRead(&inp.caustics.receiver_flux)),
         ];
         f.pass(&Stage::ReceiverMap.pass()).bind(&p.receiver_map, binds).record(|cmd| {
             let (w, h) = ratio.view.extent;

@@ -6,6 +6,7 @@
 //! - [`CausticSettings::validate_combination`]: a setting that belongs to some techniques only
 //!   (`only Hcm`) is refused, with its key, for the others.
 
+use super::photon_trace::settings::Deposit as PhotonDeposit;
 use super::shah2007::settings::{Lookup, Refractions};
 use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath, TraversalPath};
 use super::technique::Technique;
@@ -194,6 +195,10 @@ caustic_settings! {
     /// photon-trace with Fresnel: trace the light a refractive object reflects off its outside
     /// (true, the physics, default) or drop it (false: what the image-space techniques draw).
     outside_reflection: bool = true, only PhotonTrace;
+    /// photon-trace: where its photons' light reaches the receiver map, through the caustic map
+    /// (caustic-map, default) or also binned straight into the receiver map's texels
+    /// (receiver-map, as the CPU reference bins them; float atomics).
+    deposit: PhotonDeposit = PhotonDeposit::CausticMap, only PhotonTrace;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.
     precision: Precision = Precision::Float, only PoolConvolution;
@@ -282,6 +287,12 @@ impl CausticSettings {
                 .insert(last.map_or(dumps.len(), |i| i + 1), super::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP);
         }
         dumps
+    }
+
+    /// Whether `photon-trace` bins its photons straight into the receiver map
+    /// (`deposit = "receiver-map"`).
+    pub fn receiver_deposit(&self) -> bool {
+        self.technique == Technique::PhotonTrace && self.deposit == PhotonDeposit::ReceiverMap
     }
 
     /// The ray/receiver intersection in effect: the one asked for, else the technique's own.

@@ -42,6 +42,7 @@ pub const FLAG_EYE_SPACE: u32 = 8;
 pub const FLAG_REFLECTION_PLANE: u32 = 16;
 pub const FLAG_ONE_REFRACTION: u32 = 32;
 pub const FLAG_TUTORIAL_LOOKUP: u32 = 64;
+pub const FLAG_RECEIVER_FLUX: u32 = 128;
 
 const _: () = assert!(std::mem::size_of::<CausticLightUniforms>() == 2 * 64 + 4 * 16);
 const _: () = assert!(std::mem::size_of::<CausticUniforms>() == 48 + MAX_LIGHTS * 192);
@@ -109,7 +110,8 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
         | if settings.eye_space() { FLAG_EYE_SPACE } else { 0 }
         | if settings.reflection == Reflection::Plane { FLAG_REFLECTION_PLANE } else { 0 }
         | if settings.refractions == Refractions::One { FLAG_ONE_REFRACTION } else { 0 }
-        | if settings.lookup == Lookup::Tutorial { FLAG_TUTORIAL_LOOKUP } else { 0 };
+        | if settings.lookup == Lookup::Tutorial { FLAG_TUTORIAL_LOOKUP } else { 0 }
+        | if settings.receiver_deposit() { FLAG_RECEIVER_FLUX } else { 0 };
     u.settings = [0, settings.photons, settings.iterations, flags];
     u.splat = [
         settings.splat_radius,
@@ -259,5 +261,6 @@ mod tests {
         assert!(src.contains(&format!("#define CAUSTIC_REFLECTION_PLANE {FLAG_REFLECTION_PLANE}u")));
         assert!(src.contains(&format!("#define CAUSTIC_ONE_REFRACTION {FLAG_ONE_REFRACTION}u")));
         assert!(src.contains(&format!("#define CAUSTIC_TUTORIAL_LOOKUP {FLAG_TUTORIAL_LOOKUP}u")));
+        assert!(src.contains(&format!("#define CAUSTIC_RECEIVER_FLUX {FLAG_RECEIVER_FLUX}u")));
     }
 }

@@ -9,11 +9,18 @@
 //! `max_bounces` interactions. Where a photon first reaches a diffuse surface it is written into
 //! the photon buffer, whose points the existing deposit stages splat into the caustic map.
 //!
+//! With `deposit = "receiver-map"` each photon that lands on the receiver rectangle is also
+//! binned straight into the receiver map's texels (float atomics), as the CPU reference bins
+//! it, and the receiver map's caustic term is read from there
+//! (`shaders_glsl/receiver/receiver_map.comp`); the final image still reads the caustic map.
+//!
 //! The BVH is built once, when the renderer is made: a pose that moves a mesh is refused
 //! (`Renderer::set_pose`). The hardware ray-tracing path (ray queries) would be another source
 //! beside this one; lavapipe has none.
 
 pub mod settings;
+
+use settings::RECEIVER_DEPOSIT_FEATURES;
 
 use super::shared::photon_buffer::record_receiver_positions;
 use super::shared::CausticPasses;
@@ -22,7 +29,7 @@ use crate::bvh::{Bvh, Triangle};
 use crate::gpu::{GpuMesh, PhotonTraceConstants, Stage, MATERIAL_REFRACTIVE};
 use crate::scene::Scene;
 use anyhow::Result;
-use vkcore::{Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler};
+use vkcore::{Access, Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler, Use};
 
 /// `PHOTON_TRACE_OUTSIDE_REFLECTION` in trace.comp.
 const FLAG_OUTSIDE_REFLECTION: u32 = 1;
@@ -39,6 +46,8 @@ pub struct PhotonTracer {
     /// Per object: material, IOR, colour (trace.comp's `Objects`).
     objects: Buffer,
     constants: PhotonTraceConstants,
+    /// `deposit = "receiver-map"`: photons are binned into the receiver map too.
+    receiver_deposit: bool,
 }
 
 impl PhotonTracer {
@@ -46,6 +55,21 @@ impl PhotonTracer {
     /// (`meshes`, uploaded from `scene`).
     pub fn new(ctx: &Context, sh: &ShaderCompiler, scene: &Scene, meshes: &[GpuMesh]) -> Result<PhotonTracer> {
         let s = &scene.caustics;
+        let receiver_deposit = s.receiver_deposit();
+        if receiver_deposit {
+            if scene.receiver_map.is_none() {
+                return Err(crate::input_error!(
+                    "{}: deposit = \"receiver-map\" (technique photon-trace) bins photons into the receiver map, \
+                     and the scene has no [receiver_map]",
+                    scene.path.display()
+                )
+                .into());
+            }
+            ctx.require(
+                "deposit `receiver-map` (float atomics in photon_trace/trace.comp)",
+                RECEIVER_DEPOSIT_FEATURES,
+            )?;
+        }
         let mut tris = Vec::with_capacity(scene.triangle_count());
         for (oi, obj) in scene.objects.iter().enumerate() {
             let p = &obj.mesh.positions;
@@ -94,8 +118,10 @@ impl PhotonTracer {
         let (lo, hi) = scene.bounds();
         let max_abs = if lo.is_finite() && hi.is_finite() { lo.abs().max(hi.abs()).max_element() } else { 1.0 };
         let (centre, radius) = specular_bounds(scene).unwrap_or((glam::Vec3::ZERO, 0.0));
+        let diag = if lo.is_finite() && hi.is_finite() { (hi - lo).length() } else { 1.0 };
+        let defines: &[(&str, &str)] = if receiver_deposit { &[("RECEIVER_DEPOSIT", "1")] } else { &[] };
         Ok(PhotonTracer {
-            pipeline: Pipeline::compute(ctx, "photon_trace", &sh.compile("photon_trace/trace.comp", &[])?)?,
+            pipeline: Pipeline::compute(ctx, "photon_trace", &sh.compile("photon_trace/trace.comp", defines)?)?,
             nodes: upload("photon_trace BVH nodes", bytemuck::cast_slice(&nodes), 32)?,
             triangles: upload("photon_trace BVH triangles", bytemuck::cast_slice(&triangles), 48)?,
             normals: upload("photon_trace shading normals", bytemuck::cast_slice(&normals), 16)?,
@@ -108,7 +134,10 @@ impl PhotonTracer {
                 flags: if s.outside_reflection { FLAG_OUTSIDE_REFLECTION } else { 0 }
                     | if dispersive { FLAG_DISPERSIVE } else { 0 },
                 eps: (1e-5 * max_abs).max(1e-6),
+                // The reference's (`reference::trace_reference`): 1e-4 of the scene's diagonal.
+                receiver_tolerance: 1e-4 * diag.max(1e-6),
             },
+            receiver_deposit,
         })
     }
 
@@ -117,7 +146,16 @@ impl PhotonTracer {
     pub fn record(&self, f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
         record_receiver_positions(f, c, l)?;
         let (pt, inp) = (c.photons, c.inputs);
-        let binds = [
+        let flux = &c.targets.receiver_flux;
+        if self.receiver_deposit && l == 0 {
+            f.pass(&Stage::PhotonTraceClear.pass()).uses([Use::buffer(flux, Access::TRANSFER_WRITE)]).record(
+                |cmd| {
+                    cmd.fill_buffer(flux, 0);
+                    Ok(())
+                },
+            )?;
+        }
+        let mut binds = vec![
             ("frame", Bind::Uniform(inp.frame_uniforms)),
             ("caustics", Bind::Uniform(inp.caustic_uniforms)),
             ("spot_textures", Bind::Sampled(inp.spot_textures, inp.linear)),
@@ -129,6 +167,9 @@ impl PhotonTracer {
             ("photon_direction", Bind::Storage(&pt.direction.view)),
             ("photon_power", Bind::Storage(&pt.power.view)),
         ];
+        if self.receiver_deposit {
+            binds.push(("ReceiverFlux", Bind::Buffer(flux)));
+        }
         let side = pt.width;
         f.pass(&Stage::PhotonTrace.light(l)).bind(&self.pipeline, binds).record(|cmd| {
             cmd.push(&PhotonTraceConstants { light: l, ..self.constants })?;

@@ -1,5 +1,8 @@
 //! What the GPU photon tracer declares (a leaf module: the technique enum reads it).
 
+use super::super::value_enum::value_enum;
+use vkcore::Feature;
+
 /// The technique's source, as tables and `--help` cite it.
 pub const PAPER: &str = "beyond the papers: exact photon tracing through a BVH (compute)";
 
@@ -12,3 +15,19 @@ pub const MAX_BOUNCES: u32 = 64;
 
 /// The deepest BVH the shader's traversal stack (`BVH_STACK` in `photon_trace/bvh.glsl`) holds.
 pub const MAX_BVH_DEPTH: u32 = 60;
+
+/// What `deposit = "receiver-map"` needs: float atomic adds into the receiver map's buffer.
+pub const RECEIVER_DEPOSIT_FEATURES: &[Feature] = &[Feature::BufferFloat32AtomicAdd];
+
+value_enum! {
+    /// Where the traced photons' light reaches the receiver map (`caustics.deposit`, `--deposit`).
+    pub enum Deposit {
+        /// Through the caustic map, as every technique's: the photons splatted, the receiver map
+        /// looked up in it (`common/caustic_lookup.glsl`).
+        CausticMap = "caustic-map",
+        /// Also straight into the receiver map: each photon that lands on the receiver rectangle
+        /// adds its power to its texel, as the CPU reference bins it; the receiver map's caustic
+        /// term is that power over the texel's area (the final image still reads the caustic map).
+        ReceiverMap = "receiver-map",
+    }
+}

@@ -6,7 +6,7 @@ use crate::gpu::{Target, MAX_LIGHTS};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use anyhow::Result;
-use vkcore::{Context, Image, ImageDesc, ImageView, ViewKind};
+use vkcore::{Buffer, Context, Image, ImageDesc, ImageView, Memory, ViewKind};
 
 /// What the eye passes read: always present (1x1 when the technique is `none`).
 pub struct CausticTargets {
@@ -19,6 +19,10 @@ pub struct CausticTargets {
     pub levels: u32,
     /// Per light: (caustic-map layers view, receiver-positions layer view, depth layer view).
     pub per_light: Vec<(ImageView, ImageView, ImageView)>,
+    /// `photon-trace`'s direct deposit (`deposit = "receiver-map"`): per receiver-map texel, the
+    /// power (W, rgb) of the photons that landed in it and their count, which the receiver map
+    /// reads; one unused texel otherwise.
+    pub receiver_flux: Buffer,
 }
 
 impl CausticTargets {
@@ -40,7 +44,14 @@ impl CausticTargets {
                 ))
             })
             .collect::<Result<Vec<_>>>()?;
-        Ok(CausticTargets { caustic_map, receiver_positions, receiver_depth, levels, per_light })
+        let receiver_texels = match &scene.receiver_map {
+            Some(spec) if active && scene.caustics.receiver_deposit() => {
+                spec.resolution as u64 * spec.resolution as u64
+            }
+            _ => 1,
+        };
+        let receiver_flux = Buffer::new(ctx, "photon_trace receiver flux", receiver_texels * 16, Memory::Gpu)?;
+        Ok(CausticTargets { caustic_map, receiver_positions, receiver_depth, levels, per_light, receiver_flux })
     }
 }
 
