@@ -17,6 +17,8 @@ photons=2048
 runs=3
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# The commit measured, before this run adds its tables to the tree.
+commit=$(git describe --always --dirty --abbrev=7)
 
 "$bin" bench bench_configs/photon_trace_rate.toml | tee "$tmp/bench.log"
 table=$(grep -o 'results/[^ ]*/photon_trace_rate.json' "$tmp/bench.log" | tail -1)
@@ -32,7 +34,7 @@ for scene in sphere_on_plane bunny_in_room; do
 done
 
 TMP="$tmp" TABLE="$table" PHOTONS="$photons" RUNS="$runs" \
-COMMIT="$(git describe --always --dirty --abbrev=7)" DATE="$(date -u +%Y-%m-%dT%H:%M:%SZ)" \
+COMMIT="$commit" DATE="$(date -u +%Y-%m-%dT%H:%M:%SZ)" \
 CPU="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')" CORES="$(nproc)" \
 python3 - <<'EOF'
 import json, os, statistics
