@@ -43,6 +43,22 @@ pub struct Config {
     /// The plausibility rules' declarations (`crate::plausibility`).
     #[serde(default)]
     pub plausibility: PlausibilitySpec,
+    /// An error-against-time front instead of the usual plot (`crate::front`).
+    #[serde(default)]
+    pub front: Option<FrontSpec>,
+}
+
+/// `[front]`: plot one metric against another per scene, log-log, with the Pareto front, and
+/// list the cheapest cell per error level (`crate::front`).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrontSpec {
+    /// The label of the time metric on the x axis (lower is better).
+    pub x: String,
+    /// The label of the error metric on the y axis (lower is better).
+    pub y: String,
+    /// The error levels of the table of the cheapest cells, each above 0.
+    pub levels: Vec<f64>,
 }
 
 /// What the plausibility rules need to know about a table (`crate::plausibility`).

@@ -10,6 +10,8 @@ pub mod config;
 pub mod figure;
 pub mod font;
 pub mod format;
+pub mod front;
+pub mod front_plot;
 pub mod host_speed;
 pub mod index;
 pub mod measure;

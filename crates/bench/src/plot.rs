@@ -10,11 +10,11 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-const WIDTH: u32 = 1100;
-const PANEL_HEIGHT: u32 = 420;
-const TITLE_HEIGHT: u32 = 64;
+pub(crate) const WIDTH: u32 = 1100;
+pub(crate) const PANEL_HEIGHT: u32 = 420;
+pub(crate) const TITLE_HEIGHT: u32 = 64;
 /// Matplotlib's "tab10": distinct, print-friendly.
-const PALETTE: [RGBColor; 10] = [
+pub(crate) const PALETTE: [RGBColor; 10] = [
     RGBColor(0x1f, 0x77, 0xb4),
     RGBColor(0xff, 0x7f, 0x0e),
     RGBColor(0x2c, 0xa0, 0x2c),
@@ -26,7 +26,7 @@ const PALETTE: [RGBColor; 10] = [
     RGBColor(0xbc, 0xbd, 0x22),
     RGBColor(0x17, 0xbe, 0xcf),
 ];
-const GREY: RGBColor = RGBColor(0x55, 0x55, 0x55);
+pub(crate) const GREY: RGBColor = RGBColor(0x55, 0x55, 0x55);
 
 /// The plot as SVG text and as PNG bytes.
 pub struct Plot {
@@ -63,12 +63,12 @@ pub fn render(fig: &Figure) -> Result<Plot> {
 }
 
 /// Width in pixels of `text` at `size` in the plot font (0 if it cannot be measured).
-fn text_width(text: &str, size: f64) -> u32 {
+pub(crate) fn text_width(text: &str, size: f64) -> u32 {
     (FAMILY, size).into_font().box_size(text).map(|(w, _)| w).unwrap_or(0)
 }
 
 /// The largest size from `max` down to `min` at which `text` fits in `width` pixels.
-fn fit_size(text: &str, width: u32, max: f64, min: f64) -> f64 {
+pub(crate) fn fit_size(text: &str, width: u32, max: f64, min: f64) -> f64 {
     let mut size = max;
     while size > min && text_width(text, size) > width {
         size -= 1.0;
@@ -77,7 +77,7 @@ fn fit_size(text: &str, width: u32, max: f64, min: f64) -> f64 {
 }
 
 /// `text`, cut with an ellipsis until it fits in `width` pixels at `size`.
-fn ellipsize(text: &str, width: u32, size: f64) -> String {
+pub(crate) fn ellipsize(text: &str, width: u32, size: f64) -> String {
     let mut s: Vec<char> = text.chars().collect();
     if text_width(text, size) <= width {
         return text.to_string();
@@ -88,9 +88,9 @@ fn ellipsize(text: &str, width: u32, size: f64) -> String {
     format!("{}…", s.iter().collect::<String>())
 }
 
-type DrawResult = Result<(), String>;
+pub(crate) type DrawResult = Result<(), String>;
 
-fn err<E: std::fmt::Display>(e: E) -> String {
+pub(crate) fn err<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
@@ -209,7 +209,7 @@ where
 }
 
 /// A y tick as short as it reads: 1000, 2.5, 0.05, 1e-5.
-fn tick(v: &f64) -> String {
+pub(crate) fn tick(v: &f64) -> String {
     let a = v.abs();
     if a == 0.0 {
         "0".into()

@@ -86,6 +86,7 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     if !ratios.is_empty() {
         let _ = writeln!(s, "{ratios}");
     }
+    s.push_str(&crate::front::markdown(config, results));
     s.push_str(&plausibility_section(results));
     let mut notes = config.table.notes.clone();
     for m in &config.metrics {

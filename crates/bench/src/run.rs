@@ -252,7 +252,10 @@ pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Re
     let results = &results;
     let name = &results.config.name;
     let md = crate::report::markdown(c, results);
-    let plot = crate::plot::render(&crate::figure::figure(c, results, &crate::table::grid(c, results)))?;
+    let plot = match &c.front {
+        Some(spec) => crate::front_plot::render(c, results, spec)?,
+        None => crate::plot::render(&crate::figure::figure(c, results, &crate::table::grid(c, results)))?,
+    };
     make_dir(dir)?;
     let files = [
         (dir.join(format!("{name}.json")), crate::results::to_json(results)?.into_bytes()),

@@ -49,6 +49,16 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             return Err(bad(key, "must not be empty".into()));
         }
     }
+    if let Some(f) = &c.front {
+        for (key, label) in [("front.x", &f.x), ("front.y", &f.y)] {
+            if !c.metrics.iter().any(|m| &m.label == label) {
+                return Err(bad(key, format!("`{label}` is the label of no [[metric]]")));
+            }
+        }
+        if f.levels.is_empty() || f.levels.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
+            return Err(bad("front.levels", format!("needs error levels above 0, got {:?}", f.levels)));
+        }
+    }
     let r = &c.run;
     if r.warmup_frames > MAX_FRAMES {
         return Err(bad("run.warmup_frames", format!("{} is more than {MAX_FRAMES}", r.warmup_frames)));
