@@ -6,8 +6,9 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-/// The papers' folders under `techniques/`.
-pub const PAPERS: &[&str] = &["shah2007", "trendall_stewart2000", "wyman2008", "wyman_davis2006", "wyman_nichols2009"];
+/// The technique folders under `techniques/`: the papers' and `photon_trace` (beyond them).
+pub const PAPERS: &[&str] =
+    &["shah2007", "trendall_stewart2000", "wyman2008", "wyman_davis2006", "wyman_nichols2009", "photon_trace"];
 
 /// One dependency: the part `from` names an item of the part `to` (maybe itself) at `at`
 /// (file:line).

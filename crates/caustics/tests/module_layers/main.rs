@@ -47,6 +47,8 @@ const LAYERS: &[&[&str]] = &[
         "techniques::wyman2008",
         "techniques::wyman_davis2006",
         "techniques::wyman_nichols2009",
+        // Beyond the papers: a technique folder like theirs.
+        "techniques::photon_trace",
     ],
     &["techniques"],
     &["render"],

@@ -24,9 +24,9 @@ use settings::RECEIVER_DEPOSIT_FEATURES;
 
 use super::shared::photon_buffer::record_receiver_positions;
 use super::shared::CausticPasses;
-use super::uniforms::specular_bounds;
 use crate::bvh::{Bvh, Triangle};
-use crate::gpu::{GpuMesh, PhotonTraceConstants, Stage, MATERIAL_REFRACTIVE};
+use crate::gpu::{GpuMesh, PhotonTraceConstants, Stage, MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
+use crate::reference::emit::bounding_sphere;
 use crate::scene::Scene;
 use anyhow::Result;
 use vkcore::{Access, Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler, Use};
@@ -117,7 +117,15 @@ impl PhotonTracer {
         // The reference's ray offset against self-intersection (`reference::trace_reference`).
         let (lo, hi) = scene.bounds();
         let max_abs = if lo.is_finite() && hi.is_finite() { lo.abs().max(hi.abs()).max_element() } else { 1.0 };
-        let (centre, radius) = specular_bounds(scene).unwrap_or((glam::Vec3::ZERO, 0.0));
+        // The specular objects' bounding sphere (the emission cone subtends it), as the
+        // reference's per object (`reference::emit::bounding_sphere`), here of them all.
+        let specular: Vec<glam::Vec3> = meshes
+            .iter()
+            .zip(&scene.objects)
+            .filter(|(m, _)| m.kind() != MATERIAL_DIFFUSE)
+            .flat_map(|(_, o)| o.mesh.positions.iter().copied())
+            .collect();
+        let (centre, radius) = bounding_sphere(&specular);
         let diag = if lo.is_finite() && hi.is_finite() { (hi - lo).length() } else { 1.0 };
         let defines: &[(&str, &str)] = if receiver_deposit { &[("RECEIVER_DEPOSIT", "1")] } else { &[] };
         Ok(PhotonTracer {
@@ -127,7 +135,7 @@ impl PhotonTracer {
             normals: upload("photon_trace shading normals", bytemuck::cast_slice(&normals), 16)?,
             objects: upload("photon_trace objects", bytemuck::cast_slice(&objects), 48)?,
             constants: PhotonTraceConstants {
-                sphere: centre.extend(radius).to_array(),
+                sphere: [centre.x as f32, centre.y as f32, centre.z as f32, radius as f32],
                 light: 0,
                 seed: s.seed,
                 max_bounces: s.max_bounces,
