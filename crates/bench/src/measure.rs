@@ -220,6 +220,7 @@ impl<'a> Runner<'a> {
             // One renderer at a time: the per-pass one's buffers go before the ring's are made.
             drop(renderer);
             let opts = RendererOptions { frame_mode: FrameMode::throughput(), ..opts };
+            let scene = without_instruments(&scene);
             let mut renderer = Renderer::new(self.ctx, self.shaders, &scene, &opts)?;
             let t = self.measure_throughput(&mut renderer, &scene, &anim, static_lighting)?;
             Some(t)
@@ -351,6 +352,21 @@ impl<'a> Runner<'a> {
     }
 }
 
+/// `scene` without the validation instruments that a quality metric adds to its frames: the
+/// receiver map (whose pass averages the caustic map over each receiver texel, and whose
+/// eye-space view the Wyman & Davis techniques render for it) and photon-trace's binning into
+/// it. The throughput frames are timed on this scene, so that a quality metric in the same
+/// config (the error-against-time front, `front.toml`) does not add the instrument's cost to
+/// the time; the quality comes from the per-pass renderer's frame.
+fn without_instruments(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    s.receiver_map = None;
+    if s.caustics.receiver_deposit() {
+        s.caustics.deposit = caustics::techniques::photon_trace::settings::Deposit::CausticMap;
+    }
+    s
+}
+
 /// Along an animation, a cell measures whole loops of it (or stops at `max` frames), so that
 /// every cell of a config sees the same poses: a camera orbit's cost varies along the loop.
 fn whole_loops(anim: &Animation, frames: u32, max: u32) -> bool {
@@ -380,4 +396,33 @@ fn set_light_count(scene: &mut Scene, n: usize) -> Result<()> {
         scene.lights.push(l);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn shipped(name: &str) -> Scene {
+        let p = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes").join(name);
+        Scene::load(&p).expect("a shipped scene")
+    }
+
+    #[test]
+    fn timed_frames_leave_out_the_receiver_map_and_the_binning_into_it() {
+        let mut s = shipped("sphere_on_plane.toml");
+        s.caustics.technique = "photon-trace".parse().expect("a known name");
+        s.caustics.deposit = "receiver-map".parse().expect("a known name");
+        assert!(s.receiver_map.is_some() && s.caustics.receiver_deposit());
+        let timed = without_instruments(&s);
+        assert!(timed.receiver_map.is_none() && !timed.caustics.receiver_deposit());
+        // Every other setting is the cell's.
+        let mut back = timed.caustics.clone();
+        back.deposit = s.caustics.deposit;
+        assert_eq!(back, s.caustics);
+        let mut shah = shipped("sphere_on_plane.toml");
+        shah.caustics.technique = "shah".parse().expect("a known name");
+        let timed = without_instruments(&shah);
+        assert!(timed.receiver_map.is_none());
+        assert_eq!(timed.caustics, shah.caustics);
+    }
 }
