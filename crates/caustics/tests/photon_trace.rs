@@ -56,6 +56,33 @@ fn photon_powers(buffer: &ImageF32, why: Option<f32>) -> Vec<f64> {
         .collect()
 }
 
+/// Per-texel z-scores of a receiver map's caustic irradiance against the reference's, over the
+/// texels either lights.
+struct ZScores {
+    rms: f64,
+    beyond_4: usize,
+    lit: usize,
+}
+
+impl ZScores {
+    /// The two estimators' noise per texel: a photon of power φ landing in a texel of area A
+    /// adds φ / A, so an irradiance E made of such photons varies by E φ / A (the GPU's photons
+    /// from its photon buffer, the reference's from its emitted power and count).
+    fn of(receiver: &ImageF32, photons: &ImageF32, r: &ReferenceResult, area: f64) -> ZScores {
+        let phi_gpu = photon_powers(photons, None)[0];
+        let phi_ref = r.emitted_flux.iter().sum::<f64>() / 3.0 / r.photons_traced as f64;
+        let (e_gpu, e_ref) = (caustic(receiver), caustic(&r.image));
+        let z: Vec<f64> = e_gpu
+            .iter()
+            .zip(&e_ref)
+            .filter(|(g, r)| **g > 0.0 || **r > 0.0)
+            .map(|(g, r)| (g - r) / ((g * phi_gpu + r * phi_ref) / area).sqrt())
+            .collect();
+        let rms = (z.iter().map(|v| v * v).sum::<f64>() / z.len().max(1) as f64).sqrt();
+        ZScores { rms, beyond_4: z.iter().filter(|v| v.abs() > 4.0).count(), lit: z.len() }
+    }
+}
+
 #[test]
 fn photon_trace_matches_the_exact_reference_on_five_scenes() {
     let mut failures = vec![];
@@ -75,31 +102,20 @@ fn photon_trace_matches_the_exact_reference_on_five_scenes() {
         let gpu = render_dumps(&s, 1, &["receiver", "photon_buffer"]);
         let (receiver, photons) = (&gpu[0].1, &gpu[1].1);
         let (c, _) = compare(receiver, &r.image).expect("compare");
-        // The two estimators' noise per texel: a photon of power φ landing in a texel of area A
-        // adds φ / A, so an irradiance E made of such photons varies by E φ / A.
-        let phi_gpu = photon_powers(photons, None)[0];
-        let phi_ref = r.emitted_flux.iter().sum::<f64>() / 3.0 / r.photons_traced as f64;
-        let (e_gpu, e_ref) = (caustic(receiver), caustic(&r.image));
-        let z: Vec<f64> = e_gpu
-            .iter()
-            .zip(&e_ref)
-            .filter(|(g, r)| **g > 0.0 || **r > 0.0)
-            .map(|(g, r)| (g - r) / ((g * phi_gpu + r * phi_ref) / area).sqrt())
-            .collect();
-        let rms_z = (z.iter().map(|v| v * v).sum::<f64>() / z.len() as f64).sqrt();
-        let beyond_4 = z.iter().filter(|v| v.abs() > 4.0).count();
+        let z = ZScores::of(receiver, photons, &r, area);
+        let (rms_z, beyond_4) = (z.rms, z.beyond_4);
         println!(
             "{name:22} flux ratio {:.4}  rel. RMSE {:.4}  peak ratio {:.3}  lit texels {}  rms z {rms_z:.2}  |z| > 4: {beyond_4}",
             c.caustic_flux_ratio,
             c.rel_rmse,
             c.peak_ratio,
-            z.len()
+            z.lit
         );
         if (c.caustic_flux_ratio - 1.0).abs() > 0.005 {
             failures.push(format!("{name}: caustic flux ratio {} beyond 0.5%", c.caustic_flux_ratio));
         }
-        if rms_z > 2.0 || beyond_4 * 100 > z.len() {
-            failures.push(format!("{name}: rms z {rms_z:.2}, {beyond_4} of {} texels beyond 4 sigma", z.len()));
+        if rms_z > 2.0 || beyond_4 * 100 > z.lit {
+            failures.push(format!("{name}: rms z {rms_z:.2}, {beyond_4} of {} texels beyond 4 sigma", z.lit));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -218,22 +234,14 @@ fn the_direct_deposit_bins_the_photons_as_the_reference_does() {
 
         let r = reference(&s, 2_000_000, true);
         let (c, _) = compare(receiver, &r.image).expect("compare");
-        let phi_ref = r.emitted_flux.iter().sum::<f64>() / 3.0 / r.photons_traced as f64;
-        let e_ref = caustic(&r.image);
-        let z: Vec<f64> = e_gpu
-            .iter()
-            .zip(&e_ref)
-            .filter(|(g, r)| **g > 0.0 || **r > 0.0)
-            .map(|(g, r)| (g - r) / ((g * phi_gpu + r * phi_ref) / area).sqrt())
-            .collect();
-        let rms_z = (z.iter().map(|v| v * v).sum::<f64>() / z.len() as f64).sqrt();
-        let beyond_4 = z.iter().filter(|v| v.abs() > 4.0).count();
+        let z = ZScores::of(receiver, photons, &r, area);
+        let (rms_z, beyond_4) = (z.rms, z.beyond_4);
         println!(
             "{name:22} {n}² texels, direct deposit: {worst} texels differ from the photons binned here by a photon at an edge; against the reference flux ratio {:.4}, rms z {rms_z:.2} over {} texels, |z| > 4: {beyond_4}",
             c.caustic_flux_ratio,
-            z.len()
+            z.lit
         );
-        if (c.caustic_flux_ratio - 1.0).abs() > 0.005 || rms_z > 1.5 || beyond_4 * 100 > z.len() {
+        if (c.caustic_flux_ratio - 1.0).abs() > 0.005 || rms_z > 1.5 || beyond_4 * 100 > z.lit {
             failures
                 .push(format!("{name}: flux ratio {}, rms z {rms_z:.2}, {beyond_4} beyond 4", c.caustic_flux_ratio));
         }
