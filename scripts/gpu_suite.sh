@@ -43,8 +43,10 @@ suite=(
     "wyman2008_table5 5 29"
     "trendall_stewart2000_table1 3 7"
     "quality 4 31"
-    # Not yet run on a GPU: the seconds are an estimate (16 cells of a few frames).
+    # Not yet run on a GPU: the seconds are estimates (16 cells of a few frames; 126 cells, each
+    # per-pass frames with every pass submitted alone, throughput frames and a comparison).
     "photon_trace_rate 2 10"
+    "front 6 150"
 )
 # The other configs, for a second run with --more (priority order likewise).
 suite_more=(

@@ -53,12 +53,28 @@ pub struct Config {
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrontSpec {
-    /// The label of the time metric on the x axis (lower is better).
-    pub x: String,
+    /// The labels of the time metrics on the x axis (lower is better): one, or a list, each a
+    /// front of its own (e.g. the caustic stages' time and the whole frame's).
+    #[serde(deserialize_with = "one_or_many")]
+    pub x: Vec<String>,
     /// The label of the error metric on the y axis (lower is better).
     pub y: String,
     /// The error levels of the table of the cheapest cells, each above 0.
     pub levels: Vec<f64>,
+}
+
+/// A string, or a list of strings.
+fn one_or_many<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Vec<String>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum OneOrMany {
+        One(String),
+        Many(Vec<String>),
+    }
+    Ok(match OneOrMany::deserialize(d)? {
+        OneOrMany::One(s) => vec![s],
+        OneOrMany::Many(v) => v,
+    })
 }
 
 /// What the plausibility rules need to know about a table (`crate::plausibility`).
@@ -261,6 +277,7 @@ pub const METRIC_KINDS: &[&str] = &[
     "pass_ms",
     "pass_fps",
     "pass_mphotons",
+    "pass_host_ms",
     "frame_mphotons",
     "gpu_frame_ms",
     "frame_ms",
@@ -288,7 +305,7 @@ pub fn is_quality_metric(kind: &str) -> bool {
 pub struct MetricSpec {
     pub label: String,
     pub kind: String,
-    /// For `pass_ms`, `pass_fps` and `pass_mphotons`: pass names summed per frame; `*` matches any run of characters.
+    /// For `pass_ms`, `pass_fps`, `pass_mphotons` and `pass_host_ms`: pass names summed per frame; `*` matches any run of characters.
     #[serde(default)]
     pub passes: Vec<String>,
     /// For `frame_ms` and `fps`: passes whose GPU time is taken off each frame's wall time, for

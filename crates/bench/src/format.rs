@@ -17,9 +17,8 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         return "n/a".into();
     }
     match kind {
-        "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" | "pass_fps" | "pass_mphotons" | "frame_mphotons" => {
-            significant(v)
-        }
+        "pass_ms" | "pass_host_ms" | "gpu_frame_ms" | "frame_ms" | "fps" | "pass_fps" | "pass_mphotons"
+        | "frame_mphotons" => significant(v),
         "photons_emitted" | "splats_drawn" | "photons_processed" | "valid_photons" | "photon_batches" => {
             thousands(v.round() as u64)
         }
@@ -58,7 +57,7 @@ fn thousands(n: u64) -> String {
 /// The unit of a metric kind, for headers and plot axes.
 pub fn unit(kind: &str) -> &'static str {
     match kind {
-        "pass_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
+        "pass_ms" | "pass_host_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
         "fps" | "pass_fps" => "fps",
         "pass_mphotons" | "frame_mphotons" => "M photons/s",
         "photons_emitted" => "photons",

@@ -19,10 +19,12 @@ pub struct Point {
     pub y: f64,
 }
 
-/// A scene's points and its Pareto front.
+/// A scene's points and its Pareto front, along one of the x metrics.
 #[derive(Debug, Clone)]
 pub struct SceneFront {
     pub scene: String,
+    /// The x metric's label.
+    pub x: String,
     pub points: Vec<Point>,
     /// Indices into `points` of the front, by increasing x (and decreasing y).
     pub front: Vec<usize>,
@@ -49,12 +51,13 @@ pub fn cheapest(points: &[Point], level: f64) -> Option<usize> {
     (0..points.len()).filter(|&i| points[i].y <= level).min_by(|&a, &b| points[a].x.total_cmp(&points[b].x))
 }
 
-/// Every scene's points (cells with both metrics, finite and positive), in the matrix's order.
-pub fn fronts(config: &Config, results: &Results, spec: &FrontSpec) -> Vec<SceneFront> {
+/// Every scene's points (cells with both metrics, finite and positive) along x metric `x`, in
+/// the matrix's order.
+pub fn fronts(config: &Config, results: &Results, spec: &FrontSpec, x_label: &str) -> Vec<SceneFront> {
     let mut out: Vec<SceneFront> = vec![];
     for c in &results.cells {
         let get = |label: &str| c.metrics.get(label).and_then(|v| v.value).filter(|v| v.is_finite() && *v > 0.0);
-        let (Some(x), Some(y)) = (get(&spec.x), get(&spec.y)) else { continue };
+        let (Some(x), Some(y)) = (get(x_label), get(&spec.y)) else { continue };
         let paper = config
             .techniques
             .get(c.cell.technique)
@@ -64,7 +67,7 @@ pub fn fronts(config: &Config, results: &Results, spec: &FrontSpec) -> Vec<Scene
         let scene = scene_label(&c.cell.scene);
         match out.iter_mut().find(|f| f.scene == scene) {
             Some(f) => f.points.push(point),
-            None => out.push(SceneFront { scene, points: vec![point], front: vec![] }),
+            None => out.push(SceneFront { scene, x: x_label.to_string(), points: vec![point], front: vec![] }),
         }
     }
     for f in &mut out {
@@ -73,27 +76,31 @@ pub fn fronts(config: &Config, results: &Results, spec: &FrontSpec) -> Vec<Scene
     out
 }
 
-/// The front as the table's section: per scene the cheapest cell at each error level, and the
-/// front itself.
+/// The fronts as the table's sections, one per x metric: per scene the cheapest cell at each
+/// error level, and the front itself.
 pub fn markdown(config: &Config, results: &Results) -> String {
     let Some(spec) = &config.front else { return String::new() };
+    spec.x.iter().map(|x| section(config, results, spec, x)).collect()
+}
+
+fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "## {} against {}\n", spec.y, spec.x);
+    let _ = writeln!(s, "## {} against {}\n", spec.y, x);
     let _ = writeln!(
         s,
         "Per scene, the cheapest cell (least `{}`) whose `{}` is at most each level; then the Pareto front, \
          the cells no other cell beats on both.\n",
-        spec.x, spec.y
+        x, spec.y
     );
-    for f in fronts(config, results, spec) {
+    for f in fronts(config, results, spec, x) {
         let _ = writeln!(s, "**{}**\n", f.scene);
-        let _ = writeln!(s, "| {} at most | cheapest | photons | {} | {} |", spec.y, spec.x, spec.y);
+        let _ = writeln!(s, "| {} at most | cheapest | photons | {} | {} |", spec.y, x, spec.y);
         let _ = writeln!(s, "|---|---|---|---|---|");
         for &level in &spec.levels {
             match cheapest(&f.points, level) {
                 Some(i) => {
                     let p = &f.points[i];
-                    let _ = writeln!(s, "| {level} | {} | {}² | {:.1} | {:.4} |", p.technique, p.photons, p.x, p.y);
+                    let _ = writeln!(s, "| {level} | {} | {}² | {} | {:.4} |", p.technique, p.photons, ms(p.x), p.y);
                 }
                 None => {
                     let _ = writeln!(s, "| {level} | (none reaches it) | | | |");
@@ -105,12 +112,21 @@ pub fn markdown(config: &Config, results: &Results) -> String {
             .iter()
             .map(|&i| {
                 let p = &f.points[i];
-                format!("{} {}² ({:.1}, {:.4})", p.technique, p.photons, p.x, p.y)
+                format!("{} {}² ({}, {:.4})", p.technique, p.photons, ms(p.x), p.y)
             })
             .collect();
         let _ = writeln!(s, "\nFront: {}.\n", front.join(" → "));
     }
     s
+}
+
+/// A time for the front's text: 2 decimals below 10, else 1.
+fn ms(x: f64) -> String {
+    if x < 10.0 {
+        format!("{x:.2}")
+    } else {
+        format!("{x:.1}")
+    }
 }
 
 #[cfg(test)]

@@ -26,7 +26,8 @@ struct Frame<'a> {
 /// The front as SVG and PNG.
 pub fn render(config: &Config, results: &Results, spec: &FrontSpec) -> Result<Plot> {
     crate::font::load()?;
-    let scenes = fronts(config, results, spec);
+    // One panel per x metric and scene, the x metrics' panels one after the other.
+    let scenes: Vec<SceneFront> = spec.x.iter().flat_map(|x| fronts(config, results, spec, x)).collect();
     let mut papers: Vec<String> = vec![];
     for p in scenes.iter().flat_map(|f| &f.points) {
         if !papers.contains(&p.paper) {
@@ -132,7 +133,7 @@ fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame, scene: &S
     let (xs, ys): (Vec<f64>, Vec<f64>) = scene.points.iter().map(|p| (p.x, p.y)).unzip();
     let span = |v: &[f64]| v.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
     let ((x0, x1), (y0, y1)) = (span(&xs), span(&ys));
-    let caption = format!("{}: {} against {}", scene.scene, f.spec.y, f.spec.x);
+    let caption = format!("{}: {} against {}", scene.scene, f.spec.y, scene.x);
     let mut chart = ChartBuilder::on(&chart_area)
         .caption(caption, (FAMILY, 18.0))
         .margin(12)
@@ -145,7 +146,7 @@ fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame, scene: &S
         .configure_mesh()
         .x_label_formatter(&tick)
         .y_label_formatter(&tick)
-        .x_desc(f.spec.x.as_str())
+        .x_desc(scene.x.as_str())
         .y_desc(f.spec.y.as_str())
         .x_label_style((FAMILY, 13.0))
         .y_label_style((FAMILY, 13.0))

@@ -2,6 +2,8 @@
 //!
 //! Times: `pass_ms` sums the GPU timestamps of the matching passes within each frame, then
 //! takes the median over the measured frames (quartiles, min and max and every sample kept);
+//! `pass_host_ms` sums the host times of the matching passes where each pass was submitted and
+//! waited for alone (for drivers whose timestamps miss some work);
 //! `pass_fps` is 1000 / that sum, per frame (a rate of some passes alone: Trendall & Stewart
 //! 2000 Table 1 times the caustic passes without the height field or the display);
 //! `gpu_frame_ms` does so over every pass; `frame_ms` is the host's wall time per frame
@@ -71,6 +73,23 @@ fn pass_samples(run: &CellRun, patterns: &[String]) -> Vec<f64> {
         .collect()
 }
 
+/// Per measured frame: the host times of the passes matching `patterns` (each pass submitted
+/// and waited for alone: `FrameStep::host_pass_times`), summed.
+fn pass_host_samples(run: &CellRun, patterns: &[String]) -> Vec<f64> {
+    run.frames
+        .iter()
+        .filter_map(|f| {
+            let times: Vec<f64> = f
+                .passes
+                .iter()
+                .filter(|p| patterns.iter().any(|pat| glob(pat, &p.name)))
+                .filter_map(|p| p.host_ms)
+                .collect();
+            (!times.is_empty()).then(|| times.iter().sum())
+        })
+        .collect()
+}
+
 /// Per measured frame: its host wall time less the GPU time of the passes matching `exclude`.
 fn wall_ms(run: &CellRun, exclude: &[String]) -> Vec<f64> {
     run.frames
@@ -117,6 +136,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
         }
         let v = match k {
             "pass_ms" => of_samples(k, pass_samples(run, &m.passes)),
+            "pass_host_ms" => of_samples(k, pass_host_samples(run, &m.passes)),
             "pass_fps" => of_samples(k, pass_samples(run, &m.passes).iter().map(|ms| 1000.0 / ms).collect()),
             // Millions of the frame's emitted photons per second of the passes.
             "pass_mphotons" => of_samples(

@@ -182,7 +182,17 @@ pub struct Value {
 
 /// Is `kind` a time or rate (varies between runs) rather than a count or an error measure?
 pub fn is_timing(kind: &str) -> bool {
-    matches!(kind, "pass_ms" | "gpu_frame_ms" | "frame_ms" | "fps" | "pass_fps" | "pass_mphotons" | "frame_mphotons")
+    matches!(
+        kind,
+        "pass_ms"
+            | "pass_host_ms"
+            | "gpu_frame_ms"
+            | "frame_ms"
+            | "fps"
+            | "pass_fps"
+            | "pass_mphotons"
+            | "frame_mphotons"
+    )
 }
 
 pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>, photon_copy: &str) -> CellResult {

@@ -50,7 +50,10 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
         }
     }
     if let Some(f) = &c.front {
-        for (key, label) in [("front.x", &f.x), ("front.y", &f.y)] {
+        if f.x.is_empty() {
+            return Err(bad("front.x", "needs the label of at least one time metric".into()));
+        }
+        for (key, label) in f.x.iter().map(|x| ("front.x", x)).chain([("front.y", &f.y)]) {
             if !c.metrics.iter().any(|m| &m.label == label) {
                 return Err(bad(key, format!("`{label}` is the label of no [[metric]]")));
             }
@@ -219,12 +222,12 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                 format!("unknown kind `{}`; expected one of {}", mt.kind, METRIC_KINDS.join(", ")),
             ));
         }
-        let per_pass = matches!(mt.kind.as_str(), "pass_ms" | "pass_fps" | "pass_mphotons");
+        let per_pass = matches!(mt.kind.as_str(), "pass_ms" | "pass_fps" | "pass_mphotons" | "pass_host_ms");
         if per_pass == mt.passes.is_empty() {
             let msg = if mt.passes.is_empty() {
                 format!("kind {} needs `passes`", mt.kind)
             } else {
-                "only kinds pass_ms, pass_fps and pass_mphotons take `passes`".to_string()
+                "only kinds pass_ms, pass_fps, pass_mphotons and pass_host_ms take `passes`".to_string()
             };
             return Err(bad(&format!("metric[{i}].passes"), msg));
         }

@@ -43,6 +43,16 @@ fn config_errors_name_the_file_and_key() {
             "paper[0].values",
         ),
         ("negative_budget.toml", SMALL.replace("[run]", "[run]\ntime_budget_s = -1.0"), "run.time_budget_s"),
+        (
+            "front_unknown_x.toml",
+            format!("{SMALL}\n[front]\nx = [\"splat ms\", \"frame ms\"]\ny = \"splats\"\nlevels = [0.1]\n"),
+            "front.x",
+        ),
+        (
+            "host_ms_without_passes.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"pass_host_ms\""),
+            "metric[1].passes",
+        ),
         ("few_max_frames.toml", SMALL.replace("[run]", "[run]\nmax_frames = 0"), "run.max_frames"),
         (
             "bad_pick.toml",

@@ -120,34 +120,50 @@ fn quick_quality_faithful_scores_every_paper_default_on_four_scenes() {
 
 #[test]
 fn quick_front_places_every_cell_and_names_the_cheapest_per_error_level() {
-    // F1: every cell has a frame time and an error; the table's front section lists, per scene,
-    // the cheapest cell for each error level, and that cell is, among those at or below the
-    // level, the one with the least frame time (checked here from the JSON).
+    // F1: every cell has a caustic-stage time, a frame time and an error; the table's front
+    // sections (one per time) list, per scene, the cheapest cell for each error level, and that
+    // cell is, among those at or below the level, the one with the least time (checked here
+    // from the JSON).
     let (dir, r) = quick_run("front.toml");
     let cells = r["cells"].as_array().expect("cells");
-    assert_eq!(cells.len(), 3 * 10 * 2, "3 scenes x 10 techniques x 2 photon counts");
+    assert_eq!(cells.len(), 3 * 14 * 2, "3 scenes x 14 techniques x 2 photon counts");
     for cell in cells {
-        let (ms, rmse) = (metric(cell, "Frame").unwrap_or(f64::NAN), metric(cell, "rel. RMSE").unwrap_or(f64::NAN));
-        assert!(ms > 0.0 && rmse > 0.0, "{}: Frame {ms} ms, rel. RMSE {rmse}", cell["cell"]);
+        let get = |m: &str| metric(cell, m).unwrap_or(f64::NAN);
+        let (stages, ms, rmse) = (get("Caustic map"), get("Frame"), get("rel. RMSE"));
+        assert!(
+            stages > 0.0 && ms > 0.0 && rmse > 0.0,
+            "{}: Caustic map {stages} ms, Frame {ms} ms, rel. RMSE {rmse}",
+            cell["cell"]
+        );
     }
     let md = std::fs::read_to_string(dir.join("front.md")).expect("front.md");
-    assert!(md.contains("## rel. RMSE against Frame"), "no front section in\n{md}");
+    for x in ["Caustic map", "Frame"] {
+        let section = md.split(&format!("## rel. RMSE against {x}\n")).nth(1).unwrap_or_else(|| panic!("no {x} front"));
+        let section = section.split("\n## ").next().unwrap_or_default();
+        cheapest_rows_match(cells, section, x);
+    }
+}
+
+/// In a front's `section` along time metric `x`, each scene's row for level 0.5 names the
+/// cheapest cell at or below it.
+fn cheapest_rows_match(cells: &[serde_json::Value], section: &str, x: &str) {
     for scene in ["sphere_on_plane", "ring_cardioid", "bunny_in_room"] {
         let of_scene: Vec<&serde_json::Value> =
             cells.iter().filter(|c| c["cell"]["scene"].as_str().is_some_and(|s| s.contains(scene))).collect();
         let level = 0.5;
-        let best = of_scene.iter().filter(|c| metric(c, "rel. RMSE").is_some_and(|e| e <= level)).min_by(|a, b| {
-            metric(a, "Frame").unwrap_or(f64::INFINITY).total_cmp(&metric(b, "Frame").unwrap_or(f64::INFINITY))
-        });
-        let section = md.split(&format!("**{scene}**")).nth(1).expect("a section per scene");
-        let row = section.lines().find(|l| l.starts_with(&format!("| {level} |"))).expect("a row per level");
+        let best = of_scene
+            .iter()
+            .filter(|c| metric(c, "rel. RMSE").is_some_and(|e| e <= level))
+            .min_by(|a, b| metric(a, x).unwrap_or(f64::INFINITY).total_cmp(&metric(b, x).unwrap_or(f64::INFINITY)));
+        let of = section.split(&format!("**{scene}**")).nth(1).expect("a section per scene");
+        let row = of.lines().find(|l| l.starts_with(&format!("| {level} |"))).expect("a row per level");
         match best {
             Some(c) => {
                 let label = c["cell"]["technique_label"].as_str().expect("label");
                 let photons = c["cell"]["photons"].as_u64().expect("photons");
                 assert!(
                     row.contains(&format!("| {label} | {photons}² |")),
-                    "{scene}: expected {label} {photons}² in {row}"
+                    "{scene}, {x}: expected {label} {photons}² in {row}"
                 );
             }
             None => assert!(row.contains("none reaches it"), "{scene}: {row}"),

@@ -130,7 +130,7 @@ fn shah_with_moving_objects_light_and_camera() {
 fn eye_space_gather_with_static_lighting_reused() {
     let mut scene = small(shipped("sphere_on_plane.toml"), "wd-gather");
     scene.caustics.space = "eye".parse().expect("space");
-    let step = FrameStep { reuse_photons: true, pipeline_statistics: false };
+    let step = FrameStep { reuse_photons: true, ..FrameStep::default() };
     same_in_both_modes(&scene, orbit(false, true, false), 5, step, 0.0);
 }
 
@@ -145,6 +145,22 @@ fn hierarchical_caustic_maps_on_both_traversal_paths() {
         scene.caustics.path = path.parse().expect("path");
         scene.caustics.cluster = "all".parse().expect("cluster");
         same_in_both_modes(&scene, orbit(true, false, true), 4, FrameStep::default(), tolerance);
+    }
+}
+
+#[test]
+fn host_pass_times_submit_every_pass_and_render_the_same_frames() {
+    // The bench's `pass_host_ms` frames (every pass submitted and waited for alone) render what
+    // the throughput frames render, transform feedback traversal included.
+    let mut scene = small(shipped("sphere_on_plane.toml"), "hcm");
+    scene.caustics.cluster = "all".parse().expect("cluster");
+    let step = FrameStep { host_pass_times: true, ..FrameStep::default() };
+    same_in_both_modes(&scene, orbit(true, false, true), 3, step, 0.0);
+    let (ctx, sh) = context();
+    let frames = render(&ctx, &sh, &scene, &orbit(true, false, true), FrameMode::PerPass, 4, step);
+    for (objects, submits) in &frames.warm {
+        // Some 20 passes each submitted, and the frame's own last submit.
+        assert!(*submits > 10, "a frame with host pass times submitted {submits} times ({objects} objects)");
     }
 }
 

@@ -164,6 +164,10 @@ pub struct FrameOptions {
     /// How long `submit` waits for the GPU before it gives up with an error naming the last
     /// pass that finished; None: ten minutes.
     pub fence_timeout: Option<Duration>,
+    /// Submit and wait after every pass, timing each on the host ([`PassTiming::host_ms`]):
+    /// a pass's time where the driver's timestamps do not bracket its work (lavapipe's
+    /// transform-feedback draws and compute dispatches). Costs a submit and a wait per pass.
+    pub host_pass_times: bool,
 }
 
 /// Ten minutes: lavapipe at 4096^2 photons is slow, but a hang must not block CI forever.
@@ -239,6 +243,9 @@ pub struct Frame {
     pub(crate) counters_at_begin: crate::Counters,
     /// Timestamps and statistics around each pass (one-shot frames; ring frames timed per pass).
     pass_queries: bool,
+    /// With [`FrameOptions::host_pass_times`]: each pass's host milliseconds, from its submit
+    /// to its fence.
+    host_pass_ms: Option<Vec<f64>>,
 }
 
 impl Context {
@@ -262,11 +269,11 @@ impl Context {
             ring: None,
             counters_at_begin,
             pass_queries: true,
+            host_pass_ms: opts.host_pass_times.then(Vec::new),
         };
-        let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
-        if let Err(e) = unsafe { self.shared.raw().begin_command_buffer(cb, &begin) } {
+        if let Err(e) = begin_one_shot(self, cb) {
             frame.finished = true;
-            return Err(VkError::Call { call: "vkBeginCommandBuffer", result: e });
+            return Err(e);
         }
         Ok(frame)
     }
@@ -289,6 +296,7 @@ impl Frame {
             ring: Some(tag),
             counters_at_begin,
             pass_queries,
+            host_pass_ms: None,
         }
     }
 
@@ -344,22 +352,26 @@ impl Frame {
         if per_pass_marker {
             res.marker.record(&ctx, cb, index + 1);
         }
+        if self.host_pass_ms.is_some() {
+            let start = std::time::Instant::now();
+            if let Err(e) = self.submit_and_wait(cb).and_then(|_| begin_one_shot(&ctx, cb)) {
+                // The command buffer is no longer recording: Drop must not end it.
+                self.finished = true;
+                return Err(e);
+            }
+            self.host_pass_ms.get_or_insert_with(Vec::new).push(start.elapsed().as_secs_f64() * 1e3);
+        }
         Ok(())
     }
 
-    /// Submits, waits for the GPU, and returns each pass's time and statistics (a one-shot
-    /// frame; a ring's frame goes back through [`crate::FrameRing::submit`]).
-    pub fn submit(mut self) -> Result<FrameReport> {
-        if self.ring.is_some() {
-            return Err(VkError::Invalid("a ring's frame is submitted with FrameRing::submit".into()));
-        }
-        self.finished = true;
-        let res = self.res.take().ok_or_else(|| VkError::Invalid("the frame was already submitted".into()))?;
+    /// Ends `cb`, submits it and waits for it, with the error of a frame that failed (the last
+    /// pass its crash marker saw finish) when the wait fails.
+    fn submit_and_wait(&self, cb: vk::CommandBuffer) -> Result<()> {
         let d = self.ctx.shared.raw();
-        unsafe { d.end_command_buffer(res.cb) }.call("vkEndCommandBuffer")?;
+        unsafe { d.end_command_buffer(cb) }.call("vkEndCommandBuffer")?;
         let fence = unsafe { d.create_fence(&vk::FenceCreateInfo::default(), None) }.call("vkCreateFence")?;
         self.ctx.shared.counters.object(1);
-        let cbs = [vk::CommandBufferSubmitInfo::default().command_buffer(res.cb)];
+        let cbs = [vk::CommandBufferSubmitInfo::default().command_buffer(cb)];
         let submit = vk::SubmitInfo2::default().command_buffer_infos(&cbs);
         let timeout = self.fence_timeout.as_nanos().min(u64::MAX as u128) as u64;
         self.ctx.shared.counters.submit();
@@ -373,7 +385,8 @@ impl Frame {
             .and_then(|_| {
                 unsafe { d.wait_for_fences(&[fence], true, timeout) }.map_err(|result| {
                     // Read the marker now: waiting below lets the GPU finish (or fail) the rest.
-                    let (last_finished, next) = progress(&self.passes, res.marker.read());
+                    let marker = self.res.as_ref().map_or(0, |r| r.marker.read());
+                    let (last_finished, next) = progress(&self.passes, marker);
                     VkError::FrameFailed { result, last_finished, next, passes: self.passes.clone(), ring: None }
                 })
             });
@@ -383,10 +396,27 @@ impl Frame {
             let _ = unsafe { d.device_wait_idle() };
         }
         unsafe { d.destroy_fence(fence, None) };
-        result?;
+        result
+    }
+
+    /// Submits, waits for the GPU, and returns each pass's time and statistics (a one-shot
+    /// frame; a ring's frame goes back through [`crate::FrameRing::submit`]).
+    pub fn submit(mut self) -> Result<FrameReport> {
+        if self.ring.is_some() {
+            return Err(VkError::Invalid("a ring's frame is submitted with FrameRing::submit".into()));
+        }
+        self.finished = true;
+        let cb = self.res()?.cb;
+        self.submit_and_wait(cb)?;
+        let res = self.res.take().ok_or_else(|| VkError::Invalid("the frame was already submitted".into()))?;
         let counters = self.ctx.counters().since(&self.counters_at_begin);
         let mut report = read_report(&self.ctx, &res, &self.passes, None)?;
         report.counters = counters;
+        if let Some(host) = &self.host_pass_ms {
+            for (p, ms) in report.passes.iter_mut().zip(host) {
+                p.host_ms = Some(*ms);
+            }
+        }
         Ok(report)
     }
 }
@@ -401,7 +431,10 @@ pub(crate) fn read_report(
 ) -> Result<FrameReport> {
     if frame_timing.is_some() {
         let (times, _) = res.queries.read(ctx, 1)?;
-        let passes = passes.iter().map(|name| PassTiming { name: name.clone(), gpu_ms: None, stats: None }).collect();
+        let passes = passes
+            .iter()
+            .map(|name| PassTiming { name: name.clone(), gpu_ms: None, host_ms: None, stats: None })
+            .collect();
         return Ok(FrameReport { passes, frame_gpu_ms: times.and_then(|t| t.first().copied()), ..Default::default() });
     }
     let (times, stats) = res.queries.read(ctx, passes.len())?;
@@ -411,10 +444,18 @@ pub(crate) fn read_report(
         .map(|(i, name)| PassTiming {
             name: name.clone(),
             gpu_ms: times.as_ref().and_then(|t| t.get(i).copied()),
+            host_ms: None,
             stats: stats.as_ref().and_then(|s| s.get(i).copied()).map(PipelineStats::from_raw),
         })
         .collect();
     Ok(FrameReport { passes, ..Default::default() })
+}
+
+/// Begins recording `cb` for one submit.
+fn begin_one_shot(ctx: &Context, cb: vk::CommandBuffer) -> Result<()> {
+    let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+    unsafe { ctx.shared.raw().begin_command_buffer(cb, &begin) }
+        .map_err(|e| VkError::Call { call: "vkBeginCommandBuffer", result: e })
 }
 
 impl Drop for Frame {

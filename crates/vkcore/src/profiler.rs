@@ -49,6 +49,9 @@ pub struct PassTiming {
     pub name: String,
     /// GPU milliseconds between the pass's two timestamps (None without timestamps).
     pub gpu_ms: Option<f64>,
+    /// Host milliseconds from the pass's own submit to its fence, in a frame recorded with
+    /// [`crate::FrameOptions::host_pass_times`] (None otherwise).
+    pub host_ms: Option<f64>,
     pub stats: Option<PipelineStats>,
 }
 
@@ -331,7 +334,10 @@ mod tests {
 
     fn frame(ms: &[(&str, f64)]) -> FrameReport {
         FrameReport {
-            passes: ms.iter().map(|(n, t)| PassTiming { name: n.to_string(), gpu_ms: Some(*t), stats: None }).collect(),
+            passes: ms
+                .iter()
+                .map(|(n, t)| PassTiming { name: n.to_string(), gpu_ms: Some(*t), host_ms: None, stats: None })
+                .collect(),
             ..Default::default()
         }
     }

@@ -60,6 +60,61 @@ fn bound_descriptors_get_their_barriers() {
     assert_no_validation_messages(&ctx);
 }
 
+/// `host_pass_times`: each pass is submitted and waited for alone, its host time kept, and
+/// what one pass wrote is what the next reads (the barriers and the command buffer survive the
+/// submits in between).
+#[test]
+fn host_pass_times_submit_every_pass_and_keep_the_frames_result() {
+    let (ctx, _) = context();
+    let p = add_pipeline(&ctx);
+    let input: Vec<u32> = (0..N).map(|i| i * 5).collect();
+    let a = ctx.buffer_with_data("a", bytemuck::cast_slice(&input)).unwrap();
+    let b = Buffer::new(&ctx, "b", N as u64 * 4, Memory::Gpu).unwrap();
+    let c = Buffer::new(&ctx, "c", N as u64 * 4, Memory::Gpu).unwrap();
+    let before = ctx.counters();
+    let opts = FrameOptions { timestamps: true, host_pass_times: true, ..Default::default() };
+    let mut f = ctx.frame(opts).unwrap();
+    for (name, src, dst, add) in [("first", &a, &b, 1u32), ("second", &b, &c, 2), ("third", &c, &b, 3)] {
+        f.pass(name)
+            .bind(&p, [("In", Bind::BufferRead(src)), ("Out", Bind::Buffer(dst))])
+            .record(|cmd| {
+                cmd.push(&AddConstants { count: N, add })?;
+                cmd.dispatch(N.div_ceil(64), 1, 1);
+                Ok(())
+            })
+            .unwrap();
+    }
+    let report = f.submit().unwrap();
+    let submits = ctx.counters().since(&before).submits;
+    let got: Vec<u32> = ctx.read_buffer_as(&b).unwrap();
+    let want: Vec<u32> = input.iter().map(|x| x + 6).collect();
+    assert_eq!(&got[..N as usize], &want[..]);
+    // One submit per pass, and the frame's own (the commands after the last pass).
+    assert_eq!(submits, 4, "submits of a frame of three passes timed on the host");
+    let names: Vec<&str> = report.passes.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["first", "second", "third"]);
+    for pass in &report.passes {
+        let ms = pass.host_ms.unwrap_or_else(|| panic!("pass {} has no host time", pass.name));
+        assert!(ms.is_finite() && ms > 0.0, "pass {}: host time {ms} ms", pass.name);
+    }
+    // Without the option no pass has a host time, and the frame submits once.
+    let before = ctx.counters();
+    let mut f = ctx.frame(FrameOptions::default()).unwrap();
+    f.pass("only")
+        .bind(&p, [("In", Bind::BufferRead(&a)), ("Out", Bind::Buffer(&c))])
+        .record(|cmd| {
+            cmd.push(&AddConstants { count: N, add: 1 })?;
+            cmd.dispatch(N.div_ceil(64), 1, 1);
+            Ok(())
+        })
+        .unwrap();
+    let report = f.submit().unwrap();
+    assert_eq!(ctx.counters().since(&before).submits, 1);
+    assert!(report.passes[0].host_ms.is_none());
+    drop((p, a, b, c));
+    assert_no_validation_messages(&ctx);
+}
+
 #[test]
 fn declared_sets_may_be_pushed_inside_and_others_are_refused() {
     let (ctx, _) = context();

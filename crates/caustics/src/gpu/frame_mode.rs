@@ -61,6 +61,9 @@ pub struct FrameStep {
     pub reuse_photons: bool,
     /// Pipeline-statistics queries around every pass (where the device has them).
     pub pipeline_statistics: bool,
+    /// Per-pass frames: submit and wait after every pass, timing each on the host
+    /// (`vkcore::FrameOptions::host_pass_times`); ignored by throughput frames.
+    pub host_pass_times: bool,
 }
 
 /// A renderer's throughput frames: the ring and, per slot, a staging buffer for what the host

@@ -164,7 +164,7 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
     let mut renderer = Renderer::new(ctx, shaders, scene, &opts)?;
     let mut frames = vec![];
     for _ in 0..req.frames.max(1) {
-        let step = FrameStep { reuse_photons: false, pipeline_statistics: true };
+        let step = FrameStep { pipeline_statistics: true, ..FrameStep::default() };
         match req.frame_mode {
             FrameMode::PerPass => frames.push(renderer.frame(step)?),
             FrameMode::Throughput { .. } => frames.extend(renderer.submit(step)?),

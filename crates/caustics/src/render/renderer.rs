@@ -214,6 +214,7 @@ impl<'c> MeshRenderer<'c> {
         let mut f = self.ctx.frame(FrameOptions {
             timestamps: true,
             pipeline_statistics: step.pipeline_statistics,
+            host_pass_times: step.host_pass_times,
             ..Default::default()
         })?;
         if let Some((fu, cu)) = self.pending_uniforms.take() {

@@ -164,7 +164,7 @@ impl<'c> PoolRenderer<'c> {
         }
         Ok(timings
             .into_iter()
-            .map(|(name, ms)| PassTiming { name: name.into(), gpu_ms: Some(ms), stats: None })
+            .map(|(name, ms)| PassTiming { name: name.into(), gpu_ms: Some(ms), host_ms: None, stats: None })
             .collect())
     }
 
