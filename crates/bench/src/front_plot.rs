@@ -122,7 +122,11 @@ fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame, scene: &S
     };
     for (i, t) in f.techniques.iter().enumerate() {
         let y = 40 + i as i32 * row;
-        legend.draw(&Circle::new((20, y), 5, PALETTE[i % PALETTE.len()].filled())).map_err(err)?;
+        // The technique's colour in its paper's shape, as on the chart: colours repeat past
+        // the palette's ten, the pair does not.
+        let paper = f.scenes.iter().flat_map(|sc| &sc.points).find(|p| p.technique == *t).map(|p| &p.paper);
+        let shape = paper.and_then(|p| f.papers.iter().position(|q| q == p)).unwrap_or(0);
+        marker(&legend, shape, (20, y), PALETTE[i % PALETTE.len()])?;
         legend.draw(&(EmptyElement::at((44, y)) + text(t))).map_err(err)?;
     }
     for (k, p) in f.papers.iter().enumerate() {
