@@ -9,6 +9,9 @@
 // pixel: in light space as it is, in eye space over the pixel's area on its surface (from the
 // world positions of the neighbouring pixels, as the gather's). QUAD_LINES (a sliver): the
 // same, with the power shared by the line's fragments (quads.vert divides it).
+// Alpha counts the quads' fragments: 1 for every fragment rasterized, whether it lands on the
+// pixel's surface or not, so that the target's alpha is the caustic polygons' depth complexity
+// (Fig. 6: the fill rate they consume); a fragment off the surface adds no light.
 #version 450
 #define CAUSTICS_BINDING 1
 #include "common/caustics.glsl"
@@ -36,7 +39,10 @@ void main() {
 #else
     ivec2 t = ivec2(gl_FragCoord.xy);
     vec4 surface = texelFetch(view_position, t, 0);
-    if (!on_surface(surface, v_position)) discard;
+    if (!on_surface(surface, v_position)) {
+        o_caustic = vec4(0.0, 0.0, 0.0, 1.0);
+        return;
+    }
     vec3 p = surface.xyz;
     vec3 n = texelFetch(view_normal, t, 0).xyz;
 #endif
@@ -46,19 +52,18 @@ void main() {
     float f = constants.lighting == 3u ? photon_lighting(dot(n, -d_photon), cos_direct) : 1.0;
 #if defined(QUAD_POINTS) || defined(QUAD_LINES)
 #ifdef LIGHT_SPACE
-    o_caustic = vec4(v_intensity * f, 0.0);
+    o_caustic = vec4(v_intensity * f, 1.0);
 #else
     float area = pixel_area(view_position, t, p);
-    if (!(area > 0.0)) discard;
-    o_caustic = vec4(v_intensity * f / area, 0.0);
+    o_caustic = area > 0.0 ? vec4(v_intensity * f / area, 1.0) : vec4(0.0, 0.0, 0.0, 1.0);
 #endif
 #else
 #ifdef LIGHT_SPACE
     float m = cl.caustic_plane.y;
     float w_t = texel_solid_angle(gl_FragCoord.xy / m * 2.0 - 1.0, cl.caustic_plane);
-    o_caustic = vec4(v_intensity * w_t * f, 0.0);
+    o_caustic = vec4(v_intensity * w_t * f, 1.0);
 #else
-    o_caustic = vec4(v_intensity * max(cos_direct, 0.0) * f / d2, 0.0);
+    o_caustic = vec4(v_intensity * max(cos_direct, 0.0) * f / d2, 1.0);
 #endif
 #endif
 }

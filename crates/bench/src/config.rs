@@ -293,7 +293,18 @@ pub const METRIC_KINDS: &[&str] = &[
     "peak_offset",
     "photon_storage",
     "photon_batches",
+    "depth_complexity_mean",
+    "depth_complexity_p50",
+    "depth_complexity_p90",
+    "depth_complexity_p99",
+    "depth_complexity_max",
+    "quad_coverage",
 ];
+
+/// Whether metric `kind` reads the caustic quads' depth complexity (`wd-quads` only).
+pub fn is_depth_complexity_metric(kind: &str) -> bool {
+    kind.starts_with("depth_complexity_") || kind == "quad_coverage"
+}
 
 /// Whether metric `kind` compares the receiver map with the CPU reference (`[quality]`).
 pub fn is_quality_metric(kind: &str) -> bool {

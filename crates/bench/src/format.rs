@@ -27,6 +27,11 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         "rel_rmse" | "flux_ratio" | "peak_ratio" => format!("{v:.4}"),
         "peak_offset" => format!("{v:.1}"),
         "photon_storage" => significant(v),
+        "depth_complexity_mean" => format!("{v:.2}"),
+        "depth_complexity_p50" | "depth_complexity_p90" | "depth_complexity_p99" | "depth_complexity_max" => {
+            format!("{v:.0}")
+        }
+        "quad_coverage" => format!("{}%", significant(100.0 * v)),
         _ => format!("{v}"),
     }
 }
@@ -65,6 +70,7 @@ pub fn unit(kind: &str) -> &'static str {
         "valid_photons" => "photons",
         "photon_storage" => "MiB",
         "photon_batches" => "batches",
+        k if k.starts_with("depth_complexity_") => "fragments per pixel",
         _ => "",
     }
 }

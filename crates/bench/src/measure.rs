@@ -68,6 +68,52 @@ pub struct CellRun {
     pub other_cores: Option<f64>,
     /// The host speed probe before the cell's frames, ms (see [`crate::host_speed`]).
     pub host_probe_ms: f64,
+    /// `wd-quads`: the last frame's depth complexity of the caustic quads, when a metric asks.
+    pub depth_complexity: Option<DepthComplexity>,
+}
+
+/// The caustic quads' depth complexity (Wyman & Davis 2006 Fig. 6): how many of their fragments
+/// each pixel of their target received (the alpha of the eye's caustic in eye space, of each
+/// light's caustic-map layer in light space: `shaders_glsl/wyman_davis2006/quads.frag`).
+#[derive(Debug, Clone, Default)]
+pub struct DepthComplexity {
+    /// The fragment counts of the pixels that received any, ascending.
+    pub covered: Vec<f32>,
+    /// The target's pixels (every light's layer).
+    pub pixels: usize,
+}
+
+impl DepthComplexity {
+    /// From a dump whose layers carry the counts in their fourth channel.
+    pub fn of(img: &ImageF32) -> Result<DepthComplexity> {
+        let mut covered = vec![];
+        let mut pixels = 0;
+        for layer in &img.layers {
+            let n = layer.channels.len();
+            anyhow::ensure!(n == 4, "depth complexity: layer {:?} has {n} channels, not 4", layer.name);
+            covered.extend(layer.data.chunks_exact(4).map(|p| p[3]).filter(|&c| c > 0.0));
+            pixels += layer.data.len() / 4;
+        }
+        covered.sort_by(f32::total_cmp);
+        Ok(DepthComplexity { covered, pixels })
+    }
+
+    /// The count below which a share `q` of the covered pixels lie (nearest rank).
+    pub fn percentile(&self, q: f64) -> Option<f64> {
+        let n = self.covered.len();
+        let rank = ((q * n as f64).ceil() as usize).clamp(1, n.max(1));
+        self.covered.get(rank - 1).map(|&c| c as f64)
+    }
+
+    pub fn mean(&self) -> Option<f64> {
+        (!self.covered.is_empty())
+            .then(|| self.covered.iter().map(|&c| c as f64).sum::<f64>() / self.covered.len() as f64)
+    }
+
+    /// The share of the target's pixels that received any fragment.
+    pub fn coverage(&self) -> Option<f64> {
+        (self.pixels > 0).then(|| self.covered.len() as f64 / self.pixels as f64)
+    }
 }
 
 /// Runs cells on one device, keeping CPU references between cells of the same scene.
@@ -91,6 +137,10 @@ impl<'a> Runner<'a> {
 
     fn needs_quality(&self) -> bool {
         self.config.config.metrics.iter().any(|m| crate::config::is_quality_metric(&m.kind))
+    }
+
+    fn needs_depth_complexity(&self) -> bool {
+        self.config.config.metrics.iter().any(|m| crate::config::is_depth_complexity_metric(&m.kind))
     }
 
     fn needs_valid_photons(&self) -> bool {
@@ -214,6 +264,17 @@ impl<'a> Runner<'a> {
         };
         let valid_photons = if self.needs_valid_photons() { renderer.valid_photons(None)? } else { None };
         let quality = if self.needs_quality() { Some(self.quality(&mut renderer, &scene)?) } else { None };
+        let depth_complexity = if self.needs_depth_complexity() {
+            // Eye-space quads count into the eye's caustic, light-space ones into the caustic map.
+            let dump = match renderer.dump("eye_caustic")? {
+                Some(img) => Some(img),
+                None => renderer.dump("caustic_map")?,
+            };
+            let img = dump.context("depth complexity: the technique has neither an eye_caustic nor a caustic_map")?;
+            Some(DepthComplexity::of(&img)?)
+        } else {
+            None
+        };
         let (photons_emitted, splats_drawn, hierarchy_sizes) =
             (renderer.photons_emitted(), renderer.splats_drawn()?, renderer.list_sizes()?);
         let (photon_storage, photon_batches) =
@@ -254,6 +315,7 @@ impl<'a> Runner<'a> {
             cpu_steal,
             other_cores,
             host_probe_ms,
+            depth_complexity,
         })
     }
 
@@ -426,5 +488,27 @@ mod tests {
         let timed = without_instruments(&shah);
         assert!(timed.receiver_map.is_none());
         assert_eq!(timed.caustics, shah.caustics);
+    }
+
+    #[test]
+    fn depth_complexity_counts_the_covered_pixels_of_every_layer() {
+        use caustics::image_io::Layer;
+        // Two 2x2 layers (two lights): counts 0, 3, 1, 0 and 2, 0, 0, 5 in the fourth channel.
+        let layer = |counts: [f32; 4]| {
+            let data = counts.iter().flat_map(|&c| [9.0, 9.0, 9.0, c]).collect();
+            Layer::new(None, &["R", "G", "B", "photons"], data)
+        };
+        let img =
+            ImageF32 { width: 2, height: 2, layers: vec![layer([0.0, 3.0, 1.0, 0.0]), layer([2.0, 0.0, 0.0, 5.0])] };
+        let d = DepthComplexity::of(&img).expect("four channels");
+        assert_eq!(d.covered, [1.0, 2.0, 3.0, 5.0]);
+        assert_eq!(d.pixels, 8);
+        assert_eq!(d.coverage(), Some(0.5));
+        assert_eq!(d.mean(), Some(2.75));
+        assert_eq!(d.percentile(0.5), Some(2.0));
+        assert_eq!(d.percentile(0.9), Some(5.0));
+        assert_eq!(d.percentile(0.0), Some(1.0));
+        let empty = DepthComplexity { covered: vec![], pixels: 4 };
+        assert_eq!((empty.mean(), empty.percentile(0.5), empty.coverage()), (None, None, Some(0.0)));
     }
 }

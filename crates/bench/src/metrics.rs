@@ -170,6 +170,14 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
             "rel_rmse" => exact(k, run.quality.as_ref().map(|q| q.rel_rmse)),
             "photon_storage" => exact(k, run.photon_storage.map(|b| b as f64 / (1024.0 * 1024.0))),
             "photon_batches" => exact(k, run.photon_batches.map(f64::from)),
+            "depth_complexity_mean" => exact(k, run.depth_complexity.as_ref().and_then(|d| d.mean())),
+            "depth_complexity_p50" => exact(k, run.depth_complexity.as_ref().and_then(|d| d.percentile(0.5))),
+            "depth_complexity_p90" => exact(k, run.depth_complexity.as_ref().and_then(|d| d.percentile(0.9))),
+            "depth_complexity_p99" => exact(k, run.depth_complexity.as_ref().and_then(|d| d.percentile(0.99))),
+            "depth_complexity_max" => {
+                exact(k, run.depth_complexity.as_ref().and_then(|d| d.covered.last().map(|&c| c as f64)))
+            }
+            "quad_coverage" => exact(k, run.depth_complexity.as_ref().and_then(|d| d.coverage())),
             "flux_ratio" => exact(k, run.quality.as_ref().map(|q| q.caustic_flux_ratio)),
             "peak_ratio" => exact(k, run.quality.as_ref().map(|q| q.peak_ratio)),
             "peak_offset" => exact(k, run.quality.as_ref().map(|q| q.peak_offset_texels)),

@@ -216,6 +216,21 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
         }
     }
     for (i, mt) in c.metrics.iter().enumerate() {
+        if !crate::config::is_depth_complexity_metric(&mt.kind) {
+            continue;
+        }
+        let quads = Some(caustics::techniques::Technique::WdQuads);
+        if let Some((k, t)) = c.techniques.iter().enumerate().find(|(_, t)| t.settings.technique != quads) {
+            return Err(bad(
+                &format!("metric[{i}].kind"),
+                format!(
+                    "`{}` counts the caustic quads' fragments: every technique must be wd-quads, technique[{k}] (`{}`) is not",
+                    mt.kind, t.label
+                ),
+            ));
+        }
+    }
+    for (i, mt) in c.metrics.iter().enumerate() {
         if !METRIC_KINDS.contains(&mt.kind.as_str()) {
             return Err(bad(
                 &format!("metric[{i}].kind"),

@@ -415,6 +415,43 @@ fn quick_fig10_times_five_caustic_maps_each_with_its_own_passes() {
 }
 
 #[test]
+fn quick_wyman_davis2006_fig6_counts_the_quads_fragments_of_every_cell() {
+    // Fig. 6: the quads' depth complexity per cell, its percentiles in order, the share of the
+    // view they touch, and their pass timed on the host.
+    let (dir, r) = quick_run("wyman_davis2006_fig6.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 3 * 2 * 2, "3 scenes x 2 ways to draw x 2 photon counts");
+    for c in cells {
+        let label = format!("{} {}", c["cell"]["scene"], c["cell"]["technique_label"]);
+        let get = |m: &str| metric(c, m).unwrap_or_else(|| panic!("{label}: no {m}"));
+        let (mean, p50, p90, p99, max) = (get("mean"), get("median"), get("p90"), get("p99"), get("max"));
+        assert!(mean >= 1.0 && mean <= max, "{label}: mean {mean}, max {max}");
+        assert!(1.0 <= p50 && p50 <= p90 && p90 <= p99 && p99 <= max, "{label}: {p50} {p90} {p99} {max}");
+        let coverage = get("coverage");
+        assert!(coverage > 0.0 && coverage <= 1.0, "{label}: coverage {coverage}");
+        assert!(get("quads pass") > 0.0, "{label}: the quads' pass has a host time");
+    }
+    let md = std::fs::read_to_string(dir.join("wyman_davis2006_fig6.md")).expect("md");
+    assert!(md.contains("every pass submitted and waited for alone"), "the header says how the pass was timed");
+}
+
+#[test]
+fn quick_wyman_nichols2009_fig13_times_the_dragon_alone_and_with_two_spheres() {
+    // Fig. 13: both scenes, both frame modes and the caustic stages.
+    let (dir, r) = quick_run("wyman_nichols2009_fig13.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 2 * 2, "2 scenes x 2 photon counts");
+    for c in cells {
+        let scene = c["cell"]["scene"].as_str().unwrap_or_default();
+        for m in ["fps", "fps per-pass", "caustic map"] {
+            assert!(metric(c, m).is_some_and(|v| v.is_finite() && v > 0.0), "{scene}: {m}");
+        }
+    }
+    let md = std::fs::read_to_string(dir.join("wyman_nichols2009_fig13.md")).expect("md");
+    assert!(md.contains("dragon_two_spheres"), "both scenes in the table:\n{md}");
+}
+
+#[test]
 fn every_bench_config_has_a_quick_test() {
     // A config no test runs could rot unnoticed: each must be named in one of these files.
     let src = [include_str!("bench_papers.rs"), include_str!("bench_quality.rs")].concat();

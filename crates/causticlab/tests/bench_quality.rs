@@ -170,3 +170,19 @@ fn cheapest_rows_match(cells: &[serde_json::Value], section: &str, x: &str) {
         }
     }
 }
+
+#[test]
+fn quick_wyman_davis2006_fig10_measures_the_metal_and_glass_octahedron() {
+    // Fig. 10: both octahedra, four techniques, each cell's error, flux and peak against the
+    // exact reference; the metal one's caustic is reflected light, and every technique finds
+    // some of it.
+    let (_, r) = quick_run("wyman_davis2006_fig10.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 2 * 4 * 2, "2 scenes x 4 techniques x 2 photon counts");
+    for c in cells {
+        let label = format!("{} {}", c["cell"]["scene"], c["cell"]["technique_label"]);
+        for m in ["rel. RMSE", "flux ratio", "peak ratio"] {
+            assert!(metric(c, m).is_some_and(|v| v.is_finite() && v > 0.0), "{label}: {m}");
+        }
+    }
+}

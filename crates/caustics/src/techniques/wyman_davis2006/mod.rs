@@ -316,13 +316,16 @@ impl ImageSpace {
     /// The `eye_caustic` dump: the eye's caustic irradiance (main layer, W/m^2, and the photons
     /// of the neighbourhood), and where photons are drawn as points (eye points, gathers) this
     /// frame's eye-space photons and their directions. Quads are drawn straight into the
-    /// caustic irradiance: their views' photon images are never written.
+    /// caustic irradiance: their views' photon images are never written, and the main layer's
+    /// fourth channel counts the quads' fragments over each pixel (`quads`: their depth
+    /// complexity, Fig. 6).
     pub fn dump_eye(&self, ctx: &Context) -> Result<Option<ImageF32>> {
         const RGBA: [usize; 4] = [0, 1, 2, 3];
         let DrawnInto::Eye { eye: b, .. } = &self.into else { return Ok(None) };
         let mut layers = vec![];
         if let Some(c) = &b.caustic {
-            layers.push(c.read_layer(ctx, 0, None, &["R", "G", "B", "photons"], &RGBA)?);
+            let fourth = if matches!(self.draw, Draw::Quads(_)) { "quads" } else { "photons" };
+            layers.push(c.read_layer(ctx, 0, None, &["R", "G", "B", fourth], &RGBA)?);
         }
         if let Draw::Quads(_) = self.draw {
             return Ok(Some(ImageF32 { width: b.width, height: b.height, layers }));
