@@ -44,9 +44,11 @@ suite=(
     "trendall_stewart2000_table1 3 7"
     "quality 4 31"
     # Not yet run on a GPU: the seconds are estimates (16 cells of a few frames; 126 cells, each
-    # per-pass frames with every pass submitted alone, throughput frames and a comparison).
+    # per-pass frames with every pass submitted alone, throughput frames and a comparison; 8
+    # cells of adaptive caustic maps at 8192² and 16384² in batches).
     "photon_trace_rate 2 10"
     "front 6 150"
+    "wyman_nichols2009_fig8_16384 2 90"
 )
 # The other configs, for a second run with --more (priority order likewise).
 suite_more=(

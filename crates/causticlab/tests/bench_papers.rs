@@ -252,6 +252,29 @@ fn quick_fig8_splits_into_the_batches_asked_for_and_splats_the_same_photons() {
 }
 
 #[test]
+fn quick_fig8_at_the_batched_sizes_keeps_the_memory_limit_and_the_photons() {
+    // The Fig. 8 configs for the sizes only batches reach (lavapipe's and the GPU suite's): each
+    // cell runs at least the batches its label asks for, stays within its 96 MiB limit, is
+    // timed, and splats the photons the 2-batch cell splats.
+    for config in ["wyman_nichols2009_fig8_batched.toml", "wyman_nichols2009_fig8_16384.toml"] {
+        let (_, r) = quick_run(config);
+        assert_eq!(r["cells"].as_array().expect("cells").len(), 8, "{config}");
+        for photons in [128u64, 256] {
+            let two = cell(&r, "2 batches", photons);
+            for n in [2u32, 4, 8, 16] {
+                let label = format!("{n} batches");
+                let c = cell(&r, &label, photons);
+                assert!(metric(c, "batches").is_some_and(|b| b >= n as f64), "{config} {label} {photons}");
+                assert!(metric(c, "caustic map").unwrap_or(-1.0) > 0.0, "{config} {label} {photons}: not timed");
+                let s = metric(c, "storage").expect("storage");
+                assert!(s <= 96.0, "{config} {label} {photons}: {s} MiB over the limit");
+                assert_eq!(c["list_sizes"], two["list_sizes"], "{config} {label} {photons}: other photons");
+            }
+        }
+    }
+}
+
+#[test]
 fn quick_fig11_times_every_step_of_the_levels_each_density_runs() {
     // Wyman & Nichols 2009 Fig. 11: the fixed steps are timed at every density, a traversal
     // level only where the density reaches it (64²: level 0; 128²: levels 0-1).
