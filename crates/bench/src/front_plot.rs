@@ -6,10 +6,11 @@ use crate::config::{Config, FrontSpec};
 use crate::font::FAMILY;
 use crate::front::{fronts, SceneFront};
 use crate::plot::{
-    ellipsize, err, fit_size, text_width, tick, DrawResult, Plot, GREY, PALETTE, PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
+    draw_title, ellipsize, encode, err, text_width, tick, DrawResult, Drawing, Plot, GREY, PALETTE, PANEL_HEIGHT,
+    TITLE_HEIGHT, WIDTH,
 };
 use crate::results::Results;
-use anyhow::{Context as _, Result};
+use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -44,44 +45,20 @@ pub fn render(config: &Config, results: &Results, spec: &FrontSpec) -> Result<Pl
         scenes,
     };
     let height = TITLE_HEIGHT + PANEL_HEIGHT * frame.scenes.len().max(1) as u32;
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
-        draw(&root, &frame).map_err(anyhow::Error::msg).context("drawing the SVG front")?;
-        root.present().map_err(|e| anyhow::anyhow!("writing the SVG front: {e}"))?;
-    }
-    let mut rgb = vec![0u8; (WIDTH * height * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut rgb, (WIDTH, height)).into_drawing_area();
-        draw(&root, &frame).map_err(anyhow::Error::msg).context("drawing the PNG front")?;
-        root.present().map_err(|e| anyhow::anyhow!("drawing the PNG front: {e}"))?;
-    }
-    let mut png = vec![];
-    {
-        let mut enc = png::Encoder::new(&mut png, WIDTH, height);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        let mut w = enc.write_header().context("encoding the PNG front")?;
-        w.write_image_data(&rgb).context("encoding the PNG front")?;
-    }
-    Ok(Plot { svg, png })
+    encode(&frame, height, "front")
 }
 
-fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, f: &Frame) -> DrawResult {
-    root.fill(&WHITE).map_err(err)?;
-    let (top, rest) = root.split_vertically(TITLE_HEIGHT);
-    let room = WIDTH - 40;
-    let size = fit_size(&f.title, room, 22.0, 13.0);
-    top.draw(&Text::new(ellipsize(&f.title, room, size), (20, 12), (FAMILY, size).into_font())).map_err(err)?;
-    let sub = ellipsize(&f.subtitle, room, 14.0);
-    top.draw(&Text::new(sub, (20, 20 + size as i32), (FAMILY, 14.0).into_font().color(&GREY))).map_err(err)?;
-    if f.scenes.is_empty() {
-        return rest.draw(&Text::new("no data", (20, 20), (FAMILY, 16.0).into_font())).map_err(err);
+impl Drawing for Frame<'_> {
+    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult {
+        let rest = draw_title(root, &self.title, &self.subtitle)?;
+        if self.scenes.is_empty() {
+            return rest.draw(&Text::new("no data", (20, 20), (FAMILY, 16.0).into_font())).map_err(err);
+        }
+        for (area, scene) in rest.split_evenly((self.scenes.len(), 1)).iter().zip(&self.scenes) {
+            panel(area, self, scene)?;
+        }
+        Ok(())
     }
-    for (area, scene) in rest.split_evenly((f.scenes.len(), 1)).iter().zip(&f.scenes) {
-        panel(area, f, scene)?;
-    }
-    Ok(())
 }
 
 /// Draws marker `shape` (a paper's) at `at` in `colour`.

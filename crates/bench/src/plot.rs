@@ -37,17 +37,33 @@ pub struct Plot {
 pub fn render(fig: &Figure) -> Result<Plot> {
     crate::font::load()?;
     let height = TITLE_HEIGHT + PANEL_HEIGHT * fig.panels.len().max(1) as u32;
+    encode(fig, height, "plot")
+}
+
+/// A picture drawn the same way on both backends (the SVG and the PNG of a plot).
+pub(crate) trait Drawing {
+    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult;
+}
+
+impl Drawing for Figure {
+    fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult {
+        draw_figure(root, self)
+    }
+}
+
+/// `d` drawn `WIDTH` by `height` pixels as SVG and as PNG; `what` names it in errors.
+pub(crate) fn encode(d: &impl Drawing, height: u32, what: &str) -> Result<Plot> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
-        draw(&root, fig).context("drawing the SVG plot")?;
-        root.present().map_err(|e| anyhow::anyhow!("writing the SVG plot: {e}"))?;
+        d.draw_on(&root).map_err(anyhow::Error::msg).with_context(|| format!("drawing the SVG {what}"))?;
+        root.present().map_err(|e| anyhow::anyhow!("writing the SVG {what}: {e}"))?;
     }
     let mut rgb = vec![0u8; (WIDTH * height * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (WIDTH, height)).into_drawing_area();
-        draw(&root, fig).context("drawing the PNG plot")?;
-        root.present().map_err(|e| anyhow::anyhow!("drawing the PNG plot: {e}"))?;
+        d.draw_on(&root).map_err(anyhow::Error::msg).with_context(|| format!("drawing the PNG {what}"))?;
+        root.present().map_err(|e| anyhow::anyhow!("drawing the PNG {what}: {e}"))?;
     }
     let mut png = vec![];
     {
@@ -56,10 +72,26 @@ pub fn render(fig: &Figure) -> Result<Plot> {
         enc.set_depth(png::BitDepth::Eight);
         enc.set_compression(png::Compression::Best);
         enc.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
-        let mut w = enc.write_header().context("encoding the PNG plot")?;
-        w.write_image_data(&rgb).context("encoding the PNG plot")?;
+        let mut w = enc.write_header().with_context(|| format!("encoding the PNG {what}"))?;
+        w.write_image_data(&rgb).with_context(|| format!("encoding the PNG {what}"))?;
     }
     Ok(Plot { svg, png })
+}
+
+/// Fills `root` white and draws `title` and `subtitle` across its top; returns the area below.
+pub(crate) fn draw_title<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    subtitle: &str,
+) -> Result<DrawingArea<DB, Shift>, String> {
+    root.fill(&WHITE).map_err(err)?;
+    let (top, rest) = root.split_vertically(TITLE_HEIGHT);
+    let room = WIDTH - 40;
+    let size = fit_size(title, room, 22.0, 13.0);
+    top.draw(&Text::new(ellipsize(title, room, size), (20, 12), (FAMILY, size).into_font())).map_err(err)?;
+    let sub = ellipsize(subtitle, room, 14.0);
+    top.draw(&Text::new(sub, (20, 20 + size as i32), (FAMILY, 14.0).into_font().color(&GREY))).map_err(err)?;
+    Ok(rest)
 }
 
 /// Width in pixels of `text` at `size` in the plot font (0 if it cannot be measured).
@@ -94,19 +126,8 @@ pub(crate) fn err<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
-fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &Figure) -> Result<()> {
-    draw_figure(root, fig).map_err(anyhow::Error::msg)
-}
-
 fn draw_figure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &Figure) -> DrawResult {
-    root.fill(&WHITE).map_err(err)?;
-    let (top, rest) = root.split_vertically(TITLE_HEIGHT);
-    let room = WIDTH - 40;
-    let size = fit_size(&fig.title, room, 22.0, 13.0);
-    let title = ellipsize(&fig.title, room, size);
-    top.draw(&Text::new(title, (20, 12), (FAMILY, size).into_font())).map_err(err)?;
-    let sub = ellipsize(&fig.subtitle, room, 14.0);
-    top.draw(&Text::new(sub, (20, 20 + size as i32), (FAMILY, 14.0).into_font().color(&GREY))).map_err(err)?;
+    let rest = draw_title(root, &fig.title, &fig.subtitle)?;
     if fig.panels.is_empty() {
         return rest.draw(&Text::new("no data", (20, 20), (FAMILY, 16.0).into_font())).map_err(err);
     }

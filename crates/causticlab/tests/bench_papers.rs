@@ -115,19 +115,9 @@ fn quick_hierarchical_tables_count_and_time_every_cell() {
     }
     // Wyman & Nichols 2009 Table 1: the hierarchy splats only valid photons, clustering fewer.
     let (_, r) = quick_run("wyman_nichols2009_table1.toml");
-    let cells = r["cells"].as_array().expect("cells");
     for scene in ["bunny_in_room", "sphere_in_room"] {
         for photons in [64u64, 128] {
-            let find = |t: &str| {
-                cells
-                    .iter()
-                    .find(|c| {
-                        c["cell"]["scene"].as_str().is_some_and(|s| s.contains(scene))
-                            && c["cell"]["technique_label"] == t
-                            && c["cell"]["photons"].as_u64() == Some(photons)
-                    })
-                    .unwrap_or_else(|| panic!("no cell {scene} {t} {photons}"))
-            };
+            let find = |t: &str| cell_in(&r, scene, t, photons);
             let (dense, hier, last) = (find("Caustic Maps"), find("Hier. Caustic Maps"), find("combine last"));
             let s = |c: &Value, m: &str| metric(c, m).unwrap_or(f64::NAN);
             assert_eq!(s(dense, "splatted"), (photons * photons) as f64, "{scene} {photons}");
@@ -149,18 +139,7 @@ fn quick_adaptive_table_counts_both_metrics_and_keeps_each_levels_list() {
     assert!(md.contains("## Ratios"), "no Fig. 7 ratio grid:\n{md}");
     for scene in ["bunny_in_room", "sphere_in_room"] {
         for photons in [128u64, 512] {
-            let find = |t: &str| {
-                r["cells"]
-                    .as_array()
-                    .expect("cells")
-                    .iter()
-                    .find(|c| {
-                        c["cell"]["scene"].as_str().is_some_and(|s| s.contains(scene))
-                            && c["cell"]["technique_label"] == t
-                            && c["cell"]["photons"].as_u64() == Some(photons)
-                    })
-                    .unwrap_or_else(|| panic!("no cell {scene} {t} {photons}"))
-            };
+            let find = |t: &str| cell_in(&r, scene, t, photons);
             let (hier, traversal, error) =
                 (find("Hier. Caustic Maps"), find("Adaptive Max Traversal"), find("Adaptive Max Error"));
             let s = |c: &Value| metric(c, "splatted").unwrap_or(f64::NAN);
@@ -367,16 +346,7 @@ fn quick_photon_trace_rate_times_the_trace_and_counts_every_emitted_photon() {
     for scene in ["sphere_on_plane.toml", "bunny_in_room.toml"] {
         for photons in [64u64, 128] {
             for t in ["Fresnel on", "Fresnel off"] {
-                let c = r["cells"]
-                    .as_array()
-                    .expect("cells")
-                    .iter()
-                    .find(|c| {
-                        c["cell"]["technique_label"] == t
-                            && c["cell"]["photons"].as_u64() == Some(photons)
-                            && c["cell"]["scene"].as_str().is_some_and(|s| s.ends_with(scene))
-                    })
-                    .unwrap_or_else(|| panic!("no cell {scene} {t} {photons}"));
+                let c = cell_in(&r, scene, t, photons);
                 for (time, rate) in [("Trace", "rate"), ("Frame", "frame rate")] {
                     let (ms, per_s) = (samples(c, time), samples(c, rate));
                     assert!(

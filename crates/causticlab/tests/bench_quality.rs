@@ -36,15 +36,7 @@ fn quick_quality_wd2006_compares_every_wyman_davis_technique_with_the_reference(
         }
     }
     let flux = |scene: &str, label: &str, photons: u64| -> f64 {
-        let c = cells
-            .iter()
-            .find(|c| {
-                c["cell"]["technique_label"] == label
-                    && c["cell"]["photons"] == photons
-                    && c["cell"]["scene"].as_str().is_some_and(|s| s.ends_with(scene))
-            })
-            .unwrap_or_else(|| panic!("no cell {scene} {label} {photons}"));
-        metric(c, "flux ratio").expect("flux ratio")
+        metric(cell_in(&r, scene, label, photons), "flux ratio").expect("flux ratio")
     };
     for scene in ["sphere_on_plane.toml", "sphere_oblique.toml"] {
         for photons in [64, 128] {
@@ -148,8 +140,7 @@ fn quick_front_places_every_cell_and_names_the_cheapest_per_error_level() {
 /// cheapest cell at or below it.
 fn cheapest_rows_match(cells: &[serde_json::Value], section: &str, x: &str) {
     for scene in ["sphere_on_plane", "ring_cardioid", "bunny_in_room"] {
-        let of_scene: Vec<&serde_json::Value> =
-            cells.iter().filter(|c| c["cell"]["scene"].as_str().is_some_and(|s| s.contains(scene))).collect();
+        let of_scene: Vec<&serde_json::Value> = cells.iter().filter(|c| in_scene(c, scene)).collect();
         let level = 0.5;
         let best = of_scene
             .iter()

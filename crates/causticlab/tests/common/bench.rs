@@ -146,6 +146,22 @@ pub fn cell<'a>(r: &'a Value, technique: &str, photons: u64) -> &'a Value {
         .unwrap_or_else(|| panic!("no cell {technique} {photons}"))
 }
 
+/// Whether `c` is a cell of `scene`: its file name (`sphere_on_plane.toml`) or stem.
+pub fn in_scene(c: &Value, scene: &str) -> bool {
+    let path = Path::new(c["cell"]["scene"].as_str().unwrap_or_default());
+    path.file_name().is_some_and(|n| n == scene) || path.file_stem().is_some_and(|n| n == scene)
+}
+
+/// The cell of `scene` (file name or stem), technique label and photon count.
+pub fn cell_in<'a>(r: &'a Value, scene: &str, technique: &str, photons: u64) -> &'a Value {
+    r["cells"]
+        .as_array()
+        .expect("cells")
+        .iter()
+        .find(|c| in_scene(c, scene) && c["cell"]["technique_label"] == technique && c["cell"]["photons"] == photons)
+        .unwrap_or_else(|| panic!("no cell {scene} {technique} {photons}"))
+}
+
 /// Every file under `dir` (none if it does not exist).
 pub fn files_under(dir: &Path) -> Vec<PathBuf> {
     let mut out = vec![];
