@@ -59,32 +59,22 @@ fn exact(kind: &str, v: Option<f64>) -> Value {
 /// Per measured frame: the summed GPU time of the passes matching any of `patterns`; None when
 /// the device has no timestamps or no pass matched.
 fn pass_samples(run: &CellRun, patterns: &[String]) -> Vec<f64> {
-    run.frames
-        .iter()
-        .filter_map(|f| {
-            let times: Vec<f64> = f
-                .passes
-                .iter()
-                .filter(|p| patterns.iter().any(|pat| glob(pat, &p.name)))
-                .filter_map(|p| p.gpu_ms)
-                .collect();
-            (!times.is_empty()).then(|| times.iter().sum())
-        })
-        .collect()
+    summed_passes(run, patterns, |p| p.gpu_ms)
 }
 
 /// Per measured frame: the host times of the passes matching `patterns` (each pass submitted
 /// and waited for alone: `FrameStep::host_pass_times`), summed.
 fn pass_host_samples(run: &CellRun, patterns: &[String]) -> Vec<f64> {
+    summed_passes(run, patterns, |p| p.host_ms)
+}
+
+/// Per measured frame with any: the sum of `time` over the passes matching `patterns`.
+fn summed_passes(run: &CellRun, patterns: &[String], time: fn(&vkcore::PassTiming) -> Option<f64>) -> Vec<f64> {
     run.frames
         .iter()
         .filter_map(|f| {
-            let times: Vec<f64> = f
-                .passes
-                .iter()
-                .filter(|p| patterns.iter().any(|pat| glob(pat, &p.name)))
-                .filter_map(|p| p.host_ms)
-                .collect();
+            let times: Vec<f64> =
+                f.passes.iter().filter(|p| patterns.iter().any(|pat| glob(pat, &p.name))).filter_map(time).collect();
             (!times.is_empty()).then(|| times.iter().sum())
         })
         .collect()

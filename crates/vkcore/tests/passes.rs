@@ -31,6 +31,20 @@ fn add_pipeline(ctx: &Context) -> Pipeline {
     Pipeline::compute(ctx, "add", &shader).unwrap()
 }
 
+/// Passes `first`, `second`, `third`: b = a + 1, c = b + 2, b = c + 3 (buffers `[a, b, c]`).
+fn record_chain(f: &mut Frame, p: &Pipeline, [a, b, c]: [&Buffer; 3]) {
+    for (name, src, dst, add) in [("first", a, b, 1u32), ("second", b, c, 2), ("third", c, b, 3)] {
+        f.pass(name)
+            .bind(p, [("In", Bind::BufferRead(src)), ("Out", Bind::Buffer(dst))])
+            .record(|cmd| {
+                cmd.push(&AddConstants { count: N, add })?;
+                cmd.dispatch(N.div_ceil(64), 1, 1);
+                Ok(())
+            })
+            .unwrap();
+    }
+}
+
 #[test]
 fn bound_descriptors_get_their_barriers() {
     let (ctx, _) = context();
@@ -42,16 +56,7 @@ fn bound_descriptors_get_their_barriers() {
     let mut f = ctx.frame(FrameOptions::default()).unwrap();
     // b = a + 1, then c = b + 2 (read after write), then b = c + 3 (write after read): each
     // hazard needs the barrier its descriptors imply.
-    for (name, src, dst, add) in [("first", &a, &b, 1u32), ("second", &b, &c, 2), ("third", &c, &b, 3)] {
-        f.pass(name)
-            .bind(&p, [("In", Bind::BufferRead(src)), ("Out", Bind::Buffer(dst))])
-            .record(|cmd| {
-                cmd.push(&AddConstants { count: N, add })?;
-                cmd.dispatch(N.div_ceil(64), 1, 1);
-                Ok(())
-            })
-            .unwrap();
-    }
+    record_chain(&mut f, &p, [&a, &b, &c]);
     f.submit().unwrap();
     let got: Vec<u32> = ctx.read_buffer_as(&b).unwrap();
     let want: Vec<u32> = input.iter().map(|x| x + 6).collect();
@@ -74,16 +79,7 @@ fn host_pass_times_submit_every_pass_and_keep_the_frames_result() {
     let before = ctx.counters();
     let opts = FrameOptions { timestamps: true, host_pass_times: true, ..Default::default() };
     let mut f = ctx.frame(opts).unwrap();
-    for (name, src, dst, add) in [("first", &a, &b, 1u32), ("second", &b, &c, 2), ("third", &c, &b, 3)] {
-        f.pass(name)
-            .bind(&p, [("In", Bind::BufferRead(src)), ("Out", Bind::Buffer(dst))])
-            .record(|cmd| {
-                cmd.push(&AddConstants { count: N, add })?;
-                cmd.dispatch(N.div_ceil(64), 1, 1);
-                Ok(())
-            })
-            .unwrap();
-    }
+    record_chain(&mut f, &p, [&a, &b, &c]);
     let report = f.submit().unwrap();
     let submits = ctx.counters().since(&before).submits;
     let got: Vec<u32> = ctx.read_buffer_as(&b).unwrap();
