@@ -4,45 +4,18 @@
 
 mod common;
 use common::*;
-use std::path::PathBuf;
 use vkcore::*;
 
-fn test_shaders() -> ShaderCompiler {
-    ShaderCompiler::new(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/shaders")).unwrap()
-}
-
 const N: u32 = 1000;
-
-vkcore::push_constants! {
-    /// add.comp's push constants.
-    struct AddConstants {
-        count: u32,
-        add: u32,
-    }
-}
 
 #[test]
 fn add_constants_match_their_glsl_twin() {
     check_push_constants::<AddConstants>(&test_shaders().compile("add.comp", &[]).unwrap()).unwrap();
 }
 
-fn add_pipeline(ctx: &Context) -> Pipeline {
-    let shader = test_shaders().compile("add.comp", &[]).unwrap();
-    Pipeline::compute(ctx, "add", &shader).unwrap()
-}
-
 /// Passes `first`, `second`, `third`: b = a + 1, c = b + 2, b = c + 3 (buffers `[a, b, c]`).
 fn record_chain(f: &mut Frame, p: &Pipeline, [a, b, c]: [&Buffer; 3]) {
-    for (name, src, dst, add) in [("first", a, b, 1u32), ("second", b, c, 2), ("third", c, b, 3)] {
-        f.pass(name)
-            .bind(p, [("In", Bind::BufferRead(src)), ("Out", Bind::Buffer(dst))])
-            .record(|cmd| {
-                cmd.push(&AddConstants { count: N, add })?;
-                cmd.dispatch(N.div_ceil(64), 1, 1);
-                Ok(())
-            })
-            .unwrap();
-    }
+    record_adds(f, p, N, &[("first", a, b, 1), ("second", b, c, 2), ("third", c, b, 3)]);
 }
 
 #[test]

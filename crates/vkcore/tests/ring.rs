@@ -5,41 +5,14 @@
 
 mod common;
 use common::*;
-use std::path::PathBuf;
 use vkcore::*;
 
-fn test_shaders() -> ShaderCompiler {
-    ShaderCompiler::new(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/shaders")).unwrap()
-}
-
 const N: u32 = 4096;
-
-vkcore::push_constants! {
-    /// add.comp's push constants.
-    struct AddConstants {
-        count: u32,
-        add: u32,
-    }
-}
-
-fn add_pipeline(ctx: &Context) -> Pipeline {
-    let shader = test_shaders().compile("add.comp", &[]).unwrap();
-    Pipeline::compute(ctx, "add", &shader).unwrap()
-}
 
 /// One frame of the test's work: b = a + k, then a = b + 1, so each frame reads what the one
 /// before it wrote (a hazard across frames in flight).
 fn record(f: &mut Frame, p: &Pipeline, a: &Buffer, b: &Buffer, k: u32) {
-    for (name, src, dst, add) in [("step", a, b, k), ("back", b, a, 1)] {
-        f.pass(name)
-            .bind(p, [("In", Bind::BufferRead(src)), ("Out", Bind::Buffer(dst))])
-            .record(|cmd| {
-                cmd.push(&AddConstants { count: N, add })?;
-                cmd.dispatch(N.div_ceil(64), 1, 1);
-                Ok(())
-            })
-            .unwrap();
-    }
+    record_adds(f, p, N, &[("step", a, b, k), ("back", b, a, 1)]);
 }
 
 #[test]
