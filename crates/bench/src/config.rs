@@ -460,6 +460,12 @@ impl Config {
         photons <= self.technique_settings(t).most_photons()
     }
 
+    /// Whether the per-pass frames submit every pass alone to time it on the host: a
+    /// `pass_host_ms` metric asks for it.
+    pub fn host_pass_times(&self) -> bool {
+        self.metrics.iter().any(|m| m.kind == "pass_host_ms")
+    }
+
     /// The frames of every cell: `[run]`, or `[quick]` under `--quick`.
     pub fn frame_plan(&self, quick: bool) -> FramePlan {
         let r = &self.run;

@@ -4,6 +4,7 @@
 //! reaches it. Drawn by `crate::front_plot`; written into the table by [`markdown`].
 
 use crate::config::{Config, FrontSpec};
+use crate::format::significant;
 use crate::plan::scene_label;
 use crate::results::Results;
 use std::fmt::Write as _;
@@ -100,7 +101,14 @@ fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str) -> Str
             match cheapest(&f.points, level) {
                 Some(i) => {
                     let p = &f.points[i];
-                    let _ = writeln!(s, "| {level} | {} | {}² | {} | {:.4} |", p.technique, p.photons, ms(p.x), p.y);
+                    let _ = writeln!(
+                        s,
+                        "| {level} | {} | {}² | {} | {:.4} |",
+                        p.technique,
+                        p.photons,
+                        significant(p.x),
+                        p.y
+                    );
                 }
                 None => {
                     let _ = writeln!(s, "| {level} | (none reaches it) | | | |");
@@ -112,21 +120,12 @@ fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str) -> Str
             .iter()
             .map(|&i| {
                 let p = &f.points[i];
-                format!("{} {}² ({}, {:.4})", p.technique, p.photons, ms(p.x), p.y)
+                format!("{} {}² ({}, {:.4})", p.technique, p.photons, significant(p.x), p.y)
             })
             .collect();
         let _ = writeln!(s, "\nFront: {}.\n", front.join(" → "));
     }
     s
-}
-
-/// A time for the front's text: 2 decimals below 10, else 1.
-fn ms(x: f64) -> String {
-    if x < 10.0 {
-        format!("{x:.2}")
-    } else {
-        format!("{x:.1}")
-    }
 }
 
 #[cfg(test)]

@@ -218,9 +218,11 @@ impl<'a> Runner<'a> {
             // Only counts and quality come from per-pass frames: one frame, no warm-up.
             plan = crate::config::FramePlan { warmup: 0, min: 1, max: 1, budget_s: 0.0 };
         }
-        // Host pass times submit every pass alone: asked for by a `pass_host_ms` metric.
-        let host_pass_times = c.metrics.iter().any(|m| m.kind == "pass_host_ms");
-        let step = FrameStep { reuse_photons: static_lighting, pipeline_statistics: false, host_pass_times };
+        let step = FrameStep {
+            reuse_photons: static_lighting,
+            pipeline_statistics: false,
+            host_pass_times: c.host_pass_times(),
+        };
         if static_lighting {
             // Static lighting renders its photon buffer once, before any frame is timed.
             renderer.frame(FrameStep::default())?;

@@ -163,12 +163,11 @@ fn modes_line(config: &Config, results: &Results) -> String {
         timed.iter().filter(|m| m.throughput() == throughput).map(|m| m.label.clone()).collect()
     };
     let mut parts = vec![];
-    let host_passes = config.metrics.iter().any(|m| m.kind == "pass_host_ms");
     for (mode, throughput, what) in [
         (
             "per-pass",
             false,
-            if host_passes {
+            if config.host_pass_times() {
                 "one-shot frames, a timestamp pair and a crash-marker barrier around every pass, every pass submitted \
                  and waited for alone (host pass times), each frame waited for"
                     .to_string()

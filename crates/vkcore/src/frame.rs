@@ -359,7 +359,8 @@ impl Frame {
                 self.finished = true;
                 return Err(e);
             }
-            self.host_pass_ms.get_or_insert_with(Vec::new).push(start.elapsed().as_secs_f64() * 1e3);
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            self.host_pass_ms.iter_mut().for_each(|times| times.push(ms));
         }
         Ok(())
     }
