@@ -36,7 +36,36 @@ vec3 caustic_level(ivec2 texel, int layer, uint i, float size) {
     return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
+// Interpolated splats (Wyman 2008 Fig. 7's third column, Wyman & Dachsbacher's multiple splat
+// sizes): layer 4l + i holds every photon splatted at radius r_i = splat.x * 2^i, its alpha the
+// photons per texel. Like a k-nearest-neighbour estimate, a texel reads the smallest radius that
+// gathers INTERPOLATED_PHOTONS photons: n_i = alpha_i * pi r_i^2 photons fall within r_i of it;
+// between the two radii whose n_i bracket that count the power is interpolated (linearly in
+// log n, so halfway in log count between them is halfway between the layers); below it at the
+// largest radius, the largest radius's. Each layer holds every photon's whole power, so the
+// estimate keeps the caustic's power where the chosen radius changes slowly. (Reconstructed
+// from the description in Wyman 2008 Sec. 3.3 and Wyman & Dachsbacher's abstract: a
+// variable-radius estimate from four splat sizes; the selection rule is ours.)
+vec3 interpolated_power(ivec2 texel, uint l) {
+    vec4 below = vec4(0.0);
+    float n_below = 0.0;
+    for (uint i = 0u; i < INTERPOLATED_LEVELS; ++i) {
+        vec4 c = texelFetch(caustic_map, ivec3(texel, int(l * INTERPOLATED_LEVELS + i)), 0);
+        float r = caustics.splat.x * float(1u << i);
+        float n = c.a * 3.14159265 * r * r;
+        if (n >= INTERPOLATED_PHOTONS || i + 1u == INTERPOLATED_LEVELS) {
+            if (i == 0u || n < INTERPOLATED_PHOTONS || n_below <= 0.0) return c.rgb;
+            float t = log(INTERPOLATED_PHOTONS / n_below) / log(n / n_below);
+            return mix(below.rgb, c.rgb, clamp(t, 0.0, 1.0));
+        }
+        below = c;
+        n_below = n;
+    }
+    return below.rgb;
+}
+
 vec3 caustic_power(ivec2 texel, uint l, float size) {
+    if (caustics.splat.w == SPLAT_INTERPOLATED) return interpolated_power(texel, l);
     if (caustics.splat.w != SPLAT_VARYING_MULTIRES) {
         return texelFetch(caustic_map, ivec3(texel, int(l)), 0).rgb;
     }

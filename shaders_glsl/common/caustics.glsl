@@ -15,11 +15,17 @@
 #define SPLAT_FIXED 0.0
 #define SPLAT_VARYING_SINGLE 1.0
 #define SPLAT_VARYING_MULTIRES 2.0
+#define SPLAT_INTERPOLATED 3.0
 // Levels of the multi-resolution caustic map (Wyman 2008 Sec. 3.3): splats that would need the
 // 4th level or beyond are discarded.
 #define MULTIRES_LEVELS 4u
 // Largest splat diameter in any level (the paper's threshold).
 #define MULTIRES_MAX_DIAMETER 5.0
+// Interpolated splats (Wyman 2008 Fig. 7's third column): layer i of a light's map holds every
+// splat at radius splat.x * 2^i, full resolution; the lookup reads the radius at which about
+// INTERPOLATED_PHOTONS photons cover the texel (common/caustic_lookup.glsl).
+#define INTERPOLATED_LEVELS 4u
+#define INTERPOLATED_PHOTONS 8.0
 
 struct CausticLight {
     mat4 photon_view_proj;    // the photon buffer's frustum (tight around the specular objects)
@@ -33,7 +39,7 @@ struct CausticLight {
 layout(std140, binding = CAUSTICS_BINDING) uniform Caustics {
     uvec4 settings;   // x: lights with caustics (0 = none), y: photons per side, z: iterations, w: flags
     vec4 splat;       // x: splat radius (caustic-map texels), y: kernel (0 Gaussian, 1 box), z: back-face iterations,
-                      // w: splat sizes (SPLAT_FIXED, SPLAT_VARYING_SINGLE, SPLAT_VARYING_MULTIRES)
+                      // w: splat sizes (SPLAT_FIXED, SPLAT_VARYING_SINGLE, SPLAT_VARYING_MULTIRES, SPLAT_INTERPOLATED)
     vec4 background_plane;  // x: y of the plane mirrored photons land on (CAUSTIC_REFLECTION_PLANE)
     CausticLight lights[MAX_LIGHTS];
 } caustics;

@@ -87,8 +87,14 @@ bool splat_of(vec4 pos, vec3 power, uvec4 entry, CausticLight cl, out Splat s) {
     if (!caustic_map_texel(cl, pos.xyz, centre)) return false;
     float m = cl.caustic_plane.y;
     float r = caustics.splat.x;
+#ifdef INTERPOLATED_LEVEL
+    // Interpolated splats (Wyman 2008 Fig. 7; wyman2008/interpolated.rs): this draw's radius,
+    // splat.x * 2^INTERPOLATED_LEVEL, into its own full-resolution layer.
+    r *= exp2(float(INTERPOLATED_LEVEL));
+    s.layer = INTERPOLATED_LEVEL;
+#endif
 #ifdef VARYING_SPLATS
-    if (caustics.splat.w != SPLAT_FIXED) {
+    if (caustics.splat.w == SPLAT_VARYING_SINGLE || caustics.splat.w == SPLAT_VARYING_MULTIRES) {
         r = splat_radius_of(entry, pos.xyz, centre, cl);
         // photonMipLevel = trunc(log2(max(1, D / 5))); splats needing level 4 or beyond are
         // discarded (D >= 80 by this formula: radius >= 40 texels; the paper's text says "a

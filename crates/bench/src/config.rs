@@ -299,11 +299,18 @@ pub const METRIC_KINDS: &[&str] = &[
     "depth_complexity_p99",
     "depth_complexity_max",
     "quad_coverage",
+    "temporal_change",
 ];
 
 /// Whether metric `kind` reads the caustic quads' depth complexity (`wd-quads` only).
 pub fn is_depth_complexity_metric(kind: &str) -> bool {
     kind.starts_with("depth_complexity_") || kind == "quad_coverage"
+}
+
+/// Whether metric `kind` compares each frame's receiver map with the previous frame's
+/// (`temporal_change`: how steady the caustic is along an animation).
+pub fn is_temporal_metric(kind: &str) -> bool {
+    kind == "temporal_change"
 }
 
 /// Whether metric `kind` compares the receiver map with the CPU reference (`[quality]`).

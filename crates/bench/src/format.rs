@@ -24,7 +24,7 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         }
         // A share of the photon buffer, as a percentage with three significant digits.
         "valid_fraction" => format!("{}%", significant(100.0 * v)),
-        "rel_rmse" | "flux_ratio" | "peak_ratio" => format!("{v:.4}"),
+        "rel_rmse" | "flux_ratio" | "peak_ratio" | "temporal_change" => format!("{v:.4}"),
         "peak_offset" => format!("{v:.1}"),
         "photon_storage" => significant(v),
         "depth_complexity_mean" => format!("{v:.2}"),

@@ -70,6 +70,17 @@ pub struct CellRun {
     pub host_probe_ms: f64,
     /// `wd-quads`: the last frame's depth complexity of the caustic quads, when a metric asks.
     pub depth_complexity: Option<DepthComplexity>,
+    /// `temporal_change`: the relative RMS change of the receiver map from one measured frame to
+    /// the next (`compare(frame t, frame t - 1).rel_rmse`), one per pair of measured frames.
+    pub temporal_changes: Vec<f64>,
+}
+
+impl CellRun {
+    /// The mean of [`CellRun::temporal_changes`] (`None` with fewer than two measured frames).
+    pub fn temporal_change(&self) -> Option<f64> {
+        let n = self.temporal_changes.len();
+        (n > 0).then(|| self.temporal_changes.iter().sum::<f64>() / n as f64)
+    }
 }
 
 /// The caustic quads' depth complexity (Wyman & Davis 2006 Fig. 6): how many of their fragments
@@ -139,6 +150,16 @@ impl<'a> Runner<'a> {
         self.config.config.metrics.iter().any(|m| crate::config::is_quality_metric(&m.kind))
     }
 
+    fn needs_temporal(&self) -> bool {
+        self.config.config.metrics.iter().any(|m| crate::config::is_temporal_metric(&m.kind))
+    }
+
+    /// Whether a cell reads its receiver map (a validation instrument, not part of any
+    /// technique): for the CPU reference or for the frame-to-frame change.
+    fn needs_receiver_map(&self) -> bool {
+        self.needs_quality() || self.needs_temporal()
+    }
+
     fn needs_depth_complexity(&self) -> bool {
         self.config.config.metrics.iter().any(|m| crate::config::is_depth_complexity_metric(&m.kind))
     }
@@ -171,12 +192,12 @@ impl<'a> Runner<'a> {
             scene.camera.width = cell.resolution[0];
             scene.camera.height = cell.resolution[1];
         }
-        if !self.needs_quality() {
+        if !self.needs_receiver_map() {
             // The receiver map is a validation instrument, not part of any technique.
             scene.receiver_map = None;
         } else if scene.receiver_map.is_none() {
             anyhow::bail!(caustics::input_error!(
-                "{}: a quality metric needs a [receiver_map] in scene {}",
+                "{}: a quality or temporal_change metric needs a [receiver_map] in scene {}",
                 self.config.path.display(),
                 path.display()
             ));
@@ -214,7 +235,12 @@ impl<'a> Runner<'a> {
             period_frames: c.run.period_frames,
         };
         let mut plan = c.frame_plan(self.quick.is_some());
-        if !per_pass_timing {
+        // Untimed frames along an animation for a quality or temporal metric: the warm-up
+        // frames (which fill a temporal filter's history), then exactly `measured_frames`.
+        let along_animation = !per_pass_timing && !anim.is_static() && self.needs_receiver_map();
+        if along_animation {
+            plan = crate::config::FramePlan { max: plan.min, budget_s: 0.0, ..plan };
+        } else if !per_pass_timing {
             // Only counts and quality come from per-pass frames: one frame, no warm-up.
             plan = crate::config::FramePlan { warmup: 0, min: 1, max: 1, budget_s: 0.0 };
         }
@@ -230,6 +256,7 @@ impl<'a> Runner<'a> {
         let mut frames = vec![];
         let mut wall_ms = vec![];
         let mut counters = vec![];
+        let mut receiver_maps: Vec<ImageF32> = vec![];
         let host_probe_ms = crate::host_speed::probe_ms();
         let cpu_before = crate::steal::sample();
         // Warm-up frames, then measured frames until the plan is met: at least `min` frames
@@ -255,8 +282,19 @@ impl<'a> Runner<'a> {
                 frames.push(report);
                 wall_ms.push(ms);
                 counters.push(self.ctx.counters().since(&before));
+                if self.needs_temporal() {
+                    // Read back after the frame's time was taken (validation refuses timed
+                    // per-pass metrics beside temporal_change).
+                    receiver_maps.push(renderer.dump("receiver")?.context("the render has no receiver map")?);
+                }
             }
             f += 1;
+        }
+        // The pose of the last frame rendered, which the quality metrics compare.
+        let last_pose = if f > 1 && !anim.is_static() { Some(f - 1) } else { None };
+        let mut temporal_changes = vec![];
+        for pair in receiver_maps.windows(2) {
+            temporal_changes.push(compare(&pair[1], &pair[0])?.0.rel_rmse);
         }
         let cpu_steal = cpu_before.zip(crate::steal::sample()).and_then(|(a, b)| crate::steal::fraction(a, b));
         let stats_frame = if per_pass_timing && self.ctx.info().has(vkcore::Feature::PipelineStatisticsQuery) {
@@ -265,7 +303,8 @@ impl<'a> Runner<'a> {
             None
         };
         let valid_photons = if self.needs_valid_photons() { renderer.valid_photons(None)? } else { None };
-        let quality = if self.needs_quality() { Some(self.quality(&mut renderer, &scene)?) } else { None };
+        let quality =
+            if self.needs_quality() { Some(self.quality(&mut renderer, &scene, &anim, last_pose)?) } else { None };
         let depth_complexity = if self.needs_depth_complexity() {
             // Eye-space quads count into the eye's caustic, light-space ones into the caustic map.
             let dump = match renderer.dump("eye_caustic")? {
@@ -318,6 +357,7 @@ impl<'a> Runner<'a> {
             other_cores,
             host_probe_ms,
             depth_complexity,
+            temporal_changes,
         })
     }
 
@@ -400,11 +440,23 @@ impl<'a> Runner<'a> {
         Ok(out)
     }
 
-    /// The last frame's receiver map against the CPU reference of the same scene and lights.
-    fn quality(&mut self, renderer: &mut Renderer, scene: &Scene) -> Result<Comparison> {
+    /// The last frame's receiver map against the CPU reference of the same scene and lights, in
+    /// the pose of that frame along the animation (`last_pose`, frame 0's when `None`).
+    fn quality(
+        &mut self,
+        renderer: &mut Renderer,
+        scene: &Scene,
+        anim: &Animation,
+        last_pose: Option<u32>,
+    ) -> Result<Comparison> {
         let q = &self.config.config.quality;
         let photons = self.quick.map(|k| k.reference_photons).unwrap_or(q.reference_photons);
-        let key = format!("{:?}|{:?}|{:?}|{}", scene.path, scene.lights, scene.receiver_map, scene.caustics.fresnel);
+        let posed = last_pose.map(|f| scene_at(scene, anim, f));
+        let scene = posed.as_ref().unwrap_or(scene);
+        let key = format!(
+            "{:?}|{:?}|{:?}|{}|{:?}",
+            scene.path, scene.lights, scene.receiver_map, scene.caustics.fresnel, last_pose
+        );
         if !self.references.contains_key(&key) {
             let opts =
                 ReferenceOptions { photons, seed: q.seed, fresnel: scene.caustics.fresnel, ..Default::default() };

@@ -158,6 +158,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
                 run.valid_photons.map(|v| v as f64 / (run.caustics.photons as f64).powi(2) / run.lights.max(1) as f64),
             ),
             "rel_rmse" => exact(k, run.quality.as_ref().map(|q| q.rel_rmse)),
+            "temporal_change" => exact(k, run.temporal_change()),
             "photon_storage" => exact(k, run.photon_storage.map(|b| b as f64 / (1024.0 * 1024.0))),
             "photon_batches" => exact(k, run.photon_batches.map(f64::from)),
             "depth_complexity_mean" => exact(k, run.depth_complexity.as_ref().and_then(|d| d.mean())),

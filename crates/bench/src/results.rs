@@ -124,6 +124,10 @@ pub struct CellResult {
     /// Throughput frames: host ms per frame of each timed block.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub block_ms: Vec<f64>,
+    /// `temporal_change`: the receiver map's relative RMS change from each measured frame to the
+    /// next (the metric is their mean).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub temporal_changes: Vec<f64>,
 }
 
 /// What the measured frames of one mode asked of the driver, per frame (medians, and the most
@@ -222,6 +226,7 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         .filter_map(|(k, v)| Some((k.to_string(), v?)))
         .collect(),
         block_ms: run.throughput.as_ref().map(|t| t.block_ms.clone()).unwrap_or_default(),
+        temporal_changes: run.temporal_changes.clone(),
     }
 }
 

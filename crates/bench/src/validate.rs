@@ -305,12 +305,32 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             return Err(bad(key, format!("{n}: must be between 1 and 2^30")));
         }
     }
-    let quality = c.metrics.iter().any(|m| crate::config::is_quality_metric(&m.kind));
-    if quality && [&r.light_path, &r.camera_path, &r.object_path].iter().any(|p| *p != "static") {
-        return Err(bad(
-            "run",
-            "quality metrics compare the rest pose with the CPU reference: keep every path static".into(),
-        ));
+    // Along an animation a quality metric compares the last frame with the CPU reference of
+    // that frame's pose. temporal_change compares each frame with the one before it.
+    let moving = [&r.light_path, &r.camera_path, &r.object_path].iter().any(|p| *p != "static");
+    for (i, mt) in c.metrics.iter().enumerate() {
+        if !crate::config::is_temporal_metric(&mt.kind) {
+            continue;
+        }
+        if !moving {
+            return Err(bad(
+                &format!("metric[{i}].kind"),
+                "`temporal_change` compares each frame's receiver map with the last one's: it needs a moving \
+                 scene (run.light_path, run.camera_path or run.object_path = \"orbit\")"
+                    .into(),
+            ));
+        }
+        let timed = c.metrics.iter().position(|m| !m.throughput() && crate::results::is_timing(&m.kind));
+        if let Some(j) = timed {
+            return Err(bad(
+                &format!("metric[{j}].kind"),
+                format!(
+                    "`{}` times the per-pass frames, which `temporal_change` (metric[{i}]) reads back after every \
+                     frame: put them in separate configs, or time them in throughput mode",
+                    c.metrics[j].kind
+                ),
+            ));
+        }
     }
     crate::validate_layout::validate_layout(lc, &bad)
 }

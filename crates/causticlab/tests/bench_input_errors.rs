@@ -55,6 +55,18 @@ fn config_errors_name_the_file_and_key() {
         ),
         ("few_max_frames.toml", SMALL.replace("[run]", "[run]\nmax_frames = 0"), "run.max_frames"),
         (
+            "temporal_still.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"temporal_change\""),
+            "metric[1].kind",
+        ),
+        (
+            "temporal_timed.toml",
+            SMALL
+                .replace("kind = \"splats_drawn\"", "kind = \"temporal_change\"")
+                .replace("[run]", "[run]\nlight_path = \"orbit\""),
+            "metric[2].kind",
+        ),
+        (
             "bad_pick.toml",
             format!("{SMALL}\n[[layout.column]]\ntechnique = \"quads\"\nmetric = \"photons\"\n"),
             "layout.column[0].technique",

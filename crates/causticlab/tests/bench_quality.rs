@@ -177,3 +177,69 @@ fn quick_wyman_davis2006_fig10_measures_the_metal_and_glass_octahedron() {
         }
     }
 }
+
+#[test]
+fn quick_wyman_davis2006_fig8_measures_the_filter_along_a_moving_light() {
+    // Fig. 8: the gathers with the temporal filter off and on, the light orbiting; 3 measured
+    // frames per cell after the 3 warm-up frames that fill the filter's history.
+    let (_, r) = quick_run("wyman_davis2006_fig8.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 4 * 2, "4 techniques x 2 photon counts");
+    for c in cells {
+        let label = format!("{} {}", c["cell"]["technique_label"], c["cell"]["photons"]);
+        let changes = c["temporal_changes"].as_array().expect("temporal_changes");
+        assert_eq!(changes.len(), 2, "{label}: one change per pair of the 3 measured frames");
+        // The light moves, so every frame's caustic differs from the last one's.
+        let change = metric(c, "frame-to-frame change").unwrap_or(f64::NAN);
+        assert!(change.is_finite() && change > 1e-3, "{label}: frame-to-frame change {change}");
+        for m in ["rel. RMSE", "flux ratio"] {
+            assert!(metric(c, m).is_some_and(|v| v.is_finite() && v > 0.0), "{label}: {m}");
+        }
+    }
+    for space in ["eye", "light"] {
+        for photons in [64, 128] {
+            let change =
+                |label: &str| metric(cell_in(&r, "beethoven_standin", label, photons), "frame-to-frame change");
+            let (off, on) = (change(&format!("gather {space}")), change(&format!("gather {space}, filtered")));
+            // The filter averages four frames' counts: it must change what the frames show.
+            assert!(
+                off.zip(on).is_some_and(|(a, b)| (a - b).abs() > 1e-4),
+                "{space} {photons}²: off {off:?}, on {on:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn quick_wyman2008_fig7_measures_four_splat_sizes_against_the_reference() {
+    // Fig. 7: constant, thin-lens, interpolated and Sec. 3.3's splats on two scenes; every cell's
+    // error, flux and peak against the exact reference, and the splat passes' host time.
+    let (_, r) = quick_run("wyman2008_fig7.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 2 * 4 * 2, "2 scenes x 4 techniques x 2 photon counts");
+    for c in cells {
+        let label = format!("{} {} {}", c["cell"]["scene"], c["cell"]["technique_label"], c["cell"]["photons"]);
+        for m in ["rel. RMSE", "flux ratio", "peak ratio", "splat"] {
+            assert!(metric(c, m).is_some_and(|v| v.is_finite() && v > 0.0), "{label}: {m}");
+        }
+        // Every splat deposits its photon's power in each of its layers: the caustic's flux
+        // stays near the reference's (measured 0.96-1.11 in the quick run).
+        let flux = metric(c, "flux ratio").unwrap_or(f64::NAN);
+        assert!((0.8..1.25).contains(&flux), "{label}: flux ratio {flux}");
+    }
+    // The interpolated splats draw four radii: four splat passes per light where the others
+    // have one.
+    let passes = |label: &str| -> Vec<String> {
+        cell_in(&r, "sphere_on_plane", label, 64)["passes"]
+            .as_array()
+            .expect("passes")
+            .iter()
+            .filter_map(|p| p["name"].as_str().filter(|n| n.starts_with("splat.")).map(str::to_string))
+            .collect()
+    };
+    assert_eq!(passes("constant"), ["splat.light0"]);
+    assert_eq!(
+        passes("interpolated"),
+        ["splat.level0.light0", "splat.level1.light0", "splat.level2.light0", "splat.level3.light0"]
+    );
+}

@@ -45,6 +45,7 @@ pub fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: 
         list_sizes: None,
         frame_counters: BTreeMap::new(),
         block_ms: vec![],
+        temporal_changes: vec![],
     }
 }
 

@@ -79,7 +79,8 @@ pub fn dump(
         "receiver_positions" => per_light(ctx, &ct.receiver_positions, &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?,
         "caustic_map" if ct.levels > 1 => {
             // The multi-resolution map: level i of light l in layer 4l + i, its splats in the
-            // layer's corner of (M / 2^i)^2 texels (Wyman 2008 Sec. 3.3).
+            // layer's corner of (M / 2^i)^2 texels (Wyman 2008 Sec. 3.3); interpolated splats:
+            // radius splat_radius 2^i in layer 4l + i, full resolution (Fig. 7).
             let t = &ct.caustic_map;
             let layers = (0..t.image.desc.array_layers)
                 .map(|i| {

@@ -8,7 +8,7 @@ mod tests {
     use crate::gpu::{MATERIAL_DIFFUSE, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, MAX_LIGHTS};
     use crate::techniques::trendall_stewart2000::uniforms::MAX_SOURCES;
     use crate::techniques::wyman2008::entry::{ENTRY_FINAL_SHIFT, ENTRY_LEVEL_SHIFT, ENTRY_Y_SHIFT};
-    use crate::techniques::wyman2008::settings::MULTIRES_LEVELS;
+    use crate::techniques::wyman2008::settings::{INTERPOLATED_LEVELS, MULTIRES_LEVELS};
     use crate::techniques::wyman_nichols2009::adaptive::photon::{CELL_LEVEL_SHIFT, CELL_MASK, CELL_Y_SHIFT};
     use crate::techniques::wyman_nichols2009::refractor_layers::MAX_REFRACTORS;
     use crate::techniques::wyman_nichols2009::settings::TOP_PHOTONS;
@@ -35,8 +35,9 @@ mod tests {
 
     #[test]
     fn the_shaders_defines_equal_their_rust_twins() {
-        let twins: [(&str, &str, u64); 13] = [
+        let twins: [(&str, &str, u64); 14] = [
             ("common/caustics.glsl", "MULTIRES_LEVELS", MULTIRES_LEVELS as u64),
+            ("common/caustics.glsl", "INTERPOLATED_LEVELS", INTERPOLATED_LEVELS as u64),
             ("common/frame.glsl", "MAX_LIGHTS", MAX_LIGHTS as u64),
             ("common/materials.glsl", "MATERIAL_DIFFUSE", MATERIAL_DIFFUSE as u64),
             ("common/materials.glsl", "MATERIAL_REFRACTIVE", MATERIAL_REFRACTIVE as u64),
@@ -73,6 +74,8 @@ mod tests {
             (SplatMode::VaryingSingle, Technique::Hcm, "SPLAT_VARYING_SINGLE"),
             (SplatMode::VaryingMultires, Technique::Adaptive, "SPLAT_VARYING_MULTIRES"),
             (SplatMode::VaryingMultires, Technique::Shah, "SPLAT_FIXED"),
+            (SplatMode::Interpolated, Technique::Hcm, "SPLAT_INTERPOLATED"),
+            (SplatMode::Interpolated, Technique::Adaptive, "SPLAT_FIXED"),
         ];
         for (mode, technique, name) in cases {
             assert_eq!(mode.uniform(technique), float(name), "{mode} with {technique}");
@@ -101,6 +104,8 @@ mod tests {
         assert_eq!(SplatMode::VaryingSingle.largest_point(1.5), point(dropped));
         assert_eq!(SplatMode::VaryingMultires.largest_point(1.5), point(d));
         assert_eq!(SplatMode::Fixed.largest_point(3.2), point(3.2));
+        let widest = 1 << (define("common/caustics.glsl", "INTERPOLATED_LEVELS") - 1);
+        assert_eq!(SplatMode::Interpolated.largest_point(1.5), point(1.5 * widest as f32));
     }
 
     /// The codes the photon buffer's `direction.W` gives a lost photon (`shared/trace_surface.glsl`)

@@ -247,12 +247,15 @@ impl CausticSettings {
     }
 
     /// Caustic-map layers per light: 4 for the multi-resolution map (levels 0-3, Wyman 2008
-    /// Sec. 3.3), else 1.
+    /// Sec. 3.3) and for the interpolated splats' four radii (Fig. 7), else 1.
     pub fn caustic_levels(&self) -> u32 {
-        if matches!(self.technique, Technique::Hcm | Technique::Adaptive) && self.splat == SplatMode::VaryingMultires {
-            crate::techniques::wyman2008::settings::MULTIRES_LEVELS
-        } else {
-            1
+        use crate::techniques::wyman2008::settings::{INTERPOLATED_LEVELS, MULTIRES_LEVELS};
+        match self.splat {
+            SplatMode::VaryingMultires if matches!(self.technique, Technique::Hcm | Technique::Adaptive) => {
+                MULTIRES_LEVELS
+            }
+            SplatMode::Interpolated if self.technique == Technique::Hcm => INTERPOLATED_LEVELS,
+            _ => 1,
         }
     }
 
@@ -350,7 +353,8 @@ impl CausticSettings {
         if let Some(why) = needs.forward_photons.filter(|_| self.photon_refraction != Refraction::Forward) {
             bad("splat", format!("`{splat}` needs photon_refraction `forward`: {why}"))?;
         }
-        if self.varying_radius != VaryingRadius::MaxDistance && self.splat == SplatMode::Fixed {
+        let varying = matches!(self.splat, SplatMode::VaryingSingle | SplatMode::VaryingMultires);
+        if self.varying_radius != VaryingRadius::MaxDistance && !varying {
             let what = "sizes varying splats (technique hcm with splat varying-single or varying-multires)";
             bad("varying_radius", format!("`{}` {what}", self.varying_radius))?;
         }

@@ -7,6 +7,7 @@ use crate::scene::Scene;
 use crate::techniques::shared::compute_splat::Photons;
 use crate::techniques::shared::splat::PointSplat;
 use crate::techniques::shared::{CausticPasses, ComputeSplat, EyeView, SplatPath};
+use crate::techniques::wyman2008::interpolated::InterpolatedSplat;
 use crate::techniques::wyman2008::thin_lens::ThinLensSplat;
 use crate::techniques::wyman2008::SplatMode;
 use crate::techniques::wyman_davis2006::ImageSpace;
@@ -27,6 +28,9 @@ pub enum Deposit {
     /// The photon buffer's points, each sized by a per-photon thin-lens model (`splat =
     /// thin-lens`, Wyman 2008 Fig. 7).
     ThinLens(ThinLensSplat),
+    /// The hierarchy's final list splatted at four radii, one layer each (`splat =
+    /// interpolated`, Wyman 2008 Fig. 7).
+    Interpolated(InterpolatedSplat),
     /// Wyman & Davis 2006's eye-space points, quads and gathers (Sec. 3.2), or their quads and
     /// gathers into the caustic map (light space).
     ImageSpace(ImageSpace),
@@ -42,6 +46,11 @@ impl Deposit {
             // The settings' checks refused the others (`SplatMode::needs`, `check_photon_copy`).
             anyhow::ensure!(matches!(selection, Selection::Dense), "thin-lens splats are the photon buffer's points");
             return Ok(Deposit::ThinLens(ThinLensSplat::new(ctx, sh, s.instance_vertices)?));
+        }
+        if s.splat == SplatMode::Interpolated {
+            // The settings' checks refused it but for hcm's point splat (`SplatMode::needs`).
+            anyhow::ensure!(matches!(selection, Selection::Hierarchy(..)), "interpolated splats are hcm's");
+            return Ok(Deposit::Interpolated(InterpolatedSplat::new(ctx, sh)?));
         }
         Ok(match s.splat_path {
             SplatPath::Compute => {
@@ -87,6 +96,10 @@ impl Deposit {
                 Selection::Dense => tl.record(f, c, l),
                 _ => anyhow::bail!("thin-lens splats are the photon buffer's points"),
             },
+            Deposit::Interpolated(is) => match selection {
+                Selection::Hierarchy(h, _) => is.record(f, c, h, l),
+                _ => anyhow::bail!("interpolated splats are hcm's"),
+            },
         }
     }
 
@@ -100,7 +113,7 @@ impl Deposit {
     ) -> Result<()> {
         match self {
             Deposit::ImageSpace(is) => is.record_after_lights(f, c, eye, reuse),
-            Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) => Ok(()),
+            Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) | Deposit::Interpolated(_) => Ok(()),
         }
     }
 
@@ -111,7 +124,7 @@ impl Deposit {
             inputs: c.inputs,
             compute: match self {
                 Deposit::Compute(cs) => Some(cs),
-                Deposit::Points(_) | Deposit::ImageSpace(_) | Deposit::ThinLens(_) => None,
+                Deposit::Points(_) | Deposit::ImageSpace(_) | Deposit::ThinLens(_) | Deposit::Interpolated(_) => None,
             },
             photon_targets: c.photons,
             cmap: &c.targets.per_light[l as usize].0,
@@ -129,7 +142,7 @@ impl Deposit {
     pub fn receiver_caustic(&self) -> Option<&ImageView> {
         match self {
             Deposit::ImageSpace(is) => is.receiver_caustic(),
-            Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) => None,
+            Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) | Deposit::Interpolated(_) => None,
         }
     }
 
@@ -138,7 +151,11 @@ impl Deposit {
     pub fn dump(&self, ctx: &Context, name: &str) -> Result<Option<ImageF32>> {
         match self {
             Deposit::ImageSpace(is) if name == "eye_caustic" => is.dump_eye(ctx),
-            Deposit::ImageSpace(_) | Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) => Ok(None),
+            Deposit::ImageSpace(_)
+            | Deposit::Points(_)
+            | Deposit::Compute(_)
+            | Deposit::ThinLens(_)
+            | Deposit::Interpolated(_) => Ok(None),
         }
     }
 }

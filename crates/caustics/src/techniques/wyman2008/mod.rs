@@ -4,12 +4,14 @@
 //! valid photons reach the splat ([`splat`]). Converging photons (every photon below a node
 //! lands in one caustic-map texel) can be clustered into one photon with their summed power
 //! (Sec. 3.2). Splat sizes may vary with the photons' neighbours, in one map or a
-//! multi-resolution map (Sec. 3.3); [`thin_lens`] is Fig. 7's thin-lens baseline. Sec. 4's faster photon fetch is [`photon_copy`]'s
+//! multi-resolution map (Sec. 3.3); [`thin_lens`] and [`interpolated`] are Fig. 7's thin-lens
+//! and multiple-splat-size baselines. Sec. 4's faster photon fetch is [`photon_copy`]'s
 //! counterpart, the instanced fetch of `techniques::shared`.
 //!
 //! Shaders: `shaders_glsl/wyman2008/`.
 
 pub(crate) mod entry;
+pub mod interpolated;
 pub mod photon_copy;
 mod pyramid;
 pub mod settings;
@@ -33,6 +35,14 @@ use vkcore::{
     Buffer, CompactStream, CompactionPath, Context, Finalize, Format, GraphicsDesc, Image, ImageDesc, Memory, Pipeline,
     ShaderCompiler, Topology, VertexAttribute, VertexLayout, ViewKind,
 };
+
+/// The traversal's lists as vertex buffers: one packed entry (`entry.rs`) per vertex.
+pub(crate) fn entry_layout() -> VertexLayout {
+    VertexLayout {
+        stride: ENTRY_BYTES as u32,
+        attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }],
+    }
+}
 
 /// The traversal starts at a 16² level (Sec. 3.1: "to avoid processing mipmaps containing only
 /// a handful of photons").
@@ -114,10 +124,7 @@ impl Hierarchy {
         let dummy = Target::new(ctx, ImageDesc::new_2d("hierarchy dummy", COLOR, 1, 1))?;
 
         let build = Pipeline::compute(ctx, "hierarchy.build", &sh.compile("wyman2008/build.comp", &[])?)?;
-        let entries = VertexLayout {
-            stride: ENTRY_BYTES as u32,
-            attributes: vec![VertexAttribute { location: 0, format: Format::R32_UINT, offset: 0 }],
-        };
+        let entries = entry_layout();
         let (traverse, finalize) = match path {
             CompactionPath::TransformFeedback => {
                 let mut d = GraphicsDesc::new("hierarchy.traverse", sh.compile("wyman2008/traverse.vert", &[])?, None);

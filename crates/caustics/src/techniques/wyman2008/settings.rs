@@ -51,8 +51,16 @@ value_enum! {
         /// shah, wd-points: a radius from a per-photon thin-lens model (Fig. 7's second column,
         /// Wyman & Dachsbacher's), in one caustic map.
         ThinLens = "thin-lens",
+        /// hcm: every splat at four radii, `splat_radius` times 1, 2, 4 and 8, each into its own
+        /// full-resolution layer; the lookup interpolates between the layers by the local photon
+        /// density (Fig. 7's third column, Wyman & Dachsbacher's multiple splat sizes).
+        Interpolated = "interpolated",
     }
 }
+
+/// Layers of the interpolated splats' map (`splat = interpolated`): radii `splat_radius` 2^i,
+/// i < 4 (`INTERPOLATED_LEVELS` in `shaders_glsl/common/caustics.glsl`).
+pub const INTERPOLATED_LEVELS: u32 = 4;
 
 /// What a splat mode needs of the other settings, each with the reason an error gives
 /// (`CausticSettings::validate_combination` checks them, `stages::check_photon_copy` the last).
@@ -80,6 +88,7 @@ impl SplatMode {
                 matches!(technique, Technique::Hcm | Technique::Adaptive)
             }
             SplatMode::ThinLens => matches!(technique, Technique::Shah | Technique::WdPoints),
+            SplatMode::Interpolated => technique == Technique::Hcm,
         }
     }
 
@@ -101,28 +110,36 @@ impl SplatMode {
                 ),
                 own_points: Some("sizes the photon buffer's own points, not a copy of them into a vertex array"),
             },
+            SplatMode::Interpolated => SplatNeeds {
+                sizes: "splats the hierarchy's final list at four radii (technique hcm)",
+                points: Some("draws each of its four radii as point splats; it has no compute splat"),
+                ..SplatNeeds::default()
+            },
         }
     }
 
     /// The caustic uniforms' `splat.w` for `technique` (`common/caustics.glsl` SPLAT_*): 0 fixed,
     /// 1 varying in one map (by the neighbours or the thin lens), 2 varying in the
-    /// multi-resolution map; fixed where the mode does not size `technique`'s splats.
+    /// multi-resolution map, 3 interpolated; fixed where the mode does not size `technique`'s
+    /// splats.
     pub fn uniform(self, technique: Technique) -> f32 {
         match self {
             _ if !self.sizes_splats_of(technique) => 0.0,
             SplatMode::Fixed => 0.0,
             SplatMode::VaryingSingle | SplatMode::ThinLens => 1.0,
             SplatMode::VaryingMultires => 2.0,
+            SplatMode::Interpolated => 3.0,
         }
     }
 
     /// The widest point a splat of this mode draws, in pixels, with `splat_radius` for fixed
     /// splats: 2 ceil(r) + 2 (`shared/splat_photon.glsl`). Varying splats reach r < 40 texels in
     /// one map (wider ones are dropped; thin-lens splats are kept under it) and r < 5 in their
-    /// layer of the multi-resolution map.
+    /// layer of the multi-resolution map. Interpolated splats draw `splat_radius` 2^3 at most.
     pub fn largest_point(self, splat_radius: f32) -> f32 {
         match self {
             SplatMode::Fixed => 2.0 * splat_radius.ceil() + 2.0,
+            SplatMode::Interpolated => 2.0 * (splat_radius * (1 << (INTERPOLATED_LEVELS - 1)) as f32).ceil() + 2.0,
             SplatMode::VaryingSingle | SplatMode::ThinLens => 82.0,
             SplatMode::VaryingMultires => 12.0,
         }

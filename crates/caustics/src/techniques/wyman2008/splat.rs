@@ -4,12 +4,12 @@
 //! multi-resolution map, it picks its layer with gl_Layer.
 
 use super::Hierarchy;
-use crate::gpu::Stage;
+use crate::gpu::{PassName, Stage};
 use crate::techniques::shared::splat::{record_list_splat, ListSplat};
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::FrameInputs;
 use anyhow::Result;
-use vkcore::{Bind, Frame, ImageView};
+use vkcore::{Bind, Frame, ImageView, Pipeline};
 
 impl Hierarchy {
     /// Splats the traversal's final list (photons and clusters) into `cmap`: one layer, or the
@@ -23,8 +23,22 @@ impl Hierarchy {
         layers: u32,
         l: u32,
     ) -> Result<()> {
+        let to = ListSplat { cmap, layers, clear: true, light: l };
+        self.record_splat_with(f, inp, pt, &Stage::Splat.light(l), &self.splat, to)
+    }
+
+    /// The final list's point splat through `pipeline` (a vertex shader of
+    /// `shared/splat_points.glsl` with HIERARCHY), as pass `name`, into `to`.
+    pub(crate) fn record_splat_with(
+        &self,
+        f: &mut Frame,
+        inp: &FrameInputs,
+        pt: &PhotonTargets,
+        name: &PassName,
+        pipeline: &Pipeline,
+        to: ListSplat,
+    ) -> Result<()> {
         let py = &self.pyramid;
-        let list = &self.lists[0];
         let binds = [
             ("frame", Bind::Uniform(inp.frame_uniforms)),
             ("caustics", Bind::Uniform(inp.caustic_uniforms)),
@@ -33,8 +47,7 @@ impl Hierarchy {
             ("hierarchy_power", Bind::Sampled(&py.all[0], inp.nearest)),
             ("hierarchy_position", Bind::Sampled(&py.all[1], inp.nearest)),
         ];
-        let to = ListSplat { cmap, layers, clear: true, light: l };
-        record_list_splat(f, &Stage::Splat.light(l), &self.splat, binds, list, to)
+        record_list_splat(f, name, pipeline, binds, &self.lists[0], to)
     }
 
     /// What the compute splat reads: the hierarchy and the traversal's final list.
