@@ -256,7 +256,9 @@ impl<'a> Runner<'a> {
         let mut frames = vec![];
         let mut wall_ms = vec![];
         let mut counters = vec![];
-        let mut receiver_maps: Vec<ImageF32> = vec![];
+        // temporal_change: the last measured frame's receiver map, and each frame's change from it.
+        let mut last_receiver: Option<ImageF32> = None;
+        let mut temporal_changes = vec![];
         let host_probe_ms = crate::host_speed::probe_ms();
         let cpu_before = crate::steal::sample();
         // Warm-up frames, then measured frames until the plan is met: at least `min` frames
@@ -285,26 +287,30 @@ impl<'a> Runner<'a> {
                 if self.needs_temporal() {
                     // Read back after the frame's time was taken (validation refuses timed
                     // per-pass metrics beside temporal_change).
-                    receiver_maps.push(renderer.dump("receiver")?.context("the render has no receiver map")?);
+                    let map = renderer.dump("receiver")?.context("the render has no receiver map")?;
+                    if let Some(last) = &last_receiver {
+                        temporal_changes.push(compare(&map, last)?.0.rel_rmse);
+                    }
+                    last_receiver = Some(map);
                 }
             }
             f += 1;
         }
-        // The pose of the last frame rendered, which the quality metrics compare.
-        let last_pose = if f > 1 && !anim.is_static() { Some(f - 1) } else { None };
-        let mut temporal_changes = vec![];
-        for pair in receiver_maps.windows(2) {
-            temporal_changes.push(compare(&pair[1], &pair[0])?.0.rel_rmse);
-        }
         let cpu_steal = cpu_before.zip(crate::steal::sample()).and_then(|(a, b)| crate::steal::fraction(a, b));
+        // The pose of the last frame rendered, which the quality metrics compare: frame 0's (the
+        // scene's own) unless the light or the objects move (the camera does not change the
+        // receiver map).
+        let last_pose = (f > 1 && (anim.light || anim.object)).then(|| f - 1);
+        // Before the statistics frame, which would add a frame in the same pose (to a temporal
+        // filter's history too).
+        let quality =
+            if self.needs_quality() { Some(self.quality(&mut renderer, &scene, &anim, last_pose)?) } else { None };
         let stats_frame = if per_pass_timing && self.ctx.info().has(vkcore::Feature::PipelineStatisticsQuery) {
             Some(renderer.frame(FrameStep { pipeline_statistics: true, ..step })?)
         } else {
             None
         };
         let valid_photons = if self.needs_valid_photons() { renderer.valid_photons(None)? } else { None };
-        let quality =
-            if self.needs_quality() { Some(self.quality(&mut renderer, &scene, &anim, last_pose)?) } else { None };
         let depth_complexity = if self.needs_depth_complexity() {
             // Eye-space quads count into the eye's caustic, light-space ones into the caustic map.
             let dump = match renderer.dump("eye_caustic")? {
@@ -453,9 +459,12 @@ impl<'a> Runner<'a> {
         let photons = self.quick.map(|k| k.reference_photons).unwrap_or(q.reference_photons);
         let posed = last_pose.map(|f| scene_at(scene, anim, f));
         let scene = posed.as_ref().unwrap_or(scene);
+        // The pose: the frame, and what moves (a static-lighting cell of the same config keeps
+        // its light and objects still along the same frames).
+        let pose = last_pose.map(|f| (f, anim.light, anim.object, anim.period_frames));
         let key = format!(
             "{:?}|{:?}|{:?}|{}|{:?}",
-            scene.path, scene.lights, scene.receiver_map, scene.caustics.fresnel, last_pose
+            scene.path, scene.lights, scene.receiver_map, scene.caustics.fresnel, pose
         );
         if !self.references.contains_key(&key) {
             let opts =

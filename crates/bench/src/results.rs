@@ -128,6 +128,10 @@ pub struct CellResult {
     /// next (the metric is their mean).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub temporal_changes: Vec<f64>,
+    /// A cell measured again because its spread was over 10%: the largest spread of its timed
+    /// metrics at each attempt, in order (the attempt with the smallest is the one kept).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub spread_attempts: Vec<f64>,
 }
 
 /// What the measured frames of one mode asked of the driver, per frame (medians, and the most
@@ -227,6 +231,7 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         .collect(),
         block_ms: run.throughput.as_ref().map(|t| t.block_ms.clone()).unwrap_or_default(),
         temporal_changes: run.temporal_changes.clone(),
+        spread_attempts: vec![],
     }
 }
 

@@ -137,6 +137,15 @@ pub fn legend(g: &Grid, notes: &Footnotes) -> Vec<String> {
         g.entries.iter().flatten().filter(|e| e.busy).count(),
         g.entries.iter().flatten().filter(|e| e.implausible).count(),
     );
+    let remeasured = g.entries.iter().flatten().filter(|e| e.remeasured).count();
+    if remeasured > 0 {
+        lines.push(format!(
+            "{remeasured} timed entries come from cells measured again because a timed metric's spread was over \
+             {:.0}%: each cell keeps its attempt with the smallest spread (every attempt's largest spread is in the \
+             JSON, `spread_attempts`).",
+            crate::stats::NOISY_SPREAD * 100.0
+        ));
+    }
     if busy > 0 {
         lines.push(format!(
             "`~` marks {busy} entries whose cell ran while other processes kept the machine busy, even when measured \

@@ -33,6 +33,8 @@ pub struct Entry {
     pub implausible: bool,
     /// The cell ran while other processes kept the machine busy (`~`).
     pub busy: bool,
+    /// A timed entry whose cell was measured again for its spread (`spread_attempts`).
+    pub remeasured: bool,
 }
 
 impl Entry {
@@ -170,7 +172,8 @@ fn entry(config: &Config, results: &Results, keys: BTreeMap<String, String>) -> 
         results.plausibility.iter().any(|f| f.cell == c.cell.index && f.metric == metric && f.explained.is_none())
     });
     let busy = found.is_some_and(|c| c.busy) && is_timing(&kind);
-    Entry { keys, ours, spread, paper, kind, not_run, missing, implausible, busy }
+    let remeasured = found.is_some_and(|c| c.spread_attempts.len() > 1) && is_timing(&kind);
+    Entry { keys, ours, spread, paper, kind, not_run, missing, implausible, busy, remeasured }
 }
 
 impl Grid {

@@ -307,7 +307,8 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     }
     // Along an animation a quality metric compares the last frame with the CPU reference of
     // that frame's pose. temporal_change compares each frame with the one before it.
-    let moving = [&r.light_path, &r.camera_path, &r.object_path].iter().any(|p| *p != "static");
+    // The receiver map moves with the light and the objects, not with the camera.
+    let moving = [&r.light_path, &r.object_path].iter().any(|p| *p != "static");
     for (i, mt) in c.metrics.iter().enumerate() {
         if !crate::config::is_temporal_metric(&mt.kind) {
             continue;
@@ -316,9 +317,24 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             return Err(bad(
                 &format!("metric[{i}].kind"),
                 "`temporal_change` compares each frame's receiver map with the last one's: it needs a moving \
-                 scene (run.light_path, run.camera_path or run.object_path = \"orbit\")"
+                 light or objects (run.light_path or run.object_path = \"orbit\")"
                     .into(),
             ));
+        }
+        if c.matrix.lighting.iter().any(|l| l == "static") {
+            return Err(bad(
+                "matrix.lighting",
+                format!("`static` keeps the light and the objects still, which `temporal_change` (metric[{i}]) needs moving"),
+            ));
+        }
+        for (key, n) in [("run.measured_frames", r.measured_frames), ("quick.measured_frames", c.quick.measured_frames)]
+        {
+            if n < 2 {
+                return Err(bad(
+                    key,
+                    format!("`temporal_change` (metric[{i}]) compares consecutive frames: needs at least 2, got {n}"),
+                ));
+            }
         }
         let timed = c.metrics.iter().position(|m| !m.throughput() && crate::results::is_timing(&m.kind));
         if let Some(j) = timed {

@@ -89,6 +89,17 @@ fn a_noisy_cell_is_flagged_and_a_steady_one_is_not() {
     assert!(!summary.contains("| "), "the summary is plain text, not Markdown:\n{summary}");
 }
 
+/// A cell measured again for its spread is counted under the table; one measured once is not.
+#[test]
+fn cells_measured_again_for_their_spread_are_counted_under_the_table() {
+    let (config, mut r) = synthetic();
+    let md = bench::report::markdown(&config, &r);
+    assert!(!md.contains("measured again because"), "{md}");
+    r.cells[1].spread_attempts = vec![0.31, 0.04];
+    let md = bench::report::markdown(&config, &r);
+    assert!(md.contains("1 timed entries come from cells measured again because"), "{md}");
+}
+
 /// The host speed probe: no line without probes; with them the fastest, median and slowest, and
 /// a warning once the slowest is over 1.15x the fastest.
 #[test]

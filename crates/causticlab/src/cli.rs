@@ -120,6 +120,11 @@ pub struct BenchArgs {
     /// How many times a busy cell is measured again before it is marked busy.
     #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=10))]
     pub busy_retries: u32,
+    /// How many times a timing cell whose spread is over 10% (`!`) is measured again (after a
+    /// short pause); the attempt with the smallest spread is kept and every attempt's spread is
+    /// recorded (`spread_attempts` in the JSON).
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=10))]
+    pub spread_retries: u32,
     /// Write a table with busy cells into the repository's results/ anyway (it is refused:
     /// committed tables come from a quiet machine).
     #[arg(long)]

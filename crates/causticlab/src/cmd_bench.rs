@@ -54,6 +54,7 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
         results_root: args.results.clone(),
         busy_cores: args.busy_cores,
         busy_retries: args.busy_retries,
+        spread_retries: args.spread_retries,
         refuse_busy: !args.quick && !args.allow_busy && bench::meta::in_work_tree(&args.results),
     };
     let out = bench::run(&ctx, &shaders, &config, &bench_opts)?;

@@ -205,12 +205,16 @@ fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
         let point = c.splat.largest_point(c.splat_radius);
         let (key, what) = match c.splat {
             SplatMode::Fixed => ("caustics.splat_radius", c.splat_radius.to_string()),
+            SplatMode::Interpolated => {
+                ("caustics.splat_radius", format!("{} with interpolated splats (8 times as wide)", c.splat_radius))
+            }
             _ => ("caustics.splat", c.splat.to_string()),
         };
+        // Modes that draw points only have no compute splat to suggest.
+        let hint = if c.splat.needs().points.is_none() { " (splat_path = \"compute\" draws none)" } else { "" };
         if c.splat_path == SplatPath::Raster && point > info.point_size_range[1] {
             return Err(input_error!(
-                "{file}: key `{key}`: {what} needs points of {point} pixels, but `{}` draws points of at most {} \
-                 (splat_path = \"compute\" draws none)",
+                "{file}: key `{key}`: {what} needs points of {point} pixels, but `{}` draws points of at most {}{hint}",
                 info.name,
                 info.point_size_range[1]
             )

@@ -60,10 +60,26 @@ fn config_errors_name_the_file_and_key() {
             "metric[1].kind",
         ),
         (
-            "temporal_timed.toml",
+            "temporal_one_frame.toml",
             SMALL
                 .replace("kind = \"splats_drawn\"", "kind = \"temporal_change\"")
                 .replace("[run]", "[run]\nlight_path = \"orbit\""),
+            "run.measured_frames",
+        ),
+        (
+            "temporal_static_lighting.toml",
+            SMALL
+                .replace("kind = \"splats_drawn\"", "kind = \"temporal_change\"")
+                .replace("[run]", "[run]\nobject_path = \"orbit\"")
+                .replace("[matrix]", "[matrix]\nlighting = [\"static\", \"dynamic\"]"),
+            "matrix.lighting",
+        ),
+        (
+            "temporal_timed.toml",
+            SMALL
+                .replace("kind = \"splats_drawn\"", "kind = \"temporal_change\"")
+                .replace("[run]", "[run]\nlight_path = \"orbit\"")
+                .replace("measured_frames = 1", "measured_frames = 2"),
             "metric[2].kind",
         ),
         (

@@ -46,6 +46,7 @@ pub fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: 
         frame_counters: BTreeMap::new(),
         block_ms: vec![],
         temporal_changes: vec![],
+        spread_attempts: vec![],
     }
 }
 
