@@ -257,6 +257,7 @@ impl<'a> Runner<'a> {
         let mut wall_ms = vec![];
         let mut counters = vec![];
         // temporal_change: the last measured frame's receiver map, and each frame's change from it.
+        let temporal = self.needs_temporal();
         let mut last_receiver: Option<ImageF32> = None;
         let mut temporal_changes = vec![];
         let host_probe_ms = crate::host_speed::probe_ms();
@@ -284,7 +285,7 @@ impl<'a> Runner<'a> {
                 frames.push(report);
                 wall_ms.push(ms);
                 counters.push(self.ctx.counters().since(&before));
-                if self.needs_temporal() {
+                if temporal {
                     // Read back after the frame's time was taken (validation refuses timed
                     // per-pass metrics beside temporal_change).
                     let map = renderer.dump("receiver")?.context("the render has no receiver map")?;
@@ -457,16 +458,17 @@ impl<'a> Runner<'a> {
     ) -> Result<Comparison> {
         let q = &self.config.config.quality;
         let photons = self.quick.map(|k| k.reference_photons).unwrap_or(q.reference_photons);
-        let posed = last_pose.map(|f| scene_at(scene, anim, f));
-        let scene = posed.as_ref().unwrap_or(scene);
-        // The pose: the frame, and what moves (a static-lighting cell of the same config keeps
-        // its light and objects still along the same frames).
+        // The scene at rest and the pose (the frame, and what moves: a static-lighting cell of
+        // the same config keeps its light and objects still along the same frames) decide the
+        // posed scene, which is made only to trace a reference not yet kept.
         let pose = last_pose.map(|f| (f, anim.light, anim.object, anim.period_frames));
         let key = format!(
             "{:?}|{:?}|{:?}|{}|{:?}",
             scene.path, scene.lights, scene.receiver_map, scene.caustics.fresnel, pose
         );
         if !self.references.contains_key(&key) {
+            let posed = last_pose.map(|f| scene_at(scene, anim, f));
+            let scene = posed.as_ref().unwrap_or(scene);
             let opts =
                 ReferenceOptions { photons, seed: q.seed, fresnel: scene.caustics.fresnel, ..Default::default() };
             let r = trace_reference(scene, &opts)

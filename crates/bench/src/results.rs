@@ -188,6 +188,12 @@ pub struct Value {
     pub samples: Vec<f64>,
 }
 
+/// The spread the table flags: a timed metric's samples' relative interquartile range (`None`
+/// for counts and errors, which do not vary between runs, and without samples).
+pub fn timed_spread(kind: &str, value: &Value) -> Option<f64> {
+    is_timing(kind).then(|| crate::stats::relative_spread(&value.samples)).flatten()
+}
+
 /// Is `kind` a time or rate (varies between runs) rather than a count or an error measure?
 pub fn is_timing(kind: &str) -> bool {
     matches!(

@@ -106,11 +106,7 @@ fn worst_spread(
     specs: &[crate::config::MetricSpec],
     values: &std::collections::BTreeMap<String, crate::results::Value>,
 ) -> f64 {
-    specs
-        .iter()
-        .filter(|m| crate::results::is_timing(&m.kind))
-        .filter_map(|m| crate::stats::relative_spread(&values.get(&m.label)?.samples))
-        .fold(0.0, f64::max)
+    specs.iter().filter_map(|m| crate::results::timed_spread(&m.kind, values.get(&m.label)?)).fold(0.0, f64::max)
 }
 
 /// Runs the cells `opts` selects and writes the table (or, for a filtered or sharded run, a
@@ -185,10 +181,11 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         loop {
             let (run, busy) = measure_quiet(&mut runner, cell, opts)?;
             check_patterns(lc, cell, &run)?;
-            let worst = worst_spread(&c.metrics, &crate::metrics::evaluate(&c.metrics, &run));
+            let metrics = crate::metrics::evaluate(&c.metrics, &run);
+            let worst = worst_spread(&c.metrics, &metrics);
             let (keep, again) = attempts.add(busy, worst);
             if keep {
-                kept = Some((busy, run));
+                kept = Some((busy, run, metrics));
             }
             if !again {
                 break;
@@ -203,8 +200,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
             );
             std::thread::sleep(std::time::Duration::from_secs(SPREAD_PAUSE_S));
         }
-        let (busy, run) = kept.expect("the first attempt is kept");
-        let metrics = crate::metrics::evaluate(&c.metrics, &run);
+        let (busy, run, metrics) = kept.expect("the first attempt is kept");
         let mut result = cell_result(cell, &run, metrics, &c.techniques[cell.technique].photon_copy);
         result.busy = busy;
         if attempts.spreads.len() > 1 {

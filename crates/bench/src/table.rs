@@ -162,7 +162,7 @@ fn entry(config: &Config, results: &Results, keys: BTreeMap<String, String>) -> 
     let found = find(results, &keys);
     let value = found.and_then(|cell| cell.metrics.get(&metric));
     let ours = value.and_then(|v| v.value);
-    let spread = value.filter(|_| is_timing(&kind)).and_then(|v| crate::stats::relative_spread(&v.samples));
+    let spread = value.and_then(|v| crate::results::timed_spread(&kind, v));
     let paper = crate::paper::value(config, &keys);
     let technique = keys.get("technique").and_then(|l| config.techniques.iter().position(|t| t.label == *l));
     let photons = keys.get("photons").and_then(|p| p.parse().ok());
