@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Installs what causticlab needs on Debian 12 (idempotent): lavapipe (software Vulkan), the
 # Khronos validation layer, the Vulkan loader/headers, vulkaninfo, and the static shaderc/glslang
-# that vkcore links (see .cargo/config.toml), and DejaVu Sans, the font the bench plots are
-# drawn with (crates/bench/src/font.rs). Checks that cargo is there.
+# that vkcore links (see .cargo/config.toml), DejaVu Sans, the font the bench plots are
+# drawn with (crates/bench/src/font.rs), and for the viewer's tests (`causticlab view` under a
+# virtual X server) Xvfb, xauth and the X11 libraries winit opens at run time. Checks that cargo
+# is there.
 set -euo pipefail
 
-packages=(mesa-vulkan-drivers vulkan-validationlayers libvulkan-dev vulkan-tools libshaderc-dev glslang-dev spirv-tools fonts-dejavu-core)
+packages=(mesa-vulkan-drivers vulkan-validationlayers libvulkan-dev vulkan-tools libshaderc-dev glslang-dev spirv-tools fonts-dejavu-core
+    xvfb xauth libx11-6 libx11-xcb1 libxcursor1 libxrandr2 libxi6 libxkbcommon-x11-0)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -225,7 +225,7 @@ impl<'a> Runner<'a> {
         let copy = CopyType::parse(&t.photon_copy).flatten();
         let per_pass_timing = c.metrics.iter().any(|m| !m.throughput() && crate::results::is_timing(&m.kind));
         let throughput = c.metrics.iter().any(|m| m.throughput());
-        let opts = RendererOptions { photon_copy: copy, frame_mode: FrameMode::PerPass };
+        let opts = RendererOptions { photon_copy: copy, frame_mode: FrameMode::PerPass, pass_timestamps: false };
         let mut renderer = Renderer::new(self.ctx, self.shaders, &scene, &opts)?;
         let static_lighting = cell.lighting == "static";
         let anim = Animation {

@@ -50,6 +50,10 @@ pub enum Command {
     Diff(DiffArgs),
     /// Regenerate a paper's table from a bench config (bench_configs/*.toml), or merge shards.
     Bench(BenchArgs),
+    /// Open a window on a scene: the technique renders continuously, with a panel of its
+    /// settings, A/B and split view, camera and light controls, per-pass GPU timings, keys to
+    /// save and dump the frame, and shader hot reload (docs/viewer.md).
+    View(ViewArgs),
     /// Render many animated throughput frames and sample resident memory, device memory and
     /// Vulkan objects made: a real-time loop holds them flat (scripts/soak.sh).
     Soak(SoakArgs),
@@ -254,6 +258,43 @@ pub struct DiffArgs {
     /// append order.
     #[arg(long, value_delimiter = ',')]
     pub ignore: Vec<String>,
+}
+
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// Scene file (TOML, see scenes/README.md).
+    #[arg(long, help_heading = "Scene")]
+    pub scene: PathBuf,
+    #[command(flatten)]
+    pub caustics: caustics::scene::CausticOverrides,
+    /// The window's (and the render's) size, N or WxH pixels (default: the scene's camera).
+    #[arg(long, value_name = "N|WxH", help_heading = "Window")]
+    pub size: Option<String>,
+    /// A second technique for the A/B toggle (Tab) and split view (V), with the same settings
+    /// where it has them.
+    #[arg(long, value_name = "TECHNIQUE", help_heading = "Window")]
+    pub compare: Option<caustics::techniques::Technique>,
+    /// Wait for the display's refresh (off: the frame rate shown is the renderer's).
+    #[arg(long, help_heading = "Window")]
+    pub vsync: bool,
+    /// Where the save key (S) writes final.png, final.exr and display.png, and the dump key (D)
+    /// writes dumps/<buffer>.exr.
+    #[arg(long, default_value = "view-out", help_heading = "Output")]
+    pub out: PathBuf,
+    /// The buffers the dump key writes: `all` or a comma-separated list (default: every buffer
+    /// of the technique shown).
+    #[arg(long, value_name = "all|NAME,...", help_heading = "Output")]
+    pub dump: Option<String>,
+    /// Timed actions, one a line: `<frame> key NAME|set KEY VALUE|screenshot DIR|dump DIR
+    /// [NAMES]|resize W H|exit` (docs/viewer.md).
+    #[arg(long, value_name = "FILE", help_heading = "Driving")]
+    pub script: Option<PathBuf>,
+    /// Exit after this many frames.
+    #[arg(long, value_name = "N", help_heading = "Driving")]
+    pub exit_after: Option<u32>,
+    /// Do not watch shaders_glsl/ for edits (R still reloads).
+    #[arg(long, help_heading = "Driving")]
+    pub no_hot_reload: bool,
 }
 
 #[derive(Debug, Args)]

@@ -166,7 +166,7 @@ fn dump_all(arg: Option<&str>) -> bool {
 
 /// `all` or a comma-separated list of dump names ([`render::all_dump_names`]), without
 /// duplicates, in the order given.
-fn parse_dumps(arg: Option<&str>) -> Result<Vec<String>> {
+pub(crate) fn parse_dumps(arg: Option<&str>) -> Result<Vec<String>> {
     let all = render::all_dump_names();
     let mut dumps: Vec<String> = vec![];
     for name in arg.unwrap_or("").split(',').map(str::trim).filter(|s| !s.is_empty()) {
@@ -234,7 +234,7 @@ fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
 }
 
 /// The final image's R, G, B channels, interleaved, for the PNG.
-fn main_rgb(image: &ImageF32) -> Result<(u32, u32, Vec<f32>)> {
+pub(crate) fn main_rgb(image: &ImageF32) -> Result<(u32, u32, Vec<f32>)> {
     let layer = image.layer(None).or_else(|| image.layers.first()).context("the final image has no layers")?;
     let idx = |c: &str| layer.channels.iter().position(|x| x == c);
     let (r, g, b) = match (idx("R"), idx("G"), idx("B")) {

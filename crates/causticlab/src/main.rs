@@ -1,4 +1,5 @@
-//! `causticlab`: list Vulkan devices, render scenes, compare with references, run benchmarks.
+//! `causticlab`: list Vulkan devices, render scenes, compare with references, run benchmarks,
+//! and view a scene interactively.
 //! Errors are printed as `error: <chain>` and
 //! mapped to exit codes (see `exit.rs`); with `--validate`, any validation message turns a
 //! successful run into exit code 3.
@@ -15,6 +16,7 @@ mod cmd_reference;
 mod cmd_render;
 mod cmd_soak;
 mod exit;
+mod view;
 
 use anyhow::Result;
 use clap::Parser;
@@ -37,6 +39,7 @@ fn main() -> ExitCode {
         Command::Diff(args) => cmd_diff::run(args),
         Command::Bench(args) => cmd_bench::run(&cli.global, args, &mut validation),
         Command::Soak(args) => cmd_soak::run(&cli.global, args, &mut validation),
+        Command::View(args) => view::run(&cli.global, args, &mut validation),
     };
     let mut code = match result {
         Ok(()) => exit::OK,

@@ -445,6 +445,20 @@ fn quick_wyman_nichols2009_fig13_times_the_dragon_alone_and_with_two_spheres() {
 }
 
 #[test]
+fn quick_viewer_frame_time_times_throughput_frames_that_create_nothing() {
+    // V1: the bench's side of the viewer's frame-time check (scripts/viewer_frame_time.sh).
+    let (_, r) = quick_run("viewer_frame_time.toml");
+    let cells = r["cells"].as_array().expect("cells");
+    assert_eq!(cells.len(), 1, "one scene, one technique, one size");
+    let cell = &cells[0];
+    let (ms, fps) = (metric(cell, "frame").unwrap_or(-1.0), metric(cell, "fps").unwrap_or(-1.0));
+    assert!(ms > 0.0 && fps > 0.0, "{}", cell["cell"]);
+    let t = &cell["frame_counters"]["throughput"];
+    assert_eq!(t["most_objects"].as_u64(), Some(0), "{t}");
+    assert_eq!(t["submits"].as_f64(), Some(1.0), "{t}");
+}
+
+#[test]
 fn every_bench_config_has_a_quick_test() {
     // A config no test runs could rot unnoticed: each must be named in one of these files.
     let src = [include_str!("bench_papers.rs"), include_str!("bench_quality.rs")].concat();

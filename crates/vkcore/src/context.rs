@@ -81,9 +81,32 @@ pub struct Context {
 impl Context {
     pub fn new(opts: &ContextOptions) -> Result<Context> {
         let instance = Instance::new(opts.validation, opts.echo_validation)?;
+        Context::open(opts, instance, None)
+    }
+
+    /// A context whose device presents to the window `window` of display `display` (the
+    /// viewer): the instance gets the display's surface extensions, the device VK_KHR_swapchain
+    /// and a graphics queue that can present to the surface, which is returned beside it.
+    pub fn with_window(
+        opts: &ContextOptions,
+        display: raw_window_handle::RawDisplayHandle,
+        window: raw_window_handle::RawWindowHandle,
+    ) -> Result<(Context, crate::window::Surface)> {
+        let extensions =
+            ash_window::enumerate_required_extensions(display).call("vkEnumerateInstanceExtensionProperties")?;
+        let instance = Instance::with_extensions(opts.validation, opts.echo_validation, extensions)?;
+        let surface = crate::window::Surface::new(&instance, display, window)?;
+        let ctx = Context::open(opts, instance, Some(&surface))?;
+        Ok((ctx, surface))
+    }
+
+    fn open(opts: &ContextOptions, instance: Instance, present: Option<&crate::window::Surface>) -> Result<Context> {
         let devices = enumerate_devices(&instance)?;
-        let index = choose_device(&devices, opts.device.as_deref())?;
-        let device = create_device(&instance, index, &opts.without)?;
+        let index = match (present, opts.device.as_deref()) {
+            (Some(surface), None) => crate::device::choose_presenting(&instance, &devices, surface)?,
+            (_, query) => choose_device(&devices, query)?,
+        };
+        let device = create_device(&instance, index, &opts.without, present)?;
         let allocator = Allocator::new(&AllocatorCreateDesc {
             instance: instance.shared.raw.clone(),
             device: device.raw.clone(),

@@ -210,6 +210,37 @@ pub fn choose_device(devices: &[DeviceInfo], query: Option<&str>) -> Result<usiz
     }
 }
 
+/// With no `--device` and a window: the device [`choose_device`] prefers if its graphics queue
+/// can present to `surface`, else the first Vulkan 1.3 device whose can (a GPU whose driver
+/// cannot reach the window's display, e.g. under Xvfb, leaves it to lavapipe).
+pub(crate) fn choose_presenting(
+    instance: &Instance,
+    devices: &[DeviceInfo],
+    surface: &crate::window::Surface,
+) -> Result<usize> {
+    let preferred = choose_device(devices, None)?;
+    let raw = &instance.shared.raw;
+    let pds = unsafe { raw.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
+    let presents = |i: usize| -> Result<bool> {
+        let Some(&pd) = pds.get(i) else { return Ok(false) };
+        let families = unsafe { raw.get_physical_device_queue_family_properties(pd) };
+        match graphics_family(&families) {
+            Some(f) => surface.supports(pd, f),
+            None => Ok(false),
+        }
+    };
+    if presents(preferred)? {
+        return Ok(preferred);
+    }
+    for d in devices.iter().filter(|d| d.api_major_minor >= (1, 3)) {
+        if presents(d.index)? {
+            return Ok(d.index);
+        }
+    }
+    // None can: creating the preferred one names the problem.
+    Ok(preferred)
+}
+
 /// The logical device and the extension loaders the rest of vkcore calls through.
 pub(crate) struct DeviceShared {
     /// Keeps the instance alive until the device is destroyed.
@@ -236,8 +267,14 @@ impl Drop for DeviceShared {
 
 /// Creates the logical device on physical device `index`, enabling every feature the project
 /// uses that the device has; `without` masks features as if the driver lacked them (tests and
-/// `--without-feature`).
-pub(crate) fn create_device(instance: &Instance, index: usize, without: &[Feature]) -> Result<DeviceShared> {
+/// `--without-feature`). With `present` (a window's surface), the device must also present to
+/// it from its graphics queue and have VK_KHR_swapchain, which is enabled.
+pub(crate) fn create_device(
+    instance: &Instance,
+    index: usize,
+    without: &[Feature],
+    present: Option<&crate::window::Surface>,
+) -> Result<DeviceShared> {
     let raw_inst = &instance.shared.raw;
     let pds = unsafe { raw_inst.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
     let pd = *pds.get(index).ok_or_else(|| VkError::Invalid(format!("no device with index {index}")))?;
@@ -266,6 +303,22 @@ pub(crate) fn create_device(instance: &Instance, index: usize, without: &[Featur
     let queue_family = graphics_family(&families)
         .ok_or_else(|| VkError::Invalid(format!("device `{}` has no graphics+compute queue", info.name)))?;
     let has = |f| info.has(f);
+    if let Some(surface) = present {
+        if !surface.supports(pd, queue_family)? {
+            return Err(VkError::Invalid(format!(
+                "device `{}` cannot present to this window from its graphics queue (choose another with --device)",
+                info.name
+            )));
+        }
+        let available = unsafe { raw_inst.enumerate_device_extension_properties(pd) }
+            .call("vkEnumerateDeviceExtensionProperties")?;
+        if !available.iter().any(|e| e.extension_name_as_c_str().ok() == Some(khr::swapchain::NAME)) {
+            return Err(VkError::Invalid(format!(
+                "device `{}` lacks VK_KHR_swapchain (needed to show a window)",
+                info.name
+            )));
+        }
+    }
 
     let features = vk::PhysicalDeviceFeatures::default()
         .geometry_shader(has(Feature::GeometryShader))
@@ -302,6 +355,9 @@ pub(crate) fn create_device(instance: &Instance, index: usize, without: &[Featur
     let want_af = has(Feature::BufferFloat32AtomicAdd) || has(Feature::ImageFloat32AtomicAdd);
     if want_af {
         exts.push(ext::shader_atomic_float::NAME.as_ptr());
+    }
+    if present.is_some() {
+        exts.push(khr::swapchain::NAME.as_ptr());
     }
     let priorities = [1.0f32];
     let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];

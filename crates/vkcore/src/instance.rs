@@ -104,6 +104,12 @@ impl Instance {
     /// synchronization validation and fails if the layer is missing; with `echo`, every
     /// message is printed to stderr as it arrives.
     pub fn new(validation: bool, echo: bool) -> Result<Instance> {
+        Instance::with_extensions(validation, echo, &[])
+    }
+
+    /// [`Instance::new`] with the instance extensions in `extra` enabled too (a window's
+    /// surface extensions: `crate::window`); a missing one fails naming it.
+    pub(crate) fn with_extensions(validation: bool, echo: bool, extra: &[*const std::ffi::c_char]) -> Result<Instance> {
         let entry = unsafe { ash::Entry::load() }.map_err(|e| VkError::Loader(e.to_string()))?;
         let layers_avail =
             unsafe { entry.enumerate_instance_layer_properties() }.call("vkEnumerateInstanceLayerProperties")?;
@@ -124,6 +130,17 @@ impl Instance {
         let mut exts = vec![];
         if has_debug_utils {
             exts.push(ext::debug_utils::NAME.as_ptr());
+        }
+        for &e in extra {
+            // The pointers are ash's extension-name constants (NUL-terminated, static).
+            let name = unsafe { CStr::from_ptr(e) };
+            if !exts_avail.iter().any(|a| a.extension_name_as_c_str().ok() == Some(name)) {
+                return Err(VkError::Invalid(format!(
+                    "the Vulkan loader has no instance extension {} (needed to show a window)",
+                    name.to_string_lossy()
+                )));
+            }
+            exts.push(e);
         }
         let log = Arc::new(ValidationLog { echo, ..Default::default() });
         let severity = vk::DebugUtilsMessageSeverityFlagsEXT::WARNING | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR;

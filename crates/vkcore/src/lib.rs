@@ -1,7 +1,8 @@
 //! vkcore: the only crate in causticlab that says `unsafe` or calls `ash`. Small RAII modules:
 //! an instance with counted validation messages, device choice with the features this project
 //! uses, gpu-allocator buffers and images, runtime GLSL, pipelines, frames of passes with
-//! automatic barriers and timestamps, transform feedback and compute stream compaction.
+//! automatic barriers and timestamps, transform feedback and compute stream compaction, and a
+//! window's swapchain with an egui panel (`window`, the viewer's).
 
 mod bind;
 mod buffer;
@@ -26,6 +27,7 @@ mod ring;
 mod shader;
 mod tracker;
 mod transfer;
+pub mod window;
 
 pub use ash::vk::Format;
 pub use bind::{Bind, Named};
@@ -55,3 +57,4 @@ pub use reflect::ReflectedBinding;
 pub use ring::{FrameRing, RingOptions, Timing};
 pub use shader::{ShaderCompiler, Spirv, Stage};
 pub use tracker::Access;
+pub use window::{Overlay, PresentOptions, Presented, Presenter, Surface};

@@ -49,7 +49,9 @@ type Key = (String, Vec<(String, String)>);
 pub struct ShaderCompiler {
     root: PathBuf,
     compiler: Mutex<shaderc::Compiler>,
-    cache: Mutex<HashMap<Key, Spirv>>,
+    /// Each variant with the files it was made from (itself and what it includes, relative to
+    /// the root).
+    cache: Mutex<HashMap<Key, (Spirv, Vec<String>)>>,
     compiled: std::sync::atomic::AtomicUsize,
 }
 
@@ -79,7 +81,7 @@ impl ShaderCompiler {
         let mut defs: Vec<(String, String)> = defines.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect();
         defs.sort();
         let key = (file.to_string(), defs.clone());
-        if let Some(s) = self.cache.lock().ok().and_then(|c| c.get(&key).cloned()) {
+        if let Some(s) = self.cache.lock().ok().and_then(|c| c.get(&key).map(|(s, _)| s.clone())) {
             return Ok(s);
         }
         let stage = Stage::from_path(file).ok_or_else(|| {
@@ -96,6 +98,8 @@ impl ShaderCompiler {
             options.add_macro_definition(k, Some(v));
         }
         let root = self.root.clone();
+        let included = Arc::new(Mutex::new(vec![file.to_string()]));
+        let included_by_callback = included.clone();
         options.set_include_callback(move |requested, kind, requester, _depth| {
             let base = match kind {
                 shaderc::IncludeType::Relative => {
@@ -110,6 +114,9 @@ impl ShaderCompiler {
             let content = std::fs::read_to_string(&candidate)
                 .map_err(|e| format!("cannot include `{requested}` (looked for {}): {e}", candidate.display()))?;
             let name = candidate.strip_prefix(&root).unwrap_or(&candidate).to_string_lossy().into_owned();
+            if let Ok(mut files) = included_by_callback.lock() {
+                files.push(name.clone());
+            }
             Ok(shaderc::ResolvedInclude { resolved_name: name, content })
         });
         let result = {
@@ -119,11 +126,28 @@ impl ShaderCompiler {
         let artifact = result.map_err(|e| VkError::Shader(format_shaderc_error(&e.to_string(), &defs)))?;
         let spirv = Spirv { file: file.to_string(), stage, words: Arc::new(artifact.as_binary().to_vec()) };
         self.compiled.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let files = included.lock().map(|f| f.clone()).unwrap_or_default();
         if let Ok(mut c) = self.cache.lock() {
-            c.insert(key, spirv.clone());
+            c.insert(key, (spirv.clone(), files));
         }
         Ok(spirv)
     }
+
+    /// Forgets every compiled variant made from one of `changed` (paths relative to the root,
+    /// `/`-separated: the file itself or anything it includes), so that the next `compile`
+    /// reads them again (the viewer's shader hot reload). Returns how many were forgotten.
+    pub fn forget(&self, changed: &[String]) -> usize {
+        let Ok(mut cache) = self.cache.lock() else { return 0 };
+        let before = cache.len();
+        cache.retain(|_, (_, files)| !files.iter().any(|f| changed.iter().any(|c| same_file(f, c))));
+        before - cache.len()
+    }
+}
+
+/// Whether two root-relative paths name one file (`a/./b.glsl` and `a/b.glsl` alike).
+fn same_file(a: &str, b: &str) -> bool {
+    let norm = |p: &str| Path::new(p).components().filter(|c| *c != std::path::Component::CurDir).collect::<PathBuf>();
+    norm(a) == norm(b)
 }
 
 /// shaderc reports `file:line: error: text`; keep those lines, drop the summary, and say which
@@ -171,6 +195,11 @@ mod tests {
         // Without the define, VALUE is undeclared: a compile error.
         let err = c.compile("sub/a.comp", &[]).unwrap_err().to_string();
         assert!(err.contains("sub/a.comp:5:"), "error names file:line, got: {err}");
+        // An edit of the included file forgets both variants; they compile again.
+        assert_eq!(c.forget(&["other.glsl".to_string()]), 0);
+        assert_eq!(c.forget(&["common.glsl".to_string()]), 2);
+        c.compile("sub/a.comp", &[("VALUE", "3")]).unwrap();
+        assert_eq!(c.compiled_count(), 3, "forgotten, so compiled again");
     }
 
     #[test]

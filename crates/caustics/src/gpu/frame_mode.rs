@@ -74,8 +74,11 @@ pub(crate) struct Slots {
 }
 
 impl Slots {
-    pub fn new(ctx: &Context, slots: usize) -> Result<Slots> {
-        let ring = FrameRing::new(ctx, RingOptions { slots, timing: Timing::PerFrame, fence_timeout: None })?;
+    /// `pass_timestamps`: a timestamp pair around every pass (the viewer's per-pass graph),
+    /// else one around the frame.
+    pub fn new(ctx: &Context, slots: usize, pass_timestamps: bool) -> Result<Slots> {
+        let timing = if pass_timestamps { Timing::PerPass } else { Timing::PerFrame };
+        let ring = FrameRing::new(ctx, RingOptions { slots, timing, fence_timeout: None })?;
         Ok(Slots { ring, staging: (0..slots).map(|_| None).collect() })
     }
 }

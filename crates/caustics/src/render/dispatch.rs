@@ -36,7 +36,7 @@ impl<'c> Renderer<'c> {
         if opts.photon_copy.is_some() {
             return Err(crate::input_error!("photon_copy: `{technique}` has no photon buffer to copy").into());
         }
-        Ok(Renderer::Pool(Box::new(PoolRenderer::new(ctx, shaders, scene, opts.frame_mode)?)))
+        Ok(Renderer::Pool(Box::new(PoolRenderer::new(ctx, shaders, scene, opts.frame_mode, opts.pass_timestamps)?)))
     }
 
     /// Moves to `scene`, a pose of the scene this renderer was made for (`crate::animation`).
@@ -62,6 +62,27 @@ impl<'c> Renderer<'c> {
         match self {
             Renderer::Mesh(r) => r.submit(step),
             Renderer::Pool(r) => r.submit(),
+        }
+    }
+
+    /// [`Renderer::submit`], with `after` recording more passes at the end of the frame (the
+    /// viewer's display pass).
+    pub fn submit_with(
+        &mut self,
+        step: FrameStep,
+        after: &mut dyn FnMut(&mut vkcore::Frame, &vkcore::ImageView) -> Result<()>,
+    ) -> Result<Vec<FrameReport>> {
+        match self {
+            Renderer::Mesh(r) => r.submit_with(step, after),
+            Renderer::Pool(r) => r.submit_with(after),
+        }
+    }
+
+    /// The final image on the GPU (linear radiance, RGBA 32-bit float, row 0 at the top).
+    pub fn final_view(&self) -> &vkcore::ImageView {
+        match self {
+            Renderer::Mesh(r) => r.final_view(),
+            Renderer::Pool(r) => r.final_view(),
         }
     }
 

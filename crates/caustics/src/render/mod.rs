@@ -3,6 +3,7 @@
 //! lookups, and the receiver map E/E0 that every caustic technique is validated with.
 
 mod dispatch;
+pub mod display;
 mod dumps;
 mod eye;
 pub mod memory;

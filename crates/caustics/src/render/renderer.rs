@@ -20,6 +20,9 @@ pub struct RendererOptions {
     pub photon_copy: Option<CopyType>,
     /// One-shot frames timed pass by pass, or a ring of frames in flight (`crate::gpu::frame_mode`).
     pub frame_mode: FrameMode,
+    /// Throughput frames: a timestamp pair around every pass (without the per-pass frames'
+    /// barrier), for the viewer's per-pass graph; else one around the frame.
+    pub pass_timestamps: bool,
 }
 
 pub struct MeshRenderer<'c> {
@@ -103,7 +106,7 @@ impl<'c> MeshRenderer<'c> {
                     b.write_mapped(0, bytemuck::bytes_of(&cu))?;
                     c.push(b);
                 }
-                (u, c, Some(Slots::new(ctx, slots)?))
+                (u, c, Some(Slots::new(ctx, slots, opts.pass_timestamps)?))
             }
         };
         let targets = targets::EyeTargets::new(ctx, scene)?;
@@ -237,6 +240,16 @@ impl<'c> MeshRenderer<'c> {
     /// the slot's own buffers and moved meshes copied from the slot's staging buffer inside the
     /// frame, so a warm frame creates nothing. Returns the reports of frames that finished.
     pub fn submit(&mut self, step: FrameStep) -> Result<Vec<FrameReport>> {
+        self.submit_with(step, &mut |_, _| Ok(()))
+    }
+
+    /// [`MeshRenderer::submit`], with `after` recording more passes at the end of the frame
+    /// (the viewer's display pass), given the frame and its final image.
+    pub fn submit_with(
+        &mut self,
+        step: FrameStep,
+        after: &mut dyn FnMut(&mut Frame, &vkcore::ImageView) -> Result<()>,
+    ) -> Result<Vec<FrameReport>> {
         let slots = self.slots.as_mut().context("submit: this renderer draws one-shot frames (FrameMode::PerPass)")?;
         let s = slots.ring.slot();
         let mut f = slots.ring.frame()?;
@@ -247,6 +260,7 @@ impl<'c> MeshRenderer<'c> {
         self.caustic_uniforms[s].write_mapped(0, bytemuck::bytes_of(&cu))?;
         self.record_moved_meshes(&mut f, s)?;
         self.record_frame(&mut f, step)?;
+        after(&mut f, &self.targets.final_image.view)?;
         let slots = self.slots.as_mut().context("throughput slots")?;
         slots.ring.submit(f)?;
         self.photons_ready = true;
@@ -339,6 +353,11 @@ impl<'c> MeshRenderer<'c> {
     /// The last frame's linear radiance.
     pub fn final_image(&self) -> Result<ImageF32> {
         dumps::final_image(self.ctx, &self.targets)
+    }
+
+    /// The final image on the GPU (linear radiance, RGBA 32-bit float, row 0 at the top).
+    pub fn final_view(&self) -> &vkcore::ImageView {
+        &self.targets.final_image.view
     }
 
     /// The eye's view as this frame renders it (for caustics deposited in it).

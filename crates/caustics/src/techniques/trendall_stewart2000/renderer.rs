@@ -45,7 +45,13 @@ fn texels(values: impl Iterator<Item = [f64; 4]>) -> Vec<f32> {
 }
 
 impl<'c> PoolRenderer<'c> {
-    pub fn new(ctx: &'c Context, shaders: &ShaderCompiler, scene: &Scene, mode: FrameMode) -> Result<Self> {
+    pub fn new(
+        ctx: &'c Context,
+        shaders: &ShaderCompiler,
+        scene: &Scene,
+        mode: FrameMode,
+        pass_timestamps: bool,
+    ) -> Result<Self> {
         let pool = pool_of(scene)?;
         let init = Init::new(pool, &scene.caustics)?;
         let pipelines = PoolPipelines::new(ctx, shaders, init.precision)?;
@@ -95,7 +101,7 @@ impl<'c> PoolRenderer<'c> {
             cpu,
             slots: match mode {
                 FrameMode::PerPass => None,
-                FrameMode::Throughput { slots } => Some(Slots::new(ctx, slots)?),
+                FrameMode::Throughput { slots } => Some(Slots::new(ctx, slots, pass_timestamps)?),
             },
             cpu_staging: vec![],
         })
@@ -191,6 +197,14 @@ impl<'c> PoolRenderer<'c> {
     /// copied from the slot's staging buffers) and submits it without waiting; returns the
     /// reports of frames that finished. The CPU path's host times are not in them.
     pub fn submit(&mut self) -> Result<Vec<FrameReport>> {
+        self.submit_with(&mut |_, _| Ok(()))
+    }
+
+    /// [`PoolRenderer::submit`], with `after` recording more passes at the end of the frame.
+    pub fn submit_with(
+        &mut self,
+        after: &mut dyn FnMut(&mut Frame, &vkcore::ImageView) -> Result<()>,
+    ) -> Result<Vec<FrameReport>> {
         let s = self.slots.as_ref().context("submit: this renderer draws one-shot frames")?.ring.slot();
         // The slot's previous frame is waited for before its staging buffers are written.
         let mut f = self.slots.as_mut().context("slots")?.ring.frame()?;
@@ -209,6 +223,7 @@ impl<'c> PoolRenderer<'c> {
             })?;
         }
         self.record_frame(&mut f)?;
+        after(&mut f, &self.targets.final_image.view)?;
         let slots = self.slots.as_mut().context("slots")?;
         slots.ring.submit(f)?;
         Ok(slots.ring.reports())
@@ -238,6 +253,11 @@ impl<'c> PoolRenderer<'c> {
         }
         super::view::record_view(f, &self.pipelines, &self.targets, &self.uniforms, &self.nearest, &self.linear)?;
         Ok(())
+    }
+
+    /// The final image on the GPU (linear radiance, RGBA 32-bit float, row 0 at the top).
+    pub fn final_view(&self) -> &vkcore::ImageView {
+        &self.targets.final_image.view
     }
 
     /// The last frame's linear radiance, row 0 at the top.
