@@ -292,6 +292,11 @@ pub struct ViewArgs {
     /// Exit after this many frames.
     #[arg(long, value_name = "N", help_heading = "Driving")]
     pub exit_after: Option<u32>,
+    /// Time whole frames only, not every pass (no per-pass graph), as the bench's throughput
+    /// frames are timed: timestamps around every pass cost frame time on lavapipe
+    /// (results/viewer_frame_time.md).
+    #[arg(long, help_heading = "Window")]
+    pub no_pass_timestamps: bool,
     /// Do not watch shaders_glsl/ for edits (R still reloads).
     #[arg(long, help_heading = "Driving")]
     pub no_hot_reload: bool,

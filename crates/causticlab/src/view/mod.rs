@@ -98,7 +98,7 @@ pub fn run(g: &GlobalOpts, args: &ViewArgs, validation: &mut Option<Arc<Validati
     let got = window.inner_size();
     (scene.camera.width, scene.camera.height) = (got.width.max(1), got.height.max(1));
     let mut presenter = Presenter::new(&ctx, surface, (got.width, got.height), PresentOptions { vsync: args.vsync })?;
-    let session = Session::new(&ctx, &shaders, scene, args.compare, dumps, args.out.clone())?;
+    let session = Session::new(&ctx, &shaders, scene, args.compare, dumps, args.out.clone(), !args.no_pass_timestamps)?;
     let mut viewer = Viewer {
         session,
         mode: camera::Mode::Orbit,

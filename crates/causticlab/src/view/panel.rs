@@ -155,7 +155,9 @@ fn settings_section(ui: &mut egui::Ui, state: &mut PanelState, session: &Session
                 }
                 Kind::Choice(choices) => {
                     let current = row.shown();
-                    egui::ComboBox::from_id_salt(&row.key).selected_text(&current).show_ui(ui, |ui| {
+                    let selected =
+                        if current.is_empty() { "(the technique's own)".to_string() } else { current.clone() };
+                    egui::ComboBox::from_id_salt(&row.key).selected_text(selected).show_ui(ui, |ui| {
                         for c in choices {
                             if ui.selectable_label(*c == current, c).clicked() && *c != current {
                                 out.push(Request::Set(row.key.clone(), c.clone()));
@@ -229,7 +231,10 @@ fn timing_section(ui: &mut egui::Ui, session: &Session) {
     let (rect, _) = ui.allocate_exact_size(egui::vec2(ui.available_width(), height), egui::Sense::hover());
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 2.0, Color32::from_gray(24));
-    let most = session.history.iter().map(|f| f.total_ms()).fold(0.0f64, f64::max).max(1e-3);
+    // The scale: the 95th percentile of the frames' totals (a warm-up or rebuild spike is cut).
+    let mut totals: Vec<f64> = session.history.iter().map(|f| f.total_ms()).collect();
+    totals.sort_by(f64::total_cmp);
+    let most = totals.get(totals.len() * 95 / 100).copied().unwrap_or(0.0).max(1e-3);
     let bar = rect.width() / HISTORY as f32;
     let start = HISTORY.saturating_sub(session.history.len());
     for (i, f) in session.history.iter().enumerate() {
@@ -238,7 +243,7 @@ fn timing_section(ui: &mut egui::Ui, session: &Session) {
         // Largest passes at the bottom, in the legend's order.
         for (name, _) in &means {
             let Some((_, ms)) = f.passes.iter().find(|(n, _)| n == name) else { continue };
-            let h = (*ms / most) as f32 * (height - 4.0);
+            let h = ((*ms / most) as f32 * (height - 4.0)).min((y - rect.top()).max(0.0));
             painter.line_segment([egui::pos2(x, y), egui::pos2(x, y - h)], Stroke::new(bar.max(1.0), colour(name)));
             y -= h;
         }

@@ -71,10 +71,17 @@ pub struct Session<'c> {
     pub dumps: Vec<String>,
     /// `--out`.
     pub out: PathBuf,
+    /// A timestamp pair around every pass (the graph), else around the frame.
+    pass_timestamps: bool,
 }
 
-fn renderer<'c>(ctx: &'c Context, shaders: &'c ShaderCompiler, scene: &Scene) -> Result<Renderer<'c>> {
-    let opts = RendererOptions { frame_mode: FrameMode::throughput(), pass_timestamps: true, ..Default::default() };
+fn renderer<'c>(
+    ctx: &'c Context,
+    shaders: &'c ShaderCompiler,
+    scene: &Scene,
+    pass_timestamps: bool,
+) -> Result<Renderer<'c>> {
+    let opts = RendererOptions { frame_mode: FrameMode::throughput(), pass_timestamps, ..Default::default() };
     Renderer::new(ctx, shaders, scene, &opts)
 }
 
@@ -86,9 +93,10 @@ impl<'c> Session<'c> {
         compare: Option<Technique>,
         dumps: Vec<String>,
         out: PathBuf,
+        pass_timestamps: bool,
     ) -> Result<Session<'c>> {
         let size = (scene.camera.width, scene.camera.height);
-        let a = renderer(ctx, shaders, &scene)?;
+        let a = renderer(ctx, shaders, &scene, pass_timestamps)?;
         let mut session = Session {
             ctx,
             shaders,
@@ -110,9 +118,10 @@ impl<'c> Session<'c> {
             frames: 0,
             dumps,
             out,
+            pass_timestamps,
         };
         if let Some(s) = session.scene_b(&session.scene) {
-            session.b = Some(renderer(ctx, shaders, &s).context("--compare")?);
+            session.b = Some(renderer(ctx, shaders, &s, pass_timestamps).context("--compare")?);
         }
         Ok(session)
     }
@@ -151,9 +160,11 @@ impl<'c> Session<'c> {
         // renderers go only once the device is idle.
         self.ctx.wait_idle()?;
         let posed = self.posed(&scene);
-        let a = renderer(self.ctx, self.shaders, &posed)?;
+        let a = renderer(self.ctx, self.shaders, &posed, self.pass_timestamps)?;
         let b = match self.scene_b(&posed) {
-            Some(s) => Some(renderer(self.ctx, self.shaders, &s).context("the --compare technique")?),
+            Some(s) => {
+                Some(renderer(self.ctx, self.shaders, &s, self.pass_timestamps).context("the --compare technique")?)
+            }
             None => None,
         };
         self.a = a;
@@ -261,7 +272,12 @@ impl<'c> Session<'c> {
 
     fn record(&mut self, reports: Vec<FrameReport>) {
         for r in reports {
-            let passes = r.passes.iter().filter_map(|p| p.gpu_ms.map(|ms| (p.name.clone(), ms))).collect();
+            let mut passes: Vec<(String, f64)> =
+                r.passes.iter().filter_map(|p| p.gpu_ms.map(|ms| (p.name.clone(), ms))).collect();
+            if passes.is_empty() {
+                // Timed per frame (--no-pass-timestamps): the frame is one bar.
+                passes.extend(r.frame_gpu_ms.map(|ms| ("frame".to_string(), ms)));
+            }
             self.history.push_back(FrameTimes { passes });
             while self.history.len() > HISTORY {
                 self.history.pop_front();
