@@ -2,14 +2,12 @@
 // the GPU-side count without a CPU readback.
 #version 450
 #include "vkcore/compact_counter.glsl"
+#include "vkcore/dispatch_grid.glsl"
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) buffer Counter { CompactCounter counter; };
 
 void main() {
     uint n = min(counter.count, counter.capacity);
-    uint groups = (n + 63u) / 64u;
-    uint x = min(groups, 65535u);
-    uint y = x == 0u ? 1u : (groups + x - 1u) / x;
-    counter.dispatch = uvec4(max(x, 1u), y, 1u, 0u);
+    counter.dispatch = uvec4(dispatch_grid((n + 63u) / 64u), 1u, 0u);
     counter.draw = uvec4(n, 1u, 0u, 0u);
 }

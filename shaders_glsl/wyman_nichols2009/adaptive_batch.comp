@@ -5,6 +5,7 @@
 // have written). Nothing is read back: the count of level B stays on the GPU.
 #version 450
 #include "vkcore/compact_counter.glsl"
+#include "vkcore/dispatch_grid.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Pending { uint pending[]; };
 layout(std430, binding = 1) readonly buffer PendingCounter { uint pending_counter[]; };
@@ -24,11 +25,9 @@ void main() {
     uint n = total > constants.first ? min(constants.size, total - constants.first) : 0u;
     if (i < n) batch[i] = pending[constants.first + i];
     if (i == 0u) {
-        uint groups = (n + 63u) / 64u;
-        uint x = max(min(groups, 65535u), 1u);
         batch_counter.count = constants.xfb != 0u ? 4u * n : n;
         batch_counter.capacity = constants.size;
-        batch_counter.dispatch = uvec4(x, groups == 0u ? 1u : (groups + x - 1u) / x, 1u, 0u);
+        batch_counter.dispatch = uvec4(dispatch_grid((n + 63u) / 64u), 1u, 0u);
         batch_counter.draw = uvec4(n, 1u, 0u, 0u);
     }
 }

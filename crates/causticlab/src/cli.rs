@@ -260,6 +260,28 @@ pub struct DiffArgs {
     pub ignore: Vec<String>,
 }
 
+/// `view --pass-timing`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PassTiming {
+    /// Every pass on a GPU, whole frames on a software device.
+    Auto,
+    /// A timestamp pair around every pass.
+    Pass,
+    /// A timestamp pair around each frame.
+    Frame,
+}
+
+impl PassTiming {
+    /// Whether to time every pass on a device that `is_software`.
+    pub fn every_pass(self, is_software: bool) -> bool {
+        match self {
+            PassTiming::Auto => !is_software,
+            PassTiming::Pass => true,
+            PassTiming::Frame => false,
+        }
+    }
+}
+
 #[derive(Debug, Args)]
 pub struct ViewArgs {
     /// Scene file (TOML, see scenes/README.md).
@@ -292,11 +314,12 @@ pub struct ViewArgs {
     /// Exit after this many frames.
     #[arg(long, value_name = "N", help_heading = "Driving")]
     pub exit_after: Option<u32>,
-    /// Time whole frames only, not every pass (no per-pass graph), as the bench's throughput
-    /// frames are timed: timestamps around every pass cost frame time on lavapipe
-    /// (results/viewer_frame_time.md).
-    #[arg(long, help_heading = "Window")]
-    pub no_pass_timestamps: bool,
+    /// What the GPU timestamps bracket: every pass (the per-pass graph) or whole frames (as the
+    /// bench's throughput frames). `auto`: every pass on a GPU, whole frames on a software
+    /// device such as lavapipe, where each timestamp flushes the rasterizer and the per-pass
+    /// frame runs 1.3x longer (results/viewer_frame_time.md). T switches while running.
+    #[arg(long, value_enum, default_value_t = PassTiming::Auto, help_heading = "Window")]
+    pub pass_timing: PassTiming,
     /// Do not watch shaders_glsl/ for edits (R still reloads).
     #[arg(long, help_heading = "Driving")]
     pub no_hot_reload: bool,

@@ -82,12 +82,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         ("causticlab:device", format!("{} ({})", ctx.info().name, ctx.info().driver_info)),
         ("causticlab:scene", args.scene.display().to_string()),
     ];
-    let mut written = vec![];
-    image_io::write_exr_with(&out.path("final.exr"), &rendered.final_image, &header)?;
-    written.push("final.exr".to_string());
-    let (w, h, rgb) = main_rgb(&rendered.final_image)?;
-    image_io::write_png_tonemapped(&out.path("final.png"), w, h, &rgb, scene.render.exposure)?;
-    written.push("final.png".to_string());
+    let mut written = write_final_images(&out, &rendered.final_image, &header, scene.render.exposure)?;
     for (name, image) in &rendered.dumps {
         let file = format!("{name}.exr");
         image_io::write_exr_with(&out.path(&file), image, &header)?;
@@ -233,8 +228,22 @@ fn check_sizes(scene: &Scene, info: &DeviceInfo) -> Result<()> {
     Ok(())
 }
 
+/// `final.exr` (the linear image, `header` in its attributes) and `final.png` (tone-mapped at
+/// `exposure`) into `out`, as `render` and the viewer's screenshot write them; their names.
+pub(crate) fn write_final_images(
+    out: &OutputDir,
+    image: &ImageF32,
+    header: &[(&str, String)],
+    exposure: f32,
+) -> Result<Vec<String>> {
+    image_io::write_exr_with(&out.path("final.exr"), image, header)?;
+    let (w, h, rgb) = main_rgb(image)?;
+    image_io::write_png_tonemapped(&out.path("final.png"), w, h, &rgb, exposure)?;
+    Ok(vec!["final.exr".to_string(), "final.png".to_string()])
+}
+
 /// The final image's R, G, B channels, interleaved, for the PNG.
-pub(crate) fn main_rgb(image: &ImageF32) -> Result<(u32, u32, Vec<f32>)> {
+fn main_rgb(image: &ImageF32) -> Result<(u32, u32, Vec<f32>)> {
     let layer = image.layer(None).or_else(|| image.layers.first()).context("the final image has no layers")?;
     let idx = |c: &str| layer.channels.iter().position(|x| x == c);
     let (r, g, b) = match (idx("R"), idx("G"), idx("B")) {

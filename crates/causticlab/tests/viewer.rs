@@ -28,9 +28,8 @@ fn xvfb() -> std::sync::MutexGuard<'static, ()> {
     XVFB.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-/// Runs `causticlab --validate view ARGS` in a fresh X server.
-fn view(args: &[&str], env: &[(&str, &Path)]) -> Run {
-    let _one = xvfb();
+/// `causticlab --validate view ARGS` in a fresh X server, with `env` set (not yet started).
+fn view_command(args: &[&str], env: &[(&str, &Path)]) -> Command {
     let mut cmd = Command::new("xvfb-run");
     cmd.args(["-a", "-s", "-screen 0 640x480x24", env!("CARGO_BIN_EXE_causticlab"), "--validate", "view"])
         .args(args)
@@ -39,12 +38,21 @@ fn view(args: &[&str], env: &[(&str, &Path)]) -> Run {
     for (k, v) in env {
         cmd.env(k, v);
     }
-    let out = cmd.output().expect("running xvfb-run (scripts/setup.sh installs the xvfb package)");
+    cmd
+}
+
+fn run_of(out: std::process::Output) -> Run {
     Run {
         code: out.status.code(),
         stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
         stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
     }
+}
+
+/// Runs `causticlab --validate view ARGS` in a fresh X server.
+fn view(args: &[&str], env: &[(&str, &Path)]) -> Run {
+    let _one = xvfb();
+    run_of(view_command(args, env).output().expect("running xvfb-run (scripts/setup.sh installs the xvfb package)"))
 }
 
 fn clean(run: &Run) {
@@ -238,6 +246,36 @@ fn escape_exits_cleanly() {
     assert!(run.stdout.contains(": 3 frames"), "{}", run.describe());
 }
 
+/// What the exit summary says was timed: `passes` (every pass) or `frames` (whole frames).
+fn timed(run: &Run) -> &'static str {
+    match (run.stdout.contains("whole frames timed"), run.stdout.contains(" passes timed, summed")) {
+        (true, false) => "frames",
+        (false, true) => "passes",
+        _ => "unclear",
+    }
+}
+
+#[test]
+fn the_t_key_switches_between_timing_every_pass_and_whole_frames() {
+    let dir = scratch("view-timing");
+    let scene = small_scene(&dir).display().to_string();
+    let frames = view(&["--scene", &scene, "--exit-after", "3", "--pass-timing", "frame"], &[]);
+    clean(&frames);
+    assert_eq!(timed(&frames), "frames", "{}", frames.describe());
+    let s = script(&dir, "2 key t\n6 exit\n");
+    let switched = view(&["--scene", &scene, "--pass-timing", "frame", "--script", &s], &[]);
+    clean(&switched);
+    assert_eq!(timed(&switched), "passes", "{}", switched.describe());
+    let passes = view(&["--scene", &scene, "--exit-after", "3", "--pass-timing", "pass"], &[]);
+    clean(&passes);
+    assert_eq!(timed(&passes), "passes", "{}", passes.describe());
+    // `auto`, the default: whole frames on lavapipe (a software device), every pass on a GPU.
+    let auto = view(&["--scene", &scene, "--exit-after", "3"], &[]);
+    clean(&auto);
+    let want = if auto.stdout.contains("llvmpipe") { "frames" } else { "passes" };
+    assert_eq!(timed(&auto), want, "{}", auto.describe());
+}
+
 /// Copies `from` into `to`, recursively.
 fn copy_tree(from: &Path, to: &Path) {
     std::fs::create_dir_all(to).expect("mkdir");
@@ -272,15 +310,14 @@ fn a_broken_shader_edit_keeps_the_last_pipeline_until_it_is_fixed() {
     );
     let scene_arg = scene.display().to_string();
     let one = xvfb();
-    let child = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 640x480x24", env!("CARGO_BIN_EXE_causticlab"), "--validate", "view"])
-        .args(["--scene", &scene_arg, "--technique", "shah", "--script", &s])
-        .env("CAUSTICLAB_SHADERS", &shaders)
-        .current_dir(workspace())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("xvfb-run");
+    let child = view_command(
+        &["--scene", &scene_arg, "--technique", "shah", "--script", &s],
+        &[("CAUSTICLAB_SHADERS", &shaders)],
+    )
+    .stdout(std::process::Stdio::piped())
+    .stderr(std::process::Stdio::piped())
+    .spawn()
+    .expect("xvfb-run");
     let wait_for = |p: &Path| {
         let t = std::time::Instant::now();
         while !p.exists() {
@@ -303,11 +340,7 @@ fn a_broken_shader_edit_keeps_the_last_pipeline_until_it_is_fixed() {
     std::fs::write(dir.join("fixed"), "").expect("signal");
     let out = child.wait_with_output().expect("the viewer");
     drop(one);
-    let run = Run {
-        code: out.status.code(),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    };
+    let run = run_of(out);
     clean(&run);
     assert!(run.stderr.contains("eye/composite.comp:13:") && run.stderr.contains("final_imagex"), "{}", run.describe());
     assert!(run.stderr.contains("last good pipelines keep running"), "{}", run.describe());

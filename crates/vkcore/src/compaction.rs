@@ -70,11 +70,9 @@ impl AppendCounter {
     /// A stream of `count` elements already in place (a seed, uploaded once), with the arguments
     /// finalize would have written.
     pub fn full(count: u32) -> AppendCounter {
-        // As compact_finalize.comp: at least one group, rows of 65535 groups.
-        let groups = count.div_ceil(64);
-        let x = groups.min(65535);
-        let y = if x == 0 { 1 } else { groups.div_ceil(x) };
-        AppendCounter { count, capacity: count, pad: [0; 2], dispatch: [x.max(1), y, 1, 0], draw: [count, 1, 0, 0] }
+        // As compact_finalize.comp: at least one group, in balanced rows (grid.rs).
+        let (x, y) = crate::dispatch_grid(count.div_ceil(64));
+        AppendCounter { count, capacity: count, pad: [0; 2], dispatch: [x, y, 1, 0], draw: [count, 1, 0, 0] }
     }
 }
 
@@ -446,9 +444,8 @@ impl Compactor {
             if let Source::Stream(s) = &src {
                 s.dispatch(cmd)?;
             } else {
-                let groups = n.div_ceil(64);
-                let x = groups.clamp(1, 65535);
-                cmd.dispatch(x, groups.div_ceil(x).max(1), 1);
+                let (x, y) = crate::dispatch_grid(n.div_ceil(64));
+                cmd.dispatch(x, y, 1);
             }
             Ok(())
         })?;

@@ -22,10 +22,12 @@ pub enum Command {
     CameraMode,
     /// Hide or show the panel.
     TogglePanel,
+    /// Time every pass (the graph) or whole frames.
+    TogglePassTiming,
 }
 
 /// Every key name, as `--script` writes it and the panel lists it.
-pub const NAMES: &[&str] = &["escape", "s", "d", "tab", "v", "space", "r", "c", "f1"];
+pub const NAMES: &[&str] = &["escape", "s", "d", "tab", "v", "space", "r", "c", "t", "f1"];
 
 /// The command of the key `name` (lower case), if it has one.
 pub fn command(name: &str) -> Option<Command> {
@@ -38,6 +40,7 @@ pub fn command(name: &str) -> Option<Command> {
         "space" => Command::PlayPause,
         "r" => Command::ReloadShaders,
         "c" => Command::CameraMode,
+        "t" => Command::TogglePassTiming,
         "f1" => Command::TogglePanel,
         _ => return None,
     })
@@ -67,6 +70,7 @@ pub fn help() -> Vec<(&'static str, &'static str)> {
         ("Space", "play / pause the animation"),
         ("R", "reload shaders"),
         ("C", "orbit / fly camera"),
+        ("T", "time every pass / whole frames"),
         ("F1", "hide / show this panel"),
         ("drag", "turn the camera (Ctrl: move the light)"),
         ("wheel", "move in and out"),

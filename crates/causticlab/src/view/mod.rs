@@ -98,7 +98,8 @@ pub fn run(g: &GlobalOpts, args: &ViewArgs, validation: &mut Option<Arc<Validati
     let got = window.inner_size();
     (scene.camera.width, scene.camera.height) = (got.width.max(1), got.height.max(1));
     let mut presenter = Presenter::new(&ctx, surface, (got.width, got.height), PresentOptions { vsync: args.vsync })?;
-    let session = Session::new(&ctx, &shaders, scene, args.compare, dumps, args.out.clone(), !args.no_pass_timestamps)?;
+    let every_pass = args.pass_timing.every_pass(ctx.info().is_software);
+    let session = Session::new(&ctx, &shaders, scene, args.compare, dumps, args.out.clone(), every_pass)?;
     let mut viewer = Viewer {
         session,
         mode: camera::Mode::Orbit,
@@ -377,6 +378,11 @@ impl<'c> Viewer<'c> {
                 }
             }
             Command::TogglePanel => self.show_panel = !self.show_panel,
+            Command::TogglePassTiming => {
+                let on = !s.pass_timestamps();
+                // An error is kept for the panel by the session.
+                let _ = s.set_pass_timestamps(on);
+            }
         }
     }
 
@@ -405,15 +411,20 @@ impl<'c> Viewer<'c> {
         let mut gpu: Vec<f64> = self.session.history.iter().map(|f| f.total_ms()).collect();
         gpu.sort_by(f64::total_cmp);
         let median = gpu.get(gpu.len() / 2).copied().unwrap_or(f64::NAN);
+        let timed = match self.session.history.back() {
+            Some(f) if self.session.pass_timestamps() => format!("{} passes timed, summed", f.passes.len()),
+            _ => "whole frames timed".to_string(),
+        };
         println!(
-            "view: {} on {}x{}, technique `{}`: {} frames; wall {mean:.3} ms a frame (mean after the first 10); \
-             GPU {median:.3} ms a frame (median of the last {}, passes summed)",
+            "view: {} on {}x{} on {}, technique `{}`: {} frames; wall {mean:.3} ms a frame (mean after the first 10); \
+             GPU {median:.3} ms a frame (median of the last {}, {timed})",
             scene.display(),
             self.session.scene.camera.width,
             self.session.scene.camera.height,
+            self.panel.device,
             self.session.shown_settings().technique,
             self.frame_ms.len(),
-            gpu.len()
+            gpu.len(),
         );
     }
 }

@@ -7,7 +7,8 @@
 use super::camera::Mode;
 use super::keys::{self, Command};
 use super::session::{FrameTimes, Session, Shown, HISTORY};
-use super::settings::{self, Kind};
+use super::settings::{self, Kind, Setting};
+use caustics::scene::CausticSettings;
 use egui::{Color32, Stroke};
 use std::collections::HashMap;
 
@@ -28,6 +29,9 @@ pub enum Request {
 pub struct PanelState {
     /// Text fields being edited, by key (applied on Enter).
     edits: HashMap<String, String>,
+    /// The settings rows and the settings they were made from (made again when those change,
+    /// not every frame).
+    rows: Option<(CausticSettings, Vec<Setting>)>,
     /// Frames per second over the last second (wall clock).
     pub fps: f64,
     pub device: String,
@@ -36,7 +40,7 @@ pub struct PanelState {
 impl PanelState {
     /// The panel of the viewer on `device` (its name and driver).
     pub fn new(device: String) -> PanelState {
-        PanelState { edits: HashMap::new(), fps: 0.0, device }
+        PanelState { edits: HashMap::new(), rows: None, fps: 0.0, device }
     }
 }
 
@@ -95,7 +99,7 @@ pub fn show(ui: &mut egui::Ui, state: &mut PanelState, session: &Session, mode: 
             ui.collapsing("Camera, light, animation", |ui| scene_section(ui, session, mode, &mut out));
             egui::CollapsingHeader::new("GPU time per pass")
                 .default_open(true)
-                .show(ui, |ui| timing_section(ui, session));
+                .show(ui, |ui| timing_section(ui, session, &mut out));
             ui.separator();
             ui.horizontal(|ui| {
                 for (label, command) in
@@ -140,7 +144,12 @@ fn view_section(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Request>) {
 }
 
 fn settings_section(ui: &mut egui::Ui, state: &mut PanelState, session: &Session, out: &mut Vec<Request>) {
-    for row in settings::rows(&session.scene.caustics) {
+    let current = &session.scene.caustics;
+    if state.rows.as_ref().is_none_or(|(made_from, _)| made_from != current) {
+        state.rows = Some((current.clone(), settings::rows(current)));
+    }
+    let Some((_, rows)) = &state.rows else { return };
+    for row in rows {
         ui.horizontal(|ui| {
             let label = ui.label(&row.key);
             if !row.help.is_empty() {
@@ -221,7 +230,14 @@ fn scene_section(ui: &mut egui::Ui, session: &Session, mode: Mode, out: &mut Vec
     });
 }
 
-fn timing_section(ui: &mut egui::Ui, session: &Session) {
+fn timing_section(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Request>) {
+    let mut every_pass = session.pass_timestamps();
+    let toggle = ui
+        .checkbox(&mut every_pass, "time every pass (T)")
+        .on_hover_text("else whole frames; on a software device each timestamp flushes the rasterizer");
+    if toggle.changed() {
+        out.push(Request::Command(Command::TogglePassTiming));
+    }
     let means = pass_means(&session.history);
     let colour = |name: &str| {
         let i = means.iter().position(|(n, _)| n == name).unwrap_or(PALETTE.len() - 1);

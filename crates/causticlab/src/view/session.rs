@@ -8,7 +8,7 @@
 use super::settings;
 use anyhow::{Context as _, Result};
 use caustics::animation::{self, Animation};
-use caustics::image_io::{self, ImageF32, OutputDir};
+use caustics::image_io::{self, OutputDir};
 use caustics::render::display::Display;
 use caustics::render::{self, FrameMode, FrameStep, Renderer, RendererOptions};
 use caustics::scene::{CausticSettings, Scene};
@@ -174,6 +174,27 @@ impl<'c> Session<'c> {
         Ok(())
     }
 
+    /// Whether every pass is timed (else whole frames).
+    pub fn pass_timestamps(&self) -> bool {
+        self.pass_timestamps
+    }
+
+    /// Times every pass (`on`, the graph) or whole frames: new renderers; on an error the running
+    /// ones stay, with the timing they had.
+    pub fn set_pass_timestamps(&mut self, on: bool) -> Result<()> {
+        let was = std::mem::replace(&mut self.pass_timestamps, on);
+        let result = self.rebuild(self.scene.clone());
+        match &result {
+            Ok(()) => {
+                self.history.clear();
+                self.log.push(format!("timing {}", if on { "every pass" } else { "whole frames" }));
+            }
+            Err(_) => self.pass_timestamps = was,
+        }
+        self.note(result.as_ref().err());
+        result
+    }
+
     /// Sets `[caustics]` key `key` to `value` (as the panel and `--script` `set` do): checked,
     /// then new renderers; on an error the running ones stay and the error is kept for the
     /// panel (and returned).
@@ -275,7 +296,7 @@ impl<'c> Session<'c> {
             let mut passes: Vec<(String, f64)> =
                 r.passes.iter().filter_map(|p| p.gpu_ms.map(|ms| (p.name.clone(), ms))).collect();
             if passes.is_empty() {
-                // Timed per frame (--no-pass-timestamps): the frame is one bar.
+                // Timed per frame (`--pass-timing frame`, T): the frame is one bar.
                 passes.extend(r.frame_gpu_ms.map(|ms| ("frame".to_string(), ms)));
             }
             self.history.push_back(FrameTimes { passes });
@@ -327,12 +348,11 @@ impl<'c> Session<'c> {
         let settings = self.shown_settings();
         let header = self.header(&settings);
         let image = self.shown_renderer().final_image()?;
-        image_io::write_exr_with(&out.path("final.exr"), &image, &header)?;
-        let (w, h, rgb) = main_rgb(&image)?;
-        image_io::write_png_tonemapped(&out.path("final.png"), w, h, &rgb, self.scene.render.exposure)?;
+        let mut files = crate::cmd_render::write_final_images(&out, &image, &header, self.scene.render.exposure)?;
         let (dw, dh, display) = self.display.read_rgb8(self.ctx)?;
         image_io::write_rgb8_png(&out.path("display.png"), dw, dh, &display)?;
-        let written = ["final.exr", "final.png", "display.png"].map(|f| out.final_dir().join(f)).to_vec();
+        files.push("display.png".to_string());
+        let written: Vec<PathBuf> = files.iter().map(|f| out.final_dir().join(f)).collect();
         out.commit()?;
         self.log.extend(written.iter().map(|p| format!("wrote {}", p.display())));
         Ok(written)
@@ -363,9 +383,4 @@ impl<'c> Session<'c> {
         self.log.push(format!("wrote {} buffer(s) into {}", written.len(), dir.display()));
         Ok(written)
     }
-}
-
-/// The final image's R, G, B channels, interleaved (for the PNG).
-fn main_rgb(image: &ImageF32) -> Result<(u32, u32, Vec<f32>)> {
-    crate::cmd_render::main_rgb(image)
 }

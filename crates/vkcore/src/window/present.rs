@@ -167,7 +167,10 @@ impl Presenter {
         if self.stale || self.swapchain.is_none() {
             self.remake()?;
         }
-        let dev = self.ctx.shared.raw().clone();
+        // The device outlives this call through the context's shared state, not a copy of its
+        // function table.
+        let shared = self.ctx.shared.clone();
+        let dev = shared.raw();
         let queue = self.ctx.shared.device.queue;
         let slot = &self.slots[self.next];
         unsafe { dev.wait_for_fences(&[slot.fence], true, u64::MAX) }.call("vkWaitForFences")?;
@@ -216,22 +219,15 @@ impl Presenter {
             dev.begin_command_buffer(cb, &begin).call("vkBeginCommandBuffer")?;
         }
         sync(&self.ctx, cb, &[Use::image(image, 0..1, 0..1, Access::TRANSFER_READ)])?;
-        let color = vk::ImageSubresourceRange {
-            aspect_mask: vk::ImageAspectFlags::COLOR,
-            base_mip_level: 0,
-            level_count: 1,
-            base_array_layer: 0,
-            layer_count: 1,
-        };
-        let to_transfer = vk::ImageMemoryBarrier2::default()
-            .src_stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)
-            .src_access_mask(vk::AccessFlags2::NONE)
-            .dst_stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)
-            .dst_access_mask(vk::AccessFlags2::TRANSFER_WRITE)
-            .old_layout(vk::ImageLayout::UNDEFINED)
-            .new_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-            .image(target)
-            .subresource_range(color);
+        let to_transfer = transition(
+            target,
+            (vk::PipelineStageFlags2::ALL_COMMANDS, vk::AccessFlags2::NONE, vk::ImageLayout::UNDEFINED),
+            (
+                vk::PipelineStageFlags2::ALL_TRANSFER,
+                vk::AccessFlags2::TRANSFER_WRITE,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            ),
+        );
         let (w, h) = (image.desc.width, image.desc.height);
         let layers = vk::ImageSubresourceLayers {
             aspect_mask: vk::ImageAspectFlags::COLOR,
@@ -249,24 +245,29 @@ impl Presenter {
             ],
         };
         let filter = if (w, h) == (extent.width, extent.height) { vk::Filter::NEAREST } else { vk::Filter::LINEAR };
-        let to_color = vk::ImageMemoryBarrier2::default()
-            .src_stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)
-            .src_access_mask(vk::AccessFlags2::TRANSFER_WRITE)
-            .dst_stage_mask(vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT)
-            .dst_access_mask(vk::AccessFlags2::COLOR_ATTACHMENT_READ | vk::AccessFlags2::COLOR_ATTACHMENT_WRITE)
-            .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-            .new_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
-            .image(target)
-            .subresource_range(color);
-        let to_present = vk::ImageMemoryBarrier2::default()
-            .src_stage_mask(vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT)
-            .src_access_mask(vk::AccessFlags2::COLOR_ATTACHMENT_WRITE)
-            .dst_stage_mask(vk::PipelineStageFlags2::NONE)
-            .dst_access_mask(vk::AccessFlags2::NONE)
-            .old_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
-            .new_layout(vk::ImageLayout::PRESENT_SRC_KHR)
-            .image(target)
-            .subresource_range(color);
+        let color_attachment = vk::AccessFlags2::COLOR_ATTACHMENT_READ | vk::AccessFlags2::COLOR_ATTACHMENT_WRITE;
+        let to_color = transition(
+            target,
+            (
+                vk::PipelineStageFlags2::ALL_TRANSFER,
+                vk::AccessFlags2::TRANSFER_WRITE,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            ),
+            (
+                vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+                color_attachment,
+                vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            ),
+        );
+        let to_present = transition(
+            target,
+            (
+                vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+                vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
+                vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            ),
+            (vk::PipelineStageFlags2::NONE, vk::AccessFlags2::NONE, vk::ImageLayout::PRESENT_SRC_KHR),
+        );
         let attachment = [vk::RenderingAttachmentInfo::default()
             .image_view(sc.views[index as usize])
             .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
@@ -323,6 +324,29 @@ impl Presenter {
         self.next = (self.next + 1) % SLOTS;
         Ok(Presented::Shown)
     }
+}
+
+/// (stage, access, layout) on one side of a barrier.
+type Side = (vk::PipelineStageFlags2, vk::AccessFlags2, vk::ImageLayout);
+
+/// The barrier that moves the swapchain image `image` (one colour layer, one level) from `from`
+/// to `to`.
+fn transition(image: vk::Image, from: Side, to: Side) -> vk::ImageMemoryBarrier2<'static> {
+    vk::ImageMemoryBarrier2::default()
+        .src_stage_mask(from.0)
+        .src_access_mask(from.1)
+        .old_layout(from.2)
+        .dst_stage_mask(to.0)
+        .dst_access_mask(to.1)
+        .new_layout(to.2)
+        .image(image)
+        .subresource_range(vk::ImageSubresourceRange {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            base_mip_level: 0,
+            level_count: 1,
+            base_array_layer: 0,
+            layer_count: 1,
+        })
 }
 
 impl Drop for Presenter {

@@ -262,12 +262,10 @@ impl ComputeSplat {
     }
 }
 
-/// (x, y) work groups of [`GROUP`] invocations covering `n`, with x within the 65535 every
-/// device allows (splat.comp flattens the grid row by row).
+/// (x, y) work groups of [`GROUP`] invocations covering `n` in balanced rows
+/// ([`vkcore::dispatch_grid`]; splat.comp flattens the grid row by row).
 pub(crate) fn groups(n: u32) -> (u32, u32) {
-    let groups = n.div_ceil(GROUP).max(1);
-    let x = groups.min(65535);
-    (x, groups.div_ceil(x))
+    vkcore::dispatch_grid(n.div_ceil(GROUP))
 }
 
 #[cfg(test)]
