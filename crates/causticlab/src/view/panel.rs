@@ -278,3 +278,129 @@ fn timing_section(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Request>) 
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! The panel's widgets clicked as a person clicks them: pointer events at the place the
+    //! widget's text was drawn, through egui, on a session over lavapipe (or the default device).
+    use super::*;
+    use caustics::techniques::Technique;
+    use egui::{Event, Pos2, Rect};
+
+    /// Every text drawn in `shapes` (nested ones too) and where, on the screen.
+    fn texts(shapes: &[egui::epaint::ClippedShape]) -> Vec<(String, Rect)> {
+        fn walk(s: &egui::Shape, out: &mut Vec<(String, Rect)>) {
+            match s {
+                egui::Shape::Text(t) => {
+                    out.push((t.galley.text().to_string(), t.galley.rect.translate(t.pos.to_vec2())))
+                }
+                egui::Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
+                _ => {}
+            }
+        }
+        let mut out = vec![];
+        for c in shapes {
+            walk(&c.shape, &mut out);
+        }
+        out
+    }
+
+    /// One panel frame with `events`: the requests and the texts drawn.
+    fn frame(
+        ctx: &egui::Context,
+        state: &mut PanelState,
+        s: &Session,
+        events: Vec<Event>,
+    ) -> (Vec<Request>, Vec<(String, Rect)>) {
+        let input = egui::RawInput {
+            screen_rect: Some(Rect::from_min_size(Pos2::ZERO, egui::vec2(900.0, 1400.0))),
+            events,
+            ..Default::default()
+        };
+        let mut requests = vec![];
+        let mut out = ctx.run_ui(input, |ui| requests = show(ui, state, s, Mode::Orbit));
+        // No renderer here to upload the font textures to.
+        out.textures_delta.clear();
+        (requests, texts(&out.shapes))
+    }
+
+    /// Moves the pointer to `at`, presses and releases the primary button, a frame each; the
+    /// requests of the release frame and the texts drawn after it.
+    fn click(
+        ctx: &egui::Context,
+        state: &mut PanelState,
+        s: &Session,
+        at: Pos2,
+    ) -> (Vec<Request>, Vec<(String, Rect)>) {
+        let button = |pressed| Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Default::default(),
+        };
+        frame(ctx, state, s, vec![Event::PointerMoved(at)]);
+        frame(ctx, state, s, vec![button(true)]);
+        let (requests, _) = frame(ctx, state, s, vec![button(false)]);
+        let (_, drawn) = frame(ctx, state, s, vec![]);
+        (requests, drawn)
+    }
+
+    fn find<'t>(drawn: &'t [(String, Rect)], text: &str) -> Vec<&'t Rect> {
+        drawn.iter().filter(|(t, _)| t == text).map(|(_, r)| r).collect()
+    }
+
+    #[test]
+    fn clicking_the_technique_list_and_the_timing_box_reaches_the_session() {
+        let opts = vkcore::ContextOptions {
+            device: std::env::var("CAUSTICLAB_TEST_DEVICE").ok(),
+            validation: true,
+            echo_validation: true,
+            without: vec![],
+        };
+        let ctx = vkcore::Context::new(&opts).expect("a Vulkan device (scripts/setup.sh)");
+        let shaders = vkcore::ShaderCompiler::new(&caustics::render::shader_root()).expect("shaderc");
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let mut scene = caustics::scene::Scene::load(&root.join("scenes/sphere_on_plane.toml")).expect("the scene");
+        (scene.camera.width, scene.camera.height) = (48, 48);
+        scene.caustics.technique = Technique::Shah;
+        let out = std::env::temp_dir().join(format!("causticlab-panel-{}", std::process::id()));
+        let mut session = Session::new(&ctx, &shaders, scene, None, vec![], out, false).expect("a session");
+        let egui_ctx = egui::Context::default();
+        let mut state = PanelState::new("test".into());
+        // Two frames: the first lays out, the second draws at the sizes it found.
+        frame(&egui_ctx, &mut state, &session, vec![]);
+        let (_, drawn) = frame(&egui_ctx, &mut state, &session, vec![]);
+
+        // The technique row: its list shows `shah` on the label's line. Open it, pick `hcm`.
+        let label = *find(&drawn, "technique").first().expect("the technique row's label");
+        let current = find(&drawn, "shah")
+            .into_iter()
+            .find(|r| (r.center().y - label.center().y).abs() < label.height())
+            .expect("the technique list beside its label");
+        let (requests, opened) = click(&egui_ctx, &mut state, &session, current.center());
+        assert!(requests.is_empty(), "opening the list asks for nothing: {requests:?}");
+        let before = find(&drawn, "hcm").len();
+        let choices = find(&opened, "hcm");
+        assert!(choices.len() > before, "the opened list shows `hcm`");
+        let hcm = *choices.last().expect("hcm");
+        let (requests, _) = click(&egui_ctx, &mut state, &session, hcm.center());
+        assert_eq!(requests, vec![Request::Set("technique".into(), "hcm".into())]);
+        for r in requests {
+            let Request::Set(k, v) = r else { unreachable!() };
+            session.set(&k, &v).expect("the panel's setting");
+        }
+        assert_eq!(session.shown_settings().technique, Technique::Hcm, "the running renderer is hcm's");
+
+        // The timing box: unticked (whole frames timed here); a click asks to time every pass.
+        let (_, drawn) = frame(&egui_ctx, &mut state, &session, vec![]);
+        let tick = *find(&drawn, "time every pass (T)").first().expect("the timing box");
+        let (requests, _) = click(&egui_ctx, &mut state, &session, tick.center());
+        assert_eq!(requests, vec![Request::Command(Command::TogglePassTiming)]);
+        session.set_pass_timestamps(true).expect("timing every pass");
+        assert!(session.pass_timestamps());
+        session.finish().expect("the session's frames");
+        drop(session);
+        let log = ctx.validation_log();
+        assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+    }
+}
