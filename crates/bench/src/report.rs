@@ -43,6 +43,15 @@ pub fn markdown(config: &Config, results: &Results) -> String {
         results.config.file,
         results.config.hash
     );
+    if let Some(e) = &r.explained {
+        let _ = writeln!(
+            s,
+            "- **Explained after the run:** the config's `[[plausibility.explained]]` entries applied at commit {} \
+             ({}) by `causticlab bench explain`, which times nothing; the config was hash {} when measured and \
+             differs from it in those entries only",
+            e.commit, e.date, e.measured_config_hash
+        );
+    }
     let _ = writeln!(
         s,
         "- **Run:** {}; light path {}, camera path {}, object path {} ({} frames per loop). Times are medians \

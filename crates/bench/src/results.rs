@@ -65,6 +65,19 @@ pub struct RunInfo {
     /// suite cut off by its time budget): they read `not run`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub not_run: Vec<usize>,
+    /// Explanations added after the run (`bench explain`); the timings are the run's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub explained: Option<Explained>,
+}
+
+/// When a table was judged again with explanations its config gained after the run.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Explained {
+    /// The commit whose `causticlab bench explain` did it.
+    pub commit: String,
+    pub date: String,
+    /// The config's hash when the table was measured.
+    pub measured_config_hash: String,
 }
 
 /// Where and when the numbers were taken.

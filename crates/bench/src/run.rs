@@ -254,6 +254,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
             total_cells: all.len(),
             copy_bandwidth_gbs,
             not_run: vec![],
+            explained: None,
         },
         meta: crate::results::Meta { commit, ..crate::meta::meta(ctx.info()) },
         cells: done,
@@ -311,7 +312,7 @@ fn check_patterns(lc: &LoadedConfig, cell: &crate::plan::Cell, run: &crate::meas
     Ok(())
 }
 
-fn device_dir(root: &Path, r: &Results) -> PathBuf {
+pub(crate) fn device_dir(root: &Path, r: &Results) -> PathBuf {
     let d = root.join(&r.meta.device_slug);
     if r.run.quick {
         d.join("quick")

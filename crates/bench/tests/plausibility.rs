@@ -143,3 +143,49 @@ fn findings_mark_the_table_and_an_explanation_lifts_the_mark() {
     assert!(out.markdown.contains("Explained, 1 entries"), "{}", out.markdown);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
+    let (c, r) = table(CONFIG, [12.0, 6.0, 30.0, 35.0], QUIET_EYE, None);
+    let dir = std::env::temp_dir().join(format!("causticlab-explain-{}", std::process::id()));
+    bench::run::write_table(&c, &r, &dir.join("synthetic"), &dir).expect("table written");
+    let json = dir.join("synthetic/synthetic.json");
+    let read = || -> Results { serde_json::from_str(&std::fs::read_to_string(&json).expect("json")).expect("parses") };
+    let before = read();
+    let loaded = |text: &str| bench::LoadedConfig {
+        path: dir.join("synthetic.toml"),
+        name: "synthetic".into(),
+        hash: bench::config::fnv1a(text.as_bytes()),
+        text: text.into(),
+        config: toml::from_str(text).expect("parses"),
+    };
+    // A config changed in more than its explanations is refused, and the table left alone.
+    let more_photons = CONFIG.replace("photons = [1024, 4096]", "photons = [1024, 2048]");
+    let Err(err) = bench::explain::explain(&loaded(&more_photons), &json, &dir, "abc1234") else {
+        panic!("a config changed in its matrix was accepted")
+    };
+    let msg = format!("{err:#}");
+    assert!(msg.contains("synthetic.toml") && msg.contains("run the table again"), "{msg}");
+    assert_eq!(read(), before);
+    // Explanations (and a comment) added: the `?` goes, the cells stay as measured.
+    let explained = format!(
+        "# explained later\n{CONFIG}\n[[plausibility.explained]]\nrule = \"b\"\nmetric = \"Gather\"\nphotons = 1024\nwhy = \"measured: the static cell rebuilt its photon buffer (test)\"\n"
+    );
+    let out = bench::explain::explain(&loaded(&explained), &json, &dir, "abc1234").expect("explained");
+    let row = out.markdown.lines().find(|l| l.starts_with("| 1024²")).expect("1024 row").to_string();
+    assert!(!row.contains('?'), "{row}");
+    let header = out.markdown.lines().find(|l| l.contains("Explained after the run")).expect("header line");
+    assert!(header.contains("abc1234") && header.contains(&format!("hash {}", before.config.hash)), "{header}");
+    let after = read();
+    assert_eq!(after.cells, before.cells, "no cell was measured again or changed");
+    assert_eq!(after.meta, before.meta, "the measured commit, date and device stay");
+    assert!(after.plausibility[0].explained.is_some());
+    assert_eq!(after.config.hash, bench::config::fnv1a(explained.as_bytes()));
+    // Explained once more: the table still cites the config it was measured with.
+    let out = bench::explain::explain(&loaded(&explained), &json, &dir, "def5678").expect("again");
+    assert!(
+        out.markdown.contains("def5678 (")
+            && out.markdown.contains(&format!("hash {} when measured", before.config.hash))
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

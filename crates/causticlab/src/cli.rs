@@ -153,6 +153,24 @@ fn parse_budget(s: &str) -> Result<f64, String> {
 pub enum BenchCommand {
     /// Merge the parts of a sharded or filtered sweep into the full table.
     Merge(MergeArgs),
+    /// Judge a written table again with the `[[plausibility.explained]]` entries its config
+    /// gained after the run (nothing is timed; the config may differ in those entries only).
+    Explain(ExplainArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ExplainArgs {
+    /// The bench config (bench_configs/*.toml) with the explanations.
+    pub config: PathBuf,
+    /// The table's JSON (results/<device>/<config>.json).
+    pub table: PathBuf,
+    /// Results folder; the table goes to <results>/<device-slug>/.
+    #[arg(long, default_value = "results")]
+    pub results: PathBuf,
+    /// Write into the repository's results/ from a work tree with uncommitted changes (the
+    /// table then names a `-dirty` commit).
+    #[arg(long)]
+    pub allow_dirty: bool,
 }
 
 #[derive(Debug, Args)]

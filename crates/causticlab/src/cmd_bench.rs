@@ -1,4 +1,5 @@
-//! `causticlab bench CONFIG` and `causticlab bench merge PARTS...`: the config is read and
+//! `causticlab bench CONFIG`, `causticlab bench merge PARTS...` and `causticlab bench explain
+//! CONFIG TABLE`: the config is read and
 //! checked before the device is opened; the tables are written only after every cell ran.
 
 use crate::cli::{BenchArgs, BenchCommand, GlobalOpts};
@@ -11,6 +12,21 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     if let Some(BenchCommand::Merge(m)) = &args.merge {
         caustics::image_io::check_output_dir(&m.results).context("--results")?;
         let out = bench::merge(&m.parts, &m.results, m.partial)?;
+        report(&out);
+        return Ok(());
+    }
+    if let Some(BenchCommand::Explain(e)) = &args.merge {
+        caustics::image_io::check_output_dir(&e.results).context("--results")?;
+        let config = LoadedConfig::load(&e.config)?;
+        let commit = bench::meta::commit();
+        if commit.ends_with("-dirty") && !e.allow_dirty && bench::meta::in_work_tree(&e.results) {
+            return Err(caustics::input_error!(
+                "bench explain: the work tree has uncommitted changes ({commit}): commit the explanations first, \
+                 write elsewhere with --results, or pass --allow-dirty"
+            )
+            .into());
+        }
+        let out = bench::explain::explain(&config, &e.table, &e.results, &commit)?;
         report(&out);
         return Ok(());
     }

@@ -270,3 +270,23 @@ fn a_metric_whose_passes_match_nothing_is_refused_with_the_passes_recorded() {
     let md = std::fs::read_to_string(device_dir(&dir.join("ok")).join("allowed.md")).expect("table");
     assert!(md.contains("renamed on purpose (test)"), "{md}");
 }
+
+#[test]
+fn bench_explain_names_a_missing_table_and_a_table_of_another_config() {
+    let dir = scratch("bench-explain-errors");
+    let missing = dir.join("nowhere.json");
+    let front = workspace().join("bench_configs/front.toml");
+    let other = workspace()
+        .join("results/llvmpipe-llvmpipe-llvm-15-0-6-256-bits-mesa-22-3-6-llvm-15-0-6/photon_trace_rate.json");
+    let root = dir.join("results");
+    for (table, needle) in
+        [(&missing, missing.display().to_string()), (&other, "the table of `photon_trace_rate`".into())]
+    {
+        let r =
+            bench(&["explain".as_ref(), front.as_os_str(), table.as_os_str(), "--results".as_ref(), root.as_os_str()]);
+        assert_eq!(r.code, Some(2), "{}", r.describe());
+        assert!(r.stderr.contains(&needle), "stderr lacks `{needle}`\n{}", r.describe());
+        assert!(!root.exists(), "a refused explain wrote results");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -30,6 +30,7 @@ pub(crate) struct Shared {
     pub tracker: Mutex<Tracker>,
     pub command_pool: Mutex<vk::CommandPool>,
     pub counters: crate::counters::AtomicCounters,
+    pub pipelines: crate::shared_pipelines::SharedPipelines,
     next_id: AtomicU64,
 }
 
@@ -127,6 +128,7 @@ impl Context {
                 tracker: Mutex::new(Tracker::default()),
                 command_pool: Mutex::new(command_pool),
                 counters: Default::default(),
+                pipelines: Default::default(),
                 next_id: AtomicU64::new(1),
             }),
             instance,
@@ -154,6 +156,17 @@ impl Context {
     /// Objects created, submits, barriers and timestamps so far (see [`crate::Counters`]).
     pub fn counters(&self) -> crate::Counters {
         self.shared.counters.snapshot()
+    }
+
+    /// How many pipelines were made (each `vkCreate*Pipelines`; a pipeline shared with a live
+    /// one of equal description is not made again): a mark for [`Context::pipelines_made_since`].
+    pub fn pipelines_made(&self) -> usize {
+        self.shared.pipelines.made_count()
+    }
+
+    /// The names of the pipelines made since `mark` (from [`Context::pipelines_made`]), in order.
+    pub fn pipelines_made_since(&self, mark: usize) -> Vec<String> {
+        self.shared.pipelines.made_since(mark)
     }
 
     /// Device memory held through the allocator: (bytes of live allocations, bytes of the memory

@@ -26,6 +26,7 @@ mod recorder;
 mod reflect;
 mod ring;
 mod shader;
+mod shared_pipelines;
 mod tracker;
 mod transfer;
 pub mod window;

@@ -38,10 +38,10 @@ impl<'f, 'a> Pass<'f, 'a> {
         let binds: Vec<Named<'a>> = binds.into_iter().collect();
         if self.bound.is_some() {
             self.fail(VkError::Invalid("bind() given twice".into()));
-        } else if let Err(e) = check_binds(&pipeline.name, &pipeline.bindings, &binds) {
+        } else if let Err(e) = check_binds(&pipeline.name, pipeline.bindings(), &binds) {
             self.fail(e);
         } else {
-            self.uses.extend(binds.iter().map(|(_, b)| b.to_use(pipeline.bind_point)));
+            self.uses.extend(binds.iter().map(|(_, b)| b.to_use(pipeline.built.bind_point)));
             self.bound = Some((pipeline, binds));
         }
         self
@@ -50,8 +50,8 @@ impl<'f, 'a> Pass<'f, 'a> {
     /// The barriers of a descriptor set that `record` pushes itself with `Cmd::bind` (passes
     /// that rebind per draw, e.g. one set per mesh). Declare each set once.
     pub fn declare(mut self, pipeline: &Pipeline, binds: &[Named<'a>]) -> Self {
-        match check_binds(&pipeline.name, &pipeline.bindings, binds) {
-            Ok(()) => self.uses.extend(binds.iter().map(|(_, b)| b.to_use(pipeline.bind_point))),
+        match check_binds(&pipeline.name, pipeline.bindings(), binds) {
+            Ok(()) => self.uses.extend(binds.iter().map(|(_, b)| b.to_use(pipeline.built.bind_point))),
             Err(e) => self.fail(e),
         }
         self

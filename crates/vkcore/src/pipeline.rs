@@ -8,6 +8,7 @@
 use crate::context::{Context, Shared};
 use crate::error::{Result, VkError, VkResultExt};
 use crate::shader::{Spirv, Stage};
+use crate::shared_pipelines::Key;
 use ash::vk;
 use std::sync::Arc;
 
@@ -47,21 +48,21 @@ impl BindingKind {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Topology {
     Points,
     Lines,
     Triangles,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Cull {
     None,
     Back,
     Front,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Blend {
     Replace,
     /// dst += src on every channel (splatting photons).
@@ -69,14 +70,14 @@ pub enum Blend {
 }
 
 /// One vertex attribute of a tightly specified vertex buffer (binding 0).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct VertexAttribute {
     pub location: u32,
     pub format: vk::Format,
     pub offset: u32,
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct VertexLayout {
     pub stride: u32,
     pub attributes: Vec<VertexAttribute>,
@@ -123,19 +124,25 @@ impl GraphicsDesc {
     }
 }
 
-/// A pipeline of either kind with its layout.
+/// A pipeline of either kind with its layout. Pipelines of equal descriptions share one Vulkan
+/// pipeline (`shared_pipelines.rs`).
 pub struct Pipeline {
-    shared: Arc<Shared>,
-    pub(crate) raw: vk::Pipeline,
-    pub(crate) layout: vk::PipelineLayout,
-    set_layout: vk::DescriptorSetLayout,
-    pub(crate) bind_point: vk::PipelineBindPoint,
-    /// Shared with every `Cmd` that binds the pipeline (no copy per pass).
-    pub(crate) bindings: Arc<[Binding]>,
+    pub(crate) built: Arc<Built>,
     pub name: String,
 }
 
-impl Drop for Pipeline {
+/// The Vulkan objects of a pipeline, destroyed with the last `Pipeline` that shares them.
+pub(crate) struct Built {
+    shared: Arc<Shared>,
+    pub raw: vk::Pipeline,
+    pub layout: vk::PipelineLayout,
+    set_layout: vk::DescriptorSetLayout,
+    pub bind_point: vk::PipelineBindPoint,
+    /// Shared with every `Cmd` that binds the pipeline (no copy per pass).
+    pub bindings: Arc<[Binding]>,
+}
+
+impl Drop for Built {
     fn drop(&mut self) {
         let d = self.shared.raw();
         unsafe {
@@ -243,47 +250,65 @@ impl Drop for Modules<'_> {
 impl Pipeline {
     /// The descriptor bindings its shaders declare, in binding order: what a pass binds, by name.
     pub fn bindings(&self) -> &[Binding] {
-        &self.bindings
+        &self.built.bindings
     }
 
     /// Whether its shaders declare a binding of this name (for a binding that a shader variant
     /// leaves out, e.g. under a define).
     pub fn declares(&self, name: &str) -> bool {
-        self.bindings.iter().any(|b| b.name == name)
+        self.built.bindings.iter().any(|b| b.name == name)
+    }
+
+    /// Whether `self` and `other` are one Vulkan pipeline (equal descriptions, both alive).
+    pub fn shares(&self, other: &Pipeline) -> bool {
+        Arc::ptr_eq(&self.built, &other.built)
     }
 
     pub fn graphics(ctx: &Context, desc: &GraphicsDesc) -> Result<Pipeline> {
         if desc.geometry.is_some() {
             ctx.require(&format!("pipeline `{}` (geometry shader)", desc.name), &[crate::Feature::GeometryShader])?;
         }
-        let d = ctx.shared.raw();
         let stages: Vec<&Spirv> =
             [Some(&desc.vertex), desc.geometry.as_ref(), desc.fragment.as_ref()].into_iter().flatten().collect();
-        let bindings = reflect_bindings(&desc.name, &stages)?;
-        let (set_layout, layout) = make_layout(ctx, &bindings)?;
-        let result = Self::build_graphics(ctx, desc, layout);
-        match result {
-            Ok(raw) => {
-                ctx.shared.counters.object(2); // its modules (counted as one) and the pipeline
-                ctx.set_name(raw, &desc.name);
-                Ok(Pipeline {
-                    shared: ctx.shared.clone(),
-                    raw,
-                    layout,
-                    set_layout,
-                    bind_point: vk::PipelineBindPoint::GRAPHICS,
-                    bindings: bindings.into(),
-                    name: desc.name.clone(),
-                })
-            }
-            Err(e) => {
-                unsafe {
-                    d.destroy_pipeline_layout(layout, None);
-                    d.destroy_descriptor_set_layout(set_layout, None);
+        let key = Key {
+            name: desc.name.clone(),
+            stages: stages.iter().map(|s| (s.stage, s.words.clone())).collect(),
+            state: Some((
+                desc.vertex_layout.clone(),
+                desc.topology,
+                desc.cull,
+                desc.color_formats.clone(),
+                desc.blend,
+                desc.depth_format,
+                desc.depth_test,
+                desc.depth_write,
+                desc.rasterizer_discard,
+                desc.view_mask,
+            )),
+        };
+        let built = ctx.shared.pipelines.get_or_make(key, || {
+            let bindings = reflect_bindings(&desc.name, &stages)?;
+            let (set_layout, layout) = make_layout(ctx, &bindings)?;
+            match Self::build_graphics(ctx, desc, layout) {
+                Ok(raw) => {
+                    ctx.shared.counters.object(2); // its modules (counted as one) and the pipeline
+                    ctx.set_name(raw, &desc.name);
+                    Ok(Built {
+                        shared: ctx.shared.clone(),
+                        raw,
+                        layout,
+                        set_layout,
+                        bind_point: vk::PipelineBindPoint::GRAPHICS,
+                        bindings: bindings.into(),
+                    })
                 }
-                Err(e)
+                Err(e) => {
+                    destroy_layout(ctx, set_layout, layout);
+                    Err(e)
+                }
             }
-        }
+        })?;
+        Ok(Pipeline { built, name: desc.name.clone() })
     }
 
     fn build_graphics(ctx: &Context, desc: &GraphicsDesc, layout: vk::PipelineLayout) -> Result<vk::Pipeline> {
@@ -382,42 +407,50 @@ impl Pipeline {
 
     /// A compute pipeline of `shader`, its descriptor set laid out as the shader declares it.
     pub fn compute(ctx: &Context, name: &str, shader: &Spirv) -> Result<Pipeline> {
-        let d = ctx.shared.raw();
-        let bindings = reflect_bindings(name, &[shader])?;
-        let (set_layout, layout) = make_layout(ctx, &bindings)?;
-        let build = || -> Result<vk::Pipeline> {
-            let mut modules = Modules { device: d, list: vec![] };
-            let m = modules.add(shader)?;
-            let stage = vk::PipelineShaderStageCreateInfo::default()
-                .stage(vk::ShaderStageFlags::COMPUTE)
-                .module(m)
-                .name(c"main");
-            let info = vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout);
-            let p = unsafe { d.create_compute_pipelines(vk::PipelineCache::null(), &[info], None) }
-                .map_err(|(_, e)| VkError::Call { call: "vkCreateComputePipelines", result: e })?;
-            Ok(p[0])
-        };
-        match build() {
-            Ok(raw) => {
-                ctx.shared.counters.object(2); // the module and the pipeline
-                ctx.set_name(raw, name);
-                Ok(Pipeline {
-                    shared: ctx.shared.clone(),
-                    raw,
-                    layout,
-                    set_layout,
-                    bind_point: vk::PipelineBindPoint::COMPUTE,
-                    bindings: bindings.into(),
-                    name: name.into(),
-                })
-            }
-            Err(e) => {
-                unsafe {
-                    d.destroy_pipeline_layout(layout, None);
-                    d.destroy_descriptor_set_layout(set_layout, None);
+        let key = Key { name: name.into(), stages: vec![(shader.stage, shader.words.clone())], state: None };
+        let built = ctx.shared.pipelines.get_or_make(key, || {
+            let d = ctx.shared.raw();
+            let bindings = reflect_bindings(name, &[shader])?;
+            let (set_layout, layout) = make_layout(ctx, &bindings)?;
+            let build = || -> Result<vk::Pipeline> {
+                let mut modules = Modules { device: d, list: vec![] };
+                let m = modules.add(shader)?;
+                let stage = vk::PipelineShaderStageCreateInfo::default()
+                    .stage(vk::ShaderStageFlags::COMPUTE)
+                    .module(m)
+                    .name(c"main");
+                let info = vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout);
+                let p = unsafe { d.create_compute_pipelines(vk::PipelineCache::null(), &[info], None) }
+                    .map_err(|(_, e)| VkError::Call { call: "vkCreateComputePipelines", result: e })?;
+                Ok(p[0])
+            };
+            match build() {
+                Ok(raw) => {
+                    ctx.shared.counters.object(2); // the module and the pipeline
+                    ctx.set_name(raw, name);
+                    Ok(Built {
+                        shared: ctx.shared.clone(),
+                        raw,
+                        layout,
+                        set_layout,
+                        bind_point: vk::PipelineBindPoint::COMPUTE,
+                        bindings: bindings.into(),
+                    })
                 }
-                Err(e)
+                Err(e) => {
+                    destroy_layout(ctx, set_layout, layout);
+                    Err(e)
+                }
             }
-        }
+        })?;
+        Ok(Pipeline { built, name: name.into() })
+    }
+}
+
+fn destroy_layout(ctx: &Context, set_layout: vk::DescriptorSetLayout, layout: vk::PipelineLayout) {
+    let d = ctx.shared.raw();
+    unsafe {
+        d.destroy_pipeline_layout(layout, None);
+        d.destroy_descriptor_set_layout(set_layout, None);
     }
 }

@@ -183,9 +183,10 @@ impl<'f> Cmd<'f> {
     /// Binds `p`. A pass built with `Pass::bind` has its pipeline bound already; this is for
     /// passes that push their descriptors themselves (`Pass::declare`) or switch pipelines.
     pub fn bind_pipeline(&mut self, p: &Pipeline) {
-        unsafe { self.d().cmd_bind_pipeline(self.cb, p.bind_point, p.raw) };
+        let b = &p.built;
+        unsafe { self.d().cmd_bind_pipeline(self.cb, b.bind_point, b.raw) };
         self.bound =
-            Some(Bound { name: p.name.clone(), point: p.bind_point, layout: p.layout, bindings: p.bindings.clone() });
+            Some(Bound { name: p.name.clone(), point: b.bind_point, layout: b.layout, bindings: b.bindings.clone() });
     }
 
     /// Pushes descriptors for the bound pipeline, each under its shader's name for the binding,

@@ -76,6 +76,7 @@ pub fn results(config: &Config, toml: &str, cells: Vec<CellResult>) -> Results {
             filter: Default::default(),
             shard: None,
             not_run: vec![],
+            explained: None,
             copy_bandwidth_gbs: None,
             total_cells: cells.len(),
         },

@@ -332,9 +332,15 @@ impl<'c> Viewer<'c> {
     /// Rebuilds what changed shaders feed (`files`); a failure is shown in the panel and on
     /// stderr, and the last good pipelines keep running.
     fn reload(&mut self, files: &[String]) {
+        let start = std::time::Instant::now();
         match self.session.reload(files) {
-            Ok(true) => eprintln!("view: reloaded shaders after edits of {}", files.join(", ")),
-            Ok(false) => {}
+            Ok(Some(made)) => eprintln!(
+                "view: reloaded shaders ({}): {} in {:.0} ms",
+                session::files(files),
+                session::rebuilt(&made),
+                start.elapsed().as_secs_f64() * 1e3
+            ),
+            Ok(None) => {}
             Err(e) => eprintln!("view: the edited shaders do not build; the last good pipelines keep running:\n{e:#}"),
         }
     }
@@ -407,7 +413,10 @@ impl<'c> Viewer<'c> {
     /// per frame of the last frames (sum of the passes).
     fn summary(&self, scene: &std::path::Path) {
         let warm: Vec<f64> = self.frame_ms.iter().skip(10).copied().collect();
-        let mean = if warm.is_empty() { f64::NAN } else { warm.iter().sum::<f64>() / warm.len() as f64 };
+        let wall = match warm.len() {
+            0 => "wall not measured (10 frames or fewer: all warm-up)".to_string(),
+            n => format!("wall {:.3} ms a frame (mean after the first 10)", warm.iter().sum::<f64>() / n as f64),
+        };
         let mut gpu: Vec<f64> = self.session.history.iter().map(|f| f.total_ms()).collect();
         gpu.sort_by(f64::total_cmp);
         let median = gpu.get(gpu.len() / 2).copied().unwrap_or(f64::NAN);
@@ -416,7 +425,7 @@ impl<'c> Viewer<'c> {
             _ => "whole frames timed".to_string(),
         };
         println!(
-            "view: {} on {}x{} on {}, technique `{}`: {} frames; wall {mean:.3} ms a frame (mean after the first 10); \
+            "view: {} on {}x{} on {}, technique `{}`: {} frames; {wall}; \
              GPU {median:.3} ms a frame (median of the last {}, {timed})",
             scene.display(),
             self.session.scene.camera.width,

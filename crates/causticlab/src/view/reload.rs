@@ -1,7 +1,9 @@
 //! Shader hot reload: the viewer polls the shader folder's files (their modification times) a
 //! few times a second; the files that changed, appeared or went are forgotten by the shader
 //! compiler (`ShaderCompiler::forget`, with every variant that includes them) and the
-//! renderers are rebuilt at the next frame. A renderer that fails to build (a compile error,
+//! renderers are built again at the next frame, beside the running ones: a pipeline whose SPIR-V
+//! came out as before is the running one, shared (`vkcore`'s shared pipelines), so only the
+//! pipelines that use an edited file are made. A renderer that fails to build (a compile error,
 //! reported as `file:line: message`) leaves the last good one running.
 
 use std::collections::BTreeMap;

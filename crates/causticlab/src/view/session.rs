@@ -223,13 +223,17 @@ impl<'c> Session<'c> {
     }
 
     /// Shader files changed (root-relative paths): the compiler forgets what was made from
-    /// them and, where a running pipeline was, every renderer is built again. Returns whether
-    /// the running pipelines were replaced; an error (`file:line: message`) leaves them running.
-    pub fn reload(&mut self, changed: &[String]) -> Result<bool> {
+    /// them and, where a running pipeline was, the renderers are built again beside the running
+    /// ones. A pipeline whose SPIR-V the edit left as it was is the running one, shared
+    /// (`vkcore`'s shared pipelines): only the pipelines that use the edited files are made.
+    /// Returns their names (`None`: nothing was built); an error (`file:line: message`) leaves
+    /// the running pipelines in place.
+    pub fn reload(&mut self, changed: &[String]) -> Result<Option<Vec<String>>> {
         let forgotten = self.shaders.forget(changed);
         if forgotten == 0 && !self.reload_failed {
-            return Ok(false);
+            return Ok(None);
         }
+        let mark = self.ctx.pipelines_made();
         let size = self.display.size();
         let result = Display::new(self.ctx, self.shaders, size).and_then(|d| {
             self.rebuild(self.scene.clone())?;
@@ -238,10 +242,10 @@ impl<'c> Session<'c> {
         });
         self.reload_failed = result.is_err();
         self.note(result.as_ref().err());
-        if result.is_ok() {
-            self.log.push(format!("reloaded shaders ({})", changed.join(", ")));
-        }
-        result.map(|_| true)
+        result?;
+        let made = self.ctx.pipelines_made_since(mark);
+        self.log.push(format!("reloaded shaders ({}): {}", files(changed), rebuilt(&made)));
+        Ok(Some(made))
     }
 
     fn note(&mut self, err: Option<&anyhow::Error>) {
@@ -382,5 +386,26 @@ impl<'c> Session<'c> {
         out.commit()?;
         self.log.push(format!("wrote {} buffer(s) into {}", written.len(), dir.display()));
         Ok(written)
+    }
+}
+
+/// "rebuilt 2 pipelines (`a`, `b`)", or that none was.
+pub fn rebuilt(pipelines: &[String]) -> String {
+    match pipelines {
+        [] => "no pipeline changed".into(),
+        [one] => format!("rebuilt 1 pipeline (`{one}`)"),
+        many => format!(
+            "rebuilt {} pipelines ({})",
+            many.len(),
+            many.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+        ),
+    }
+}
+
+/// The edited files, by name up to three, else how many.
+pub fn files(files: &[String]) -> String {
+    match files.len() {
+        0..=3 => files.join(", "),
+        n => format!("{n} files ({}, ...)", files[..2].join(", ")),
     }
 }

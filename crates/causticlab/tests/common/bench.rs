@@ -117,7 +117,7 @@ columns = ["technique", "metric"]
 pub fn bench(args: &[&std::ffi::OsStr]) -> Run {
     let mut all: Vec<&std::ffi::OsStr> = vec!["bench".as_ref()];
     all.extend(args);
-    if args.first().is_some_and(|a| *a != "merge") {
+    if args.first().is_some_and(|a| *a != "merge" && *a != "explain") {
         // Tests run side by side: a busy cell is marked, not measured again.
         all.extend([std::ffi::OsStr::new("--busy-retries"), std::ffi::OsStr::new("0")]);
     }

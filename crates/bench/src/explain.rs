@@ -1,0 +1,71 @@
+//! `causticlab bench explain CONFIG TABLE.json`: a committed table judged again with the
+//! explanations (`[[plausibility.explained]]`) its config gained after the run, without timing
+//! anything again. An explanation is a reading of the numbers, not a number: it may come after
+//! them. The config may differ from the one the table embeds in its explanations only (compared
+//! as TOML values, so comments and layout may change too); anything else would make the table
+//! describe a run that did not happen, and is refused. The table then embeds the new config and
+//! says under its commit line which commit added the explanations, and the config's hash when
+//! measured.
+
+use crate::config::LoadedConfig;
+use crate::results::{Explained, Results, SCHEMA};
+use crate::run::{device_dir, write_table, Outcome};
+use anyhow::Result;
+use caustics::input_error;
+use std::path::Path;
+
+/// The config's TOML without its `[[plausibility.explained]]` entries.
+fn without_explanations(text: &str, what: &str) -> Result<toml::Value> {
+    let mut v: toml::Value = toml::from_str(text).map_err(|e| input_error!("{what}: does not parse: {e}"))?;
+    if let Some(p) = v.get_mut("plausibility").and_then(|p| p.as_table_mut()) {
+        p.remove("explained");
+        if p.is_empty() {
+            if let Some(t) = v.as_table_mut() {
+                t.remove("plausibility");
+            }
+        }
+    }
+    Ok(v)
+}
+
+/// Judges `table` (a `<config>.json` the bench wrote) again with `config`'s explanations and
+/// writes it back, with its Markdown, CSV and plot, into `root`'s device folder.
+pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -> Result<Outcome> {
+    let t = table.display();
+    let text = std::fs::read_to_string(table).map_err(|e| input_error!("{t}: cannot read the table: {e}"))?;
+    let mut r: Results =
+        serde_json::from_str(&text).map_err(|e| input_error!("{t}: not a causticlab bench result: {e}"))?;
+    if r.schema != SCHEMA {
+        return Err(input_error!("{t}: results schema {} (this causticlab reads {SCHEMA})", r.schema).into());
+    }
+    if r.run.shard.is_some() {
+        return Err(input_error!("{t}: one shard of a table: `bench merge` the parts first").into());
+    }
+    if r.config.name != config.name {
+        return Err(input_error!(
+            "{t}: the table of `{}`, not of {} (`{}`)",
+            r.config.name,
+            config.path.display(),
+            config.name
+        )
+        .into());
+    }
+    let measured = without_explanations(&r.config.toml, &format!("{t}: the embedded config"))?;
+    if without_explanations(&config.text, &config.path.display().to_string())? != measured {
+        return Err(input_error!(
+            "{}: differs from the config {t} was measured with (hash {}) in more than its \
+             [[plausibility.explained]] entries: run the table again",
+            config.path.display(),
+            r.run.explained.as_ref().map_or(&r.config.hash, |e| &e.measured_config_hash)
+        )
+        .into());
+    }
+    let measured_config_hash =
+        r.run.explained.as_ref().map_or(r.config.hash.clone(), |e| e.measured_config_hash.clone());
+    r.run.explained =
+        Some(Explained { commit: commit.to_string(), date: crate::meta::utc_now(), measured_config_hash });
+    r.config.toml = config.text.clone();
+    r.config.hash = config.hash.clone();
+    let dir = device_dir(root, &r);
+    write_table(&config.config, &r, &dir, root)
+}
