@@ -44,7 +44,9 @@ runs = []
 for r in range(1, rounds + 1):
     j = json.load(open(glob.glob(f"{tmp}/results-{r}/**/viewer_frame_time.json", recursive=True)[0]))
     cell = j["cells"][0]
-    runs.append({"meta": j["meta"], "bench": cell["metrics"]["frame"]["value"], "fps": cell["metrics"]["fps"]["value"],
+    frame = cell["metrics"]["frame"]
+    spread = (frame["q3"] - frame["q1"]) / frame["value"] if frame.get("q1") is not None else float("nan")
+    runs.append({"meta": j["meta"], "bench": frame["value"], "fps": cell["metrics"]["fps"]["value"], "spread": spread,
                  **{k: view(f"{tmp}/view-{k}-{r}.txt") for k in ("shown", "hidden", "passes")}})
 meta = runs[0]["meta"]
 ratio = {k: [x[k]["wall"] / x["bench"] for x in runs] for k in ("shown", "hidden", "passes")}
@@ -66,15 +68,20 @@ lines = [
 ]
 for i, x in enumerate(runs, 1):
     cells = " | ".join(f"{x[k]['wall']:.1f} ms ({x[k]['wall'] / x['bench']:.2f}x)" for k in ("shown", "hidden", "passes"))
-    lines.append(f"| {i} | {x['bench']:.1f} ({x['fps']:.2f} fps) | {cells} |")
+    lines.append(f"| {i} | {x['bench']:.1f} ±{100 * x['spread']:.0f}% ({x['fps']:.2f} fps) | {cells} |")
 lines += [
     f"| **median ratio** | | **{med['shown']:.2f}x** | **{med['hidden']:.2f}x** | **{med['passes']:.2f}x** |",
+    "",
+    "±: the bench cell's interquartile range over its timed blocks, as a share of the median (the",
+    "bench measures a cell again, up to twice, while that is over 10%, and keeps the narrowest",
+    "attempt). A viewer run within that range of its round's bench is as fast as the bench to this",
+    "precision; a ratio below 1 is such a run, not a viewer faster than the bench.",
     "",
     "Whole frames timed is what `--pass-timing auto` (the default) picks on a software device such as",
     "this one. The viewer's frame adds the display pass (the tone map into the window's image), the",
     "copy into the swapchain image, the egui panel (laid out, tessellated, drawn) and the present",
     "through Xvfb, whose server shares the two cores with llvmpipe's threads. Its GPU time per",
-    "frame (median of the last 300 frames, round by round): "
+    "frame (median over the run's frames, round by round): "
     + "; ".join(f"{x['shown']['gpu']:.1f} / {x['hidden']['gpu']:.1f} / {x['passes']['gpu']:.1f} ms" for x in runs)
     + f" (panel shown / hidden / every pass timed, {n_passes} passes summed).",
     "",
