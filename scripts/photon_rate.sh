@@ -17,8 +17,12 @@ photons=2048
 runs=3
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-# The commit measured, before this run adds its tables to the tree.
-commit=$(git describe --always --dirty --abbrev=7)
+# The commit measured, before this run adds its tables to the tree; as the bench does
+# (`bench::meta::commit`), results and Markdown being rewritten do not make the code dirty.
+commit=$(git rev-parse --short=7 HEAD)
+if [ -n "$(git status --porcelain --untracked-files=no -- . ':(exclude)results' ':(exclude,glob)**/*.md')" ]; then
+    commit="$commit-dirty"
+fi
 
 "$bin" bench bench_configs/photon_trace_rate.toml | tee "$tmp/bench.log"
 table=$(grep -o 'results/[^ ]*/photon_trace_rate.json' "$tmp/bench.log" | tail -1)
