@@ -19,9 +19,13 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # The commit measured, before this run adds its tables to the tree; as the bench does
 # (`bench::meta::commit`), results and Markdown being rewritten do not make the code dirty.
-commit=$(git rev-parse --short=7 HEAD)
-if [ -n "$(git status --porcelain --untracked-files=no -- . ':(exclude)results' ':(exclude,glob)**/*.md')" ]; then
-    commit="$commit-dirty"
+if [ -n "${CAUSTICLAB_COMMIT:-}" ]; then
+    commit=$CAUSTICLAB_COMMIT
+else
+    commit=$(git rev-parse --short HEAD)
+    if [ -n "$(git status --porcelain --untracked-files=no -- . ':(exclude)results' ':(exclude,glob)**/*.md')" ]; then
+        commit="$commit-dirty"
+    fi
 fi
 
 "$bin" bench bench_configs/photon_trace_rate.toml | tee "$tmp/bench.log"

@@ -13,6 +13,8 @@ cd "$(dirname "$0")/.."
 bin=${1:-target/release/causticlab}
 frames=${2:-200}
 rounds=${3:-3}
+[[ "$frames" =~ ^[0-9]+$ && "$frames" -gt 10 ]] || { echo "viewer_frame_time.sh: FRAMES must be over 10 (the first 10 are warm-up)" >&2; exit 2; }
+[[ "$rounds" =~ ^[0-9]+$ && "$rounds" -ge 1 ]] || { echo "viewer_frame_time.sh: ROUNDS must be at least 1" >&2; exit 2; }
 out=results/viewer_frame_time.md
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -21,7 +23,11 @@ sed '/^\[receiver_map\]/,$d' scenes/sphere_on_plane.toml > "$tmp/sphere_on_plane
 printf '1 key f1\n' > "$tmp/hide_panel.txt"
 for round in $(seq 1 "$rounds"); do
     "$bin" bench bench_configs/viewer_frame_time.toml --results "$tmp/results-$round" > "$tmp/bench-$round.txt"
-    for panel in shown hidden passes; do
+    # The viewer runs' order turns with the round, so drift within a round favours none of them.
+    order=(shown hidden passes)
+    shift_by=$(( (round - 1) % 3 ))
+    order=("${order[@]:$shift_by}" "${order[@]:0:$shift_by}")
+    for panel in "${order[@]}"; do
         extra=(--pass-timing frame)
         [ "$panel" = hidden ] && extra+=(--script "$tmp/hide_panel.txt")
         [ "$panel" = passes ] && extra=(--pass-timing pass)
@@ -52,7 +58,8 @@ meta = runs[0]["meta"]
 ratio = {k: [x[k]["wall"] / x["bench"] for x in runs] for k in ("shown", "hidden", "passes")}
 med = {k: statistics.median(v) for k, v in ratio.items()}
 n_passes = runs[-1]["passes"]["passes"]
-per_stamp = statistics.median([(x["passes"]["wall"] - x["shown"]["wall"]) / (2 * n_passes - 2) for x in runs])
+per_stamp = (statistics.median([(x["passes"]["wall"] - x["shown"]["wall"]) / (2 * n_passes - 2) for x in runs])
+             if n_passes and n_passes > 1 else float("nan"))
 lines = [
     "# The viewer's frame time against the bench's throughput frame",
     "",
@@ -61,7 +68,7 @@ lines = [
     f"its receiver map left out as the bench leaves it out), photon buffer 512², eye render 256². "
     f"{rounds} rounds, each the bench (`bench_configs/viewer_frame_time.toml`, throughput: median of timed "
     f"blocks) then three viewer runs of {frames} frames (mean wall time per frame after the first 10), "
-    "one after the other; a ratio divides a viewer run by its own round's bench.",
+    "one after the other in an order that turns with the round; a ratio divides a viewer run by its own round's bench.",
     "",
     "| round | bench ms | view, whole frames timed, panel shown | panel hidden (F1) | every pass timed (`--pass-timing pass`) |",
     "|---|---|---|---|---|",

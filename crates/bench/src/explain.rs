@@ -8,6 +8,7 @@
 //! measured.
 
 use crate::config::LoadedConfig;
+use crate::plausibility::Finding;
 use crate::results::{Explained, Results, SCHEMA};
 use crate::run::{device_dir, write_table, Outcome};
 use anyhow::Result;
@@ -38,8 +39,10 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
     if r.schema != SCHEMA {
         return Err(input_error!("{t}: results schema {} (this causticlab reads {SCHEMA})", r.schema).into());
     }
-    if r.run.shard.is_some() {
-        return Err(input_error!("{t}: one shard of a table: `bench merge` the parts first").into());
+    if r.run.shard.is_some() || r.run.filter != Default::default() {
+        return Err(
+            input_error!("{t}: a part of a table (a shard or a --filter run): `bench merge` the parts first").into()
+        );
     }
     if r.config.name != config.name {
         return Err(input_error!(
@@ -57,6 +60,29 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
              [[plausibility.explained]] entries: run the table again",
             config.path.display(),
             r.run.explained.as_ref().map_or(&r.config.hash, |e| &e.measured_config_hash)
+        )
+        .into());
+    }
+    // The table is rewritten where the bench keeps it: only from that file, so that a copy or an
+    // older table cannot replace it.
+    let home = device_dir(root, &r).join(format!("{}.json", r.config.name));
+    let same = |a: &Path, b: &Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b);
+    if !same(table, &home) {
+        return Err(input_error!(
+            "{t}: not the table in the results folder ({}): explain the table where the bench wrote it, or pass that folder's root as --results",
+            home.display()
+        )
+        .into());
+    }
+    // The findings must be the run's: rules changed since would change more than the explanations.
+    let unexplained =
+        |f: &[Finding]| -> Vec<Finding> { f.iter().cloned().map(|x| Finding { explained: None, ..x }).collect() };
+    let now = crate::plausibility::check(&config.config, &crate::results::rounded(&r)?);
+    if unexplained(&now) != unexplained(&r.plausibility) {
+        return Err(input_error!(
+            "{t}: this causticlab's plausibility rules find {} entries where the run's found {}: the rules changed since the run; run the table again",
+            now.len(),
+            r.plausibility.len()
         )
         .into());
     }

@@ -167,6 +167,29 @@ fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
     let msg = format!("{err:#}");
     assert!(msg.contains("synthetic.toml") && msg.contains("run the table again"), "{msg}");
     assert_eq!(read(), before);
+    // A copy of the table elsewhere, or a part of one, is refused: either would overwrite the table.
+    let copy = dir.join("copy.json");
+    std::fs::copy(&json, &copy).expect("copy");
+    let Err(err) = bench::explain::explain(&loaded(CONFIG), &copy, &dir, "abc1234") else {
+        panic!("a copy was accepted")
+    };
+    assert!(format!("{err:#}").contains("not the table in the results folder"), "{err:#}");
+    let mut part = before.clone();
+    part.run.filter.terms = vec![("photons".into(), "1024".into())];
+    std::fs::write(&copy, serde_json::to_string(&part).expect("json")).expect("write part");
+    let Err(err) = bench::explain::explain(&loaded(CONFIG), &copy, &dir, "abc1234") else {
+        panic!("a part was accepted")
+    };
+    assert!(format!("{err:#}").contains("bench merge"), "{err:#}");
+    // Findings that differ from the run's (rules changed since) are refused.
+    let mut judged_otherwise = before.clone();
+    judged_otherwise.plausibility.clear();
+    std::fs::write(&json, serde_json::to_string(&judged_otherwise).expect("json")).expect("write");
+    let Err(err) = bench::explain::explain(&loaded(CONFIG), &json, &dir, "abc1234") else {
+        panic!("other findings accepted")
+    };
+    assert!(format!("{err:#}").contains("the rules changed since the run"), "{err:#}");
+    std::fs::write(&json, serde_json::to_string(&before).expect("json")).expect("restore");
     // Explanations (and a comment) added: the `?` goes, the cells stay as measured.
     let explained = format!(
         "# explained later\n{CONFIG}\n[[plausibility.explained]]\nrule = \"b\"\nmetric = \"Gather\"\nphotons = 1024\nwhy = \"measured: the static cell rebuilt its photon buffer (test)\"\n"

@@ -270,20 +270,38 @@ impl Pipeline {
         }
         let stages: Vec<&Spirv> =
             [Some(&desc.vertex), desc.geometry.as_ref(), desc.fragment.as_ref()].into_iter().flatten().collect();
+        // Every field, named: a field added to `GraphicsDesc` fails to compile here until the
+        // key says whether it makes a different pipeline.
+        let GraphicsDesc {
+            name,
+            vertex: _,
+            geometry: _,
+            fragment: _,
+            vertex_layout,
+            topology,
+            cull,
+            color_formats,
+            blend,
+            depth_format,
+            depth_test,
+            depth_write,
+            rasterizer_discard,
+            view_mask,
+        } = desc;
         let key = Key {
-            name: desc.name.clone(),
+            name: name.clone(),
             stages: stages.iter().map(|s| (s.stage, s.words.clone())).collect(),
             state: Some((
-                desc.vertex_layout.clone(),
-                desc.topology,
-                desc.cull,
-                desc.color_formats.clone(),
-                desc.blend,
-                desc.depth_format,
-                desc.depth_test,
-                desc.depth_write,
-                desc.rasterizer_discard,
-                desc.view_mask,
+                vertex_layout.clone(),
+                *topology,
+                *cull,
+                color_formats.clone(),
+                *blend,
+                *depth_format,
+                *depth_test,
+                *depth_write,
+                *rasterizer_discard,
+                *view_mask,
             )),
         };
         let built = ctx.shared.pipelines.get_or_make(key, || {

@@ -10,7 +10,7 @@ use crate::error::Result;
 use crate::pipeline::{Blend, Built, Cull, Topology, VertexLayout};
 use crate::shader::Stage;
 use ash::vk;
-use std::collections::HashMap;
+use std::collections::{HashMap, VecDeque};
 use std::sync::{Arc, Mutex, Weak};
 
 /// The fixed-function state of a graphics pipeline (`GraphicsDesc` without its shaders).
@@ -30,9 +30,13 @@ pub(crate) struct Key {
 #[derive(Default)]
 pub(crate) struct SharedPipelines {
     live: Mutex<HashMap<Key, Weak<Built>>>,
-    /// The name of every pipeline made, in order (what a reload reports).
-    made: Mutex<Vec<String>>,
+    /// How many pipelines were made, and the names of the last `NAMES_KEPT` (what a reload
+    /// reports), oldest first.
+    made: Mutex<(usize, VecDeque<String>)>,
 }
+
+/// Names of made pipelines kept for [`SharedPipelines::made_since`].
+const NAMES_KEPT: usize = 1024;
 
 impl SharedPipelines {
     /// The live pipeline of `key`, or a new one from `make`. The table is not locked while
@@ -48,18 +52,24 @@ impl SharedPipelines {
             live.insert(key, Arc::downgrade(&p));
         }
         if let Ok(mut made) = self.made.lock() {
-            made.push(name);
+            made.0 += 1;
+            made.1.push_back(name);
+            if made.1.len() > NAMES_KEPT {
+                made.1.pop_front();
+            }
         }
         Ok(p)
     }
 
     /// How many pipelines were made so far.
     pub fn made_count(&self) -> usize {
-        self.made.lock().map(|m| m.len()).unwrap_or(0)
+        self.made.lock().map(|m| m.0).unwrap_or(0)
     }
 
-    /// The names of the pipelines made after the first `from`.
+    /// The names of the pipelines made after the first `from` (the last `NAMES_KEPT` of them).
     pub fn made_since(&self, from: usize) -> Vec<String> {
-        self.made.lock().map(|m| m.get(from..).unwrap_or(&[]).to_vec()).unwrap_or_default()
+        let Ok(m) = self.made.lock() else { return vec![] };
+        let first_kept = m.0 - m.1.len();
+        m.1.iter().skip(from.saturating_sub(first_kept)).cloned().collect()
     }
 }

@@ -234,6 +234,7 @@ impl<'c> Session<'c> {
             return Ok(None);
         }
         let mark = self.ctx.pipelines_made();
+        let start = std::time::Instant::now();
         let size = self.display.size();
         let result = Display::new(self.ctx, self.shaders, size).and_then(|d| {
             self.rebuild(self.scene.clone())?;
@@ -244,7 +245,12 @@ impl<'c> Session<'c> {
         self.note(result.as_ref().err());
         result?;
         let made = self.ctx.pipelines_made_since(mark);
-        self.log.push(format!("reloaded shaders ({}): {}", files(changed), rebuilt(&made)));
+        self.log.push(format!(
+            "reloaded shaders ({}): {} in {:.0} ms",
+            files(changed),
+            rebuilt(&made),
+            start.elapsed().as_secs_f64() * 1e3
+        ));
         Ok(Some(made))
     }
 
