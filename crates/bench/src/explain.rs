@@ -9,7 +9,7 @@
 
 use crate::config::LoadedConfig;
 use crate::plausibility::Finding;
-use crate::results::{Explained, Results, SCHEMA};
+use crate::results::Explained;
 use crate::run::{device_dir, write_table, Outcome};
 use anyhow::Result;
 use caustics::input_error;
@@ -33,12 +33,7 @@ fn without_explanations(text: &str, what: &str) -> Result<toml::Value> {
 /// writes it back, with its Markdown, CSV and plot, into `root`'s device folder.
 pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -> Result<Outcome> {
     let t = table.display();
-    let text = std::fs::read_to_string(table).map_err(|e| input_error!("{t}: cannot read the table: {e}"))?;
-    let mut r: Results =
-        serde_json::from_str(&text).map_err(|e| input_error!("{t}: not a causticlab bench result: {e}"))?;
-    if r.schema != SCHEMA {
-        return Err(input_error!("{t}: results schema {} (this causticlab reads {SCHEMA})", r.schema).into());
-    }
+    let mut r = crate::results::read(table, "table")?;
     if r.run.shard.is_some() || r.run.filter != Default::default() {
         return Err(
             input_error!("{t}: a part of a table (a shard or a --filter run): `bench merge` the parts first").into()

@@ -257,6 +257,19 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
 /// The results as JSON, one line per top-level key and one per cell, every number to 9
 /// significant digits (1 ns on a 1 s frame: below every timer's resolution here), so that a GPU
 /// table's thousands of per-frame samples stay small enough to travel (`scripts/gpu_pack.sh`).
+/// A results file the bench wrote (a table or a part; `what` names it in errors), checked to be
+/// of this causticlab's schema.
+pub fn read(path: &std::path::Path, what: &str) -> anyhow::Result<Results> {
+    let p = path.display();
+    let text = std::fs::read_to_string(path).map_err(|e| caustics::input_error!("{p}: cannot read the {what}: {e}"))?;
+    let r: Results =
+        serde_json::from_str(&text).map_err(|e| caustics::input_error!("{p}: not a causticlab bench result: {e}"))?;
+    if r.schema != SCHEMA {
+        return Err(caustics::input_error!("{p}: results schema {} (this causticlab reads {SCHEMA})", r.schema).into());
+    }
+    Ok(r)
+}
+
 pub fn to_json(results: &Results) -> anyhow::Result<String> {
     use anyhow::Context as _;
     let value = round_numbers(serde_json::to_value(results).context("serialising the results")?);

@@ -361,16 +361,7 @@ pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Re
 pub fn merge(parts: &[PathBuf], root: &Path, partial: bool) -> Result<Outcome> {
     let mut loaded: Vec<(PathBuf, Results)> = vec![];
     for p in parts {
-        let text =
-            std::fs::read_to_string(p).map_err(|e| input_error!("{}: cannot read the part: {e}", p.display()))?;
-        let r: Results = serde_json::from_str(&text)
-            .map_err(|e| input_error!("{}: not a causticlab bench result: {e}", p.display()))?;
-        if r.schema != SCHEMA {
-            return Err(
-                input_error!("{}: results schema {} (this causticlab reads {SCHEMA})", p.display(), r.schema).into()
-            );
-        }
-        loaded.push((p.clone(), r));
+        loaded.push((p.clone(), crate::results::read(p, "part")?));
     }
     let Some((first_path, first)) = loaded.first().cloned() else {
         return Err(input_error!("bench merge: give the part files to merge").into());

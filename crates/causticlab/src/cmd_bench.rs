@@ -18,14 +18,7 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     if let Some(BenchCommand::Explain(e)) = &args.merge {
         caustics::image_io::check_output_dir(&e.results).context("--results")?;
         let config = LoadedConfig::load(&e.config)?;
-        let commit = bench::meta::commit();
-        if commit.ends_with("-dirty") && !e.allow_dirty && bench::meta::in_work_tree(&e.results) {
-            return Err(caustics::input_error!(
-                "bench explain: the work tree has uncommitted changes ({commit}): commit the explanations first, \
-                 write elsewhere with --results, or pass --allow-dirty"
-            )
-            .into());
-        }
+        let commit = committed("bench explain", &e.results, e.allow_dirty)?;
         let out = bench::explain::explain(&config, &e.table, &e.results, &commit)?;
         report(&out);
         return Ok(());
@@ -40,17 +33,7 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     }
     // The tables are written after every cell ran: a --results that cannot be a folder fails now.
     caustics::image_io::check_output_dir(&args.results).context("--results")?;
-    // Committed tables come from committed code: a timing run from a tree with uncommitted changes
-    // (other than results and Markdown) does not write into the repository's results folder.
-    let commit = bench::meta::commit();
-    if !args.quick && commit.ends_with("-dirty") && !args.allow_dirty && bench::meta::in_work_tree(&args.results) {
-        return Err(caustics::input_error!(
-            "bench: the work tree has uncommitted changes ({commit}), so the tables in {} would not match any commit; \
-             commit first, write elsewhere with --results, or pass --allow-dirty (the tables then say `{commit}`)",
-            args.results.display()
-        )
-        .into());
-    }
+    committed("bench", &args.results, args.quick || args.allow_dirty)?;
     let opts = crate::context_options(g)?;
     // Timing runs never have validation on, and never pretend a feature is missing: those
     // are for --quick smoke tests, whose tables go to their own folder.
@@ -76,6 +59,22 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     let out = bench::run(&ctx, &shaders, &config, &bench_opts)?;
     report(&out);
     Ok(())
+}
+
+/// The commit the tables will name. Committed tables come from committed code: from a work tree
+/// with uncommitted changes (other than results and Markdown) nothing is written into the
+/// repository's results folder unless `allow_dirty`.
+fn committed(who: &str, results: &std::path::Path, allow_dirty: bool) -> Result<String> {
+    let commit = bench::meta::commit();
+    if commit.ends_with("-dirty") && !allow_dirty && bench::meta::in_work_tree(results) {
+        return Err(caustics::input_error!(
+            "{who}: the work tree has uncommitted changes ({commit}), so the tables in {} would not match any commit; \
+             commit first, write elsewhere with --results, or pass --allow-dirty (the tables then say `{commit}`)",
+            results.display()
+        )
+        .into());
+    }
+    Ok(commit)
 }
 
 fn report(out: &bench::Outcome) {

@@ -24,6 +24,19 @@ pub struct ContextOptions {
     pub without: Vec<Feature>,
 }
 
+impl ContextOptions {
+    /// What the GPU tests open: the device `$CAUSTICLAB_TEST_DEVICE` names (default: the default
+    /// device), the Khronos validation layer on with its messages echoed, and `without` hidden.
+    pub fn for_tests(without: Vec<Feature>) -> ContextOptions {
+        ContextOptions {
+            device: std::env::var("CAUSTICLAB_TEST_DEVICE").ok(),
+            validation: true,
+            echo_validation: true,
+            without,
+        }
+    }
+}
+
 pub(crate) struct Shared {
     pub device: DeviceShared,
     pub allocator: Mutex<Option<Allocator>>,

@@ -306,25 +306,9 @@ impl Pipeline {
         };
         let built = ctx.shared.pipelines.get_or_make(key, || {
             let bindings = reflect_bindings(&desc.name, &stages)?;
-            let (set_layout, layout) = make_layout(ctx, &bindings)?;
-            match Self::build_graphics(ctx, desc, layout) {
-                Ok(raw) => {
-                    ctx.shared.counters.object(2); // its modules (counted as one) and the pipeline
-                    ctx.set_name(raw, &desc.name);
-                    Ok(Built {
-                        shared: ctx.shared.clone(),
-                        raw,
-                        layout,
-                        set_layout,
-                        bind_point: vk::PipelineBindPoint::GRAPHICS,
-                        bindings: bindings.into(),
-                    })
-                }
-                Err(e) => {
-                    destroy_layout(ctx, set_layout, layout);
-                    Err(e)
-                }
-            }
+            built(ctx, &desc.name, bindings, vk::PipelineBindPoint::GRAPHICS, |layout| {
+                Self::build_graphics(ctx, desc, layout)
+            })
         })?;
         Ok(Pipeline { built, name: desc.name.clone() })
     }
@@ -427,10 +411,9 @@ impl Pipeline {
     pub fn compute(ctx: &Context, name: &str, shader: &Spirv) -> Result<Pipeline> {
         let key = Key { name: name.into(), stages: vec![(shader.stage, shader.words.clone())], state: None };
         let built = ctx.shared.pipelines.get_or_make(key, || {
-            let d = ctx.shared.raw();
             let bindings = reflect_bindings(name, &[shader])?;
-            let (set_layout, layout) = make_layout(ctx, &bindings)?;
-            let build = || -> Result<vk::Pipeline> {
+            built(ctx, name, bindings, vk::PipelineBindPoint::COMPUTE, |layout| {
+                let d = ctx.shared.raw();
                 let mut modules = Modules { device: d, list: vec![] };
                 let m = modules.add(shader)?;
                 let stage = vk::PipelineShaderStageCreateInfo::default()
@@ -441,34 +424,35 @@ impl Pipeline {
                 let p = unsafe { d.create_compute_pipelines(vk::PipelineCache::null(), &[info], None) }
                     .map_err(|(_, e)| VkError::Call { call: "vkCreateComputePipelines", result: e })?;
                 Ok(p[0])
-            };
-            match build() {
-                Ok(raw) => {
-                    ctx.shared.counters.object(2); // the module and the pipeline
-                    ctx.set_name(raw, name);
-                    Ok(Built {
-                        shared: ctx.shared.clone(),
-                        raw,
-                        layout,
-                        set_layout,
-                        bind_point: vk::PipelineBindPoint::COMPUTE,
-                        bindings: bindings.into(),
-                    })
-                }
-                Err(e) => {
-                    destroy_layout(ctx, set_layout, layout);
-                    Err(e)
-                }
-            }
+            })
         })?;
         Ok(Pipeline { built, name: name.into() })
     }
 }
 
-fn destroy_layout(ctx: &Context, set_layout: vk::DescriptorSetLayout, layout: vk::PipelineLayout) {
-    let d = ctx.shared.raw();
-    unsafe {
-        d.destroy_pipeline_layout(layout, None);
-        d.destroy_descriptor_set_layout(set_layout, None);
+/// A pipeline's Vulkan objects: the layout of `bindings`, then the pipeline `build` makes with
+/// it (the layout destroyed again if that fails).
+fn built(
+    ctx: &Context,
+    name: &str,
+    bindings: Vec<Binding>,
+    bind_point: vk::PipelineBindPoint,
+    build: impl FnOnce(vk::PipelineLayout) -> Result<vk::Pipeline>,
+) -> Result<Built> {
+    let (set_layout, layout) = make_layout(ctx, &bindings)?;
+    match build(layout) {
+        Ok(raw) => {
+            ctx.shared.counters.object(2); // its modules (counted as one) and the pipeline
+            ctx.set_name(raw, name);
+            Ok(Built { shared: ctx.shared.clone(), raw, layout, set_layout, bind_point, bindings: bindings.into() })
+        }
+        Err(e) => {
+            let d = ctx.shared.raw();
+            unsafe {
+                d.destroy_pipeline_layout(layout, None);
+                d.destroy_descriptor_set_layout(set_layout, None);
+            }
+            Err(e)
+        }
     }
 }

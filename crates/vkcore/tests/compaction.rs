@@ -95,12 +95,7 @@ fn both_paths_give_the_same_set() {
 
 #[test]
 fn xfb_path_without_transform_feedback_names_the_feature() {
-    let opts = vkcore::ContextOptions {
-        device: std::env::var("CAUSTICLAB_TEST_DEVICE").ok(),
-        validation: true,
-        echo_validation: true,
-        without: vec![vkcore::Feature::TransformFeedback],
-    };
+    let opts = vkcore::ContextOptions::for_tests(vec![vkcore::Feature::TransformFeedback]);
     let ctx = vkcore::Context::new(&opts).unwrap();
     let shaders = vkcore::ShaderCompiler::new(&shader_root()).unwrap();
     let err = Compactor::new(&ctx, &shaders, CompactionPath::TransformFeedback, STEP1).err().expect("must fail");

@@ -332,14 +332,8 @@ impl<'c> Viewer<'c> {
     /// Rebuilds what changed shaders feed (`files`); a failure is shown in the panel and on
     /// stderr, and the last good pipelines keep running.
     fn reload(&mut self, files: &[String]) {
-        let start = std::time::Instant::now();
         match self.session.reload(files) {
-            Ok(Some(made)) => eprintln!(
-                "view: reloaded shaders ({}): {} in {:.0} ms",
-                session::files(files),
-                session::rebuilt(&made),
-                start.elapsed().as_secs_f64() * 1e3
-            ),
+            Ok(Some(line)) => eprintln!("view: {line}"),
             Ok(None) => {}
             Err(e) => eprintln!("view: the edited shaders do not build; the last good pipelines keep running:\n{e:#}"),
         }

@@ -351,12 +351,7 @@ mod tests {
 
     #[test]
     fn clicking_the_technique_list_and_the_timing_box_reaches_the_session() {
-        let opts = vkcore::ContextOptions {
-            device: std::env::var("CAUSTICLAB_TEST_DEVICE").ok(),
-            validation: true,
-            echo_validation: true,
-            without: vec![],
-        };
+        let opts = vkcore::ContextOptions::for_tests(vec![]);
         let ctx = vkcore::Context::new(&opts).expect("a Vulkan device (scripts/setup.sh)");
         let shaders = vkcore::ShaderCompiler::new(&caustics::render::shader_root()).expect("shaderc");
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");

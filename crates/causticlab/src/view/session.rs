@@ -226,9 +226,9 @@ impl<'c> Session<'c> {
     /// them and, where a running pipeline was, the renderers are built again beside the running
     /// ones. A pipeline whose SPIR-V the edit left as it was is the running one, shared
     /// (`vkcore`'s shared pipelines): only the pipelines that use the edited files are made.
-    /// Returns their names (`None`: nothing was built); an error (`file:line: message`) leaves
-    /// the running pipelines in place.
-    pub fn reload(&mut self, changed: &[String]) -> Result<Option<Vec<String>>> {
+    /// Returns the line it logs, which names them and the time taken (`None`: nothing was
+    /// built); an error (`file:line: message`) leaves the running pipelines in place.
+    pub fn reload(&mut self, changed: &[String]) -> Result<Option<String>> {
         let forgotten = self.shaders.forget(changed);
         if forgotten == 0 && !self.reload_failed {
             return Ok(None);
@@ -244,14 +244,14 @@ impl<'c> Session<'c> {
         self.reload_failed = result.is_err();
         self.note(result.as_ref().err());
         result?;
-        let made = self.ctx.pipelines_made_since(mark);
-        self.log.push(format!(
+        let line = format!(
             "reloaded shaders ({}): {} in {:.0} ms",
             files(changed),
-            rebuilt(&made),
+            rebuilt(&self.ctx.pipelines_made_since(mark)),
             start.elapsed().as_secs_f64() * 1e3
-        ));
-        Ok(Some(made))
+        );
+        self.log.push(line.clone());
+        Ok(Some(line))
     }
 
     fn note(&mut self, err: Option<&anyhow::Error>) {
@@ -396,7 +396,7 @@ impl<'c> Session<'c> {
 }
 
 /// "rebuilt 2 pipelines (`a`, `b`)", or that none was.
-pub fn rebuilt(pipelines: &[String]) -> String {
+fn rebuilt(pipelines: &[String]) -> String {
     match pipelines {
         [] => "no pipeline changed".into(),
         [one] => format!("rebuilt 1 pipeline (`{one}`)"),
@@ -409,7 +409,7 @@ pub fn rebuilt(pipelines: &[String]) -> String {
 }
 
 /// The edited files, by name up to three, else how many.
-pub fn files(files: &[String]) -> String {
+fn files(files: &[String]) -> String {
     match files.len() {
         0..=3 => files.join(", "),
         n => format!("{n} files ({}, ...)", files[..2].join(", ")),

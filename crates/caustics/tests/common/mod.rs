@@ -6,12 +6,7 @@ use vkcore::{Context, ContextOptions, ShaderCompiler};
 
 /// A validated context on `$CAUSTICLAB_TEST_DEVICE` (default: the default device).
 pub fn context() -> (Context, ShaderCompiler) {
-    let opts = ContextOptions {
-        device: std::env::var("CAUSTICLAB_TEST_DEVICE").ok(),
-        validation: true,
-        echo_validation: true,
-        without: vec![],
-    };
+    let opts = ContextOptions::for_tests(vec![]);
     let ctx = Context::new(&opts).expect("a Vulkan 1.3 device with the validation layer (run scripts/setup.sh)");
     let shaders = ShaderCompiler::new(&caustics::render::shader_root()).expect("shaderc");
     (ctx, shaders)
