@@ -472,3 +472,42 @@ fn every_bench_config_has_a_quick_test() {
         }
     }
 }
+
+#[test]
+fn every_bench_config_is_in_the_gpu_suite_or_says_why_not() {
+    // A config left out of scripts/gpu_suite.sh never gets a GPU column; one listed twice runs
+    // twice; a listed name without its config fails only on the lent machine. Each config in the
+    // suite has its row (cells, seconds) in docs/bench.md's table of expected times.
+    let list = |flag: &str| -> Vec<String> {
+        let out = std::process::Command::new("bash")
+            .arg("scripts/gpu_suite.sh")
+            .arg(flag)
+            .current_dir(workspace())
+            .output()
+            .expect("bash");
+        assert!(out.status.success(), "gpu_suite.sh {flag}: {}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8(out.stdout).expect("utf-8").lines().map(str::to_string).collect()
+    };
+    let (run, left_out) = (list("--list-configs"), list("--list-not-run"));
+    let docs = std::fs::read_to_string(workspace().join("docs/bench.md")).expect("docs/bench.md");
+    let mut configs = vec![];
+    for e in std::fs::read_dir(workspace().join("bench_configs")).expect("bench_configs") {
+        let name = e.expect("entry").file_name().to_string_lossy().to_string();
+        if let Some(stem) = name.strip_suffix(".toml") {
+            configs.push(stem.to_string());
+        }
+    }
+    for c in &configs {
+        let times = run.iter().chain(&left_out).filter(|n| *n == c).count();
+        assert_eq!(times, 1, "bench_configs/{c}.toml is named {times} times in scripts/gpu_suite.sh's lists");
+    }
+    for n in run.iter().chain(&left_out) {
+        assert!(configs.contains(n), "scripts/gpu_suite.sh names '{n}', which is not in bench_configs/");
+    }
+    for n in &run {
+        assert!(
+            docs.contains(&format!("| `{n}` |")),
+            "docs/bench.md's table of expected GPU times has no row for `{n}`"
+        );
+    }
+}
