@@ -139,7 +139,10 @@ total=$((tree_bytes + pack_bytes))
 mib() { awk -v b="$1" 'BEGIN {printf "%.1f MiB", b / 1048576}'; }
 echo "gpu_pack: pack $(mib "$pack_bytes") (binary $(mib "$(stat -c %s "$pack/causticlab.xz")") xz, models $(mib "$(stat -c %s "$pack/models.tar.xz")")); working tree $(mib "$tree_bytes"); transfer $(mib "$total") of $limit_mib MiB"
 if [ "$total" -gt $((limit_mib * 1048576)) ]; then
-    echo "gpu_pack: the transfer would exceed $limit_mib MiB" >&2
+    echo "gpu_pack: the transfer would exceed $limit_mib MiB; the largest folders under results/:" >&2
+    git ls-files -z -- results | xargs -0 stat -c '%s %n' | awk '{ split($2, p, "/"); s[p[1] "/" p[2]] += $1 }
+        END { for (d in s) printf "%10.1f MiB  %s\n", s[d] / 1048576, d }' | sort -rn | head -n 5 >&2
+    echo "gpu_pack: a GPU folder that a newer run of the same configs has replaced can go (git keeps it; docs/bench.md, A GPU run)" >&2
     exit 1
 fi
 if [ "$dry_run" -eq 0 ]; then
