@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Regenerates results/quality/<scene>.md: every caustic technique against the exact CPU photon
-# reference, at 256^2..2048^2 photons, with the reference's own noise (two seeds).
+# Regenerates results/quality/<scene>.md: the caustic techniques listed below (shah, wd-points, its
+# thin-lens splats, shah-vertex and three hcm variants) against the exact CPU photon reference,
+# at 256^2..2048^2 photons, with the reference's own noise (two seeds).
 #   bash scripts/quality_table.sh [scene ...]      (default: sphere_on_plane sphere_oblique)
 # Needs a release build (cargo build --release) and python3 for the table layout.
 # REF_PHOTONS (default 16M), WORK (default out/quality) and RESULTS (default results/quality)
@@ -47,6 +48,7 @@ for s in "${scenes[@]}"; do
   python3 - "$s" "$rows" "$ref_photons" "$device" "$(git rev-parse --short HEAD)" > "$results/$s.md" <<'PY'
 import json, sys, datetime
 scene, rows, ref_photons, device, commit = sys.argv[1:6]
+device = device.strip()
 print(f"# Caustic quality: `{scene}` against the exact CPU photon reference\n")
 print(f"Device: {device or 'default device'}; commit {commit}; {datetime.date.today()}. "
       f"Reference: `causticlab reference --photons {ref_photons} --fresnel false` (seed 1); all techniques "

@@ -191,6 +191,17 @@ pub struct RunSpec {
 
 /// The fewest blocks of frames a throughput cell measures.
 pub const MIN_BLOCKS: u32 = 5;
+/// The fewest blocks a `--quick` run's throughput cell measures (a smoke test).
+pub const QUICK_MIN_BLOCKS: u32 = 2;
+
+/// The fewest blocks a throughput cell of a run measures.
+pub fn min_blocks(quick: bool) -> u32 {
+    if quick {
+        QUICK_MIN_BLOCKS
+    } else {
+        MIN_BLOCKS
+    }
+}
 fn default_block() -> u32 {
     2
 }

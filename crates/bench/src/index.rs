@@ -14,13 +14,22 @@ rebuilt after each run. One folder per device (`<driver>-<device>` slug); in eac
 `<config>.md` (the table beside the paper's), `.csv` (one row per cell and metric), `.json`
 (everything, raw samples included) and `.png` and `.svg` (the plot). lavapipe numbers are serialized CPU
 time: compare techniques within one device, never lavapipe against a GPU.
-
-Other folders: `quality/` (caustic error against the CPU reference, `scripts/quality_table.sh`),
-`criterion/` (CPU benchmarks, `scripts/criterion.sh`). [`wyman2008_findings.md`](wyman2008_findings.md)
-reads the Wyman 2008 tables of both devices: which of the paper's claims hold, and why.
-[`trendall_stewart2000/`](trendall_stewart2000/README.md): Trendall & Stewart 2000's Sec. 5.2
-relative RMS errors (`scripts/pool_rms.sh`) and what Table 1 and they show.
 ";
+
+/// What else the repository's results folder holds, each named only where it is there (a
+/// `--results` folder elsewhere has none of them).
+const OTHERS: [(&str, &str); 4] = [
+    ("quality", "`quality/` (caustic error against the CPU reference, `scripts/quality_table.sh`)"),
+    ("criterion", "`criterion/` (CPU benchmarks, `scripts/criterion.sh`)"),
+    (
+        "wyman2008_findings.md",
+        "[`wyman2008_findings.md`](wyman2008_findings.md) and the other `*_findings.md` (which of the papers' claims hold, and why)",
+    ),
+    (
+        "trendall_stewart2000",
+        "[`trendall_stewart2000/`](trendall_stewart2000/README.md) (Trendall & Stewart 2000's Sec. 5.2 errors, `scripts/pool_rms.sh`)",
+    ),
+];
 
 /// Rebuilds `<root>/README.md` from `<root>/*/*.json`.
 pub fn write_index(root: &Path) -> Result<PathBuf> {
@@ -59,6 +68,13 @@ pub fn write_index(root: &Path) -> Result<PathBuf> {
     }
     rows.sort();
     let mut s = String::from(HEADER);
+    let others: Vec<&str> = OTHERS.iter().filter(|(p, _)| root.join(p).exists()).map(|(_, what)| *what).collect();
+    if !others.is_empty() {
+        let _ = writeln!(s, "\nAlso here: {}.", others.join("; "));
+    }
+    if rows.is_empty() {
+        let _ = writeln!(s, "\nNo tables yet (`--quick` tables go to `<device>/quick/` and are not listed).");
+    }
     let _ =
         writeln!(s, "\n| paper, table | config | device (driver) | cells | date | commit |\n|---|---|---|---|---|---|");
     for (_, _, line) in rows {
@@ -67,4 +83,23 @@ pub fn write_index(root: &Path) -> Result<PathBuf> {
     let path = root.join("README.md");
     write_file_atomically(&path, s.as_bytes())?;
     Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_index_names_only_the_folders_it_has() {
+        let root = std::env::temp_dir().join(format!("causticlab-index-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        std::fs::create_dir_all(&root).expect("a temp folder");
+        let text = std::fs::read_to_string(write_index(&root).expect("the index")).expect("README.md");
+        assert!(!text.contains("quality/") && !text.contains("findings"), "{text}");
+        assert!(text.contains("No tables yet"), "{text}");
+        std::fs::create_dir_all(root.join("quality")).expect("quality/");
+        let text = std::fs::read_to_string(write_index(&root).expect("the index")).expect("README.md");
+        assert!(text.contains("Also here: `quality/`") && !text.contains("criterion/"), "{text}");
+        let _ = std::fs::remove_dir_all(&root);
+    }
 }

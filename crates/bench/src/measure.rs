@@ -430,8 +430,7 @@ impl<'a> Runner<'a> {
             out.block_ms.push((now - block_start).as_secs_f64() * 1e3 / block as f64);
             block_start = now;
             let (blocks, frames) = (out.block_ms.len() as u32, out.block_ms.len() as u32 * block);
-            // A quick run smoke-tests two blocks.
-            let min_blocks = if self.quick.is_some() { 2 } else { crate::config::MIN_BLOCKS };
+            let min_blocks = crate::config::min_blocks(self.quick.is_some());
             let enough = blocks >= min_blocks
                 && plan.done(frames, started.elapsed().as_secs_f64())
                 && whole_loops(anim, frames, plan.max);

@@ -9,6 +9,9 @@ use vkcore::{DeviceInfo, FrameReport, PipelineStats, Profiler};
 #[derive(Debug, Serialize)]
 pub struct Timings {
     pub causticlab_version: &'static str,
+    /// The commit the binary was built from (`bench::meta::commit`, `-dirty` where tracked code
+    /// differed), as the EXR headers and the bench's tables name it.
+    pub commit: String,
     pub device: Device,
     pub technique: String,
     /// The caustic technique's full configuration (the code path the numbers belong to).
@@ -29,6 +32,11 @@ pub struct Timings {
     /// Each frame: its GPU time where it was timed as a whole, and what recording and
     /// submitting it asked of the driver.
     pub per_frame: Vec<FrameEntry>,
+    /// Per-pass frames: each frame's host wall time in ms, recording, submitting and waiting
+    /// for it (`render` sets them). The passes' timestamps need not add up to it: see
+    /// `docs/command_line.md`, "What render's pass table does not time".
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub host_frame_ms: Vec<f64>,
     /// The last frame's photon counts, read back from the GPU (`render` sets them).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub counts: Option<caustics::render::Counts>,
@@ -115,6 +123,7 @@ impl Timings {
         let passes = pass_summaries(frames, last_stats);
         Timings {
             causticlab_version: env!("CARGO_PKG_VERSION"),
+            commit: crate::meta::commit(),
             device: Device {
                 name: info.name.clone(),
                 device_type: info.device_type.clone(),
@@ -147,6 +156,7 @@ impl Timings {
                     objects: f.counters.objects,
                 })
                 .collect(),
+            host_frame_ms: vec![],
             counts: None,
         }
     }

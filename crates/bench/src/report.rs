@@ -124,9 +124,11 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     let _ = writeln!(
         s,
         "Regenerate: `causticlab bench {}{}`; raw samples in `{name}.json`, one row per cell and metric in \
-         `{name}.csv`; redraw this table from the JSON with `causticlab bench merge {name}.json`.",
+         `{name}.csv`; redraw this table from the JSON with `causticlab bench merge {}/{name}.json` from the \
+         repository's root (the table goes to the `--results` folder's, `results/` by default).",
         results.config.file,
         if r.quick { " --quick" } else { "" },
+        crate::run::device_dir(std::path::Path::new("results"), results).display(),
     );
     s
 }
@@ -193,7 +195,7 @@ fn modes_line(config: &Config, results: &Results) -> String {
                  per block of {} frames, the median over at least {} blocks",
                 caustics::render::FrameMode::SLOTS,
                 config.run.block_frames,
-                crate::config::MIN_BLOCKS
+                crate::config::min_blocks(results.run.quick)
             ),
         ),
     ] {

@@ -154,7 +154,7 @@ pub fn legend(g: &Grid, notes: &Footnotes) -> Vec<String> {
     }
     if implausible > 0 {
         lines.push(format!(
-            "`?` marks {implausible} implausible entries (listed under *Plausibility*): not numbers to cite until \
+            "`?` marks {implausible} implausible entries (listed under *Plausibility* in the table's .md): not numbers to cite until \
              fixed or explained."
         ));
     }

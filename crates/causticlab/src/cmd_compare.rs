@@ -30,6 +30,9 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             return Err(input_error!("--error-scale {s}: must be a positive number").into());
         }
     }
+    for line in mismatches(&args.a, &args.b) {
+        eprintln!("warning: {line}");
+    }
     let (c, error_image) = compare_files(&args.a, &args.b, args.region)?;
     if args.json {
         let v = serde_json::json!({
@@ -61,6 +64,33 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// What the two maps' headers (`render` and `reference` write them) say differs: the scene or
+/// the Fresnel setting. A comparison across them is allowed (a study of Fresnel's share, say)
+/// but rarely meant, so it is said.
+fn mismatches(a: &Path, b: &Path) -> Vec<String> {
+    let (Ok(ha), Ok(hb)) = (image_io::exr_text_attributes(a), image_io::exr_text_attributes(b)) else {
+        return vec![];
+    };
+    let same_scene = |x: &str, y: &str| match (std::fs::canonicalize(x), std::fs::canonicalize(y)) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => Path::new(x).file_name() == Path::new(y).file_name(),
+    };
+    let mut out = vec![];
+    if let (Some(x), Some(y)) = (ha.get("causticlab:scene"), hb.get("causticlab:scene")) {
+        if !same_scene(x, y) {
+            out.push(format!("A is a map of {x}, B of {y}: the comparison is across scenes"));
+        }
+    }
+    if let (Some(x), Some(y)) = (ha.get("causticlab:fresnel"), hb.get("causticlab:fresnel")) {
+        if x != y {
+            out.push(format!(
+                "A was made with fresnel {x}, B with fresnel {y}: the difference includes Fresnel's share"
+            ));
+        }
+    }
+    out
 }
 
 /// Progress lines: on stderr under --json, so that stdout stays one JSON object.

@@ -54,7 +54,15 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
     let r =
         trace_reference(&scene, &opts).with_context(|| format!("tracing the reference of {}", args.scene.display()))?;
     let seconds = start.elapsed().as_secs_f64();
-    image_io::write_exr(&out.path("receiver.exr"), &r.image)?;
+    // What made the map, as `render` records it, so that `compare` can tell a mismatch.
+    let header = [
+        ("causticlab:technique", "reference (exact CPU photon trace)".to_string()),
+        ("causticlab:photons", opts.photons.to_string()),
+        ("causticlab:fresnel", opts.fresnel.to_string()),
+        ("causticlab:commit", bench::meta::commit()),
+        ("causticlab:scene", args.scene.display().to_string()),
+    ];
+    image_io::write_exr_with(&out.path("receiver.exr"), &r.image, &header)?;
     let record = Record {
         scene: args.scene.display().to_string(),
         photons_per_light: opts.photons,

@@ -24,6 +24,15 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     // `all` means every buffer this render has; naming a buffer of another technique is a
     // mistake worth saying.
     let own = render::dumps_for(&scene.caustics);
+    // (The pool's techniques make their own `receiver`.)
+    let no_receiver_map = technique.renders_meshes() && scene.receiver_map.is_none();
+    if no_receiver_map && !dump_all(args.dump.as_deref()) && dumps.iter().any(|d| d == "receiver") {
+        return Err(input_error!(
+            "--dump: `receiver` is the receiver map, and {} has no [receiver_map] table",
+            args.scene.display()
+        )
+        .into());
+    }
     if let Some(n) = dumps.iter().find(|d| !own.contains(&d.as_str()) && !dump_all(args.dump.as_deref())) {
         if let Some(r) = Refraction::ALL.iter().find(|r| r.dumps().contains(&n.as_str())) {
             return Err(input_error!(
@@ -76,8 +85,9 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     // What made these images, in each EXR header (tev and `exrheader` show it).
     let header = [
         ("causticlab:technique", technique.to_string()),
-        ("causticlab:photons", format!("{}", rendered.counts.photons_emitted)),
-        ("causticlab:photon_buffer", format!("{0}x{0}", scene.caustics.photons)),
+        ("causticlab:photons", photons_header(&scene, rendered.counts.photons_emitted)),
+        ("causticlab:photon_buffer", photon_buffer_header(&scene)),
+        ("causticlab:fresnel", scene.caustics.fresnel.to_string()),
         ("causticlab:commit", bench::meta::commit()),
         ("causticlab:device", format!("{} ({})", ctx.info().name, ctx.info().driver_info)),
         ("causticlab:scene", args.scene.display().to_string()),
@@ -104,6 +114,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         &rendered.frames,
     );
     timings.counts = Some(rendered.counts.clone());
+    timings.host_frame_ms = rendered.host_ms.clone();
     let json = serde_json::to_string_pretty(&timings).context("serialising timings.json")?;
     image_io::write_file_atomically(&out.path("timings.json"), json.as_bytes())?;
     written.push("timings.json".to_string());
@@ -138,11 +149,51 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         for p in &timings.passes {
             println!("{:<32} {:>10.3} {:>10.3} {:>10.3}", p.name, p.median_ms, p.min_ms, p.max_ms);
         }
+        let passes: f64 = timings.passes.iter().map(|p| p.median_ms).sum();
+        if let Some((median, min, max)) = median_min_max(&timings.host_frame_ms) {
+            println!("{:<32} {:>10.3}", "(sum of the pass medians)", passes);
+            println!("{:<32} {:>10.3} {:>10.3} {:>10.3}", "(frame, host wall)", median, min, max);
+            if passes < 0.5 * median {
+                println!(
+                    "note: the passes' timestamps account for {passes:.1} of the frame's {median:.1} ms of host \
+                     wall time; the rest is untimed work (docs/command_line.md, \"What render's pass table does not time\")"
+                );
+            }
+        }
     }
     for f in &written {
         println!("wrote {}", final_dir.join(f).display());
     }
     Ok(())
+}
+
+/// The EXR header's photon count: emitted per frame, or what the pool's techniques have instead.
+fn photons_header(scene: &Scene, emitted: u64) -> String {
+    if scene.caustics.technique.renders_meshes() {
+        emitted.to_string()
+    } else {
+        format!("none (a {0}x{0} height field)", scene.caustics.photons)
+    }
+}
+
+/// The EXR header's photon buffer: N x N, or none where photons are not a light-space grid.
+fn photon_buffer_header(scene: &Scene) -> String {
+    match scene.caustics.technique {
+        Technique::ShahVertex => {
+            format!("none: a photon per mesh vertex ({0}x{0} light-space back faces)", scene.caustics.photons)
+        }
+        t if !t.renders_meshes() => "none".to_string(),
+        _ => format!("{0}x{0}", scene.caustics.photons),
+    }
+}
+
+/// Median, min and max of `v`, if it has any.
+fn median_min_max(v: &[f64]) -> Option<(f64, f64, f64)> {
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    let n = s.len();
+    let median = if n % 2 == 1 { *s.get(n / 2)? } else { (s.get(n / 2 - 1)? + s[n / 2]) / 2.0 };
+    Some((median, s[0], s[n - 1]))
 }
 
 /// The receiver map as a PNG, beside receiver.exr.

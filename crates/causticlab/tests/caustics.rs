@@ -145,6 +145,8 @@ fn vertex_photons_follow_the_tessellation() {
     // Subdivision 5 icosphere: 10 * 4^5 + 2 = 10242 vertices; about the half facing the light
     // (a cap of 1 - sin(asin(0.1)) ... ) carries photons.
     assert!(landed > 3000 && landed < 10242 / 2 + 200, "{landed} vertex photons landed");
+    let header = caustics::image_io::exr_text_attributes(&out.join("photon_buffer.exr")).expect("the header");
+    assert!(header["causticlab:photon_buffer"].contains("per mesh vertex"), "{header:?}");
     let flux: f64 = channel(&exr(&out, "receiver.exr"), "caustic.G").iter().sum::<f64>() * (4.0f64 / 256.0).powi(2);
     let want = I * sphere_solid_angle(0.5, 5.0);
     assert!(flux > 0.5 * want && flux < 1.2 * want, "vertex photons carried {flux} W of {want} W");
@@ -154,6 +156,8 @@ fn vertex_photons_follow_the_tessellation() {
 fn compare(a: &Path, b: &Path) -> serde_json::Value {
     let run = causticlab(&["compare".to_string(), a.display().to_string(), b.display().to_string(), "--json".into()]);
     assert_eq!(run.code, Some(0), "{}", run.describe());
+    // Same scene, same Fresnel setting: the headers `render` and `reference` write agree.
+    assert!(!run.stderr.contains("warning:"), "{}", run.describe());
     serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("compare --json output: {e}\n{}", run.stdout))
 }
 

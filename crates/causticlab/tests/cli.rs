@@ -160,6 +160,18 @@ fn unknown_dump_name() {
 }
 
 #[test]
+fn receiver_dump_without_a_receiver_map() {
+    // A scene without [receiver_map] has no receiver map to dump: said, not skipped silently.
+    let s = edited_scene("no_receiver_map", "[receiver_map]\n", "[receiver_map_removed]\n");
+    let text = std::fs::read_to_string(&s).expect("the edited scene");
+    let cut = text.find("[receiver_map_removed]").expect("the table");
+    let end = text[cut..].find("\n\n").map_or(text.len(), |e| cut + e);
+    std::fs::write(&s, format!("{}{}", &text[..cut], &text[end..])).expect("writing the scene");
+    let s = s.display().to_string();
+    expect_input_error(&["render", "--scene", &s, "--dump", "receiver"], &["receiver", "[receiver_map]", "scene.toml"]);
+}
+
+#[test]
 fn caustic_dump_without_a_caustic_technique() {
     expect_input_error(
         &["render", "--scene", &scene("sphere_on_plane"), "--dump", "photon_buffer"],
@@ -611,6 +623,34 @@ fn deferred_refraction_without_geometry_shaders() {
         &["render", "--scene", &s, "--refraction", "deferred", "--dump", "refractor_back_faces"],
         &["refractor_back_faces", "--refraction forward"],
     );
+}
+
+#[test]
+fn compare_says_when_the_maps_are_of_other_scenes_or_fresnel_settings() {
+    let dir = scratch("compare-mismatch");
+    let image = |scene: &str, fresnel: &str, name: &str| {
+        let p = dir.join(name);
+        let layer = caustics::image_io::Layer::new(None, &["R", "G", "B", "E0"], vec![1.0; 16]);
+        let img = caustics::image_io::ImageF32 { width: 2, height: 2, layers: vec![layer] };
+        let header = [("causticlab:scene", scene.to_string()), ("causticlab:fresnel", fresnel.to_string())];
+        caustics::image_io::write_exr_with(&p, &img, &header).expect("writing a test EXR");
+        p.display().to_string()
+    };
+    let a = image("scenes/sphere_on_plane.toml", "true", "a.exr");
+    let same = image("scenes/sphere_on_plane.toml", "true", "same.exr");
+    let other = image("scenes/pool.toml", "false", "other.exr");
+    let run = causticlab(&["compare", &a, &same]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    assert!(!run.stderr.contains("warning:"), "{}", run.describe());
+    let run = causticlab(&["compare", &a, &other]);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    for needle in [
+        "warning: A is a map of scenes/sphere_on_plane.toml, B of scenes/pool.toml",
+        "fresnel true, B with fresnel false",
+    ] {
+        assert!(run.stderr.contains(needle), "no `{needle}`\n{}", run.describe());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

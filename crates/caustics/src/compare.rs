@@ -26,7 +26,7 @@ pub const REGION_THRESHOLD: f64 = 0.05;
 /// Which texels the errors are over.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Region {
-    /// Where either map differs from 1 by more than `REGION_THRESHOLD` (and `E0 > 0`).
+    /// Where either map's E/E0 differs from 1 by more than 0.05 (`REGION_THRESHOLD`), and `E0 > 0`.
     #[default]
     Caustic,
     /// Every texel with `E0 > 0` in both maps (every texel where there is no `E0`).
@@ -201,7 +201,8 @@ fn compare_labelled(
                 let e0 = v.e0.as_ref().ok_or_else(|| {
                     InputError::new(format!(
                         "{label}: main layer has no channel `E0` (needed for the caustic flux \
-                         without a `caustic` layer in both images)"
+                         without a `caustic` layer in both images): is it a receiver map? `compare` takes the \
+                         receiver.exr of `render --dump receiver` or of `reference`"
                     ))
                 })?;
                 Ok(v.v.iter().zip(e0).map(|(x, e)| (x - 1.0).max(0.0) * e).sum())

@@ -47,7 +47,7 @@ use caustics::render::{all_dump_names, dumps_for, FrameStep, Renderer, RendererO
 use caustics::scene::Scene;
 use caustics::techniques::wyman2008::SplatMode;
 use caustics::techniques::wyman_davis2006::settings::{GatherLighting, QuadLighting, Space};
-use caustics::techniques::{Refraction, Technique};
+use caustics::techniques::{PhotonRefraction, Technique};
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
@@ -159,10 +159,10 @@ const SCENES: [&str; 2] = ["sphere_on_plane", "sphere_oblique"];
 static REFERENCES: [OnceLock<ImageF32>; 2] = [OnceLock::new(), OnceLock::new()];
 
 fn load(name: &str, technique: Technique) -> Scene {
-    load_in(name, technique, Space::Eye, Refraction::Forward)
+    load_in(name, technique, Space::Eye, PhotonRefraction::Forward)
 }
 
-fn load_in(name: &str, technique: Technique, space: Space, photon_refraction: Refraction) -> Scene {
+fn load_in(name: &str, technique: Technique, space: Space, photon_refraction: PhotonRefraction) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{name}.toml"));
     let mut s = Scene::load(&p).expect("shipped scene");
     s.caustics.technique = technique;
@@ -259,7 +259,7 @@ fn receiver_flux(receiver: &ImageF32, scene: &Scene) -> f64 {
 }
 
 /// Runs `techniques` (in `space` where they have one) on both scenes; returns the failures.
-fn check(techniques: &[Technique], space: Space, photon_refraction: Refraction) -> Vec<String> {
+fn check(techniques: &[Technique], space: Space, photon_refraction: PhotonRefraction) -> Vec<String> {
     check_with(techniques, space, photon_refraction, &|_| {}, stated)
 }
 
@@ -268,7 +268,7 @@ fn check(techniques: &[Technique], space: Space, photon_refraction: Refraction) 
 fn check_with(
     techniques: &[Technique],
     space: Space,
-    photon_refraction: Refraction,
+    photon_refraction: PhotonRefraction,
     tweak: &Tweak,
     accuracy: fn(Technique) -> Option<Stated>,
 ) -> Vec<String> {
@@ -322,7 +322,7 @@ fn check_with(
             let drift = held / landed - 1.0;
             let spaced = matches!(t, Technique::WdQuads | Technique::WdGather);
             let mut label = if spaced { format!(" ({} space)", scene.caustics.space) } else { String::new() };
-            if t.has_photon_buffer() && photon_refraction == Refraction::Deferred {
+            if t.has_photon_buffer() && photon_refraction == PhotonRefraction::Deferred {
                 label += " (deferred photons)";
             }
             println!(
@@ -342,14 +342,14 @@ fn check_with(
 
 #[test]
 fn every_technique_renders_clean_conserves_power_and_meets_its_stated_error() {
-    let failures = check(Technique::ALL, Space::Eye, Refraction::Forward);
+    let failures = check(Technique::ALL, Space::Eye, PhotonRefraction::Forward);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// Wyman & Davis 2006's quads and gather in light space (the suite above runs them in eye space).
 #[test]
 fn conformance_light_space() {
-    let failures = check(&[Technique::WdQuads, Technique::WdGather], Space::Light, Refraction::Forward);
+    let failures = check(&[Technique::WdQuads, Technique::WdGather], Space::Light, PhotonRefraction::Forward);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -359,7 +359,7 @@ fn conformance_light_space() {
 #[test]
 fn conformance_deferred_photons() {
     let photon_buffer: Vec<Technique> = Technique::ALL.iter().copied().filter(|t| t.has_photon_buffer()).collect();
-    let failures = check(&photon_buffer, Space::Eye, Refraction::Deferred);
+    let failures = check(&photon_buffer, Space::Eye, PhotonRefraction::Deferred);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -367,8 +367,13 @@ fn conformance_deferred_photons() {
 #[test]
 fn conformance_varying_splats() {
     let varying = |s: &mut Scene| s.caustics.splat = "varying-multires".parse().expect("a known name");
-    let failures =
-        check_with(&[Technique::Hcm, Technique::Adaptive], Space::Eye, Refraction::Forward, &varying, stated_varying);
+    let failures = check_with(
+        &[Technique::Hcm, Technique::Adaptive],
+        Space::Eye,
+        PhotonRefraction::Forward,
+        &varying,
+        stated_varying,
+    );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -379,7 +384,7 @@ fn conformance_thin_lens_splats() {
     let failures = check_with(
         &[Technique::Shah, Technique::WdPoints],
         Space::Eye,
-        Refraction::Forward,
+        PhotonRefraction::Forward,
         &thin_lens,
         stated_thin_lens,
     );
@@ -390,7 +395,8 @@ fn conformance_thin_lens_splats() {
 #[test]
 fn conformance_interpolated_splats() {
     let interpolated = |s: &mut Scene| s.caustics.splat = SplatMode::Interpolated;
-    let failures = check_with(&[Technique::Hcm], Space::Eye, Refraction::Forward, &interpolated, stated_interpolated);
+    let failures =
+        check_with(&[Technique::Hcm], Space::Eye, PhotonRefraction::Forward, &interpolated, stated_interpolated);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -413,7 +419,7 @@ fn conformance_adaptive_variants() {
     ];
     let mut failures = vec![];
     for (name, tweak) in variants {
-        let f = check_with(&[Technique::Adaptive], Space::Eye, Refraction::Forward, tweak, stated);
+        let f = check_with(&[Technique::Adaptive], Space::Eye, PhotonRefraction::Forward, tweak, stated);
         failures.extend(f.into_iter().map(|f| format!("{name}: {f}")));
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

@@ -19,7 +19,7 @@ use caustics::image_io::ImageF32;
 use caustics::reference::{trace_reference, ReferenceOptions};
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
-use caustics::techniques::{PhotonView, Refraction};
+use caustics::techniques::{PhotonRefraction, PhotonView};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use vkcore::{Context, ShaderCompiler};
@@ -27,7 +27,7 @@ use vkcore::{Context, ShaderCompiler};
 mod common;
 use common::context;
 
-fn scene(name: &str, technique: &str, photons: u32, photon_refraction: Refraction) -> Scene {
+fn scene(name: &str, technique: &str, photons: u32, photon_refraction: PhotonRefraction) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{name}.toml"));
     let mut s = Scene::load(&p).expect("shipped scene");
     s.caustics.technique = technique.parse().expect("a known name");
@@ -71,8 +71,8 @@ fn deferred_photon_buffer_is_the_forward_one() {
     let (ctx, sh) = context();
     for name in ["sphere_on_plane", "bunny_in_room"] {
         let dumps = ["photon_buffer", "photon_back_faces", "caustic_map"];
-        let forward = run(&ctx, &sh, &scene(name, "wd-points", 128, Refraction::Forward), &dumps);
-        let deferred = run(&ctx, &sh, &scene(name, "wd-points", 128, Refraction::Deferred), &dumps);
+        let forward = run(&ctx, &sh, &scene(name, "wd-points", 128, PhotonRefraction::Forward), &dumps);
+        let deferred = run(&ctx, &sh, &scene(name, "wd-points", 128, PhotonRefraction::Deferred), &dumps);
         let (f, d) = (&forward["photon_buffer"], &deferred["photon_buffer"]);
         let (fp, dp) = (layer(f, "light0.position"), layer(d, "light0.position"));
         let (fw, dw) = (layer(f, "light0.power"), layer(d, "light0.power"));
@@ -98,7 +98,7 @@ fn deferred_photon_buffer_is_the_forward_one() {
         let back = relative_l1(&deferred["photon_back_faces"], &forward["photon_back_faces"]);
         assert!(back < 1e-6, "{name}: back faces differ: relative L1 {back}");
         for technique in ["wd-points", "hcm"] {
-            let maps: Vec<ImageF32> = [Refraction::Forward, Refraction::Deferred]
+            let maps: Vec<ImageF32> = [PhotonRefraction::Forward, PhotonRefraction::Deferred]
                 .map(|r| run(&ctx, &sh, &scene(name, technique, 128, r), &["caustic_map"]).remove("caustic_map"))
                 .into_iter()
                 .map(|m| m.expect("a caustic map"))
@@ -114,22 +114,22 @@ fn deferred_photon_buffer_is_the_forward_one() {
 #[test]
 fn photons_through_two_refractors_approach_the_reference() {
     let (ctx, sh) = context();
-    let reference_scene = scene("stacked_spheres", "none", 256, Refraction::Forward);
+    let reference_scene = scene("stacked_spheres", "none", 256, PhotonRefraction::Forward);
     // Fresnel on: without it the reference stops refracting after two interfaces, as the
     // image-space model of one refractor does.
     let opts = ReferenceOptions { photons: 2_000_000, fresnel: true, ..Default::default() };
     let reference = trace_reference(&reference_scene, &opts).expect("reference").image;
     let mut errors = vec![];
-    for r in [Refraction::Forward, Refraction::Deferred] {
+    for r in [PhotonRefraction::Forward, PhotonRefraction::Deferred] {
         let s = scene("stacked_spheres", "wd-points", 256, r);
         let mut dumps = vec!["receiver"];
-        if r == Refraction::Deferred {
+        if r == PhotonRefraction::Deferred {
             dumps.push("photon_geometry_buffers");
         }
         let out = run(&ctx, &sh, &s, &dumps);
         let (c, _) = compare(&out["receiver"], &reference).expect("compare");
         println!("stacked_spheres {r}: {c:?}");
-        if r == Refraction::Deferred {
+        if r == PhotonRefraction::Deferred {
             let g = &out["photon_geometry_buffers"];
             // Each sphere's own buffers: the lower one is seen whole, though hidden behind the
             // upper one in the buffers of both.

@@ -17,7 +17,7 @@ use caustics::reference::{trace_reference, ReferenceOptions};
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
 use caustics::techniques::wyman_nichols2009::adaptive::AdaptivePhoton;
-use caustics::techniques::Refraction;
+use caustics::techniques::PhotonRefraction;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use vkcore::{Context, ShaderCompiler};
@@ -27,7 +27,7 @@ use common::context;
 
 /// The stacked spheres with `technique` at `photons`² and a caustic map of 4 × photons (the
 /// default `gbuffer_scale`, 0.25, then gives geometry buffers as fine as the photon grid).
-fn scene(technique: &str, photons: u32, refraction: Refraction) -> Scene {
+fn scene(technique: &str, photons: u32, refraction: PhotonRefraction) -> Scene {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/stacked_spheres.toml");
     let mut s = Scene::load(&p).expect("shipped scene");
     s.caustics.technique = technique.parse().expect("a known name");
@@ -76,10 +76,10 @@ fn valid_photons(pb: &ImageF32) -> BTreeMap<(u32, u32), ([f32; 3], [f32; 3])> {
 fn max_traversal_photons_cross_every_refractor_as_deferred_photons_do() {
     let (ctx, sh) = context();
     let n = 256;
-    let mut s = scene("wd-points", n, Refraction::Deferred);
+    let mut s = scene("wd-points", n, PhotonRefraction::Deferred);
     s.receiver_map = None;
     let deferred = valid_photons(&run(&ctx, &sh, &s, &["photon_buffer"]).0["photon_buffer"]);
-    s.caustics.photon_refraction = Refraction::Forward;
+    s.caustics.photon_refraction = PhotonRefraction::Forward;
     let forward = valid_photons(&run(&ctx, &sh, &s, &["photon_buffer"]).0["photon_buffer"]);
     // The layers matter: many photons land elsewhere when the lower sphere refracts them.
     let moved = deferred
@@ -88,7 +88,7 @@ fn max_traversal_photons_cross_every_refractor_as_deferred_photons_do() {
         .count();
     assert!(moved > 1000, "{moved} of {} photons moved by the lower sphere: a vacuous test", deferred.len());
     for path in ["compute", "xfb"] {
-        let mut a = scene("adaptive", n, Refraction::Forward);
+        let mut a = scene("adaptive", n, PhotonRefraction::Forward);
         a.receiver_map = None;
         a.caustics.path = path.parse().expect("a known name");
         let (dumps, photons) = run(&ctx, &sh, &a, &["adaptive_geometry"]);
@@ -134,17 +134,17 @@ fn max_traversal_photons_cross_every_refractor_as_deferred_photons_do() {
 #[test]
 fn max_error_through_two_refractors_approaches_the_reference() {
     let (ctx, sh) = context();
-    let reference_scene = scene("none", 256, Refraction::Forward);
+    let reference_scene = scene("none", 256, PhotonRefraction::Forward);
     // Fresnel on, as in tests/wyman_nichols2009_deferred_photons.rs: the image-space model refracts at all four
     // interfaces with Fresnel transmittance.
     let opts = ReferenceOptions { photons: 2_000_000, fresnel: true, ..Default::default() };
     let reference = trace_reference(&reference_scene, &opts).expect("reference").image;
     // 1024² equivalent photons: max-error tests convergence from the 512² level on. Geometry
     // buffers at the paper's quarter of the 512² caustic map.
-    let mut adaptive = scene("adaptive", 1024, Refraction::Forward);
+    let mut adaptive = scene("adaptive", 1024, PhotonRefraction::Forward);
     adaptive.caustics.metric = "max-error".parse().expect("a known name");
     adaptive.caustics.caustic_map_resolution = 512;
-    let mut forward = scene("wd-points", 256, Refraction::Forward);
+    let mut forward = scene("wd-points", 256, PhotonRefraction::Forward);
     forward.caustics.caustic_map_resolution = 512;
     let mut errors = vec![];
     for s in [&forward, &adaptive] {
@@ -168,7 +168,7 @@ fn max_error_through_two_refractors_approaches_the_reference() {
 #[test]
 fn more_refractors_than_the_trace_follows_are_refused() {
     let (ctx, sh) = context();
-    let mut s = scene("adaptive", 256, Refraction::Forward);
+    let mut s = scene("adaptive", 256, PhotonRefraction::Forward);
     let sphere = s.objects.iter().find(|o| o.name == "upper sphere").expect("the upper sphere").clone();
     for i in 0..3 {
         let mut o = sphere.clone();

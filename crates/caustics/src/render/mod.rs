@@ -93,6 +93,8 @@ pub struct Rendered {
     pub dumps: Vec<(String, ImageF32)>,
     /// Per-pass GPU timings of every frame.
     pub frames: Vec<FrameReport>,
+    /// Per-pass frames: each frame's host wall time (record, submit, wait), ms.
+    pub host_ms: Vec<f64>,
     /// What the last frame drew, read back from the GPU.
     pub counts: Counts,
 }
@@ -164,10 +166,15 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
     let opts = RendererOptions { frame_mode: req.frame_mode, ..Default::default() };
     let mut renderer = Renderer::new(ctx, shaders, scene, &opts)?;
     let mut frames = vec![];
+    let mut host_ms = vec![];
     for _ in 0..req.frames.max(1) {
         let step = FrameStep { pipeline_statistics: true, ..FrameStep::default() };
         match req.frame_mode {
-            FrameMode::PerPass => frames.push(renderer.frame(step)?),
+            FrameMode::PerPass => {
+                let start = std::time::Instant::now();
+                frames.push(renderer.frame(step)?);
+                host_ms.push(start.elapsed().as_secs_f64() * 1e3);
+            }
             FrameMode::Throughput { .. } => frames.extend(renderer.submit(step)?),
         }
     }
@@ -183,7 +190,7 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
         splats_drawn: renderer.splats_drawn()?,
         list_sizes: renderer.list_sizes()?,
     };
-    Ok(Rendered { final_image, dumps, frames, counts })
+    Ok(Rendered { final_image, dumps, frames, host_ms, counts })
 }
 
 /// The shader folder: `$CAUSTICLAB_SHADERS`, else `shaders_glsl/` found by walking up from the

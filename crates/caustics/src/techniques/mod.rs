@@ -42,4 +42,4 @@ pub use stages::{CausticPipeline, LIGHT_SPACE_DUMPS};
 pub use technique::Technique;
 pub use wyman2008::photon_copy::{CopyType, PhotonCopy};
 pub use wyman2008::Hierarchy;
-pub use wyman_nichols2009::{AdaptiveCaustics, Metric, Refraction};
+pub use wyman_nichols2009::{AdaptiveCaustics, Metric, PhotonRefraction, Refraction};

@@ -14,7 +14,7 @@ use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNE
 use super::wyman2008::settings::{Cluster, SplatMode, VaryingRadius};
 use super::wyman_davis2006::settings::{GatherLighting, QuadDraw, QuadLighting, Reflection, Space, TemporalFilter};
 use super::wyman_nichols2009::adaptive::batches as wn2009_batches;
-use super::wyman_nichols2009::settings::{self as wn2009, Metric, Refraction};
+use super::wyman_nichols2009::settings::{self as wn2009, Metric, PhotonRefraction, Refraction};
 use super::{shared, wyman2008, wyman_davis2006};
 use serde::{Deserialize, Serialize};
 
@@ -128,7 +128,7 @@ caustic_settings! {
     cluster: Cluster = Cluster::None, only Hcm;
     /// Splat sizes (Wyman 2008 Sec. 3.3 and Fig. 7; for adaptive, its photons' divergence into
     /// the multi-resolution map, Wyman & Nichols 2009 Sec. 3.2.2): each size says whose splats
-    /// it sizes (`SplatMode::sizes_splats_of`, so the key has no owners here); default fixed.
+    /// it sizes, and is refused for the others; default fixed.
     splat: SplatMode = SplatMode::Fixed;
     /// hcm with varying splats: the radius estimator (Wyman 2008 Sec. 3.3); default max-distance.
     varying_radius: VaryingRadius = VaryingRadius::MaxDistance, only Hcm;
@@ -165,7 +165,7 @@ caustic_settings! {
     /// 2006, the default) or deferred (Wyman & Nichols 2009's "deferred caustic maps", Fig. 10:
     /// light-space geometry buffers, then one full-screen pass; with several specular objects,
     /// photons through each in turn, Sec. 3.1.1); independent of the eye's `refraction`.
-    photon_refraction: Refraction = Refraction::Forward, only Shah | WdPoints | WdEyePoints | WdQuads | WdGather | Hcm;
+    photon_refraction: PhotonRefraction = PhotonRefraction::Forward, only Shah | WdPoints | WdEyePoints | WdQuads | WdGather | Hcm;
     /// adaptive: when the traversal stops refining (Wyman & Nichols 2009 Sec. 3.2.1-3.2.2):
     /// max-traversal or max-error; default max-traversal.
     metric: Metric = Metric::MaxTraversal, only Adaptive;
@@ -283,7 +283,7 @@ impl CausticSettings {
             Technique::PhotonTrace => super::photon_trace::settings::DUMPS.to_vec(),
             _ => shared::settings::DUMPS.to_vec(),
         };
-        if self.technique.has_photon_buffer() && self.photon_refraction == Refraction::Deferred {
+        if self.technique.has_photon_buffer() && self.photon_refraction == PhotonRefraction::Deferred {
             // After the photon buffer and its caustic map, where `render::all_dump_names` has it.
             let last = ["caustic_map", "photon_buffer"].iter().find_map(|n| dumps.iter().position(|d| d == n));
             dumps
@@ -350,7 +350,7 @@ impl CausticSettings {
         if let Some(why) = needs.fitted_view.filter(|_| self.photon_view != PhotonView::Fitted) {
             bad("splat", format!("`{splat}` needs photon_view `fitted`, not `{}`: {why}", self.photon_view))?;
         }
-        if let Some(why) = needs.forward_photons.filter(|_| self.photon_refraction != Refraction::Forward) {
+        if let Some(why) = needs.forward_photons.filter(|_| self.photon_refraction != PhotonRefraction::Forward) {
             bad("splat", format!("`{splat}` needs photon_refraction `forward`: {why}"))?;
         }
         let varying = matches!(self.splat, SplatMode::VaryingSingle | SplatMode::VaryingMultires);
@@ -406,7 +406,8 @@ impl CausticSettings {
                 ),
             )?;
         }
-        if !(16..=8192).contains(&self.gbuffer_side()) {
+        // Only adaptive caustic maps make geometry buffers at this side (`gbuffer_side`).
+        if self.technique == Technique::Adaptive && !(16..=8192).contains(&self.gbuffer_side()) {
             bad(
                 "gbuffer_scale",
                 format!(
@@ -498,5 +499,22 @@ impl CausticSettings {
     /// no such size (`validate` refuses it).
     pub fn adaptive_level(&self) -> Option<u32> {
         wn2009::finest_level(self.photons)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_adaptive_caustic_maps_check_their_geometry_buffers_side() {
+        // 0.25 × 32 = 8 texels: too small for adaptive's geometry buffers, which the other
+        // techniques do not make, so a 32² caustic map is theirs to ask for.
+        let mut s = CausticSettings { caustic_map_resolution: 32, technique: Technique::Shah, ..Default::default() };
+        s.validate("test", "--").expect("shah at a 32² caustic map");
+        s.technique = Technique::Adaptive;
+        s.photons = 64;
+        let err = s.validate("test", "--").expect_err("adaptive at a 32² caustic map").to_string();
+        assert!(err.contains("--gbuffer-scale") && err.contains("8 texels wide"), "{err}");
     }
 }

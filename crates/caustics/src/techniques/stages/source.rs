@@ -7,7 +7,7 @@ use crate::techniques::photon_trace::PhotonTracer;
 use crate::techniques::shah2007::VertexPhotons;
 use crate::techniques::shared::{photon_buffer, CausticPasses};
 use crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP;
-use crate::techniques::wyman_nichols2009::{DeferredPhotons, Refraction};
+use crate::techniques::wyman_nichols2009::{DeferredPhotons, PhotonRefraction};
 use crate::techniques::Technique;
 use anyhow::Result;
 use vkcore::{Context, Frame, ShaderCompiler};
@@ -40,7 +40,7 @@ impl Source {
             Technique::ShahVertex => Source::PerVertex(VertexPhotons::new(ctx, sh, scene)?),
             Technique::Adaptive => Source::GeometryBuffers,
             Technique::PhotonTrace => Source::Traced(PhotonTracer::new(ctx, sh, scene, meshes)?),
-            t if t.has_photon_buffer() && s.photon_refraction == Refraction::Deferred => {
+            t if t.has_photon_buffer() && s.photon_refraction == PhotonRefraction::Deferred => {
                 Source::Deferred(DeferredPhotons::new(ctx, sh, s.photons, meshes)?)
             }
             _ => Source::Rasterized,

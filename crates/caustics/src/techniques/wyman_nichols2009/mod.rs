@@ -17,4 +17,4 @@ pub use adaptive::AdaptiveCaustics;
 pub use deferred_photons::DeferredPhotons;
 pub use deferred_refraction::DeferredRefraction;
 pub use geometry_buffers::LightGeometryBuffers;
-pub use settings::{Metric, Refraction};
+pub use settings::{Metric, PhotonRefraction, Refraction};

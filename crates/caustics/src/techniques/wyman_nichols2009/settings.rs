@@ -23,6 +23,21 @@ value_enum! {
     }
 }
 
+value_enum! {
+    /// How a photon-buffer technique makes its dense photon buffer (`caustics.photon_refraction`,
+    /// `--photon-refraction`): a caustics setting, independent of the eye's [`Refraction`].
+    pub enum PhotonRefraction {
+        /// The specular objects' front faces rasterized from the light, each fragment a photon
+        /// refracted out through the back faces by Wyman 2005's estimate (Wyman & Davis 2006).
+        Forward = "forward",
+        /// Wyman & Nichols 2009's deferred caustic maps (Fig. 10): light-space geometry buffers
+        /// of the specular objects (front and back faces in one pass), then one full-screen pass
+        /// makes a photon per texel; with several specular objects, each photon through each in
+        /// turn (Sec. 3.1.1, `deferred_photon_layers.glsl`).
+        Deferred = "deferred",
+    }
+}
+
 impl Refraction {
     /// The eye render's buffers that only this refraction has (`--dump` names).
     pub fn dumps(self) -> &'static [&'static str] {
@@ -38,6 +53,17 @@ impl Refraction {
             Refraction::Forward => &[],
             // The geometry shader that routes each face to the front or back layer (gl_Layer).
             Refraction::Deferred => &[Feature::GeometryShader],
+        }
+    }
+}
+
+impl PhotonRefraction {
+    /// The features the photon buffer made this way needs.
+    pub fn required_features(self) -> &'static [Feature] {
+        match self {
+            PhotonRefraction::Forward => &[],
+            // The light-space geometry buffers' pass routes each face to its layer (gl_Layer).
+            PhotonRefraction::Deferred => &[Feature::GeometryShader],
         }
     }
 }
