@@ -114,10 +114,8 @@ fi
 tar -C "$models_dir" -cJf "$pack/models.tar.xz" "${present[@]}"
 
 # 5. The manifest: the commit the binary was built from (dirty if tracked code differs).
-commit=$(CAUSTICLAB_COMMIT= git rev-parse --short HEAD 2>/dev/null || echo unknown)
-if [ -n "$(git status --porcelain --untracked-files=no -- . ':(exclude)results' ':(exclude,glob)**/*.md' 2>/dev/null)" ]; then
-    commit="$commit-dirty"
-fi
+source scripts/commit.sh
+commit=$(code_commit 2>/dev/null) || commit=unknown
 echo "$commit" >"$pack/COMMIT"
 {
     echo "causticlab GPU pack"

@@ -22,10 +22,8 @@ trap 'rm -rf "$tmp"' EXIT
 if [ -n "${CAUSTICLAB_COMMIT:-}" ]; then
     commit=$CAUSTICLAB_COMMIT
 else
-    commit=$(git rev-parse --short HEAD)
-    if [ -n "$(git status --porcelain --untracked-files=no -- . ':(exclude)results' ':(exclude,glob)**/*.md')" ]; then
-        commit="$commit-dirty"
-    fi
+    source scripts/commit.sh
+    commit=$(code_commit)
 fi
 
 "$bin" bench bench_configs/photon_trace_rate.toml | tee "$tmp/bench.log"

@@ -19,8 +19,8 @@ csv=results/soak/$slug.csv
 out=$("$bin" soak --scene scenes/sphere_on_plane.toml --technique shah --photons 64 --caustic-map-resolution 128 \
     --size 64 --frames "$frames" --every "$every" --after 1000 --period 60 --csv "$csv")
 echo "$out"
-commit=$(git rev-parse --short HEAD)
-[ -z "$(git status --porcelain --untracked-files=no -- . ':(exclude)results' ':(exclude,glob)**/*.md')" ] || commit="$commit-dirty"
+source scripts/commit.sh
+commit=$(code_commit)
 {
     echo "# Soak: $frames throughput frames on $("$bin" devices | sed -n 's/^\[0\] //p' | head -n1 | sed -E 's/ *\[[a-z ]*\]$//')"
     echo

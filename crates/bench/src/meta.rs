@@ -81,6 +81,7 @@ pub fn cpu_model() -> String {
 /// from); else `git rev-parse --short HEAD` (with `-dirty` when tracked files other than
 /// `results/` and Markdown documents have changes: what was measured differs from the commit), or
 /// `unknown`.
+/// (`scripts/commit.sh` computes the same for the shell scripts that name a commit.)
 pub fn commit() -> String {
     if let Some(c) = std::env::var("CAUSTICLAB_COMMIT").ok().filter(|c| !c.trim().is_empty()) {
         return c.trim().to_string();

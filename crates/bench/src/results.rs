@@ -254,9 +254,6 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
     }
 }
 
-/// The results as JSON, one line per top-level key and one per cell, every number to 9
-/// significant digits (1 ns on a 1 s frame: below every timer's resolution here), so that a GPU
-/// table's thousands of per-frame samples stay small enough to travel (`scripts/gpu_pack.sh`).
 /// A results file the bench wrote (a table or a part; `what` names it in errors), checked to be
 /// of this causticlab's schema.
 pub fn read(path: &std::path::Path, what: &str) -> anyhow::Result<Results> {
@@ -270,6 +267,9 @@ pub fn read(path: &std::path::Path, what: &str) -> anyhow::Result<Results> {
     Ok(r)
 }
 
+/// The results as JSON, one line per top-level key and one per cell, every number to 9
+/// significant digits (1 ns on a 1 s frame: below every timer's resolution here), so that a GPU
+/// table's thousands of per-frame samples stay small enough to travel (`scripts/gpu_pack.sh`).
 pub fn to_json(results: &Results) -> anyhow::Result<String> {
     use anyhow::Context as _;
     let value = round_numbers(serde_json::to_value(results).context("serialising the results")?);

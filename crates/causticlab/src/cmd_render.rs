@@ -150,7 +150,9 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             println!("{:<32} {:>10.3} {:>10.3} {:>10.3}", p.name, p.median_ms, p.min_ms, p.max_ms);
         }
         let passes: f64 = timings.passes.iter().map(|p| p.median_ms).sum();
-        if let Some((median, min, max)) = median_min_max(&timings.host_frame_ms) {
+        let host = &timings.host_frame_ms;
+        if let Some(median) = bench::stats::median(host) {
+            let (min, max) = host.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
             println!("{:<32} {:>10.3}", "(sum of the pass medians)", passes);
             println!("{:<32} {:>10.3} {:>10.3} {:>10.3}", "(frame, host wall)", median, min, max);
             if passes < 0.5 * median {
@@ -185,15 +187,6 @@ fn photon_buffer_header(scene: &Scene) -> String {
         t if !t.renders_meshes() => "none".to_string(),
         _ => format!("{0}x{0}", scene.caustics.photons),
     }
-}
-
-/// Median, min and max of `v`, if it has any.
-fn median_min_max(v: &[f64]) -> Option<(f64, f64, f64)> {
-    let mut s = v.to_vec();
-    s.sort_by(f64::total_cmp);
-    let n = s.len();
-    let median = if n % 2 == 1 { *s.get(n / 2)? } else { (s.get(n / 2 - 1)? + s[n / 2]) / 2.0 };
-    Some((median, s[0], s[n - 1]))
 }
 
 /// The receiver map as a PNG, beside receiver.exr.

@@ -462,14 +462,11 @@ fn quick_viewer_frame_time_times_throughput_frames_that_create_nothing() {
 fn every_bench_config_has_a_quick_test() {
     // A config no test runs could rot unnoticed: each must be named in one of these files.
     let src = [include_str!("bench_papers.rs"), include_str!("bench_quality.rs")].concat();
-    for e in std::fs::read_dir(workspace().join("bench_configs")).expect("bench_configs") {
-        let name = e.expect("entry").file_name().to_string_lossy().to_string();
-        if name.ends_with(".toml") {
-            assert!(
-                src.contains(&format!("\"{name}\"")),
-                "bench_configs/{name} is run by no test in tests/bench_papers.rs or bench_quality.rs"
-            );
-        }
+    for config in bench_config_names() {
+        assert!(
+            src.contains(&format!("\"{config}.toml\"")),
+            "bench_configs/{config}.toml is run by no test in tests/bench_papers.rs or bench_quality.rs"
+        );
     }
 }
 
@@ -490,13 +487,7 @@ fn every_bench_config_is_in_the_gpu_suite_or_says_why_not() {
     };
     let (run, left_out) = (list("--list-configs"), list("--list-not-run"));
     let docs = std::fs::read_to_string(workspace().join("docs/bench.md")).expect("docs/bench.md");
-    let mut configs = vec![];
-    for e in std::fs::read_dir(workspace().join("bench_configs")).expect("bench_configs") {
-        let name = e.expect("entry").file_name().to_string_lossy().to_string();
-        if let Some(stem) = name.strip_suffix(".toml") {
-            configs.push(stem.to_string());
-        }
-    }
+    let configs = bench_config_names();
     for c in &configs {
         let times = run.iter().chain(&left_out).filter(|n| *n == c).count();
         assert_eq!(times, 1, "bench_configs/{c}.toml is named {times} times in scripts/gpu_suite.sh's lists");
@@ -510,4 +501,16 @@ fn every_bench_config_is_in_the_gpu_suite_or_says_why_not() {
             "docs/bench.md's table of expected GPU times has no row for `{n}`"
         );
     }
+}
+
+/// The names of the configs in bench_configs/ (without `.toml`).
+fn bench_config_names() -> Vec<String> {
+    let mut names = vec![];
+    for e in std::fs::read_dir(workspace().join("bench_configs")).expect("bench_configs") {
+        let name = e.expect("entry").file_name().to_string_lossy().to_string();
+        if let Some(stem) = name.strip_suffix(".toml") {
+            names.push(stem.to_string());
+        }
+    }
+    names
 }

@@ -162,12 +162,8 @@ fn unknown_dump_name() {
 #[test]
 fn receiver_dump_without_a_receiver_map() {
     // A scene without [receiver_map] has no receiver map to dump: said, not skipped silently.
-    let s = edited_scene("no_receiver_map", "[receiver_map]\n", "[receiver_map_removed]\n");
-    let text = std::fs::read_to_string(&s).expect("the edited scene");
-    let cut = text.find("[receiver_map_removed]").expect("the table");
-    let end = text[cut..].find("\n\n").map_or(text.len(), |e| cut + e);
-    std::fs::write(&s, format!("{}{}", &text[..cut], &text[end..])).expect("writing the scene");
-    let s = s.display().to_string();
+    let table = "[receiver_map]\nplane_y = 0.0\nx_range = [-2.0, 2.0]\nz_range = [-2.0, 2.0]\nresolution = 256\n";
+    let s = edited_scene("no_receiver_map", table, "").display().to_string();
     expect_input_error(&["render", "--scene", &s, "--dump", "receiver"], &["receiver", "[receiver_map]", "scene.toml"]);
 }
 
