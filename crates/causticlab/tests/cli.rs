@@ -355,6 +355,11 @@ fn render_writes_every_output() {
     assert_eq!(t["frames"], 1);
     assert!(t["device"]["name"].as_str().is_some_and(|n| !n.is_empty()), "{json}");
     assert!(t["passes"].as_array().is_some_and(|p| !p.is_empty()), "no passes timed: {json}");
+    // The frame's host wall time beside its passes (one per frame), and the commit measured.
+    assert!(t["host_frame_ms"].as_array().is_some_and(|h| h.len() == 1 && h[0].as_f64().is_some()), "{json}");
+    assert!(t["commit"].as_str().is_some_and(|c| !c.is_empty()), "{json}");
+    assert!(r.run.stdout.contains("(sum of the pass medians)"), "{}", r.run.describe());
+    assert!(r.run.stdout.contains("(frame, host wall)"), "{}", r.run.describe());
     // No staging directory is left beside the output.
     let parent = r.out.parent().expect("out has a parent");
     let names: Vec<_> =
