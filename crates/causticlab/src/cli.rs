@@ -8,7 +8,8 @@ use std::path::PathBuf;
     name = "causticlab",
     version,
     about = "Raw-Vulkan caustics research renderer",
-    after_help = "Exit codes: 0 ok, 1 failure, 2 input error, 3 validation messages under --validate."
+    after_help = "Exit codes: 0 ok, 1 failure, 2 input error, 3 validation messages under --validate; \
+                  diff: 0 same, 1 different, 2 cannot compare."
 )]
 pub struct Cli {
     #[command(flatten)]
@@ -45,8 +46,8 @@ pub enum Command {
     /// Compare two receiver maps (B is the reference): errors, peak, flux; writes an error image.
     Compare(CompareArgs),
     /// Compare two renders texel by texel: two EXR files, or two `render --out` folders (every
-    /// dump, final.exr, and the pass names and photon counts in timings.json). Exit 1 when
-    /// anything differs.
+    /// dump, final.exr, and the pass names and photon counts in timings.json). Exit 0 when
+    /// everything is the same, 1 when anything differs, 2 when they cannot be compared.
     Diff(DiffArgs),
     /// Regenerate a paper's table from a bench config (bench_configs/*.toml), or merge shards.
     Bench(BenchArgs),

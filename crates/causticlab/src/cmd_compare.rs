@@ -3,8 +3,9 @@
 use crate::cli::CompareArgs;
 use anyhow::{Context as _, Result};
 use caustics::compare::compare_files;
+use caustics::error_png;
+use caustics::image_io::{self, header};
 use caustics::input_error;
-use caustics::{error_png, image_io};
 use std::io::{ErrorKind, Read as _};
 use std::path::Path;
 
@@ -34,6 +35,12 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         eprintln!("warning: {line}");
     }
     let (c, error_image) = compare_files(&args.a, &args.b, args.region)?;
+    if c.non_finite_texels > 0 {
+        eprintln!(
+            "warning: {} texel(s) NaN or infinite in A or B: the errors are not finite (JSON null)",
+            c.non_finite_texels
+        );
+    }
     if args.json {
         let v = serde_json::json!({
             "a": args.a.display().to_string(),
@@ -46,6 +53,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             "peak_ratio": c.peak_ratio,
             "peak_offset_texels": c.peak_offset_texels,
             "caustic_flux_ratio": c.caustic_flux_ratio,
+            "non_finite_texels": c.non_finite_texels,
         });
         println!("{}", serde_json::to_string_pretty(&v).context("serialising the comparison")?);
     } else {
@@ -78,12 +86,12 @@ fn mismatches(a: &Path, b: &Path) -> Vec<String> {
         _ => Path::new(x).file_name() == Path::new(y).file_name(),
     };
     let mut out = vec![];
-    if let (Some(x), Some(y)) = (ha.get("causticlab:scene"), hb.get("causticlab:scene")) {
+    if let (Some(x), Some(y)) = (ha.get(header::SCENE), hb.get(header::SCENE)) {
         if !same_scene(x, y) {
             out.push(format!("A is a map of {x}, B of {y}: the comparison is across scenes"));
         }
     }
-    if let (Some(x), Some(y)) = (ha.get("causticlab:fresnel"), hb.get("causticlab:fresnel")) {
+    if let (Some(x), Some(y)) = (ha.get(header::FRESNEL), hb.get(header::FRESNEL)) {
         if x != y {
             out.push(format!(
                 "A was made with fresnel {x}, B with fresnel {y}: the difference includes Fresnel's share"

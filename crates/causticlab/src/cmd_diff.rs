@@ -4,14 +4,16 @@
 //! `scripts/same_maps.sh` shows with it that a refactor kept every image.
 
 use crate::cli::DiffArgs;
-use anyhow::{bail, Context as _, Result};
+use crate::exit;
+use anyhow::{Context as _, Result};
 use caustics::diff::{diff_images, sort_texels};
 use caustics::image_io::read_exr;
 use caustics::input_error;
 use std::collections::BTreeSet;
 use std::path::Path;
 
-pub fn run(args: &DiffArgs) -> Result<()> {
+/// The exit code: `exit::OK` when everything is the same, `exit::DIFFERENT` when anything differs.
+pub fn run(args: &DiffArgs) -> Result<u8> {
     if !(args.tolerance.is_finite() && args.tolerance >= 0.0) {
         return Err(input_error!("--tolerance {}: must be a number >= 0", args.tolerance).into());
     }
@@ -33,10 +35,11 @@ pub fn run(args: &DiffArgs) -> Result<()> {
         }
     };
     if differing > 0 {
-        bail!("{differing} difference(s) between {} and {}", args.a.display(), args.b.display());
+        println!("{differing} difference(s) between {} and {}", args.a.display(), args.b.display());
+        return Ok(exit::DIFFERENT);
     }
     println!("same");
-    Ok(())
+    Ok(exit::OK)
 }
 
 /// Every EXR file of either folder, then the counts of their timings.json; the number of files

@@ -3,7 +3,7 @@
 
 use crate::cli::ReferenceArgs;
 use anyhow::{Context as _, Result};
-use caustics::image_io::{self, OutputDir};
+use caustics::image_io::{self, header, OutputDir};
 use caustics::reference::{trace_reference, ReferenceOptions};
 use caustics::scene::Scene;
 use serde::Serialize;
@@ -56,11 +56,11 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     // What made the map, as `render` records it, so that `compare` can tell a mismatch.
     let header = [
-        ("causticlab:technique", "reference (exact CPU photon trace)".to_string()),
-        ("causticlab:photons", opts.photons.to_string()),
-        ("causticlab:fresnel", opts.fresnel.to_string()),
-        ("causticlab:commit", bench::meta::commit()),
-        ("causticlab:scene", args.scene.display().to_string()),
+        (header::TECHNIQUE, "reference (exact CPU photon trace)".to_string()),
+        (header::PHOTONS, opts.photons.to_string()),
+        (header::FRESNEL, opts.fresnel.to_string()),
+        (header::COMMIT, bench::meta::commit()),
+        (header::SCENE, args.scene.display().to_string()),
     ];
     image_io::write_exr_with(&out.path("receiver.exr"), &r.image, &header)?;
     let record = Record {

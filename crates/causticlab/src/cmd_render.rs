@@ -5,7 +5,7 @@
 use crate::cli::{GlobalOpts, RenderArgs};
 use anyhow::{Context as _, Result};
 use bench::Timings;
-use caustics::image_io::{self, ImageF32, OutputDir};
+use caustics::image_io::{self, header, ImageF32, OutputDir};
 use caustics::input_error;
 use caustics::render::{self, RenderRequest};
 use caustics::scene::Scene;
@@ -84,13 +84,13 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
 
     // What made these images, in each EXR header (tev and `exrheader` show it).
     let header = [
-        ("causticlab:technique", technique.to_string()),
-        ("causticlab:photons", photons_header(&scene, rendered.counts.photons_emitted)),
-        ("causticlab:photon_buffer", photon_buffer_header(&scene)),
-        ("causticlab:fresnel", scene.caustics.fresnel.to_string()),
-        ("causticlab:commit", bench::meta::commit()),
-        ("causticlab:device", format!("{} ({})", ctx.info().name, ctx.info().driver_info)),
-        ("causticlab:scene", args.scene.display().to_string()),
+        (header::TECHNIQUE, technique.to_string()),
+        (header::PHOTONS, photons_header(&scene, rendered.counts.photons_emitted)),
+        (header::PHOTON_BUFFER, photon_buffer_header(&scene)),
+        (header::FRESNEL, scene.caustics.fresnel.to_string()),
+        (header::COMMIT, bench::meta::commit()),
+        (header::DEVICE, format!("{} ({})", ctx.info().name, ctx.info().driver_info)),
+        (header::SCENE, args.scene.display().to_string()),
     ];
     let mut written = write_final_images(&out, &rendered.final_image, &header, scene.render.exposure)?;
     for (name, image) in &rendered.dumps {
@@ -313,9 +313,9 @@ mod tests {
 
     #[test]
     fn dump_lists() {
-        assert_eq!(parse_dumps(None).unwrap_or_default(), Vec::<String>::new());
-        assert_eq!(parse_dumps(Some("all")).unwrap_or_default().len(), render::all_dump_names().len());
-        let two = parse_dumps(Some("receiver, shadow_map,receiver")).unwrap_or_default();
+        assert_eq!(parse_dumps(None).expect("no dumps"), Vec::<String>::new());
+        assert_eq!(parse_dumps(Some("all")).expect("all").len(), render::all_dump_names().len());
+        let two = parse_dumps(Some("receiver, shadow_map,receiver")).expect("two names");
         assert_eq!(two, vec!["receiver".to_string(), "shadow_map".to_string()]);
         let err = parse_dumps(Some("receiver,bogus")).err().map(|e| e.to_string()).unwrap_or_default();
         assert!(err.contains("bogus") && err.contains("shadow_map"), "{err}");

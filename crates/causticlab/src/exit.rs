@@ -5,6 +5,8 @@ use vkcore::VkError;
 
 pub const OK: u8 = 0;
 pub const FAILURE: u8 = 1;
+/// `diff`: the two sides differ (as diff(1); any trouble comparing them is `INPUT`).
+pub const DIFFERENT: u8 = 1;
 /// The user's input is wrong: bad scene, unknown name, no such device, missing feature.
 pub const INPUT: u8 = 2;
 /// `--validate` and the validation layer reported at least one warning or error.

@@ -31,21 +31,27 @@ fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).format_timestamp(None).init();
     let cli = Cli::parse();
     let mut validation: Option<Arc<ValidationLog>> = None;
+    let ok = |r: Result<()>| r.map(|()| exit::OK);
     let result = match &cli.command {
-        Command::Devices => cmd_devices::run(&cli.global, &mut validation),
-        Command::Render(args) => cmd_render::run(&cli.global, args, &mut validation),
-        Command::Reference(args) => cmd_reference::run(args),
-        Command::Compare(args) => cmd_compare::run(args),
+        Command::Devices => ok(cmd_devices::run(&cli.global, &mut validation)),
+        Command::Render(args) => ok(cmd_render::run(&cli.global, args, &mut validation)),
+        Command::Reference(args) => ok(cmd_reference::run(args)),
+        Command::Compare(args) => ok(cmd_compare::run(args)),
         Command::Diff(args) => cmd_diff::run(args),
-        Command::Bench(args) => cmd_bench::run(&cli.global, args, &mut validation),
-        Command::Soak(args) => cmd_soak::run(&cli.global, args, &mut validation),
-        Command::View(args) => view::run(&cli.global, args, &mut validation),
+        Command::Bench(args) => ok(cmd_bench::run(&cli.global, args, &mut validation)),
+        Command::Soak(args) => ok(cmd_soak::run(&cli.global, args, &mut validation)),
+        Command::View(args) => ok(view::run(&cli.global, args, &mut validation)),
     };
     let mut code = match result {
-        Ok(()) => exit::OK,
+        Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e:#}");
-            exit::code_for(&e)
+            // `diff`, as diff(1): 1 means the two sides differ, so any trouble is 2.
+            if matches!(cli.command, Command::Diff(_)) {
+                exit::INPUT
+            } else {
+                exit::code_for(&e)
+            }
         }
     };
     // Every Vulkan object is gone by now, so messages from their destruction are counted too.

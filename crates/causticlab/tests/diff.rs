@@ -70,6 +70,9 @@ fn renders_that_differ_are_told_apart_by_file_channel_and_count() {
         "{}",
         run.describe()
     );
+    // A difference is diff's answer, not an error.
+    assert!(run.stdout.contains("1 difference(s) between"), "{}", run.describe());
+    assert!(!run.stderr.contains("error"), "{}", run.describe());
     // Within a tolerance above the change, the same.
     assert_eq!(diff(&a, &changed, &["--tolerance", "0.5"]).code, Some(0));
 
@@ -110,5 +113,10 @@ fn renders_that_differ_are_told_apart_by_file_channel_and_count() {
     let run = diff(&a, &b.join("final.exr"), &[]);
     assert_eq!(run.code, Some(2), "{}", run.describe());
     assert!(run.stderr.contains("two EXR files or two folders"), "{}", run.describe());
-    let _ = std::fs::remove_dir_all(&dir);
+    // A file that cannot be read is trouble (2), not a difference (1), as in diff(1).
+    let broken = dir.join("broken.exr");
+    std::fs::write(&broken, b"not an EXR").unwrap();
+    let run = diff(&b.join("final.exr"), &broken, &[]);
+    assert_eq!(run.code, Some(2), "{}", run.describe());
+    assert!(run.stderr.contains("error:") && run.stderr.contains("broken.exr"), "{}", run.describe());
 }

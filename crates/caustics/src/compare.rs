@@ -12,6 +12,10 @@
 //! * `caustic_flux_ratio = Σ caustic_a / Σ caustic_b` (mean RGB of the `caustic` layers)
 //!   when both have one, else `Σ max(v − 1, 0)·E0` over all texels.
 //!
+//! A texel that is not finite in either map (NaN or infinite: its mean RGB, `E0` or caustic
+//! value) is counted in `non_finite_texels` and, where its mean RGB is, is in the region, so
+//! the errors read NaN or infinite rather than leaving it out; [`Comparison::within`] fails it.
+//!
 //! [`Region::Lit`] compares every texel instead (where `E0 > 0`): the relative RMS error "between
 //! the two caustics" of Trendall & Stewart 2000 Sec. 5.2, over the whole image.
 
@@ -42,11 +46,21 @@ pub struct Comparison {
     pub peak_ratio: f64,
     pub peak_offset_texels: f64,
     pub caustic_flux_ratio: f64,
+    /// Texels not finite in either map (see the module docs).
+    pub non_finite_texels: usize,
+}
+
+impl Comparison {
+    /// Every texel finite, the relative RMSE at most `rel_rmse` and the caustic flux ratio within
+    /// `flux` of 1; false when any of them is NaN.
+    pub fn within(&self, rel_rmse: f64, flux: f64) -> bool {
+        self.non_finite_texels == 0 && self.rel_rmse <= rel_rmse && (self.caustic_flux_ratio - 1.0).abs() <= flux
+    }
 }
 
 impl fmt::Display for Comparison {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let rows: [(&str, String); 7] = [
+        let rows: [(&str, String); 8] = [
             ("region texels", self.region_texels.to_string()),
             ("relative RMSE", format!("{:.6}", self.rel_rmse)),
             ("relative RMSE (scaled)", format!("{:.6}", self.rel_rmse_scaled)),
@@ -54,6 +68,7 @@ impl fmt::Display for Comparison {
             ("peak ratio", format!("{:.6}", self.peak_ratio)),
             ("peak offset (texels)", format!("{:.3}", self.peak_offset_texels)),
             ("caustic flux ratio", format!("{:.6}", self.caustic_flux_ratio)),
+            ("non-finite texels", self.non_finite_texels.to_string()),
         ];
         let w = rows.iter().map(|r| r.0.len()).max().unwrap_or(0);
         for (k, v) in rows {
@@ -144,9 +159,18 @@ fn compare_labelled(
     let vb = values(b, lb)?;
     let texels = w * h;
 
+    let finite = |v: &Values, t: usize| {
+        v.v[t].is_finite()
+            && v.e0.as_ref().is_none_or(|e| e[t].is_finite())
+            && v.caustic.as_ref().is_none_or(|c| c[t].is_finite())
+    };
+    let non_finite_texels = (0..texels).filter(|&t| !(finite(&va, t) && finite(&vb, t))).count();
     let in_region: Vec<bool> = (0..texels)
         .map(|t| {
             let (x, y) = (va.v[t], vb.v[t]);
+            if !(x.is_finite() && y.is_finite()) {
+                return true;
+            }
             let lit = [&va.e0, &vb.e0].iter().all(|e| match e {
                 Some(e) => e[t] > 0.0,
                 None => true,
@@ -235,6 +259,7 @@ fn compare_labelled(
             peak_ratio,
             peak_offset_texels,
             caustic_flux_ratio,
+            non_finite_texels,
         },
         err,
     ))

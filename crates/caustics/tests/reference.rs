@@ -276,7 +276,32 @@ fn compare_identical_images() {
     let in_region = l.data.chunks(4).filter(|p| p[3] == 1.0).count();
     assert_eq!(in_region, cmp.region_texels);
     let text = cmp.to_string();
-    assert!(text.contains("relative RMSE") && text.lines().count() == 7, "{text}");
+    assert!(text.contains("relative RMSE") && text.lines().count() == 8, "{text}");
+    assert_eq!(cmp.non_finite_texels, 0);
+    assert!(cmp.within(0.0, 0.0));
+}
+
+#[test]
+fn a_texel_that_is_not_finite_is_counted_and_fails_within() {
+    let b = synthetic(32, blob(16.0, 12.0));
+    // Far from the blob, where both maps read 1 and the texel would be outside the region.
+    for bad in [f32::NAN, f32::INFINITY] {
+        let mut a = b.clone();
+        let nc = a.layers[0].channels.len();
+        a.layers[0].data[nc * (31 * 32 + 31)] = bad;
+        let (cmp, err) = compare(&a, &b).unwrap();
+        assert_eq!(cmp.non_finite_texels, 1, "{bad}");
+        assert!(!cmp.rel_rmse.is_finite(), "{bad}: {cmp}");
+        assert!(!cmp.within(f64::MAX, f64::MAX), "{bad}: {cmp}");
+        let in_region = layer(&err, None).data.chunks(4).filter(|p| p[3] == 1.0).count();
+        assert_eq!(in_region, cmp.region_texels, "{bad}: the texel is in the region");
+    }
+    // NaN in the reference is counted too.
+    let mut nan_b = b.clone();
+    nan_b.layers[0].data[0] = f32::NAN;
+    let (cmp, _) = compare(&b, &nan_b).unwrap();
+    assert_eq!(cmp.non_finite_texels, 1);
+    assert!(!cmp.within(f64::MAX, f64::MAX));
 }
 
 #[test]

@@ -8,7 +8,7 @@
 use super::settings;
 use anyhow::{Context as _, Result};
 use caustics::animation::{self, Animation};
-use caustics::image_io::{self, OutputDir};
+use caustics::image_io::{self, header, OutputDir};
 use caustics::render::display::Display;
 use caustics::render::{self, FrameMode, FrameStep, Renderer, RendererOptions};
 use caustics::scene::{CausticSettings, Scene};
@@ -341,12 +341,12 @@ impl<'c> Session<'c> {
     fn header(&self, settings: &CausticSettings) -> Vec<(&'static str, String)> {
         let info = self.ctx.info();
         vec![
-            ("causticlab:technique", settings.technique.to_string()),
-            ("causticlab:photon_buffer", format!("{0}x{0}", settings.photons)),
-            ("causticlab:commit", bench::meta::commit()),
-            ("causticlab:device", format!("{} ({})", info.name, info.driver_info)),
-            ("causticlab:scene", self.scene.path.display().to_string()),
-            ("causticlab:writer", "causticlab view".to_string()),
+            (header::TECHNIQUE, settings.technique.to_string()),
+            (header::PHOTON_BUFFER, format!("{0}x{0}", settings.photons)),
+            (header::COMMIT, bench::meta::commit()),
+            (header::DEVICE, format!("{} ({})", info.name, info.driver_info)),
+            (header::SCENE, self.scene.path.display().to_string()),
+            (header::WRITER, "causticlab view".to_string()),
         ]
     }
 

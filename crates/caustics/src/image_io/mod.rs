@@ -3,13 +3,16 @@
 //! * [`write_exr`] / [`read_exr`]: f32 OpenEXR with named layers. Our files are one
 //!   part (ZIP16 scanlines) whose channels are named `layer.channel` (`R` for the
 //!   unnamed main layer); the original channel order is kept in a `causticlab.channels`
-//!   string-vector attribute, since EXR stores channels sorted by name.
+//!   string-vector attribute, since EXR stores channels sorted by name; [`header`] names the
+//!   text attributes that say what made the image.
 //! * [`write_png_tonemapped`]: linear RGB -> exposure -> ACES (Narkowicz fit) ->
 //!   sRGB 8-bit PNG.
 //! * [`OutputDir`]: a directory whose files appear only when the whole run succeeded.
 //!
 //! Single files are written to a temporary file in the destination directory, flushed
 //! to disk and renamed over the destination, so a reader never sees a partial file.
+
+pub mod header;
 
 use std::fs::File;
 use std::io::{BufWriter, Write};

@@ -41,7 +41,7 @@ macro_rules! caustic_settings {
         #[serde(deny_unknown_fields)]
         #[command(next_help_heading = "Technique (overrides the scene's [caustics])")]
         pub struct CausticOverrides {
-            $( $(#[doc = $doc])* #[arg(long)]
+            $( $(#[doc = $doc])* #[arg(long, allow_negative_numbers = true)]
                 #[serde(default, skip_serializing_if = "Option::is_none")]
                 pub $field: Option<$ty>, )+
         }
