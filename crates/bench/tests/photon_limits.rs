@@ -4,9 +4,10 @@
 //! naming the file and the key.
 
 use bench::config::LoadedConfig;
-use std::path::{Path, PathBuf};
+use caustics::scratch::ScratchDir;
+use std::path::Path;
 
-fn config(name: &str, photons: &str, adaptive_limit: u32) -> PathBuf {
+fn config(name: &str, photons: &str, adaptive_limit: u32) -> ScratchDir {
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/sphere_on_plane.toml");
     let text = format!(
         r#"
@@ -38,9 +39,7 @@ columns = ["technique"]
 "#,
         scene.display()
     );
-    let dir = std::env::temp_dir().join(format!("bench-photon-limits-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join(name);
+    let path = ScratchDir::new("bench-photon-limits", name).within(name);
     std::fs::write(&path, text).expect("write config");
     path
 }

@@ -21,20 +21,19 @@ const QUADRANTS: [[f32; 3]; 4] = [[1e6, 0.0, 0.0], [1e6, 1e6, 0.0], [0.0, 0.0, 0
 
 /// `sphere_on_plane` with its overhead point light made a 15-degree spot, textured or not, in
 /// a fresh directory: returns the scene file.
-fn spot_scene(name: &str, textured: bool) -> PathBuf {
-    let dir = scratch(name);
+fn spot_scene(name: &str, textured: bool) -> Scratch {
+    let dir = scratch(name).within("scene.toml");
     let text = std::fs::read_to_string(scene("sphere_on_plane")).unwrap();
     let light = "type = \"point\"\nposition = [0.0, 6.0, 0.0]";
     assert!(text.contains(light), "sphere_on_plane's light changed");
     let mut spot =
         "type = \"spot\"\nposition = [0.0, 6.0, 0.0]\ndirection = [0.0, -1.0, 0.0]\ncone_angle = 15.0".to_string();
     if textured {
-        write_png_tonemapped(&dir.join("quadrants.png"), 2, 2, &QUADRANTS.concat(), 1.0).unwrap();
+        write_png_tonemapped(&dir.with_file_name("quadrants.png"), 2, 2, &QUADRANTS.concat(), 1.0).unwrap();
         spot.push_str("\ntexture = \"quadrants.png\"");
     }
-    let path = dir.join("scene.toml");
-    std::fs::write(&path, text.replace(light, &spot)).unwrap();
-    path
+    std::fs::write(&*dir, text.replace(light, &spot)).unwrap();
+    dir
 }
 
 fn receiver(out: &Path) -> ImageF32 {

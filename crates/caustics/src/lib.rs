@@ -14,6 +14,7 @@ pub mod image_io;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod scratch;
 pub mod techniques;
 
 pub use error::InputError;

@@ -87,7 +87,10 @@ fn same_after(scene: &Scene, anim: Animation, frames: u32, step: FrameStep, tole
     let b = render(&ctx, &sh, scene, &anim, FrameMode::throughput(), frames, step);
     let compare = |what: &str, x: &[f32], y: &[f32]| {
         assert_eq!(x.len(), y.len(), "{what}: sizes differ");
-        let peak = x.iter().fold(0f32, |m, v| m.max(v.abs())).max(1e-20);
+        // f32::max passes NaN over: every value must be finite for `worst` to mean anything.
+        assert!(x.iter().chain(y).all(|v| v.is_finite()), "{what} of {}: a value is not finite", scene.path.display());
+        let peak = x.iter().fold(0f32, |m, v| m.max(v.abs()));
+        assert!(peak > 0.0, "{what} of {}: all zero, nothing to compare", scene.path.display());
         let worst = x.iter().zip(y).map(|(p, q)| (p - q).abs()).fold(0f32, f32::max);
         assert!(
             worst <= tolerance * peak,

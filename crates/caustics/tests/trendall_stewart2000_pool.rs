@@ -221,8 +221,12 @@ fn float_gpu_and_cpu_reference_agree_within_a_thousandth_on_both_canonical_scene
     }
 }
 
+/// The f64 path runs the CPU convolution (`cpu::run`, the reference's own code) and uploads
+/// it: this checks what it adds, the upload, the receiver pass and the dumps. The convolution
+/// itself is checked against closed forms and Eq. 2 in `trendall_stewart2000/tests.rs`, and
+/// the f64 path against flat water's closed form in `a_flat_surface_gives_one_on_every_path`.
 #[test]
-fn the_f64_path_renders_the_cpu_reference() {
+fn the_f64_path_carries_the_cpu_convolution_to_the_receiver_and_the_dumps() {
     let (ctx, sh) = context();
     let s = scene("pool_oblique", Precision::F64);
     let (wavy, flat) = ts::reference(s.pool.as_ref().expect("pool"), 256, 7).expect("reference");

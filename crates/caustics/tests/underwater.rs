@@ -89,7 +89,7 @@ fn underwater_caustics_match_the_exact_reference_within_sphere_on_plane_bounds()
             "{name:52} rel. RMSE {:.4}  flux ratio {:.4}  peak ratio {:.3}  peak offset {:.1}",
             c.rel_rmse, c.caustic_flux_ratio, c.peak_ratio, c.peak_offset_texels
         );
-        if c.rel_rmse > rmse || (c.caustic_flux_ratio - 1.0).abs() > 0.03 {
+        if !c.within(rmse, 0.03) {
             failures.push(format!("{name}: {c:?} beyond RMSE {rmse} or 3% of the flux"));
         }
     }

@@ -119,8 +119,13 @@ fn geometry_buffers_hold_the_dense_passes_surfaces() {
         assert!(dense_back.data.iter().any(|&v| v > 0.0), "{name}: no back faces: a vacuous test");
         // The coverage pyramid: level m is the max (any) and min (all) of level 0's blocks.
         let level0 = layer(g, "light0.coverage.level0");
-        for m in 1.. {
-            let Some(lm) = g.layer(Some(&format!("light0.coverage.level{m}"))) else { break };
+        // A mip chain of the (power-of-two) side down to 1 texel: log2(p) levels above level 0.
+        assert!(p.is_power_of_two(), "{name}: {p}");
+        assert!(g.layer(Some(&format!("light0.coverage.level{}", p.trailing_zeros() + 1))).is_none());
+        for m in 1..=p.trailing_zeros() as usize {
+            let lm = g
+                .layer(Some(&format!("light0.coverage.level{m}")))
+                .unwrap_or_else(|| panic!("{name}: no coverage level {m} in the dump"));
             let s = p >> m;
             for y in 0..s {
                 for x in 0..s {

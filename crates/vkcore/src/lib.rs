@@ -56,7 +56,7 @@ pub use profiler::{FrameReport, PassSummary, PassTiming, PipelineStats, Profiler
 pub use push::{check_push_constants, PushConstants};
 pub use query::QueryPool;
 pub use recorder::{Cmd, Targets};
-pub use reflect::ReflectedBinding;
+pub use reflect::{ReflectedBinding, ReflectedMember};
 pub use ring::{FrameRing, RingOptions, Timing};
 pub use shader::{ShaderCompiler, Spirv, Stage};
 pub use tracker::Access;

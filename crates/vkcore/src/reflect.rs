@@ -1,6 +1,7 @@
 //! A little SPIR-V reflection: the push-constant block's name and its members' names and byte
-//! offsets, read from the debug names (OpName, OpMemberName) and Offset decorations that
-//! glslang writes, enough to check a `#[repr(C)]` struct against its GLSL twin; and the
+//! offsets, and any laid-out struct's members with their offsets and array strides, read from
+//! the debug names (OpName, OpMemberName) and Offset and ArrayStride decorations that glslang
+//! writes, enough to check a `#[repr(C)]` struct against its GLSL twin; and the
 //! descriptor bindings of set 0 with their names and kinds, from which a pipeline's descriptor
 //! set layout is made and against which a pass's binds are checked by name (`bind.rs`).
 
@@ -17,11 +18,13 @@ const OP_MEMBER_DECORATE: u32 = 72;
 const OP_TYPE_IMAGE: u32 = 25;
 const OP_TYPE_SAMPLED_IMAGE: u32 = 27;
 const OP_TYPE_ARRAY: u32 = 28;
+const OP_TYPE_STRUCT: u32 = 30;
 const STORAGE_UNIFORM_CONSTANT: u32 = 0;
 const STORAGE_UNIFORM: u32 = 2;
 const STORAGE_PUSH_CONSTANT: u32 = 9;
 const STORAGE_BUFFER: u32 = 12;
 const DECORATION_BLOCK: u32 = 2;
+const DECORATION_ARRAY_STRIDE: u32 = 6;
 const DECORATION_BUFFER_BLOCK: u32 = 3;
 const DECORATION_BINDING: u32 = 33;
 const DECORATION_DESCRIPTOR_SET: u32 = 34;
@@ -36,6 +39,16 @@ pub struct ReflectedBinding {
     /// block's where its instance has none (`buffer Photons { .. };` -> `Photons`).
     pub name: String,
     pub kind: BindingKind,
+}
+
+/// One member of a laid-out struct (see [`Spirv::struct_layouts`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ReflectedMember {
+    pub name: String,
+    /// Byte offset in the struct (std140, std430 or push-constant rules, as declared).
+    pub offset: u32,
+    /// For an array, the bytes from one element to the next.
+    pub array_stride: Option<u32>,
 }
 
 /// A nul-terminated UTF-8 string packed little-endian into words.
@@ -105,6 +118,49 @@ impl Spirv {
 }
 
 impl Spirv {
+    /// The layouts glslang gave the struct types named `name` (a block's, or a struct's used in
+    /// one), each with its members in declaration order. A struct type used in more than one
+    /// layout appears once per layout; one without Offset decorations (a function's local copy)
+    /// is left out.
+    pub fn struct_layouts(&self, name: &str) -> Vec<Vec<ReflectedMember>> {
+        let mut names = HashMap::new();
+        let mut member_names = HashMap::new();
+        let mut offsets = HashMap::new();
+        let mut strides = HashMap::new();
+        let mut structs = vec![];
+        for (op, o) in instructions(&self.words) {
+            match op {
+                OP_NAME if o.len() >= 2 => {
+                    names.insert(o[0], string(&o[1..]));
+                }
+                OP_MEMBER_NAME if o.len() >= 3 => {
+                    member_names.insert((o[0], o[1]), string(&o[2..]));
+                }
+                OP_TYPE_STRUCT if !o.is_empty() => structs.push((o[0], o[1..].to_vec())),
+                OP_DECORATE if o.len() >= 3 && o[1] == DECORATION_ARRAY_STRIDE => {
+                    strides.insert(o[0], o[2]);
+                }
+                OP_MEMBER_DECORATE if o.len() >= 4 && o[2] == DECORATION_OFFSET => {
+                    offsets.insert((o[0], o[1]), o[3]);
+                }
+                _ => {}
+            }
+        }
+        structs
+            .into_iter()
+            .filter(|(id, _)| names.get(id).map(String::as_str) == Some(name))
+            .filter(|(id, types)| !types.is_empty() && (0..types.len() as u32).all(|m| offsets.contains_key(&(*id, m))))
+            .map(|(id, types)| {
+                let member = |(m, ty): (usize, &u32)| ReflectedMember {
+                    name: member_names.get(&(id, m as u32)).cloned().unwrap_or_default(),
+                    offset: offsets[&(id, m as u32)],
+                    array_stride: strides.get(ty).copied(),
+                };
+                types.iter().enumerate().map(member).collect()
+            })
+            .collect()
+    }
+
     /// The descriptor bindings of set 0 in binding order. `Err` names what this reflection
     /// cannot describe (another set, a separate sampler, an array of descriptors).
     pub fn descriptor_bindings(&self) -> Result<Vec<ReflectedBinding>, String> {
@@ -173,7 +229,7 @@ impl Spirv {
 
 #[cfg(test)]
 mod tests {
-    use super::ReflectedBinding;
+    use super::{ReflectedBinding, ReflectedMember};
     use crate::pipeline::BindingKind;
     use crate::shader::ShaderCompiler;
 
@@ -213,6 +269,37 @@ mod tests {
         .unwrap();
         let e = c.compile("arr.comp", &[]).unwrap().descriptor_bindings().unwrap_err();
         assert!(e.contains("`t`") && e.contains("array"), "{e}");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn struct_layouts_follow_std140_and_std430() {
+        let root = std::env::temp_dir().join(format!("vkcore-reflect-s-{}", std::process::id()));
+        std::fs::create_dir_all(&root).unwrap();
+        std::fs::write(
+            root.join("s.comp"),
+            "#version 450\nlayout(local_size_x = 1) in;\n\
+             struct S { vec3 a; float b; mat4 m[2]; vec2 c; };\n\
+             layout(std140, binding = 0) uniform U { S s; float tail[3]; } u;\n\
+             layout(std430, binding = 1) buffer B { S s; float tail[3]; } b;\n\
+             void main() { b.s.c = u.s.m[1][0].xy + u.s.a.xy * u.s.b + vec2(u.tail[2]); b.tail[1] = 0.0; }\n",
+        )
+        .unwrap();
+        let c = ShaderCompiler::new(&root).unwrap();
+        let s = c.compile("s.comp", &[]).unwrap();
+        let member = |name: &str, offset, array_stride| ReflectedMember { name: name.into(), offset, array_stride };
+        // std140 and std430 alike: vec3 at 0, the float packed after it at 12, mat4s of 64 bytes
+        // from 16 (a 16-byte alignment), the vec2 after them at 144.
+        let want_s =
+            vec![member("a", 0, None), member("b", 12, None), member("m", 16, Some(64)), member("c", 144, None)];
+        let layouts = s.struct_layouts("S");
+        assert!(!layouts.is_empty() && layouts.iter().all(|l| *l == want_s), "{layouts:?}");
+        // The blocks differ: a float array's stride is 16 under std140 and 4 under std430, and
+        // the struct's size rounds up to 16 in both (152 -> 160).
+        assert_eq!(s.struct_layouts("U"), vec![vec![member("s", 0, None), member("tail", 160, Some(16))]]);
+        assert_eq!(s.struct_layouts("B"), vec![vec![member("s", 0, None), member("tail", 160, Some(4))]]);
+        assert!(s.struct_layouts("Nothing").is_empty());
+        std::fs::remove_dir_all(&root).unwrap();
     }
 
     #[test]
@@ -237,5 +324,6 @@ mod tests {
         let none = c.compile("none.comp", &[]).unwrap();
         assert_eq!(none.push_constant_block(), None);
         assert!(none.push_constant_members().is_empty());
+        std::fs::remove_dir_all(&root).unwrap();
     }
 }

@@ -200,6 +200,7 @@ mod tests {
         assert_eq!(c.forget(&["common.glsl".to_string()]), 2);
         c.compile("sub/a.comp", &[("VALUE", "3")]).unwrap();
         assert_eq!(c.compiled_count(), 3, "forgotten, so compiled again");
+        std::fs::remove_dir_all(&root).unwrap();
     }
 
     #[test]
@@ -213,5 +214,6 @@ mod tests {
         assert!(err.contains("undefined_thing"), "got: {err}");
         let err = c.compile("missing.frag", &[]).unwrap_err().to_string();
         assert!(err.contains("missing.frag"), "got: {err}");
+        std::fs::remove_dir_all(&root).unwrap();
     }
 }

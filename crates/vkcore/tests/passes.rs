@@ -88,11 +88,13 @@ fn host_pass_times_submit_every_pass_and_keep_the_frames_result() {
 fn declared_sets_may_be_pushed_inside_and_others_are_refused() {
     let (ctx, _) = context();
     let p = add_pipeline(&ctx);
-    let a = ctx.buffer_with_data("a", bytemuck::cast_slice(&[5u32; N as usize])).unwrap();
+    let input: Vec<u32> = (0..N).map(|i| i * 7).collect();
+    let a = ctx.buffer_with_data("a", bytemuck::cast_slice(&input)).unwrap();
     let b = Buffer::new(&ctx, "b", N as u64 * 4, Memory::Gpu).unwrap();
     let c = Buffer::new(&ctx, "c", N as u64 * 4, Memory::Gpu).unwrap();
     let mut f = ctx.frame(FrameOptions::default()).unwrap();
-    // Two sets pushed one after the other inside the pass, both declared.
+    // Two sets pushed one after the other inside the pass, both declared: add.comp writes
+    // Out[i] = In[i] + add, so b = a + 1 and c = a + 2 once the frame ran.
     let sets = [
         [("In", Bind::BufferRead(&a)), ("Out", Bind::Buffer(&b))],
         [("In", Bind::BufferRead(&a)), ("Out", Bind::Buffer(&c))],
@@ -111,6 +113,15 @@ fn declared_sets_may_be_pushed_inside_and_others_are_refused() {
         Ok(())
     })
     .unwrap();
+    f.submit().unwrap();
+    let got_b: Vec<u32> = ctx.read_buffer_as(&b).unwrap();
+    let got_c: Vec<u32> = ctx.read_buffer_as(&c).unwrap();
+    let want_b: Vec<u32> = input.iter().map(|x| x + 1).collect();
+    let want_c: Vec<u32> = input.iter().map(|x| x + 2).collect();
+    assert_eq!(&got_b[..N as usize], &want_b[..], "b, written by the first pushed set");
+    assert_eq!(&got_c[..N as usize], &want_c[..], "c, written by the second pushed set");
+    // The refused passes record nothing, in a frame of their own that is never submitted.
+    let mut f = ctx.frame(FrameOptions::default()).unwrap();
     // A set the pass did not declare: its barriers would be missing.
     let err = f
         .pass("undeclared")

@@ -359,12 +359,22 @@ mod tests {
         (scene.camera.width, scene.camera.height) = (48, 48);
         scene.caustics.technique = Technique::Shah;
         let out = std::env::temp_dir().join(format!("causticlab-panel-{}", std::process::id()));
-        let mut session = Session::new(&ctx, &shaders, scene, None, vec![], out, false).expect("a session");
+        let session = Session::new(&ctx, &shaders, scene, None, vec![], out, false).expect("a session");
+        // The viewer's loop state without its window: its `request` is what the loop gives the
+        // panel's requests to.
+        let mut viewer = super::super::Viewer {
+            session,
+            mode: Mode::Orbit,
+            show_panel: true,
+            panel: PanelState::new("test".into()),
+            watcher: None,
+            exit: false,
+            frame_ms: vec![],
+        };
         let egui_ctx = egui::Context::default();
-        let mut state = PanelState::new("test".into());
         // Two frames: the first lays out, the second draws at the sizes it found.
-        frame(&egui_ctx, &mut state, &session, vec![]);
-        let (_, drawn) = frame(&egui_ctx, &mut state, &session, vec![]);
+        frame(&egui_ctx, &mut viewer.panel, &viewer.session, vec![]);
+        let (_, drawn) = frame(&egui_ctx, &mut viewer.panel, &viewer.session, vec![]);
 
         // The technique row: its list shows `shah` on the label's line. Open it, pick `hcm`.
         let label = *find(&drawn, "technique").first().expect("the technique row's label");
@@ -372,29 +382,29 @@ mod tests {
             .into_iter()
             .find(|r| (r.center().y - label.center().y).abs() < label.height())
             .expect("the technique list beside its label");
-        let (requests, opened) = click(&egui_ctx, &mut state, &session, current.center());
+        let (requests, opened) = click(&egui_ctx, &mut viewer.panel, &viewer.session, current.center());
         assert!(requests.is_empty(), "opening the list asks for nothing: {requests:?}");
         let before = find(&drawn, "hcm").len();
         let choices = find(&opened, "hcm");
         assert!(choices.len() > before, "the opened list shows `hcm`");
         let hcm = *choices.last().expect("hcm");
-        let (requests, _) = click(&egui_ctx, &mut state, &session, hcm.center());
+        let (requests, _) = click(&egui_ctx, &mut viewer.panel, &viewer.session, hcm.center());
         assert_eq!(requests, vec![Request::Set("technique".into(), "hcm".into())]);
-        for r in requests {
-            let Request::Set(k, v) = r else { unreachable!() };
-            session.set(&k, &v).expect("the panel's setting");
-        }
-        assert_eq!(session.shown_settings().technique, Technique::Hcm, "the running renderer is hcm's");
+        requests.into_iter().for_each(|r| viewer.request(r));
+        assert_eq!(viewer.session.error, None, "the panel's setting was refused");
+        assert_eq!(viewer.session.shown_settings().technique, Technique::Hcm, "the running renderer is hcm's");
 
         // The timing box: unticked (whole frames timed here); a click asks to time every pass.
-        let (_, drawn) = frame(&egui_ctx, &mut state, &session, vec![]);
+        assert!(!viewer.session.pass_timestamps(), "whole frames timed before the click");
+        let (_, drawn) = frame(&egui_ctx, &mut viewer.panel, &viewer.session, vec![]);
         let tick = *find(&drawn, "time every pass (T)").first().expect("the timing box");
-        let (requests, _) = click(&egui_ctx, &mut state, &session, tick.center());
+        let (requests, _) = click(&egui_ctx, &mut viewer.panel, &viewer.session, tick.center());
         assert_eq!(requests, vec![Request::Command(Command::TogglePassTiming)]);
-        session.set_pass_timestamps(true).expect("timing every pass");
-        assert!(session.pass_timestamps());
-        session.finish().expect("the session's frames");
-        drop(session);
+        requests.into_iter().for_each(|r| viewer.request(r));
+        assert_eq!(viewer.session.error, None, "timing every pass was refused");
+        assert!(viewer.session.pass_timestamps(), "the click did not turn per-pass timing on");
+        viewer.session.finish().expect("the session's frames");
+        drop(viewer);
         let log = ctx.validation_log();
         assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
     }

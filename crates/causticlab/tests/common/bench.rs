@@ -1,7 +1,7 @@
 //! Helpers of the `causticlab bench` tests (`tests/bench_*.rs`): quick runs of a shipped
 //! config, small configs of their own, and reading what a run wrote.
 
-use super::{causticlab, scratch, workspace, Run};
+use super::{causticlab, scratch, workspace, Run, Scratch};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -27,7 +27,7 @@ pub fn json(path: &Path) -> Value {
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("parsing {}: {e}", path.display()))
 }
 
-pub fn quick_run(config: &str) -> (PathBuf, Value) {
+pub fn quick_run(config: &str) -> (Scratch, Value) {
     let root = scratch("bench-quick");
     let cfg = workspace().join("bench_configs").join(config);
     let r = causticlab(&[
@@ -56,7 +56,8 @@ pub fn quick_run(config: &str) -> (PathBuf, Value) {
     assert_eq!(csv.lines().count(), 1 + cells * metrics, "{csv}");
     let svg = std::fs::read_to_string(dir.join(format!("{stem}.svg"))).expect("svg");
     assert!(svg.starts_with("<svg") && svg.contains("<polyline"), "plot without lines");
-    (dir, results)
+    let rel = dir.strip_prefix(&*root).expect("the device folder is in the results folder").to_path_buf();
+    (root.within(rel), results)
 }
 
 pub fn metric(cell: &Value, label: &str) -> Option<f64> {

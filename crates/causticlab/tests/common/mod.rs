@@ -5,9 +5,9 @@
 pub mod bench;
 
 use caustics::image_io::ImageF32;
+pub use caustics::scratch::ScratchDir as Scratch;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::atomic::{AtomicU32, Ordering};
 
 pub struct Run {
     pub code: Option<i32>,
@@ -43,17 +43,10 @@ pub fn causticlab<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Run {
     }
 }
 
-/// A fresh, empty directory under the system temp dir, unique to this process and call.
-pub fn scratch(name: &str) -> PathBuf {
-    static N: AtomicU32 = AtomicU32::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "causticlab-cli-{name}-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("creating a scratch directory");
-    dir
+/// A fresh, empty directory under the system temp dir, unique to this process and call; removed
+/// when dropped, unless the test is panicking (a failed test leaves its files to look at).
+pub fn scratch(name: &str) -> Scratch {
+    Scratch::new("causticlab-cli", name)
 }
 
 /// (layer, channel) of `want`, matched as the full `layer.channel` name first, then by channel.

@@ -278,8 +278,9 @@ fn degenerate_triangles() {
         for _ in 0..100 {
             let o = rng.vec(-2.0, 2.0);
             let d = rng.dir();
-            let _ = bvh.intersect(o, d, 0.0, f32::INFINITY);
-            let _ = bvh.occluded(o, d, 0.0, f32::INFINITY);
+            // Nothing of zero area or with a non-finite vertex can be hit.
+            assert!(bvh.intersect(o, d, 0.0, f32::INFINITY).is_none(), "a ray from {o} along {d} hit a bad triangle");
+            assert!(!bvh.occluded(o, d, 0.0, f32::INFINITY), "a ray from {o} along {d} occluded by a bad triangle");
         }
     }
 }

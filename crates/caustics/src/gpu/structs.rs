@@ -1,7 +1,7 @@
 //! Structs shared with the GPU: one definition each, `#[repr(C)]`, 16-byte members only, sizes
 //! checked at compile time. Their GLSL twins live in `shaders_glsl/common/frame.glsl` and
-//! `common/mesh_vertex.glsl`; `tests::glsl_mirrors_agree` compares the member lists. Push
-//! constants are in `push.rs`.
+//! `common/mesh_vertex.glsl`; `tests::glsl_mirrors_agree` compares the members' offsets with
+//! the ones glslang gives them. Push constants are in `push.rs`.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -52,48 +52,54 @@ const _: () = assert!(std::mem::size_of::<MeshVertex>() == 28);
 
 #[cfg(test)]
 mod tests {
-    /// Member (type, name) pairs of a GLSL struct/block body, in order.
-    fn glsl_members(src: &str, opener: &str) -> Vec<(String, String)> {
-        let start = src.find(opener).expect("block in GLSL") + opener.len();
-        let body = &src[start..src[start..].find('}').unwrap() + start];
-        body.lines()
-            .map(|l| l.split("//").next().unwrap().trim())
-            .filter(|l| l.ends_with(';'))
-            .map(|l| {
-                let mut it = l.trim_end_matches(';').split_whitespace();
-                (it.next().unwrap().to_string(), it.next().unwrap().to_string())
-            })
-            .collect()
+    use vkcore::ShaderCompiler;
+
+    /// (name, `offset_of!`) of every field of struct `$ty`, in declaration order.
+    macro_rules! rust_fields {
+        ($ty:ident { $($field:ident),* $(,)? }) => {{
+            // Names every field or does not compile: the list cannot fall behind the struct.
+            let super::$ty { $($field: _),* } = <super::$ty as bytemuck::Zeroable>::zeroed();
+            vec![$((stringify!($field).to_string(), std::mem::offset_of!(super::$ty, $field) as u32)),*]
+        }};
     }
 
     #[test]
     fn glsl_mirrors_agree() {
+        // Each struct's members, by name, at the offsets std140 gives them in a shader that
+        // reads the frame's lights (shadow_map.vert: `frame.lights[..].face_view_proj[..]`).
+        let sh = ShaderCompiler::new(&crate::render::shader_root()).unwrap();
+        let spirv = sh.compile("shadow/shadow_map.vert", &[]).unwrap();
+        let rust_light =
+            rust_fields!(LightUniforms { position, intensity, spot, spot_u, spot_v, shadow, face_view_proj });
+        let rust_frame = rust_fields!(FrameUniforms {
+            view_proj,
+            inv_view_proj,
+            eye,
+            viewport,
+            background,
+            counts,
+            receiver,
+            receiver_range,
+            lights
+        });
+        for (name, rust) in [("Light", &rust_light), ("Frame", &rust_frame)] {
+            let layouts = spirv.struct_layouts(name);
+            assert!(!layouts.is_empty(), "no laid-out struct `{name}` in shadow_map.vert");
+            for glsl in layouts {
+                let glsl: Vec<(String, u32)> = glsl.into_iter().map(|m| (m.name, m.offset)).collect();
+                assert_eq!(&glsl, rust, "`{name}`: GLSL (std140) against Rust (repr(C)) members and offsets");
+            }
+        }
+        // Arrays step as far in both: `lights[i]` and `face_view_proj[i]` line up.
+        let stride = |name: &str, member: &str| {
+            let layout = spirv.struct_layouts(name).remove(0);
+            layout.into_iter().find(|m| m.name == member).and_then(|m| m.array_stride).expect("an array member")
+                as usize
+        };
+        assert_eq!(stride("Frame", "lights"), std::mem::size_of::<super::LightUniforms>());
+        assert_eq!(stride("Light", "face_view_proj"), std::mem::size_of::<[f32; 16]>());
         let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/frame.glsl"))
             .unwrap();
-        let light: Vec<_> = glsl_members(&src, "struct Light {");
-        let want_light = [
-            ("vec4", "position"),
-            ("vec4", "intensity"),
-            ("vec4", "spot"),
-            ("vec4", "spot_u"),
-            ("vec4", "spot_v"),
-            ("vec4", "shadow"),
-            ("mat4", "face_view_proj[6]"),
-        ];
-        assert_eq!(light, want_light.map(|(a, b)| (a.to_string(), b.to_string())).to_vec());
-        let frame = glsl_members(&src, "uniform Frame {");
-        let want_frame = [
-            ("mat4", "view_proj"),
-            ("mat4", "inv_view_proj"),
-            ("vec4", "eye"),
-            ("vec4", "viewport"),
-            ("vec4", "background"),
-            ("uvec4", "counts"),
-            ("vec4", "receiver"),
-            ("vec4", "receiver_range"),
-            ("Light", "lights[MAX_LIGHTS]"),
-        ];
-        assert_eq!(frame, want_frame.map(|(a, b)| (a.to_string(), b.to_string())).to_vec());
         assert!(src.contains(&format!("#define MAX_LIGHTS {}", super::MAX_LIGHTS)));
         let mesh =
             std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/materials.glsl"))
@@ -105,9 +111,6 @@ mod tests {
         ] {
             assert!(mesh.contains(&format!("#define {name} {value}u")), "{name}");
         }
-        // Field sizes on the Rust side, in the same order (each vec4 = 16 bytes, mat4 = 64).
-        let light_rust = std::mem::size_of::<super::LightUniforms>();
-        assert_eq!(light_rust, 6 * 16 + 6 * 64);
         let vs =
             std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders_glsl/common/mesh_vertex.glsl"))
                 .unwrap();

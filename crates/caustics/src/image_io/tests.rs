@@ -1,25 +1,9 @@
 use super::*;
+use crate::scratch::ScratchDir;
 
-/// A fresh directory under the system temp dir, removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(tag: &str) -> TempDir {
-        let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap().as_nanos();
-        let p = std::env::temp_dir().join(format!(
-            "causticlab-test-{tag}-{}-{nanos}-{}",
-            std::process::id(),
-            unique_suffix()
-        ));
-        std::fs::create_dir_all(&p).unwrap();
-        TempDir(p)
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
+/// A fresh directory for one test, removed on drop.
+fn temp_dir(tag: &str) -> ScratchDir {
+    ScratchDir::new("causticlab-test", tag)
 }
 
 fn entries(dir: &Path) -> Vec<String> {
@@ -44,7 +28,7 @@ fn tricky(i: usize) -> f32 {
 
 #[test]
 fn exr_round_trip_two_layers_odd_size() {
-    let dir = TempDir::new("exr");
+    let dir = temp_dir("exr");
     let (w, h) = (7u32, 3u32);
     let n = (w * h) as usize;
     let image = ImageF32 {
@@ -57,9 +41,9 @@ fn exr_round_trip_two_layers_odd_size() {
             Layer::new(Some("depth.linear"), &["distance"], (0..n).map(|i| i as f32 * 1.5).collect()),
         ],
     };
-    let path = dir.0.join("out.exr");
+    let path = dir.join("out.exr");
     write_exr(&path, &image).unwrap();
-    assert_eq!(entries(&dir.0), vec!["out.exr".to_owned()], "no temp files left behind");
+    assert_eq!(entries(&dir), vec!["out.exr".to_owned()], "no temp files left behind");
     let back = read_exr(&path).unwrap();
     assert_eq!((back.width, back.height), (w, h));
     assert_eq!(back.layers.len(), 3);
@@ -88,8 +72,8 @@ fn exr_written_by_other_tools() {
     // A multi-part file with f16 channels and no order attribute, written with the exr
     // crate directly: layers come back named by the file, channels in R, G, B order.
     use exr::prelude::*;
-    let dir = TempDir::new("exr-other");
-    let path = dir.0.join("other.exr");
+    let dir = temp_dir("exr-other");
+    let path = dir.join("other.exr");
     let size = (4usize, 2usize);
     let ch = |name: &str, v: f32| AnyChannel::new(name, FlatSamples::F16(vec![f16::from_f32(v); 8]));
     let beauty = exr::prelude::Layer::new(
@@ -130,8 +114,8 @@ fn exr_written_by_other_tools() {
 
 #[test]
 fn exr_rejects_bad_input_without_panicking() {
-    let dir = TempDir::new("exr-bad");
-    let path = dir.0.join("bad.exr");
+    let dir = temp_dir("exr-bad");
+    let path = dir.join("bad.exr");
     let bad = |layers: Vec<Layer>, w: u32, h: u32| {
         let err = write_exr(&path, &ImageF32 { width: w, height: h, layers }).unwrap_err();
         assert!(format!("{err:#}").contains("writing"), "{err:#}");
@@ -143,9 +127,9 @@ fn exr_rejects_bad_input_without_panicking() {
     bad(vec![Layer::new(None, &["R"], vec![0.0]), Layer::new(None, &["R"], vec![0.0])], 1, 1);
     bad(vec![Layer::new(None, &["a.b"], vec![0.0])], 1, 1);
     bad(vec![Layer::new(Some("é"), &["R"], vec![0.0])], 1, 1);
-    assert!(entries(&dir.0).is_empty(), "nothing written on error");
+    assert!(entries(&dir).is_empty(), "nothing written on error");
     // Unwritable destination and unreadable input are errors too.
-    let missing = dir.0.join("no/such/dir/x.exr");
+    let missing = dir.join("no/such/dir/x.exr");
     let ok = ImageF32 { width: 1, height: 1, layers: vec![Layer::new(None, &["R"], vec![1.0])] };
     let err = write_exr(&missing, &ok).unwrap_err();
     assert!(format!("{err:#}").contains(&missing.display().to_string()));
@@ -158,8 +142,8 @@ fn exr_rejects_bad_input_without_panicking() {
 /// by the header check, naming the file, before the exr crate allocates the pixels.
 #[test]
 fn exr_header_claiming_a_huge_image_is_refused_before_reading_pixels() {
-    let dir = TempDir::new("exr-huge");
-    let path = dir.0.join("huge.exr");
+    let dir = temp_dir("exr-huge");
+    let path = dir.join("huge.exr");
     let ok = ImageF32 { width: 2, height: 2, layers: vec![Layer::new(None, &["R"], vec![1.0; 4])] };
     write_exr(&path, &ok).unwrap();
     let mut bytes = std::fs::read(&path).unwrap();
@@ -181,7 +165,7 @@ fn exr_header_claiming_a_huge_image_is_refused_before_reading_pixels() {
 #[test]
 fn exr_lossy_b44_and_dwa_compression_is_refused_lossless_is_read() {
     use exr::prelude::*;
-    let dir = TempDir::new("exr-lossy");
+    let dir = temp_dir("exr-lossy");
     let size = (16usize, 16usize);
     for (name, compression, read) in [
         ("b44", Compression::B44, false),
@@ -192,7 +176,7 @@ fn exr_lossy_b44_and_dwa_compression_is_refused_lossless_is_read() {
         ("zip", Compression::ZIP16, true),
         ("rle", Compression::RLE, true),
     ] {
-        let path = dir.0.join(format!("{name}.exr"));
+        let path = dir.join(format!("{name}.exr"));
         let encoding = Encoding { compression, ..Encoding::UNCOMPRESSED };
         let channel = AnyChannel::new("R", FlatSamples::F16(vec![f16::from_f32(0.5); 256]));
         let layer = exr::prelude::Layer::new(
@@ -237,7 +221,7 @@ fn decode_png(path: &Path) -> (u32, u32, Vec<u8>) {
 
 #[test]
 fn png_gradient_tonemapped() {
-    let dir = TempDir::new("png");
+    let dir = temp_dir("png");
     let (w, h) = (64u32, 3u32);
     // Row 0: gradient 0..8 in R=G=B. Row 1: special values. Row 2: constant 0.18.
     let mut rgb = Vec::new();
@@ -253,9 +237,9 @@ fn png_gradient_tonemapped() {
         rgb.extend([0.18, 0.5, 0.045]);
     }
     let exposure = 2.0;
-    let path = dir.0.join("img.png");
+    let path = dir.join("img.png");
     write_png_tonemapped(&path, w, h, &rgb, exposure).unwrap();
-    assert_eq!(entries(&dir.0), vec!["img.png".to_owned()]);
+    assert_eq!(entries(&dir), vec!["img.png".to_owned()]);
     let (dw, dh, px) = decode_png(&path);
     assert_eq!((dw, dh), (w, h));
     assert_eq!(px.len(), (w * h * 3) as usize);
@@ -285,22 +269,22 @@ fn png_gradient_tonemapped() {
 
 #[test]
 fn png_rejects_bad_input() {
-    let dir = TempDir::new("png-bad");
-    let path = dir.0.join("x.png");
+    let dir = temp_dir("png-bad");
+    let path = dir.join("x.png");
     assert!(write_png_tonemapped(&path, 2, 2, &[0.0; 11], 1.0).is_err());
     assert!(write_png_tonemapped(&path, 0, 2, &[], 1.0).is_err());
     assert!(write_png_tonemapped(&path, 1, 1, &[0.0; 3], f32::NAN).is_err());
-    assert!(write_png_tonemapped(&dir.0.join("missing/x.png"), 1, 1, &[0.0; 3], 1.0).is_err());
-    assert!(entries(&dir.0).is_empty());
+    assert!(write_png_tonemapped(&dir.join("missing/x.png"), 1, 1, &[0.0; 3], 1.0).is_err());
+    assert!(entries(&dir).is_empty());
 }
 
 #[test]
 fn output_dir_commit() {
-    let root = TempDir::new("outdir");
-    let final_dir = root.0.join("run1");
+    let root = temp_dir("outdir");
+    let final_dir = root.join("run1");
     let out = OutputDir::create(&final_dir).unwrap();
     let staging = out.staging_dir().to_path_buf();
-    assert!(staging.starts_with(&root.0) && staging.is_dir());
+    assert!(staging.starts_with(&root) && staging.is_dir());
     write_file_atomically(&out.path("a.txt"), b"alpha").unwrap();
     let img = ImageF32 { width: 2, height: 1, layers: vec![Layer::new(None, &["R"], vec![1.0, 2.0])] };
     write_exr(&out.path("b.exr"), &img).unwrap();
@@ -312,7 +296,7 @@ fn output_dir_commit() {
     assert_eq!(std::fs::read(final_dir.join("sub/c.txt")).unwrap(), b"gamma");
     assert_eq!(read_exr(&final_dir.join("b.exr")).unwrap(), img);
     assert!(!staging.exists());
-    assert_eq!(entries(&root.0), vec!["run1"]);
+    assert_eq!(entries(&root), vec!["run1"]);
 
     // Committing into an existing directory: same-named files are replaced, others kept.
     std::fs::write(final_dir.join("keep.txt"), b"keep").unwrap();
@@ -325,10 +309,10 @@ fn output_dir_commit() {
     assert_eq!(std::fs::read(final_dir.join("a.txt")).unwrap(), b"alpha2");
     assert_eq!(std::fs::read(final_dir.join("keep.txt")).unwrap(), b"keep");
     assert_eq!(entries(&final_dir.join("sub")), vec!["c.txt", "d.txt"]);
-    assert_eq!(entries(&root.0), vec!["run1"]);
+    assert_eq!(entries(&root), vec!["run1"]);
 
     // Nested final directory whose parents don't exist yet.
-    let nested = root.0.join("x/y/run2");
+    let nested = root.join("x/y/run2");
     let out = OutputDir::create(&nested).unwrap();
     write_file_atomically(&out.path("f"), b"1").unwrap();
     out.commit().unwrap();
@@ -337,8 +321,8 @@ fn output_dir_commit() {
 
 #[test]
 fn output_dir_dropped_uncommitted_leaves_nothing() {
-    let root = TempDir::new("outdir-drop");
-    let final_dir = root.0.join("run");
+    let root = temp_dir("outdir-drop");
+    let final_dir = root.join("run");
     {
         let out = OutputDir::create(&final_dir).unwrap();
         write_file_atomically(&out.path("a.txt"), b"alpha").unwrap();
@@ -347,7 +331,7 @@ fn output_dir_dropped_uncommitted_leaves_nothing() {
         // Dropped here, as on an early `?` return.
     }
     assert!(!final_dir.exists());
-    assert!(entries(&root.0).is_empty(), "staging removed: {:?}", entries(&root.0));
+    assert!(entries(&root).is_empty(), "staging removed: {:?}", entries(&root));
 
     // A panicking run also leaves nothing.
     let fd = final_dir.clone();
@@ -358,14 +342,14 @@ fn output_dir_dropped_uncommitted_leaves_nothing() {
     });
     assert!(r.is_err());
     assert!(!final_dir.exists());
-    assert!(entries(&root.0).is_empty());
+    assert!(entries(&root).is_empty());
 }
 
 #[test]
 #[cfg(target_os = "linux")]
 fn output_dir_removes_only_staging_whose_lock_nobody_holds() {
-    let root = TempDir::new("outdir-stale");
-    let staging = |name: &str| root.0.join(name);
+    let root = temp_dir("outdir-stale");
+    let staging = |name: &str| root.join(name);
     let lock_of = |d: &std::path::Path| d.with_file_name(format!("{}.lock", d.file_name().unwrap().to_str().unwrap()));
     let dead = staging(".run.partial-4242-0");
     let live = staging(".run.partial-4243-0");
@@ -382,7 +366,7 @@ fn output_dir_removes_only_staging_whose_lock_nobody_holds() {
     // A live run holds its lock (here, this process through another open file description).
     let held = std::fs::File::open(lock_of(&live)).unwrap();
     held.lock().unwrap();
-    let out = OutputDir::create(&root.0.join("run")).unwrap();
+    let out = OutputDir::create(&root.join("run")).unwrap();
     assert!(!dead.exists() && !lock_of(&dead).exists(), "a killed run's staging directory and lock are removed");
     assert!(live.join("final.exr").is_file(), "a live run's staging directory is kept");
     assert!(unlocked_other.is_dir(), "another output's staging directory is not ours to remove");
@@ -400,8 +384,8 @@ fn output_dir_removes_only_staging_whose_lock_nobody_holds() {
 
 #[test]
 fn output_dir_over_a_file_is_an_input_error_before_anything_is_created() {
-    let root = TempDir::new("outdir-file");
-    let file = root.0.join("out");
+    let root = temp_dir("outdir-file");
+    let file = root.join("out");
     std::fs::write(&file, b"not a directory").unwrap();
     for target in [file.clone(), file.join("sub")] {
         let err = OutputDir::create(&target).unwrap_err();
@@ -409,7 +393,7 @@ fn output_dir_over_a_file_is_an_input_error_before_anything_is_created() {
         let msg = format!("{err:#}");
         assert!(msg.contains(&target.display().to_string()) && msg.contains("not a directory"), "{msg}");
     }
-    assert_eq!(entries(&root.0), vec!["out"], "no staging directory beside it");
+    assert_eq!(entries(&root), vec!["out"], "no staging directory beside it");
     assert_eq!(std::fs::read(&file).unwrap(), b"not a directory");
-    assert!(check_output_dir(&root.0.join("new/dir")).is_ok());
+    assert!(check_output_dir(&root.join("new/dir")).is_ok());
 }

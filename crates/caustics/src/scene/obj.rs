@@ -53,10 +53,8 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
 mod tests {
     use super::*;
 
-    fn write_temp(name: &str, text: &str) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!("causticlab-obj-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let p = dir.join(name);
+    fn write_temp(name: &str, text: &str) -> crate::scratch::ScratchDir {
+        let p = crate::scratch::ScratchDir::new("causticlab-obj", "load").within(name);
         std::fs::write(&p, text).unwrap();
         p
     }

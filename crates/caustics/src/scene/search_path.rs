@@ -96,7 +96,7 @@ mod tests {
 
     #[test]
     fn find_uses_the_first_hit() {
-        let base = std::env::temp_dir().join(format!("causticlab-sp-{}", std::process::id()));
+        let base = crate::scratch::ScratchDir::new("causticlab-sp", "find");
         let (a, b) = (base.join("a"), base.join("b"));
         std::fs::create_dir_all(&a).unwrap();
         std::fs::create_dir_all(&b).unwrap();

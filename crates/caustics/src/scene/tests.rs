@@ -2,17 +2,11 @@
 
 use super::*;
 use crate::error::InputError;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use crate::scratch::ScratchDir;
 
-static COUNTER: AtomicUsize = AtomicUsize::new(0);
-
-/// A fresh temp directory for one test.
-fn temp_dir() -> PathBuf {
-    let n = COUNTER.fetch_add(1, Ordering::SeqCst);
-    let d = std::env::temp_dir().join(format!("causticlab-scene-{}-{n}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh temp directory for one test, removed on drop.
+fn temp_dir() -> ScratchDir {
+    ScratchDir::new("causticlab-scene", "loader")
 }
 
 const BASE: &str = r#"
@@ -45,7 +39,7 @@ fn load_text(name: &str, text: &str) -> anyhow::Result<Scene> {
     let dir = temp_dir();
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
-    Scene::load_with_search_path(&path, &ModelSearchPath { dirs: vec![dir.clone(), dir.join("more")] })
+    Scene::load_with_search_path(&path, &ModelSearchPath { dirs: vec![dir.to_path_buf(), dir.join("more")] })
 }
 
 /// Loads `text`, expects an `InputError` whose message names the file and contains every

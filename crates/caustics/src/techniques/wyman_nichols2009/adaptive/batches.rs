@@ -201,6 +201,8 @@ mod tests {
 
     #[test]
     fn plans_fit_their_limit_and_cover_every_cluster() {
+        // A limit too small is refused (`a_limit_too_small_...`); count the plans checked.
+        let (mut checked, mut refused) = (0, 0);
         for finest in [0u32, 2, 3, 5, 8] {
             for metric in Metric::ALL {
                 for xfb in [false, true] {
@@ -210,7 +212,11 @@ mod tests {
                     assert_eq!(plan(finest, *metric, xfb, Some(whole.storage_bytes()), 1, 1), Ok(whole.clone()));
                     for divisor in [2u64, 3, 7, 50, 1000] {
                         let limit = whole.storage_bytes() / divisor;
-                        let Ok(p) = plan(finest, *metric, xfb, Some(limit), 1, 2) else { continue };
+                        let Ok(p) = plan(finest, *metric, xfb, Some(limit), 1, 2) else {
+                            refused += 1;
+                            continue;
+                        };
+                        checked += 1;
                         let label = format!("L {finest} {metric} xfb {xfb} limit {limit}");
                         assert!(p.storage_bytes() <= limit, "{label}: {p:?} needs {}", p.storage_bytes());
                         assert!(p.batched(), "{label}: not batched");
@@ -229,10 +235,12 @@ mod tests {
                 }
             }
         }
+        assert!(checked > refused, "{checked} plans checked, {refused} limits refused");
     }
 
     #[test]
     fn least_batches_give_that_many_batches_of_every_cluster() {
+        let mut limited = 0;
         for finest in [0u32, 2, 4, 6] {
             for metric in Metric::ALL {
                 for xfb in [false, true] {
@@ -250,11 +258,13 @@ mod tests {
                         let limit = whole.storage_bytes() / 8;
                         if let Ok(q) = plan(finest, *metric, xfb, Some(limit), n, 1) {
                             assert!(q.batches >= n && q.storage_bytes() <= limit, "{label} under {limit} B: {q:?}");
+                            limited += 1;
                         }
                     }
                 }
             }
         }
+        assert!(limited > 0, "no plan under a limit was checked");
         // More batches than the square root of the clusters: at least n, none idle.
         for n in [33u32, 100, 200, 256] {
             let p = plan(0, Metric::MaxTraversal, false, None, n, 1).unwrap_or_else(|e| panic!("{n} batches: {e}"));
