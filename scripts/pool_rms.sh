@@ -49,7 +49,9 @@ print("|---|---|---|---|---|---|")
 table = {}
 for line in open(rows):
     label, scene, region, js = line.rstrip("\n").split("|", 3)
-    table.setdefault((label, scene), {})[region] = json.loads(js)
+    # A metric is null where a map has a texel that is not finite (non_finite_texels > 0).
+    c = {k: (float("nan") if v is None else v) for k, v in json.loads(js).items()}
+    table.setdefault((label, scene), {})[region] = c
 for (label, scene), r in table.items():
     lit, c = r["lit"], r["caustic"]
     print(f"| {label} | {scene} | {lit['rel_rmse']:.4g} | {c['rel_rmse']:.4g} | {c['region_texels']} | {c['peak_ratio']:.3f} |")

@@ -63,7 +63,8 @@ print("| technique | photons | region texels | rel. RMSE | rel. RMSE after best 
 print("|---|---|---|---|---|---|---|---|---|")
 for line in open(rows):
     t, n, js = line.rstrip("\n").split("|", 2)
-    c = json.loads(js)
+    # A metric is null where a map has a texel that is not finite (non_finite_texels > 0).
+    c = {k: (float("nan") if v is None else v) for k, v in json.loads(js).items()}
     label = "reference, seed 2 vs seed 1" if t == "reference-noise" else t
     count = f"{int(n):,} per light" if t == "reference-noise" else ("mesh vertices" if t == "shah-vertex" else f"{n}^2")
     print(f"| {label} | {count} | {c['region_texels']} | {c['rel_rmse']:.4f} | {c['rel_rmse_scaled']:.4f} | "

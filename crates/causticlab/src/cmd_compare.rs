@@ -37,7 +37,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let (c, error_image) = compare_files(&args.a, &args.b, args.region)?;
     if c.non_finite_texels > 0 {
         eprintln!(
-            "warning: {} texel(s) NaN or infinite in A or B: the errors are not finite (JSON null)",
+            "warning: {} texel(s) NaN or infinite in A or B (mean RGB, E0 or caustic value): the errors over them are not to be trusted",
             c.non_finite_texels
         );
     }

@@ -164,7 +164,8 @@ fn unknown_dump_name() {
 fn receiver_dump_without_a_receiver_map() {
     // A scene without [receiver_map] has no receiver map to dump: said, not skipped silently.
     let table = "[receiver_map]\nplane_y = 0.0\nx_range = [-2.0, 2.0]\nz_range = [-2.0, 2.0]\nresolution = 256\n";
-    let s = edited_scene("no_receiver_map", table, "").display().to_string();
+    let file = edited_scene("no_receiver_map", table, "");
+    let s = file.display().to_string();
     expect_input_error(&["render", "--scene", &s, "--dump", "receiver"], &["receiver", "[receiver_map]", "scene.toml"]);
 }
 
@@ -182,6 +183,11 @@ fn caustic_setting_out_of_range() {
         &["render", "--scene", &scene("sphere_on_plane"), "--technique", "shah", "--photons", "5000"],
         &["--photons", "4096"],
     );
+    // A negative number is a value the flag refuses, not an unknown argument.
+    for (flag, value) in [("--photons", "-5"), ("--splat-radius", "-1"), ("--iterations", "-3")] {
+        let args = ["render", "--scene", &scene("sphere_on_plane"), "--technique", "shah", flag, value];
+        expect_input_error(&args, &[flag, value]);
+    }
     let scene_file = edited_scene("iterations", "[receiver_map]", "[caustics]\niterations = 0\n\n[receiver_map]");
     expect_input_error(&["render", "--scene", &scene_file.display().to_string()], &["caustics.iterations"]);
     // Instanced draws need a power-of-two vertex buffer of a sane size.
@@ -313,6 +319,8 @@ struct Rendered {
     out: Scratch,
 }
 
+/// One render per scene for every test that reads it; held in a static, which is never dropped,
+/// so these two folders stay in the temp dir after the run (the only ones that do).
 fn render_once(stem: &str) -> Rendered {
     let out = scratch(&format!("render-{stem}")).within("out");
     let s = scene(stem);

@@ -191,10 +191,11 @@ fn compare_labelled(
         saa += x * x;
         sbb += y * y;
         sdd += (x - y) * (x - y);
-        if !matches!(peak_a, Some(p) if x <= p.0) {
+        // The peaks of the finite texels (a NaN would reset the running maximum).
+        if x.is_finite() && !matches!(peak_a, Some(p) if x <= p.0) {
             peak_a = Some((x, t));
         }
-        if !matches!(peak_b, Some(p) if y <= p.0) {
+        if y.is_finite() && !matches!(peak_b, Some(p) if y <= p.0) {
             peak_b = Some((y, t));
         }
     }
@@ -207,7 +208,7 @@ fn compare_labelled(
             f64::INFINITY
         }
     };
-    let best_scale = if saa > 0.0 { sab / saa } else { 1.0 };
+    let best_scale = if saa > 0.0 || saa.is_nan() { sab / saa } else { 1.0 };
     // Σ(s·a − b)² = s²Σa² − 2sΣab + Σb², evaluated directly for accuracy.
     let sdd_scaled: f64 = (0..texels).filter(|&t| in_region[t]).map(|t| (best_scale * va.v[t] - vb.v[t]).powi(2)).sum();
     let (peak_ratio, peak_offset_texels) = match (peak_a, peak_b) {

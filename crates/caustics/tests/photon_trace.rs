@@ -115,7 +115,10 @@ fn photon_trace_matches_the_exact_reference_on_five_scenes() {
             z.lit
         );
         if !c.within(f64::INFINITY, 0.005) {
-            failures.push(format!("{name}: caustic flux ratio {} beyond 0.5%", c.caustic_flux_ratio));
+            failures.push(format!(
+                "{name}: caustic flux ratio {} beyond 0.5%, or {} texels not finite",
+                c.caustic_flux_ratio, c.non_finite_texels
+            ));
         }
         if !(rms_z <= 2.0 && beyond_4 * 100 <= z.lit) {
             failures.push(format!("{name}: rms z {rms_z:.2}, {beyond_4} of {} texels beyond 4 sigma", z.lit));
@@ -246,8 +249,10 @@ fn the_direct_deposit_bins_the_photons_as_the_reference_does() {
             z.lit
         );
         if !(c.within(f64::INFINITY, 0.005) && rms_z <= 1.5 && beyond_4 * 100 <= z.lit) {
-            failures
-                .push(format!("{name}: flux ratio {}, rms z {rms_z:.2}, {beyond_4} beyond 4", c.caustic_flux_ratio));
+            failures.push(format!(
+                "{name}: flux ratio {}, rms z {rms_z:.2}, {beyond_4} beyond 4, {} texels not finite",
+                c.caustic_flux_ratio, c.non_finite_texels
+            ));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

@@ -81,6 +81,8 @@ fn near_silhouette(covered: &[bool], w: usize, h: usize) -> Vec<bool> {
 /// Per pixel, the largest difference over RGB of two final images.
 fn differences(a: &ImageF32, b: &ImageF32) -> Vec<f32> {
     let (a, b) = (&a.layers[0].data, &b.layers[0].data);
+    // f32::max passes NaN over: a NaN pixel must fail here, not read as no difference.
+    assert!(a.iter().chain(b).all(|v| v.is_finite()), "a final image has a pixel that is not finite");
     a.chunks_exact(3)
         .zip(b.chunks_exact(3))
         .map(|(p, q)| (0..3).map(|c| (p[c] - q[c]).abs()).fold(0.0, f32::max))
