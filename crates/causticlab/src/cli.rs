@@ -143,6 +143,13 @@ fn parse_cores(s: &str) -> Result<f64, String> {
     }
 }
 
+fn parse_threads(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(v) if v <= 1024 => Ok(v),
+        _ => Err(format!("`{s}`: a thread count from 0 (all cores) to 1024")),
+    }
+}
+
 fn parse_budget(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && (0.0..=3600.0).contains(&v) => Ok(v),
@@ -211,8 +218,8 @@ pub struct ReferenceArgs {
     /// the image-space techniques draw.
     #[arg(long, default_value_t = true, action = clap::ArgAction::Set)]
     pub outside_reflection: bool,
-    /// Worker threads (0 = all cores).
-    #[arg(long, default_value_t = 0)]
+    /// Worker threads (0 = all cores), at most 1024.
+    #[arg(long, default_value_t = 0, value_parser = parse_threads)]
     pub threads: usize,
     /// Scatter about the facets' geometric normals instead of the interpolated vertex normals
     /// (the smooth surface the mesh stands for, as the renderer shades it).
@@ -223,7 +230,7 @@ pub struct ReferenceArgs {
     #[arg(long)]
     pub direct: bool,
     /// Pool scenes: the grid side (default: the scene's `caustics.photons`).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(64..=4096))]
     pub grid: Option<u32>,
     /// Pool scenes: the Pass 6 kernel side, odd (default: the scene's `caustics.kernel`).
     #[arg(long)]

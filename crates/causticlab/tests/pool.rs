@@ -148,6 +148,13 @@ fn bad_pool_input_exits_2_naming_what_is_wrong() {
     // reference's pool flags on a mesh scene.
     let r = causticlab(&["reference", "--scene", &scene("sphere_on_plane"), "--direct", "--out", &o]);
     assert_input_error(&r, &["--direct", "pool"]);
+    // --grid names itself (it once accepted 16-63 and the error named --photons); --threads is bounded.
+    let r = causticlab(&["reference", "--scene", &scene("pool_overhead"), "--grid", "32", "--out", &o]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(r.stderr.contains("--grid") && r.stderr.contains("64..=4096"), "{}", r.describe());
+    let r = causticlab(&["reference", "--scene", &scene("pool_overhead"), "--threads", "2000", "--out", &o]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(r.stderr.contains("--threads") && r.stderr.contains("1024"), "{}", r.describe());
     // An unknown key in [pool].
     let bad = out.join("bad.toml");
     let text = std::fs::read_to_string(workspace().join("scenes/pool_overhead.toml")).expect("scene");

@@ -622,14 +622,25 @@ pub fn write_file_atomically(path: &Path, contents: &[u8]) -> Result<()> {
 #[cfg(test)]
 mod tests;
 
+/// The largest side [`read_png_rgba`] decodes: textures are resampled far below it, and a
+/// small file can claim 2^31 pixels a side.
+pub const MAX_PNG_SIDE: u32 = 16384;
+
 /// Decodes a PNG into linear RGBA in [0, 1] (sRGB decoded), for projected spot-light textures.
+/// A file that is not a PNG, or larger than [`MAX_PNG_SIDE`] a side, is an input error.
 pub fn read_png_rgba(path: &Path) -> Result<(u32, u32, Vec<f32>)> {
     let file = std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))?;
     let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
     decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
-    let mut reader = decoder.read_info().with_context(|| format!("reading PNG {}", path.display()))?;
+    let mut reader =
+        decoder.read_info().map_err(|e| crate::input_error!("{}: not a readable PNG: {e}", path.display()))?;
+    let (w, h) = (reader.info().width, reader.info().height);
+    if w > MAX_PNG_SIDE || h > MAX_PNG_SIDE {
+        return Err(crate::input_error!("{}: {w} x {h} pixels, more than {MAX_PNG_SIDE} a side", path.display()).into());
+    }
     let mut buf = vec![0u8; reader.output_buffer_size()];
-    let info = reader.next_frame(&mut buf).with_context(|| format!("decoding PNG {}", path.display()))?;
+    let info =
+        reader.next_frame(&mut buf).map_err(|e| crate::input_error!("{}: not a readable PNG: {e}", path.display()))?;
     let channels = info.color_type.samples();
     let (w, h) = (info.width, info.height);
     let to_linear = |v: u8| {
@@ -640,7 +651,7 @@ pub fn read_png_rgba(path: &Path) -> Result<(u32, u32, Vec<f32>)> {
             ((c + 0.055) / 1.055).powf(2.4)
         }
     };
-    let mut out = Vec::with_capacity((w * h * 4) as usize);
+    let mut out = Vec::with_capacity(w as usize * h as usize * 4);
     for px in buf[..info.buffer_size()].chunks(channels) {
         let (r, g, b, a) = match channels {
             1 => (px[0], px[0], px[0], 255),

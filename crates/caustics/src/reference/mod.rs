@@ -244,6 +244,21 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
     let threads =
         if opts.threads == 0 { std::thread::available_parallelism().map_or(1, |n| n.get()) } else { opts.threads }
             .clamp(1, tasks.len().max(1));
+    // A grid of n² RGB f64 per worker, the merged one and the image: refused up front when the
+    // machine has not that much memory available, rather than aborting half way.
+    let need = (n * n * 3 * 8) as u64 * (threads as u64 + 2);
+    if let Some(available) = available_memory() {
+        if need > available {
+            return Err(crate::input_error!(
+                "{}: receiver_map.resolution {n} with {threads} thread(s) needs {} MiB, more than the {} MiB \
+                 available: lower the resolution or the thread count",
+                scene.path.display(),
+                need >> 20,
+                available >> 20
+            )
+            .into());
+        }
+    }
 
     let merger = Mutex::new(Merger {
         next: 0,
@@ -356,4 +371,12 @@ fn run_task(
         }
     }
     tot
+}
+
+/// `MemAvailable` of /proc/meminfo in bytes (Linux); `None` elsewhere.
+fn available_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }

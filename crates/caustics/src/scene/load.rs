@@ -14,6 +14,8 @@ use std::path::{Path, PathBuf};
 pub const MAX_RESOLUTION: u32 = 16384;
 /// Largest icosphere subdivision level (7 gives 327 680 triangles).
 pub const MAX_SUBDIVISIONS: u32 = 7;
+/// The largest coordinate (and half the largest size) a scene may give, in metres.
+pub const MAX_COORDINATE: f32 = 1e6;
 
 /// Formats errors as `<file>: key `<key>`: <message>`.
 pub(super) struct Ctx<'a> {
@@ -51,11 +53,13 @@ impl Ctx<'_> {
         }
     }
 
+    /// Three numbers within ±[`MAX_COORDINATE`]: beyond it, lengths overflow f32 (a direction
+    /// of 3e38 normalises to zero) and nothing renders.
     pub(super) fn vec3(&self, key: &str, v: [f32; 3]) -> anyhow::Result<Vec3> {
-        if v.iter().all(|x| x.is_finite()) {
+        if v.iter().all(|x| x.is_finite() && x.abs() <= MAX_COORDINATE) {
             Ok(Vec3::from_array(v))
         } else {
-            Err(self.err(key, format!("must be 3 finite numbers, got {v:?}")))
+            Err(self.err(key, format!("must be 3 finite numbers within ±{MAX_COORDINATE:e}, got {v:?}")))
         }
     }
 
@@ -256,10 +260,10 @@ fn build_material(ctx: &Ctx, name: &str, m: &schema::MaterialDef) -> anyhow::Res
 
 fn build_receiver(ctx: &Ctx, r: &schema::ReceiverMapDef) -> anyhow::Result<ReceiverMapSpec> {
     let range = |key: &str, v: [f32; 2]| -> anyhow::Result<[f32; 2]> {
-        if v.iter().all(|x| x.is_finite()) && v[0] < v[1] {
+        if v.iter().all(|x| x.is_finite() && x.abs() <= MAX_COORDINATE) && v[0] < v[1] {
             Ok(v)
         } else {
-            Err(ctx.err(key, format!("must be [min, max] with finite min < max, got {v:?}")))
+            Err(ctx.err(key, format!("must be [min, max] with min < max, within ±{MAX_COORDINATE:e}, got {v:?}")))
         }
     };
     Ok(ReceiverMapSpec {

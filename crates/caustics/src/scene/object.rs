@@ -1,9 +1,11 @@
 //! Building one `[[objects]]` entry: shape-specific keys, the mesh, the transform.
 
-use super::load::{Ctx, MAX_SUBDIVISIONS};
+use super::load::{Ctx, MAX_COORDINATE, MAX_SUBDIVISIONS};
 use super::schema::{self, FitOrigin, Numbers, ShapeType};
 use super::{obj, procedural, water, Material, ModelSearchPath, Object};
+use crate::input_error;
 use glam::{Affine3A, Mat3, Vec3};
+use std::path::Path;
 
 pub(super) fn build_object(
     ctx: &Ctx,
@@ -47,8 +49,11 @@ pub(super) fn build_object(
     let size = |n: usize| -> anyhow::Result<Vec<f32>> {
         let v =
             o.size.as_ref().ok_or_else(|| ctx.err(&k("size"), format!("required for shape \"{}\"", o.shape.name())))?;
-        if v.len() != n || !v.iter().all(|x| x.is_finite() && *x > 0.0) {
-            return Err(ctx.err(&k("size"), format!("must be {n} finite numbers > 0, got {v:?}")));
+        if v.len() != n || !v.iter().all(|x| x.is_finite() && *x > 0.0 && *x <= 2.0 * MAX_COORDINATE) {
+            return Err(ctx.err(
+                &k("size"),
+                format!("must be {n} numbers > 0 and at most {:e}, got {v:?}", 2.0 * MAX_COORDINATE),
+            ));
         }
         Ok(v.clone())
     };
@@ -116,7 +121,14 @@ pub(super) fn build_object(
                             ctx.err(&k("fit_size"), format!("{} has zero extent and cannot be fitted", path.display()))
                         );
                     }
-                    s / extent
+                    let scale = s / extent;
+                    if !scale.is_normal() {
+                        return Err(ctx.err(
+                            &k("fit_size"),
+                            format!("{} cannot be fitted: its extent {extent} gives the scale {scale}", path.display()),
+                        ));
+                    }
+                    scale
                 }
             };
             fit = Affine3A::from_scale(Vec3::splat(scale)) * Affine3A::from_translation(-origin);
@@ -126,9 +138,10 @@ pub(super) fn build_object(
             let file =
                 o.file.as_deref().ok_or_else(|| ctx.err(&k("file"), "required for shape \"water\" (a pool scene)"))?;
             let path = ctx.beside(&k("file"), file, "pool scene")?;
-            let pool = super::Scene::load(&path).map_err(|e| ctx.err(&k("file"), format!("{e:#}")))?.pool.ok_or_else(
-                || ctx.err(&k("file"), format!("{} has no [pool] to take the water's surface from", path.display())),
-            )?;
+            let pool =
+                load_water_scene(&path).map_err(|e| ctx.err(&k("file"), format!("{e:#}")))?.pool.ok_or_else(|| {
+                    ctx.err(&k("file"), format!("{} has no [pool] to take the water's surface from", path.display()))
+                })?;
             let seg = o.segments.clone().unwrap_or(Numbers(vec![256.0]));
             let seg = ctx.counts(&k("segments"), &seg, 1, 1, water::MAX_WATER_SEGMENTS)?;
             water::water(&pool, seg[0])
@@ -141,6 +154,25 @@ pub(super) fn build_object(
     }
     let name = o.name.clone().unwrap_or_else(|| format!("{}{index}", o.shape.name()));
     Ok(Object { name, mesh, material })
+}
+
+thread_local! {
+    /// The pool scenes being loaded for `water` objects on this thread, outermost first.
+    static WATER_FILES: std::cell::RefCell<Vec<std::path::PathBuf>> = const { std::cell::RefCell::new(vec![]) };
+}
+
+/// Loads the pool scene a `water` object names, refusing a file that names itself, directly or
+/// through others (loading it would recurse until the stack overflows).
+fn load_water_scene(path: &Path) -> anyhow::Result<super::Scene> {
+    let id = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    let cycle = WATER_FILES.with(|w| w.borrow().contains(&id));
+    if cycle {
+        anyhow::bail!(input_error!("{}: its water takes its surface from itself, in a loop of files", path.display()));
+    }
+    WATER_FILES.with(|w| w.borrow_mut().push(id));
+    let scene = super::Scene::load(path);
+    WATER_FILES.with(|w| w.borrow_mut().pop());
+    scene
 }
 
 /// translate · Rz · Ry · Rx · scale (rotation applied X first, then Y, then Z).
@@ -157,10 +189,12 @@ fn object_transform(ctx: &Ctx, key: &str, o: &schema::ObjectDef) -> anyhow::Resu
                     )
                 }
             };
-            if !v.iter().all(|x| x.is_finite() && *x != 0.0 && x.abs() < 1e12) {
-                return Err(
-                    ctx.err(&format!("{key}.scale"), format!("each factor must be finite and non-zero, got {v:?}"))
-                );
+            // Checked as the f32 the transform holds: 1e-50 is not zero, its f32 is.
+            if !v.iter().all(|x| (*x as f32).is_normal() && x.abs() < 1e12) {
+                return Err(ctx.err(
+                    &format!("{key}.scale"),
+                    format!("each factor must be finite and non-zero (beyond 1e-38 in size), got {v:?}"),
+                ));
             }
             Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32)
         }

@@ -144,8 +144,17 @@ pub(super) fn build_pool(ctx: &Ctx, p: &PoolDef) -> anyhow::Result<PoolSpec> {
             Err(ctx.err(&key(k), format!("must be a finite number >= 0, got {v}")))
         }
     };
-    let side = positive("side", p.side)?;
-    let depth = positive("depth", p.depth)?;
+    // Finite is not enough: a pool of 1e300 m, or a wave of it, renders NaN. The bounds are
+    // far beyond any pool and keep every product in range.
+    let at_most = |k: &str, v: f64, max: f64| -> anyhow::Result<f64> {
+        if v <= max {
+            Ok(v)
+        } else {
+            Err(ctx.err(&key(k), format!("must be at most {max}, got {v}")))
+        }
+    };
+    let side = at_most("side", positive("side", p.side)?, 1e4)?;
+    let depth = at_most("depth", positive("depth", p.depth)?, 1e4)?;
     if !(0.0..=1.0).contains(&p.albedo) {
         return Err(ctx.err(&key("albedo"), format!("must be between 0 and 1, got {}", p.albedo)));
     }
@@ -160,8 +169,8 @@ pub(super) fn build_pool(ctx: &Ctx, p: &PoolDef) -> anyhow::Result<PoolSpec> {
         ));
     }
     let time = p.time.unwrap_or(0.0);
-    if !time.is_finite() {
-        return Err(ctx.err(&key("time"), format!("must be finite, got {time}")));
+    if !(time.is_finite() && time.abs() <= 1e6) {
+        return Err(ctx.err(&key("time"), format!("must be within ±1e6 s, got {time}")));
     }
     let time_step = non_negative("time_step", p.time_step.unwrap_or(1.0 / 30.0))?;
     let d = DVec3::from_array(p.light_direction);
@@ -176,6 +185,20 @@ pub(super) fn build_pool(ctx: &Ctx, p: &PoolDef) -> anyhow::Result<PoolSpec> {
     if light_direction.y > -(80f64.to_radians().cos()) {
         return Err(ctx.err(&key("light_direction"), "must be within 80 degrees of straight down"));
     }
+    // Light refracted by flat water lands on the bottom at most one pool side from where it
+    // entered: further (a deep pool under oblique light), its caustic leaves the pool and Pass
+    // 6's kernels sit more than the whole grid away from their receiver texel.
+    let sin_t = (1.0 - light_direction.y * light_direction.y).max(0.0).sqrt() * ior_air / p.ior;
+    let shift = depth * sin_t / (1.0 - sin_t * sin_t).sqrt();
+    if shift > side {
+        return Err(ctx.err(
+            &key("depth"),
+            format!(
+                "the refracted light lands {shift:.3} m from where it enters, more than the pool's side ({side} m): \
+                 make the pool shallower or the light steeper"
+            ),
+        ));
+    }
     let light_radiance = p.light_radiance.unwrap_or(1.0);
     if !(0.0..=1.0).contains(&light_radiance) {
         return Err(ctx.err(
@@ -187,18 +210,20 @@ pub(super) fn build_pool(ctx: &Ctx, p: &PoolDef) -> anyhow::Result<PoolSpec> {
         None => None,
         Some(t) => Some(ctx.beside(&key("light_texture"), t, "texture file")?),
     };
-    let scattering = positive("scattering", p.scattering)?;
+    let scattering = at_most("scattering", positive("scattering", p.scattering)?, 1e6)?;
     let exponent = p.exponent.unwrap_or(2.0 * scattering);
-    if !(exponent.is_finite() && exponent >= 1.0) {
-        return Err(ctx.err(&key("exponent"), format!("must be a finite number >= 1, got {exponent}")));
+    if !(exponent.is_finite() && (1.0..=2e6).contains(&exponent)) {
+        return Err(ctx.err(&key("exponent"), format!("must be a number from 1 to 2e6, got {exponent}")));
     }
     let extinction = non_negative("extinction", p.extinction)?;
     let w = &p.wave;
     let wk = |k: &str| format!("wave.{k}");
     let wave = Wave {
-        amplitude: non_negative(&wk("amplitude"), w.amplitude)?,
-        wave_number: std::f64::consts::TAU / positive(&wk("wavelength"), w.wavelength)?,
-        angular_frequency: std::f64::consts::TAU * positive(&wk("frequency"), w.frequency)?,
+        amplitude: at_most(&wk("amplitude"), non_negative(&wk("amplitude"), w.amplitude)?, depth)?,
+        wave_number: std::f64::consts::TAU
+            / at_most(&wk("wavelength"), positive(&wk("wavelength"), w.wavelength)?, 1e4)?,
+        angular_frequency: std::f64::consts::TAU
+            * at_most(&wk("frequency"), positive(&wk("frequency"), w.frequency)?, 1e4)?,
         time_damping: non_negative(&wk("time_damping"), w.time_damping)?,
         distance_damping: non_negative(&wk("distance_damping"), w.distance_damping)?,
     };

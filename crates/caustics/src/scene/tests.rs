@@ -172,6 +172,11 @@ fn other_invalid_values() {
             &["materials.floor.specular"],
         ),
         (BASE.replace("intensity = [50.0, 50.0, 50.0]", "intensity = [50.0, inf, 50.0]"), &["lights[0].intensity"]),
+        // Finite, but its length overflows f32 (a light direction of 3e38 normalises to zero).
+        (BASE.replace("position = [0.0, 5.0, 0.0]", "position = [3e38, 5.0, 0.0]"), &["lights[0].position", "1e6"]),
+        (BASE.replace("size = [4.0, 4.0]", "size = [3e38, 4.0]"), &["objects[0].size"]),
+        // Not zero in f64, zero in the f32 the transform holds.
+        (BASE.replace("size = [4.0, 4.0]", "size = [4.0, 4.0]\nscale = [1.0, 1e-50, 1.0]"), &["objects[0].scale"]),
         (BASE.replace("type = \"point\"", "type = \"spot\""), &["lights[0].direction"]),
         (
             BASE.replace("type = \"point\"", "type = \"spot\"\ndirection = [0, -1, 0]\ncone_angle = 95"),
@@ -370,6 +375,18 @@ fn pool_keys_and_values_are_checked() {
     expect_error("pool_tex.toml", &tex, &["pool.light_texture", "nope.png"]);
     let wave = POOL.replace("wavelength = 0.1", "wavelength = 0");
     expect_error("pool_wavelength.toml", &wave, &["pool.wave.wavelength"]);
+    // Finite but absurd: a NaN render, or Pass 6's kernel offset past the grid (an overflow).
+    expect_error("pool_huge.toml", &POOL.replace("amplitude = 0.005", "amplitude = 1e300"), &["pool.wave.amplitude"]);
+    expect_error("pool_time.toml", &POOL.replace("time = 2.4", "time = 1e300"), &["pool.time"]);
+    expect_error(
+        "pool_n.toml",
+        &POOL.replace("extinction = 0.5", "extinction = 0.5\nexponent = 1e300"),
+        &["pool.exponent"],
+    );
+    // 30 degrees from straight down refracts to 22: 3 m deep, it lands 1.21 m over, past the 1 m pool.
+    let oblique = POOL.replace("[0.0, -2.0, 0.0]", "[0.5, -0.8660254, 0.0]");
+    load_text("pool_oblique_ok.toml", &oblique.replace("depth = 0.3", "depth = 2.4")).expect("0.97 m over: inside");
+    expect_error("pool_deep.toml", &oblique.replace("depth = 0.3", "depth = 3.0"), &["pool.depth", "1.214 m"]);
 }
 
 #[test]
@@ -429,6 +446,14 @@ fn water_errors_name_the_file_and_key() {
         let m = msg(load("w3.toml", &format!("file = \"pool.toml\"\nsegments = {segments}")));
         assert!(m.contains("objects[1].segments"), "{m}");
     }
+    // A pool scene whose water takes its surface from itself, directly or through another file.
+    std::fs::write(dir.join("self.toml"), water("file = \"self.toml\"")).unwrap();
+    let m = msg(Scene::load(&dir.join("self.toml")));
+    assert!(m.contains("self.toml") && m.contains("loop of files"), "{m}");
+    std::fs::write(dir.join("a.toml"), water("file = \"b.toml\"")).unwrap();
+    std::fs::write(dir.join("b.toml"), water("file = \"a.toml\"")).unwrap();
+    let m = msg(Scene::load(&dir.join("a.toml")));
+    assert!(m.contains("a.toml") && m.contains("loop of files"), "{m}");
     // And a good one: 8² cells, 128 triangles on top, 4 x 8 wall quads and their 32 bottom fans.
     let s = load("w4.toml", "file = \"pool.toml\"\nsegments = 8").expect("a water scene");
     assert_eq!(s.objects[1].mesh.triangle_count(), 128 + 64 + 32);

@@ -33,7 +33,8 @@ fn window(pool: &PoolSpec, n: usize, lt: &[DVec3], height: &[f64]) -> i64 {
         }
         reach = reach.max((land(d) - centre).length());
     }
-    (reach / texel).ceil() as i64 + 2
+    // No wider than the grid: a source's light that lands further is off it anyway.
+    (reach / texel).ceil().min(n as f64) as i64 + 2
 }
 
 /// E of Eq. 2 at every receiver texel of the `n` x `n` grid over the bottom, for the height
