@@ -232,24 +232,32 @@ mod tests {
     use super::{ReflectedBinding, ReflectedMember};
     use crate::pipeline::BindingKind;
     use crate::shader::ShaderCompiler;
+    use std::path::PathBuf;
+
+    /// A compiler over a fresh temp folder holding `files` (name, GLSL); the caller removes it.
+    fn compiler_with(tag: &str, files: &[(&str, &str)]) -> (PathBuf, ShaderCompiler) {
+        let root = std::env::temp_dir().join(format!("vkcore-reflect-{tag}-{}", std::process::id()));
+        std::fs::create_dir_all(&root).unwrap();
+        for (name, text) in files {
+            std::fs::write(root.join(name), text).unwrap();
+        }
+        let c = ShaderCompiler::new(&root).unwrap();
+        (root, c)
+    }
 
     #[test]
     fn descriptor_bindings_by_name_and_kind() {
-        let root = std::env::temp_dir().join(format!("vkcore-reflect-b-{}", std::process::id()));
-        std::fs::create_dir_all(&root).unwrap();
-        std::fs::write(
-            root.join("b.comp"),
-            "#version 450\nlayout(local_size_x = 1) in;\n\
+        let bindings = "#version 450\nlayout(local_size_x = 1) in;\n\
              layout(binding = 3) uniform sampler2D photon_position;\n\
              layout(std140, binding = 0) uniform FrameUniforms { vec4 eye; } frame;\n\
              layout(std430, binding = 1) buffer Photons { float x[]; };\n\
              layout(std430, binding = 2) readonly buffer Powers { float p[]; } powers;\n\
              layout(binding = 4, rgba32f) uniform writeonly image2D caustic_map;\n\
              void main() { x[0] = frame.eye.x + powers.p[0] + texture(photon_position, vec2(0)).x;\n\
-             imageStore(caustic_map, ivec2(0), vec4(1)); }\n",
-        )
-        .unwrap();
-        let c = ShaderCompiler::new(&root).unwrap();
+             imageStore(caustic_map, ivec2(0), vec4(1)); }\n";
+        let array = "#version 450\nlayout(local_size_x = 1) in;\nlayout(binding = 0) uniform sampler2D t[2];\n\
+             layout(std430, binding = 1) buffer B { float x[]; };\nvoid main() { x[0] = texture(t[1], vec2(0)).x; }\n";
+        let (root, c) = compiler_with("b", &[("b.comp", bindings), ("arr.comp", array)]);
         let s = c.compile("b.comp", &[]).unwrap();
         let want = [
             (0, "frame", BindingKind::UniformBuffer),
@@ -261,12 +269,6 @@ mod tests {
         .map(|(binding, name, kind)| ReflectedBinding { binding, name: name.into(), kind })
         .to_vec();
         assert_eq!(s.descriptor_bindings().unwrap(), want);
-        std::fs::write(
-            root.join("arr.comp"),
-            "#version 450\nlayout(local_size_x = 1) in;\nlayout(binding = 0) uniform sampler2D t[2];\n\
-             layout(std430, binding = 1) buffer B { float x[]; };\nvoid main() { x[0] = texture(t[1], vec2(0)).x; }\n",
-        )
-        .unwrap();
         let e = c.compile("arr.comp", &[]).unwrap().descriptor_bindings().unwrap_err();
         assert!(e.contains("`t`") && e.contains("array"), "{e}");
         std::fs::remove_dir_all(&root).unwrap();
@@ -274,18 +276,12 @@ mod tests {
 
     #[test]
     fn struct_layouts_follow_std140_and_std430() {
-        let root = std::env::temp_dir().join(format!("vkcore-reflect-s-{}", std::process::id()));
-        std::fs::create_dir_all(&root).unwrap();
-        std::fs::write(
-            root.join("s.comp"),
-            "#version 450\nlayout(local_size_x = 1) in;\n\
+        let shader = "#version 450\nlayout(local_size_x = 1) in;\n\
              struct S { vec3 a; float b; mat4 m[2]; vec2 c; };\n\
              layout(std140, binding = 0) uniform U { S s; float tail[3]; } u;\n\
              layout(std430, binding = 1) buffer B { S s; float tail[3]; } b;\n\
-             void main() { b.s.c = u.s.m[1][0].xy + u.s.a.xy * u.s.b + vec2(u.tail[2]); b.tail[1] = 0.0; }\n",
-        )
-        .unwrap();
-        let c = ShaderCompiler::new(&root).unwrap();
+             void main() { b.s.c = u.s.m[1][0].xy + u.s.a.xy * u.s.b + vec2(u.tail[2]); b.tail[1] = 0.0; }\n";
+        let (root, c) = compiler_with("s", &[("s.comp", shader)]);
         let s = c.compile("s.comp", &[]).unwrap();
         let member = |name: &str, offset, array_stride| ReflectedMember { name: name.into(), offset, array_stride };
         // std140 and std430 alike: vec3 at 0, the float packed after it at 12, mat4s of 64 bytes
@@ -304,18 +300,12 @@ mod tests {
 
     #[test]
     fn push_constant_names_and_offsets() {
-        let root = std::env::temp_dir().join(format!("vkcore-reflect-{}", std::process::id()));
-        std::fs::create_dir_all(&root).unwrap();
-        std::fs::write(
-            root.join("p.comp"),
-            "#version 450\nlayout(local_size_x = 1) in;\n\
+        let push = "#version 450\nlayout(local_size_x = 1) in;\n\
              layout(push_constant) uniform Things { vec4 colour; uint count; float scale; uvec2 pair; } things;\n\
              layout(std430, binding = 0) buffer B { float x[]; };\n\
-             void main() { x[0] = things.colour.x + float(things.count) * things.scale + float(things.pair.y); }\n",
-        )
-        .unwrap();
-        std::fs::write(root.join("none.comp"), "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n").unwrap();
-        let c = ShaderCompiler::new(&root).unwrap();
+             void main() { x[0] = things.colour.x + float(things.count) * things.scale + float(things.pair.y); }\n";
+        let none = "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+        let (root, c) = compiler_with("p", &[("p.comp", push), ("none.comp", none)]);
         let s = c.compile("p.comp", &[]).unwrap();
         assert_eq!(s.push_constant_block().as_deref(), Some("Things"));
         let want: Vec<(String, u32)> =
