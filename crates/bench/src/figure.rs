@@ -46,6 +46,20 @@ pub struct Series {
 /// a panel with more is split by row group.
 pub const MAX_SERIES: usize = 28;
 
+/// How many times its smallest value a panel's largest may be on a linear axis: beyond it,
+/// everything under a hundredth of the largest would lie on the zero line (Wyman & Davis 2006
+/// Fig. 10: the metal octahedron's quads read 957 where the other techniques read 0.1-0.4).
+pub const LINEAR_SPAN: f64 = 100.0;
+
+/// Whether `series` has values, all of them positive, whose largest is more than
+/// [`LINEAR_SPAN`] times the smallest: such a panel is drawn on a log axis.
+pub fn spans_decades(series: &[Series]) -> bool {
+    let values: Vec<f64> =
+        series.iter().flat_map(|s| s.points.iter().map(|&(_, v)| v)).filter(|v| v.is_finite()).collect();
+    let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    !values.is_empty() && lo > 0.0 && hi > LINEAR_SPAN * lo
+}
+
 /// Colour indices by series name, in first-seen order over the whole figure.
 #[derive(Default)]
 struct Palette(Vec<String>);
@@ -201,13 +215,15 @@ pub fn figure(config: &Config, results: &Results, g: &Grid) -> Figure {
             if sp.ratio && series.iter().all(|s| s.points.is_empty()) {
                 continue;
             }
+            // A linear panel whose values span decades is drawn on a log axis, and says so.
+            let wide = !sp.log_y && spans_decades(&series);
             panels.push(Panel {
                 title: match group {
                     Some(grp) => format!("{grp} · {}", sp.title),
                     None => sp.title.clone(),
                 },
-                y_label: sp.y_label.clone(),
-                log_y: sp.log_y,
+                y_label: if wide { format!("{} (log scale)", sp.y_label) } else { sp.y_label.clone() },
+                log_y: sp.log_y || wide,
                 x_labels: x_labels.clone(),
                 bars,
                 unit_line: sp.ratio,

@@ -184,14 +184,20 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> D
         mesh(&mut chart, p, &x_labels, x_font)?;
         plot_series(&mut chart, p, lo)
     } else {
-        // From zero when zero is near (errors, counts); else around the data (flux ratios).
-        let pad = 0.08 * (hi - lo).max(hi.abs() * 0.01).max(1e-9);
-        let lo = if lo >= 0.0 && lo < 0.5 * hi { 0.0 } else { lo - pad };
-        let hi = hi + pad;
+        let (lo, hi) = linear_range(lo, hi, p.bars);
         let mut chart = builder.build_cartesian_2d(x_range, lo..hi).map_err(err)?;
         mesh(&mut chart, p, &x_labels, x_font)?;
         plot_series(&mut chart, p, lo)
     }
+}
+
+/// The y range of a linear panel whose values lie in `lo..=hi`: from zero for bars (a bar's
+/// length is its value) and when zero is near (errors, counts); else around the data (flux
+/// ratios), padded.
+pub fn linear_range(lo: f64, hi: f64, bars: bool) -> (f64, f64) {
+    let pad = 0.08 * (hi - lo).max(hi.abs() * 0.01).max(1e-9);
+    let lo = if lo >= 0.0 && (bars || lo < 0.5 * hi) { 0.0 } else { lo - pad };
+    (lo, hi + pad)
 }
 
 fn mesh<DB, Y>(

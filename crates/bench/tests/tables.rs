@@ -207,6 +207,56 @@ fn rows_without_photons_plot_as_grouped_bars() {
     assert!(plot.svg.contains("<rect"), "bars");
 }
 
+/// A linear panel whose values span more than a hundredfold is drawn on a log axis and says so
+/// (W&D 2006 Fig. 10: one technique at 957, the others under 0.5, all on the zero line before);
+/// one spanning less stays linear, and a bar panel's linear axis starts at zero.
+#[test]
+fn a_panel_whose_values_span_decades_is_drawn_on_a_log_axis() {
+    let text =
+        CONFIG.replace("caption = \"Synthetic samples.\"", "caption = \"Synthetic samples.\"\nplot_log_y = false");
+    let text = &text[..text.find("[[paper]]").expect("paper")];
+    let config: Config = toml::from_str(text).expect("parses");
+    let panel_of = |fast: f64| {
+        let cells = vec![
+            cell(0, 0, "base", 256, &STEADY),
+            cell(1, 0, "base", 512, &STEADY),
+            cell(2, 1, "fast", 256, &[fast; 5]),
+            cell(3, 1, "fast", 512, &[fast; 5]),
+        ];
+        let r = results(&config, text, cells);
+        bench::figure::figure(&config, &r, &bench::table::grid(&config, &r)).panels[0].clone()
+    };
+    // 10 against 1500: 150-fold.
+    let wide = panel_of(1500.0);
+    assert!(wide.log_y && wide.y_label.ends_with("(log scale)"), "{} log {}", wide.y_label, wide.log_y);
+    // 10 against 900: 90-fold, and 10 against 0.05: 200-fold the other way.
+    let narrow = panel_of(900.0);
+    assert!(!narrow.log_y && narrow.y_label == "ms", "{} log {}", narrow.y_label, narrow.log_y);
+    assert!(panel_of(0.05).log_y, "a small value 200 times under the largest");
+    assert!(bench::plot::render(&bench::figure::Figure {
+        title: "t".into(),
+        subtitle: "s".into(),
+        panels: vec![wide]
+    })
+    .is_ok_and(|p| p.svg.contains("<polyline")));
+    // The config's own log axis is not relabelled.
+    let (config, r) = synthetic();
+    let fig = bench::figure::figure(&config, &r, &bench::table::grid(&config, &r));
+    assert!(fig.panels[0].log_y && !fig.panels[0].y_label.contains("log scale"));
+}
+
+#[test]
+fn a_linear_axis_starts_at_zero_for_bars_and_near_zero_values_only() {
+    // Bars of 54 to 96 (W&N Fig. 8's storage) start at zero: a bar's length is its value.
+    assert_eq!(bench::plot::linear_range(54.0, 96.0, true).0, 0.0);
+    // Lines of the same values are drawn around them; lines from 10 to 96 from zero.
+    let (lo, hi) = bench::plot::linear_range(54.0, 96.0, false);
+    assert!(lo > 50.0 && lo < 54.0 && hi > 96.0, "{lo}..{hi}");
+    assert_eq!(bench::plot::linear_range(10.0, 96.0, false).0, 0.0);
+    // Negative values keep their room below zero, bars or not.
+    assert!(bench::plot::linear_range(-2.0, 5.0, true).0 < -2.0);
+}
+
 /// A result with `scenes` scenes as a row axis beside photons, both techniques in every cell.
 fn by_scene(scenes: usize) -> (Config, Results) {
     let names: Vec<String> = (0..scenes).map(|i| format!("../scenes/s{i}.toml")).collect();
