@@ -180,7 +180,8 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> D
     }
     if p.log_y {
         let (lo, hi) = (lo / 1.6, hi * 1.6);
-        let mut chart = builder.build_cartesian_2d(x_range, (lo..hi).log_scale()).map_err(err)?;
+        let y = (lo..hi).log_scale().with_key_points(log_ticks(lo, hi));
+        let mut chart = builder.build_cartesian_2d(x_range, y).map_err(err)?;
         mesh(&mut chart, p, &x_labels, x_font)?;
         plot_series(&mut chart, p, lo)
     } else {
@@ -189,6 +190,33 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> D
         mesh(&mut chart, p, &x_labels, x_font)?;
         plot_series(&mut chart, p, lo)
     }
+}
+
+/// The labelled ticks of a log axis over `lo..=hi`: the powers of ten, with 2 and 5 times them
+/// where fewer than four powers fall inside, and every whole multiple where even those are
+/// fewer than four (plotters labels powers of ten only, so a ratio panel from 0.5 to 3 had a
+/// single tick, at 1).
+pub fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+        return vec![];
+    }
+    let inside = |multiples: &[f64]| -> Vec<f64> {
+        let mut out = vec![];
+        for e in lo.log10().floor() as i32..=hi.log10().ceil() as i32 {
+            for m in multiples {
+                let v = if e < 0 { m / 10f64.powi(-e) } else { m * 10f64.powi(e) };
+                if v >= lo && v <= hi {
+                    out.push(v);
+                }
+            }
+        }
+        out
+    };
+    [&[1.0][..], &[1.0, 2.0, 5.0], &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]]
+        .iter()
+        .map(|m| inside(m))
+        .find(|t| t.len() >= 4)
+        .unwrap_or_else(|| inside(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]))
 }
 
 /// The y range of a linear panel whose values lie in `lo..=hi`: from zero for bars (a bar's

@@ -257,6 +257,19 @@ fn a_linear_axis_starts_at_zero_for_bars_and_near_zero_values_only() {
     assert!(bench::plot::linear_range(-2.0, 5.0, true).0 < -2.0);
 }
 
+#[test]
+fn a_log_axis_is_labelled_more_often_than_at_each_power_of_ten_when_it_spans_few() {
+    let ticks = |lo, hi| bench::plot::log_ticks(lo, hi);
+    // Five decades: the powers of ten.
+    assert_eq!(ticks(0.05, 2000.0), [0.1, 1.0, 10.0, 100.0, 1000.0]);
+    // Two decades: 1, 2 and 5 times them.
+    assert_eq!(ticks(0.3, 60.0), [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0]);
+    // A ratio panel from 0.4 to 3 (W&N Fig. 9): every tenth up to 1, then 2 and 3.
+    assert_eq!(ticks(0.4, 3.0), [0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 2.0, 3.0]);
+    // Nothing to label on an empty or non-positive range.
+    assert!(ticks(0.0, 1.0).is_empty() && ticks(2.0, 1.0).is_empty());
+}
+
 /// A result with `scenes` scenes as a row axis beside photons, both techniques in every cell.
 fn by_scene(scenes: usize) -> (Config, Results) {
     let names: Vec<String> = (0..scenes).map(|i| format!("../scenes/s{i}.toml")).collect();
