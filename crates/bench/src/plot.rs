@@ -36,7 +36,7 @@ pub struct Plot {
 
 pub fn render(fig: &Figure) -> Result<Plot> {
     crate::font::load()?;
-    let height = TITLE_HEIGHT + PANEL_HEIGHT * fig.panels.len().max(1) as u32;
+    let height = TITLE_HEIGHT + fig.panels.iter().map(panel_height).sum::<u32>().max(PANEL_HEIGHT);
     encode(fig, height, "plot")
 }
 
@@ -131,10 +131,46 @@ fn draw_figure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &Figure) 
     if fig.panels.is_empty() {
         return rest.draw(&Text::new("no data", (20, 20), (FAMILY, 16.0).into_font())).map_err(err);
     }
-    for (area, panel) in rest.split_evenly((fig.panels.len(), 1)).iter().zip(&fig.panels) {
-        draw_panel(area, panel)?;
+    let mut rest = rest;
+    for panel in &fig.panels {
+        let (area, below) = rest.split_vertically(panel_height(panel));
+        draw_panel(&area, panel)?;
+        rest = below;
     }
     Ok(())
+}
+
+/// The most room under a panel for its category labels turned upright.
+const MAX_LABEL_DROP: u32 = 360;
+
+/// A panel's height: its chart, and the room its category labels take when turned upright.
+pub fn panel_height(p: &Panel) -> u32 {
+    PANEL_HEIGHT + upright_labels(p).map_or(0, |(drop, _)| drop)
+}
+
+/// The legend's width: the longest series label at the legend's font, with its marker.
+fn legend_width(p: &Panel) -> u32 {
+    let (_, font) = legend_metrics(p.series.len());
+    let widest = p.series.iter().map(|s| text_width(&s.label, font)).max().unwrap_or(0);
+    (widest + 60).clamp(140, WIDTH * 42 / 100)
+}
+
+/// Each category's width in pixels along a panel's x axis.
+fn category_slot(p: &Panel) -> u32 {
+    (WIDTH - legend_width(p) - 110) / p.x_labels.len().max(1) as u32
+}
+
+/// Bar categories whose labels do not fit across their slots even at 9 px (Table Q4's 56 scene
+/// and technique pairs were each cut to `…`) are written upright, reading down from the axis:
+/// the room they take under the chart and their font size, or None where they fit across.
+pub fn upright_labels(p: &Panel) -> Option<(u32, f64)> {
+    let room = category_slot(p).saturating_sub(6);
+    if !p.bars || p.x_labels.iter().all(|l| text_width(l, 9.0) <= room) {
+        return None;
+    }
+    let font = (category_slot(p) as f64 - 3.0).clamp(8.0, 13.0);
+    let longest = p.x_labels.iter().map(|l| text_width(l, font)).max().unwrap_or(0);
+    Some(((longest + 14).min(MAX_LABEL_DROP), font))
 }
 
 /// Legend row height and font size for `n` entries in a panel.
@@ -145,8 +181,7 @@ fn legend_metrics(n: usize) -> (i32, f64) {
 
 fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> DrawResult {
     let (row, font) = legend_metrics(p.series.len());
-    let widest = p.series.iter().map(|s| text_width(&s.label, font)).max().unwrap_or(0);
-    let legend_w = (widest + 60).clamp(140, WIDTH * 42 / 100);
+    let legend_w = legend_width(p);
     let (chart_area, legend_area) = area.split_horizontally(WIDTH - legend_w);
     draw_legend(&legend_area, &p.series, legend_w - 56, row, font, p.bars)?;
     let values: Vec<f64> = p
@@ -161,17 +196,21 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> D
     let caption_room = WIDTH - legend_w - 40;
     let caption_size = fit_size(&p.title, caption_room, 18.0, 12.0);
     let caption = ellipsize(&p.title, caption_room, caption_size);
-    // Category labels shrink to fit their slot.
-    let slot = (WIDTH - legend_w - 110) / n as u32;
+    // Category labels shrink to fit their slot, or stand upright under it.
+    let slot = category_slot(p);
+    let upright = upright_labels(p);
     let widest_x = p.x_labels.iter().max_by_key(|l| text_width(l, 14.0)).cloned().unwrap_or_default();
     let x_font = fit_size(&widest_x, slot.saturating_sub(6), 14.0, 9.0);
-    let x_labels: Vec<String> = p.x_labels.iter().map(|l| ellipsize(l, slot.saturating_sub(6), x_font)).collect();
+    let x_labels: Vec<String> = match upright {
+        Some(_) => vec![String::new(); n],
+        None => p.x_labels.iter().map(|l| ellipsize(l, slot.saturating_sub(6), x_font)).collect(),
+    };
     let mut builder = ChartBuilder::on(&chart_area);
     builder
         .caption(caption, (FAMILY, caption_size))
         .margin(12)
         .margin_right(24)
-        .x_label_area_size(40)
+        .x_label_area_size(40 + upright.map_or(0, |(drop, _)| drop))
         .y_label_area_size(84);
     let x_range = -0.5..(n as f64 - 0.5);
     if values.is_empty() {
@@ -183,12 +222,14 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> D
         let y = (lo..hi).log_scale().with_key_points(log_ticks(lo, hi));
         let mut chart = builder.build_cartesian_2d(x_range, y).map_err(err)?;
         mesh(&mut chart, p, &x_labels, x_font)?;
-        plot_series(&mut chart, p, lo)
+        plot_series(&mut chart, p, lo)?;
+        draw_upright_labels(&chart, area, p, upright)
     } else {
         let (lo, hi) = linear_range(lo, hi, p.bars);
         let mut chart = builder.build_cartesian_2d(x_range, lo..hi).map_err(err)?;
         mesh(&mut chart, p, &x_labels, x_font)?;
-        plot_series(&mut chart, p, lo)
+        plot_series(&mut chart, p, lo)?;
+        draw_upright_labels(&chart, area, p, upright)
     }
 }
 
@@ -261,6 +302,32 @@ where
         .bold_line_style(RGBColor(0xd8, 0xd8, 0xd8))
         .draw()
         .map_err(err)
+}
+
+/// The category labels turned upright under the chart, reading down from the axis, each
+/// centred on its category; cut with an ellipsis at the room the panel gave them.
+fn draw_upright_labels<DB, Y>(
+    chart: &ChartContext<DB, Cartesian2d<RangedCoordf64, Y>>,
+    area: &DrawingArea<DB, Shift>,
+    p: &Panel,
+    upright: Option<(u32, f64)>,
+) -> DrawResult
+where
+    DB: DrawingBackend,
+    Y: Ranged<ValueType = f64>,
+{
+    let Some((drop, font)) = upright else { return Ok(()) };
+    let (_, ys) = chart.plotting_area().get_pixel_range();
+    let (base_x, base_y) = area.get_base_pixel();
+    let style = TextStyle::from((FAMILY, font).into_font()).transform(FontTransform::Rotate90);
+    let y_any = chart.y_range().start;
+    for (i, label) in p.x_labels.iter().enumerate() {
+        let (x, _) = chart.backend_coord(&(i as f64, y_any));
+        let text = ellipsize(label, drop.saturating_sub(14), font);
+        let at = (x - base_x + font as i32 / 2, ys.end - base_y + 8);
+        area.draw(&Text::new(text, at, style.clone())).map_err(err)?;
+    }
+    Ok(())
 }
 
 /// A y tick as short as it reads: 1000, 2.5, 0.05, 1e-5.

@@ -270,6 +270,40 @@ fn a_log_axis_is_labelled_more_often_than_at_each_power_of_ten_when_it_spans_few
     assert!(ticks(0.0, 1.0).is_empty() && ticks(2.0, 1.0).is_empty());
 }
 
+/// Bar categories too many for their labels to fit across (Table Q4: 56 scene and technique
+/// pairs, each cut to `…`) are labelled upright under the chart, which grows to hold them;
+/// a few short labels stay across, and lines never turn.
+#[test]
+fn bar_labels_that_do_not_fit_across_stand_upright_under_a_taller_panel() {
+    // Labels are measured in the plot's font (as `render` does first).
+    bench::font::load().expect("a font is installed (fonts-dejavu-core)");
+    let panel = |n: usize, label: &str, bars: bool| bench::figure::Panel {
+        title: "rel. RMSE".into(),
+        y_label: "rel. RMSE".into(),
+        log_y: false,
+        x_labels: (0..n).map(|i| format!("{label} {i}")).collect(),
+        bars,
+        unit_line: false,
+        series: vec![bench::figure::Series {
+            label: "256²".into(),
+            colour: 0,
+            paper: false,
+            points: (0..n).map(|i| (i, 1.0 + i as f64)).collect(),
+        }],
+    };
+    let many = panel(56, "sphere_on_plane · shah, the tutorial's (one refraction, 1 iteration)", true);
+    let (drop, font) = bench::plot::upright_labels(&many).expect("56 long labels do not fit across");
+    assert!(drop > 100 && drop <= 360 && (8.0..=13.0).contains(&font), "{drop} {font}");
+    assert_eq!(bench::plot::panel_height(&many), 420 + drop);
+    let few = panel(4, "base", true);
+    assert!(bench::plot::upright_labels(&few).is_none() && bench::plot::panel_height(&few) == 420);
+    assert!(bench::plot::upright_labels(&panel(56, "sphere_on_plane · shah", false)).is_none(), "lines");
+    let fig = bench::figure::Figure { title: "t".into(), subtitle: "s".into(), panels: vec![many, few] };
+    let plot = bench::plot::render(&fig).expect("plot");
+    assert_eq!(plot.svg.matches("transform=\"rotate(90").count(), 56, "one upright label per bar");
+    assert!(plot.svg.contains(&format!("height=\"{}\"", 64 + 420 + drop + 420)), "the figure grew by the drop");
+}
+
 /// A result with `scenes` scenes as a row axis beside photons, both techniques in every cell.
 fn by_scene(scenes: usize) -> (Config, Results) {
     let names: Vec<String> = (0..scenes).map(|i| format!("../scenes/s{i}.toml")).collect();
