@@ -7,6 +7,7 @@ use crate::cli::DiffArgs;
 use crate::exit;
 use anyhow::{Context as _, Result};
 use caustics::diff::{diff_images, sort_texels};
+use caustics::error::InputError;
 use caustics::image_io::read_exr;
 use caustics::input_error;
 use std::collections::BTreeSet;
@@ -130,7 +131,9 @@ fn diff_dirs(a: &Path, b: &Path, args: &DiffArgs) -> Result<usize> {
 fn diff_file(a: &Path, b: &Path, args: &DiffArgs) -> Result<bool> {
     let tolerance = args.tolerance;
     let name = b.file_name().map_or_else(|| b.display().to_string(), |n| n.to_string_lossy().into_owned());
-    let read = |p: &Path| read_exr(p).map_err(|e| input_error!("{}: {e:#}", p.display()));
+    // A file read_exr refuses is already an input error naming it; anything else that stops
+    // the comparison (a disk error) is one here too (exit 2, as diff(1)).
+    let read = |p: &Path| read_exr(p).map_err(|e| if e.is::<InputError>() { e } else { input_error!("{e:#}").into() });
     let (mut ia, mut ib) = (read(a)?, read(b)?);
     let stem = name.strip_suffix(".exr").unwrap_or(&name);
     let unordered = args.unordered.iter().any(|u| u == stem);

@@ -561,7 +561,12 @@ fn compare_names_a_missing_or_non_exr_input() {
     let png = dir.join("final.png");
     caustics::image_io::write_png_tonemapped(&png, 1, 1, &[1.0, 1.0, 1.0], 1.0).expect("writing a test PNG");
     let missing = dir.join("missing.exr");
+    // An EXR cut short: its magic number and header are there, its pixels are not.
+    let bytes = std::fs::read(&exr).expect("the test EXR");
+    let cut = dir.join("cut.exr");
+    std::fs::write(&cut, &bytes[..bytes.len() - 40]).expect("writing the cut EXR");
     let (e, p, m) = (exr.display().to_string(), png.display().to_string(), missing.display().to_string());
+    let c = cut.display().to_string();
     // The real EXR compares: the check does not reject the files causticlab writes.
     let run = causticlab(&["compare", &e, &e]);
     assert_eq!(run.code, Some(0), "{}", run.describe());
@@ -570,6 +575,7 @@ fn compare_names_a_missing_or_non_exr_input() {
         ([&p, &e], [p.as_str(), "not an OpenEXR file", "receiver.exr"]),
         ([&e, &m], [m.as_str(), "no such file", "error: "]),
         ([&m, &e], [m.as_str(), "no such file", "error: "]),
+        ([&e, &c], [c.as_str(), "not a readable OpenEXR file", "error: "]),
     ] {
         let run = causticlab(&["compare", args[0], args[1]]);
         assert_eq!(run.code, Some(2), "{args:?}\n{}", run.describe());

@@ -118,5 +118,6 @@ fn renders_that_differ_are_told_apart_by_file_channel_and_count() {
     std::fs::write(&broken, b"not an EXR").unwrap();
     let run = diff(&b.join("final.exr"), &broken, &[]);
     assert_eq!(run.code, Some(2), "{}", run.describe());
-    assert!(run.stderr.contains("error:") && run.stderr.contains("broken.exr"), "{}", run.describe());
+    assert!(run.stderr.contains("error:") && run.stderr.contains("not a readable OpenEXR file"), "{}", run.describe());
+    assert_eq!(run.stderr.matches("broken.exr").count(), 1, "the file named once\n{}", run.describe());
 }

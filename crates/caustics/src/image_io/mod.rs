@@ -213,8 +213,27 @@ fn split_channel(full: &str) -> (Option<&str>, &str) {
 /// come from the file: a part's `name` attribute and/or a `layer.` channel prefix,
 /// joined with '.'. Files written by [`write_exr`] come back exactly as written
 /// (layer order, channel order and bit-exact values). All parts must share one size.
+///
+/// A file that is missing, damaged, truncated or of a kind this reader refuses is an
+/// [`InputError`](crate::error::InputError) naming it (the user's to fix, exit code 2); a
+/// failure of the file system itself (a permission, a disk error) is not.
 pub fn read_exr(path: &Path) -> Result<ImageF32> {
-    read_exr_inner(path).with_context(|| format!("reading {}", path.display()))
+    read_exr_inner(path).map_err(|e| match io_failure(&e) {
+        Some(std::io::ErrorKind::NotFound) => crate::input_error!("{}: no such file", path.display()).into(),
+        Some(_) => e.context(format!("reading {}", path.display())),
+        None => crate::input_error!("{}: not a readable OpenEXR file: {e:#}", path.display()).into(),
+    })
+}
+
+/// The kind of a failure to read from the file system, or None where the reader refused the
+/// file's contents (a short read is the file's: it was truncated).
+fn io_failure(e: &anyhow::Error) -> Option<std::io::ErrorKind> {
+    let io = e.downcast_ref::<std::io::Error>().or(match e.downcast_ref::<exr::error::Error>() {
+        Some(exr::error::Error::Io(io)) => Some(io),
+        _ => None,
+    });
+    io.map(std::io::Error::kind)
+        .filter(|k| !matches!(k, std::io::ErrorKind::UnexpectedEof | std::io::ErrorKind::InvalidData))
 }
 
 /// The most samples (pixels times channels, over every part) [`read_exr`] reads: 2^28, 1 GiB

@@ -133,9 +133,19 @@ fn exr_rejects_bad_input_without_panicking() {
     let ok = ImageF32 { width: 1, height: 1, layers: vec![Layer::new(None, &["R"], vec![1.0])] };
     let err = write_exr(&missing, &ok).unwrap_err();
     assert!(format!("{err:#}").contains(&missing.display().to_string()));
-    assert!(read_exr(&missing).is_err());
+    // A missing, a foreign and a truncated file are the user's to fix (exit 2), each named.
+    let input = |p: &std::path::Path| {
+        let e = read_exr(p).unwrap_err();
+        assert!(e.is::<crate::error::InputError>() && format!("{e:#}").contains(&p.display().to_string()), "{e:#}");
+        format!("{e:#}")
+    };
+    assert!(input(&missing).contains("no such file"));
+    write_exr(&path, &ok).unwrap();
+    let whole = std::fs::read(&path).unwrap();
+    std::fs::write(&path, &whole[..whole.len() - 8]).unwrap();
+    assert!(input(&path).contains("not a readable OpenEXR file"));
     std::fs::write(&path, b"not an exr").unwrap();
-    assert!(read_exr(&path).is_err());
+    assert!(input(&path).contains("not a readable OpenEXR file"));
 }
 
 /// A header that claims a huge image (its `dataWindow` patched to 1,000,000² pixels) is refused
