@@ -79,7 +79,15 @@ pub fn validate_layout(lc: &LoadedConfig, bad: &dyn Fn(&str, String) -> anyhow::
                 return Err(bad(&format!("paper[{i}].{key}"), "must not be empty".into()));
             }
         }
-        for k in e.values.keys() {
+        for (k, v) in &e.values {
+            // A published time, rate, count or error: TOML's `nan` and `inf` are numbers to
+            // serde, and a negative one is a typo; either would become a ratio beside ours.
+            if !(v.is_finite() && *v >= 0.0) {
+                return Err(bad(
+                    &format!("paper[{i}].values.{k}"),
+                    format!("`{v}` is not a value a paper publishes (a finite number, 0 or more)"),
+                ));
+            }
             if !inner_keys.contains(k) {
                 return Err(bad(
                     &format!("paper[{i}].values"),

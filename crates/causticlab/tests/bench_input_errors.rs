@@ -103,6 +103,21 @@ fn config_errors_name_the_file_and_key() {
             "layout.compare.metrics[0]",
         ),
         (
+            "nan_paper_value.toml",
+            format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 80\nvalues = {{ photons = nan }}\n"),
+            "paper[0].values.photons",
+        ),
+        (
+            "infinite_paper_value.toml",
+            format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 80\nvalues = {{ photons = inf }}\n"),
+            "paper[0].values.photons",
+        ),
+        (
+            "negative_paper_value.toml",
+            format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 80\nvalues = {{ photons = -3.5 }}\n"),
+            "paper[0].values.photons",
+        ),
+        (
             "empty_not_comparable.toml",
             format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 80\nnot_comparable = \" \"\nvalues = {{ photons = 1.0 }}\n"),
             "paper[0].not_comparable",
