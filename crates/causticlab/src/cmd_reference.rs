@@ -18,6 +18,8 @@ struct Record {
     outside_reflection: bool,
     smooth_normals: bool,
     seconds: f64,
+    /// Worker threads that traced (its photons per second depend on them).
+    threads: usize,
     photons_traced: u64,
     emitted_flux_w: [f64; 3],
     caustic_flux_w: [f64; 3],
@@ -54,6 +56,12 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
     let r =
         trace_reference(&scene, &opts).with_context(|| format!("tracing the reference of {}", args.scene.display()))?;
     let seconds = start.elapsed().as_secs_f64();
+    if r.threads < r.threads_asked {
+        eprintln!(
+            "warning: the system started {} of the {} threads asked for; the photons were traced by those (the same image)",
+            r.threads, r.threads_asked
+        );
+    }
     // What made the map, as `render` records it, so that `compare` can tell a mismatch.
     let header = [
         (header::TECHNIQUE, "reference (exact CPU photon trace)".to_string()),
@@ -72,6 +80,7 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
         outside_reflection: opts.outside_reflection,
         smooth_normals: opts.smooth_normals,
         seconds,
+        threads: r.threads,
         photons_traced: r.photons_traced,
         emitted_flux_w: r.emitted_flux,
         caustic_flux_w: r.caustic_flux,

@@ -116,6 +116,11 @@ pub struct ReferenceResult {
     pub missed_flux: [f64; 3],
     /// Photon samples emitted (over all lights and objects).
     pub photons_traced: u64,
+    /// Worker threads that traced (fewer than asked where the system would start no more:
+    /// the others' photons were shared among them, the image the same).
+    pub threads: usize,
+    /// Threads asked for (`--threads`, or the machine's parallelism, at most one per task).
+    pub threads_asked: usize,
 }
 
 /// One unit of work: `count` photons from `light` sampled in `cone` of object `object`.
@@ -288,11 +293,18 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
             m.next += 1;
         }
     };
-    std::thread::scope(|s| {
+    // Workers take tasks from one counter, so a thread the system refuses to start (its
+    // limit on threads or memory) leaves its share to the others rather than panicking.
+    let started = std::thread::scope(|s| {
+        let mut started = 1;
         for _ in 1..threads {
-            s.spawn(worker);
+            match std::thread::Builder::new().name("reference".into()).spawn_scoped(s, worker) {
+                Ok(_) => started += 1,
+                Err(_) => break,
+            }
         }
         worker();
+        started
     });
     let merger = merger.into_inner().unwrap();
     debug_assert_eq!(merger.next, tasks.len());
@@ -310,6 +322,8 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
         lost_tir: t.tir,
         lost_other: t.other,
         missed_flux: t.missed,
+        threads: started,
+        threads_asked: threads,
         photons_traced: t.photons,
     })
 }
