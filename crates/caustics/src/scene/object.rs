@@ -3,7 +3,6 @@
 use super::load::{Ctx, MAX_COORDINATE, MAX_SUBDIVISIONS};
 use super::schema::{self, FitOrigin, Numbers, ShapeType};
 use super::{obj, procedural, water, Material, ModelSearchPath, Object};
-use crate::input_error;
 use glam::{Affine3A, Mat3, Vec3};
 use std::path::Path;
 
@@ -138,8 +137,16 @@ pub(super) fn build_object(
             let file =
                 o.file.as_deref().ok_or_else(|| ctx.err(&k("file"), "required for shape \"water\" (a pool scene)"))?;
             let path = ctx.beside(&k("file"), file, "pool scene")?;
-            let pool =
-                load_water_scene(&path).map_err(|e| ctx.err(&k("file"), format!("{e:#}")))?.pool.ok_or_else(|| {
+            let pool = load_water_scene(ctx.file, &path)
+                .map_err(|e| match e.downcast::<WaterLoop>() {
+                    Ok(WaterLoop(files)) => ctx.err(
+                        &k("file"),
+                        format!("the water would take its surface from itself, in a loop of files: {files}"),
+                    ),
+                    Err(e) => ctx.err(&k("file"), format!("{e:#}")),
+                })?
+                .pool
+                .ok_or_else(|| {
                     ctx.err(&k("file"), format!("{} has no [pool] to take the water's surface from", path.display()))
                 })?;
             let seg = o.segments.clone().unwrap_or(Numbers(vec![256.0]));
@@ -161,18 +168,40 @@ thread_local! {
     static WATER_FILES: std::cell::RefCell<Vec<std::path::PathBuf>> = const { std::cell::RefCell::new(vec![]) };
 }
 
-/// Loads the pool scene a `water` object names, refusing a file that names itself, directly or
-/// through others (loading it would recurse until the stack overflows).
-fn load_water_scene(path: &Path) -> anyhow::Result<super::Scene> {
-    let id = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-    let cycle = WATER_FILES.with(|w| w.borrow().contains(&id));
-    if cycle {
-        anyhow::bail!(input_error!("{}: its water takes its surface from itself, in a loop of files", path.display()));
+/// A `water` object whose pool scene leads back to a file being loaded: the files of the
+/// loop, from the one that closes it (`a.toml → b.toml → a.toml`).
+#[derive(Debug)]
+struct WaterLoop(String);
+
+impl std::fmt::Display for WaterLoop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "a loop of pool scenes: {}", self.0)
     }
-    WATER_FILES.with(|w| w.borrow_mut().push(id));
+}
+
+impl std::error::Error for WaterLoop {}
+
+/// Loads the pool scene `path` that a `water` object of the scene file `from` names, refusing
+/// one that leads back to a file being loaded, `from` itself included (loading it would
+/// recurse until the stack overflows). The error is raised in the file that closes the loop,
+/// so that its file and key are named once.
+fn load_water_scene(from: &Path, path: &Path) -> anyhow::Result<super::Scene> {
+    let canonical = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+    let (from_id, id) = (canonical(from), canonical(path));
+    let stack = WATER_FILES.with(|w| w.borrow().clone());
+    if let Some(at) = stack.iter().chain([&from_id]).position(|f| *f == id) {
+        let names: Vec<String> = stack.iter().chain([&from_id, &id]).skip(at).map(|f| name_of(f)).collect();
+        return Err(WaterLoop(names.join(" → ")).into());
+    }
+    WATER_FILES.with(|w| w.borrow_mut().push(from_id));
     let scene = super::Scene::load(path);
     WATER_FILES.with(|w| w.borrow_mut().pop());
     scene
+}
+
+/// A file's name alone, for a loop's listing (the error's prefix names the full path).
+fn name_of(path: &Path) -> String {
+    path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
 }
 
 /// translate · Rz · Ry · Rx · scale (rotation applied X first, then Y, then Z).

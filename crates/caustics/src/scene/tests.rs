@@ -448,12 +448,18 @@ fn water_errors_name_the_file_and_key() {
     }
     // A pool scene whose water takes its surface from itself, directly or through another file.
     std::fs::write(dir.join("self.toml"), water("file = \"self.toml\"")).unwrap();
+    // The file that closes the loop names its key once, then the loop.
     let m = msg(Scene::load(&dir.join("self.toml")));
-    assert!(m.contains("self.toml") && m.contains("loop of files"), "{m}");
+    assert!(m.ends_with("key `objects[1].file`: the water would take its surface from itself, in a loop of files: self.toml → self.toml"), "{m}");
+    assert_eq!(m.matches("objects[1].file").count(), 1, "{m}");
     std::fs::write(dir.join("a.toml"), water("file = \"b.toml\"")).unwrap();
     std::fs::write(dir.join("b.toml"), water("file = \"a.toml\"")).unwrap();
     let m = msg(Scene::load(&dir.join("a.toml")));
-    assert!(m.contains("a.toml") && m.contains("loop of files"), "{m}");
+    assert!(
+        m.contains("b.toml: key `objects[1].file`") && m.ends_with("loop of files: a.toml → b.toml → a.toml"),
+        "{m}"
+    );
+    assert_eq!(m.matches("objects[1].file").count(), 2, "a.toml's key, then b.toml's: {m}");
     // And a good one: 8² cells, 128 triangles on top, 4 x 8 wall quads and their 32 bottom fans.
     let s = load("w4.toml", "file = \"pool.toml\"\nsegments = 8").expect("a water scene");
     assert_eq!(s.objects[1].mesh.triangle_count(), 128 + 64 + 32);
