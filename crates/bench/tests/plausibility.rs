@@ -120,7 +120,7 @@ fn d_a_metric_independent_of_photons_that_varies_2x_is_flagged() {
 #[test]
 fn findings_mark_the_table_and_an_explanation_lifts_the_mark() {
     let (c, r) = table(CONFIG, [12.0, 6.0, 30.0, 35.0], QUIET_EYE, None);
-    let dir = std::env::temp_dir().join(format!("causticlab-plausibility-{}", std::process::id()));
+    let dir = caustics::scratch::ScratchDir::new("causticlab", "plausibility");
     let out = bench::run::write_table(&c, &r, &dir.join("dev"), &dir).expect("table written");
     let md = out.markdown;
     assert!(md.contains("## Plausibility") && md.contains("Implausible (`?`), 1 entries"), "{md}");
@@ -141,13 +141,12 @@ fn findings_mark_the_table_and_an_explanation_lifts_the_mark() {
     let row = out.markdown.lines().find(|l| l.starts_with("| 1024²")).expect("1024 row").to_string();
     assert!(!row.contains('?'), "an explained finding is not marked: {row}");
     assert!(out.markdown.contains("Explained, 1 entries"), "{}", out.markdown);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
     let (c, r) = table(CONFIG, [12.0, 6.0, 30.0, 35.0], QUIET_EYE, None);
-    let dir = std::env::temp_dir().join(format!("causticlab-explain-{}", std::process::id()));
+    let dir = caustics::scratch::ScratchDir::new("causticlab", "explain");
     bench::run::write_table(&c, &r, &dir.join("synthetic"), &dir).expect("table written");
     let json = dir.join("synthetic/synthetic.json");
     let read = || -> Results { serde_json::from_str(&std::fs::read_to_string(&json).expect("json")).expect("parses") };
@@ -210,5 +209,4 @@ fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
         out.markdown.contains("def5678 (")
             && out.markdown.contains(&format!("hash {} when measured", before.config.hash))
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -55,9 +55,7 @@ fn every_finding_and_corpus_input_is_read_or_refused_by_name() {
     let mut failures = vec![];
     let mut replayed = 0;
     for target in Target::ALL {
-        let root =
-            std::env::temp_dir().join(format!("causticlab-fuzz-replay-{}-{}", target.name(), std::process::id()));
-        std::fs::create_dir_all(&root).expect("temp dir");
+        let root = caustics::scratch::ScratchDir::new("causticlab-fuzz-replay", target.name());
         check::prepare(&root, &repo()).expect("preparing the replay folder");
         let dirs = [
             repo().join("crates/causticlab/tests/fuzz_regressions").join(target.name()),
@@ -69,7 +67,6 @@ fn every_finding_and_corpus_input_is_read_or_refused_by_name() {
                 failures.push(format!("{} ({}): {e}", input.display(), target.name()));
             }
         }
-        let _ = std::fs::remove_dir_all(&root);
     }
     assert!(
         failures.is_empty(),
@@ -92,14 +89,12 @@ fn the_property_fails_on_an_error_that_names_no_file() {
     assert!(check::holds(file, Err(anyhow::anyhow!("key `camera`: bad"))).is_err());
     assert_eq!(check::holds(file, Err(anyhow::anyhow!("/tmp/x/scene.toml: key `camera`: bad"))), Ok(()));
     assert_eq!(check::holds(file, Ok(())), Ok(()));
-    let root = std::env::temp_dir().join(format!("causticlab-fuzz-self-{}", std::process::id()));
-    std::fs::create_dir_all(&root).expect("temp dir");
+    let root = caustics::scratch::ScratchDir::new("causticlab", "fuzz-self");
     check::prepare(&root, &repo()).expect("prepare");
     let scene = std::fs::read(repo().join("scenes/sphere_on_plane.toml")).expect("shipped scene");
     assert_eq!(check::check(Target::Scene, &root, &scene), Ok(()));
     assert_eq!(check::check(Target::Scene, &root, b"[camera\n"), Ok(()));
     assert_eq!(check::check(Target::Exr, &root, b"not an exr"), Ok(()));
-    let _ = std::fs::remove_dir_all(&root);
 }
 
 /// The fuzzed scenes read stand-ins for the shipped scenes' models (`check::prepare`); a scene

@@ -333,8 +333,7 @@ fn compare_scaled_and_shifted() {
 
 #[test]
 fn compare_errors_name_the_file_and_channel() {
-    let dir = std::env::temp_dir().join(format!("causticlab-compare-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = caustics::scratch::ScratchDir::new("causticlab", "compare");
     let pa = dir.join("small_a.exr");
     let pb = dir.join("big_b.exr");
     write_exr(&pa, &synthetic(16, blob(8.0, 8.0))).unwrap();
@@ -355,7 +354,6 @@ fn compare_errors_name_the_file_and_channel() {
     // Round trip through files gives the same result as in memory.
     let (cmp, _) = compare_files(&pa, &pa, Region::Caustic).unwrap();
     assert_eq!(cmp.rel_rmse, 0.0);
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `cargo test --release -p caustics --test reference -- --ignored --nocapture`

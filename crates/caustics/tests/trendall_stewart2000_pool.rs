@@ -318,8 +318,7 @@ fn the_faithful_8_bit_path_stays_within_its_stated_error_of_float() {
 #[test]
 fn a_projected_texture_scales_pass_3() {
     let (ctx, sh) = context();
-    let dir = std::env::temp_dir().join(format!("causticlab-pool-texture-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let dir = caustics::scratch::ScratchDir::new("causticlab", "pool-texture");
     // Left half black, right half white (sRGB 255 is linear 1).
     let png = dir.join("half.png");
     caustics::image_io::write_png_grey(&png, 2, 1, &[0.0, 1.0], 1.0).expect("png");
@@ -337,5 +336,4 @@ fn a_projected_texture_scales_pass_3() {
             assert!((v[j * 64 + 50] - want).abs() < 2.0 / 255.0, "{precision}: {} vs {want}", v[j * 64 + 50]);
         }
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }

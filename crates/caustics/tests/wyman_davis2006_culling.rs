@@ -47,10 +47,10 @@ fn scene() -> Scene {
             0.5 * STRIP_HEIGHT
         );
     }
-    let path = std::env::temp_dir().join(format!("causticlab-culling-{}.toml", std::process::id()));
+    let dir = caustics::scratch::ScratchDir::new("causticlab", "culling");
+    let path = dir.join("comb.toml");
     std::fs::write(&path, text).expect("write the scene");
     let mut s = Scene::load(&path).expect("the comb scene");
-    std::fs::remove_file(&path).ok();
     s.caustics.technique = Technique::WdQuads;
     s.caustics.space = Space::Light;
     s.caustics.quad_lighting = QuadLighting::Eq4;

@@ -85,8 +85,7 @@ mod tests {
 
     #[test]
     fn sees_edits_new_files_and_removals() {
-        let root = std::env::temp_dir().join(format!("causticlab-watch-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&root);
+        let root = caustics::scratch::ScratchDir::new("causticlab", "watch");
         std::fs::create_dir_all(root.join("eye")).expect("temp dir");
         std::fs::write(root.join("eye/a.frag"), "1").expect("write");
         let mut w = Watcher::new(&root);
@@ -98,6 +97,5 @@ mod tests {
         assert_eq!(w.changed_now(), vec!["b.glsl".to_string(), "eye/a.frag".to_string()]);
         std::fs::remove_file(root.join("b.glsl")).expect("remove");
         assert_eq!(w.changed_now(), vec!["b.glsl".to_string()]);
-        let _ = std::fs::remove_dir_all(&root);
     }
 }
