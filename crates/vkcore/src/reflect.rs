@@ -98,22 +98,65 @@ impl Spirv {
     /// the shader declares no push constants.
     pub fn push_constant_members(&self) -> Vec<(String, u32)> {
         let Some(block) = self.push_constant_type() else { return vec![] };
-        let mut names = HashMap::new();
-        let mut offsets = HashMap::new();
-        for (op, o) in instructions(&self.words) {
+        let members = StructTypes::of(self).members(block).unwrap_or_default();
+        members.into_iter().map(|m| (m.name, m.offset)).collect()
+    }
+}
+
+/// The struct types of a module with their names, member names, member offsets and the array
+/// strides of their member types: what [`Spirv::struct_layouts`] and
+/// [`Spirv::push_constant_members`] read.
+struct StructTypes {
+    names: HashMap<u32, String>,
+    member_names: HashMap<(u32, u32), String>,
+    offsets: HashMap<(u32, u32), u32>,
+    strides: HashMap<u32, u32>,
+    /// (type id, member type ids) in declaration order.
+    structs: Vec<(u32, Vec<u32>)>,
+}
+
+impl StructTypes {
+    fn of(spirv: &Spirv) -> StructTypes {
+        let mut t = StructTypes {
+            names: HashMap::new(),
+            member_names: HashMap::new(),
+            offsets: HashMap::new(),
+            strides: HashMap::new(),
+            structs: vec![],
+        };
+        for (op, o) in instructions(&spirv.words) {
             match op {
-                OP_MEMBER_NAME if o.len() >= 3 && o[0] == block => {
-                    names.insert(o[1], string(&o[2..]));
+                OP_NAME if o.len() >= 2 => {
+                    t.names.insert(o[0], string(&o[1..]));
                 }
-                OP_MEMBER_DECORATE if o.len() >= 4 && o[0] == block && o[2] == DECORATION_OFFSET => {
-                    offsets.insert(o[1], o[3]);
+                OP_MEMBER_NAME if o.len() >= 3 => {
+                    t.member_names.insert((o[0], o[1]), string(&o[2..]));
+                }
+                OP_TYPE_STRUCT if !o.is_empty() => t.structs.push((o[0], o[1..].to_vec())),
+                OP_DECORATE if o.len() >= 3 && o[1] == DECORATION_ARRAY_STRIDE => {
+                    t.strides.insert(o[0], o[2]);
+                }
+                OP_MEMBER_DECORATE if o.len() >= 4 && o[2] == DECORATION_OFFSET => {
+                    t.offsets.insert((o[0], o[1]), o[3]);
                 }
                 _ => {}
             }
         }
-        let mut members: Vec<u32> = offsets.keys().copied().collect();
-        members.sort();
-        members.into_iter().map(|m| (names.get(&m).cloned().unwrap_or_default(), offsets[&m])).collect()
+        t
+    }
+
+    /// The members of struct type `id` in declaration order, or None when it is not a struct
+    /// with an Offset on every member (a function's local copy has none).
+    fn members(&self, id: u32) -> Option<Vec<ReflectedMember>> {
+        let (_, types) = self.structs.iter().find(|(s, _)| *s == id)?;
+        let member = |(m, ty): (usize, &u32)| {
+            Some(ReflectedMember {
+                name: self.member_names.get(&(id, m as u32)).cloned().unwrap_or_default(),
+                offset: *self.offsets.get(&(id, m as u32))?,
+                array_stride: self.strides.get(ty).copied(),
+            })
+        };
+        types.iter().enumerate().map(member).collect::<Option<Vec<_>>>().filter(|m| !m.is_empty())
     }
 }
 
@@ -123,41 +166,11 @@ impl Spirv {
     /// layout appears once per layout; one without Offset decorations (a function's local copy)
     /// is left out.
     pub fn struct_layouts(&self, name: &str) -> Vec<Vec<ReflectedMember>> {
-        let mut names = HashMap::new();
-        let mut member_names = HashMap::new();
-        let mut offsets = HashMap::new();
-        let mut strides = HashMap::new();
-        let mut structs = vec![];
-        for (op, o) in instructions(&self.words) {
-            match op {
-                OP_NAME if o.len() >= 2 => {
-                    names.insert(o[0], string(&o[1..]));
-                }
-                OP_MEMBER_NAME if o.len() >= 3 => {
-                    member_names.insert((o[0], o[1]), string(&o[2..]));
-                }
-                OP_TYPE_STRUCT if !o.is_empty() => structs.push((o[0], o[1..].to_vec())),
-                OP_DECORATE if o.len() >= 3 && o[1] == DECORATION_ARRAY_STRIDE => {
-                    strides.insert(o[0], o[2]);
-                }
-                OP_MEMBER_DECORATE if o.len() >= 4 && o[2] == DECORATION_OFFSET => {
-                    offsets.insert((o[0], o[1]), o[3]);
-                }
-                _ => {}
-            }
-        }
-        structs
-            .into_iter()
-            .filter(|(id, _)| names.get(id).map(String::as_str) == Some(name))
-            .filter(|(id, types)| !types.is_empty() && (0..types.len() as u32).all(|m| offsets.contains_key(&(*id, m))))
-            .map(|(id, types)| {
-                let member = |(m, ty): (usize, &u32)| ReflectedMember {
-                    name: member_names.get(&(id, m as u32)).cloned().unwrap_or_default(),
-                    offset: offsets[&(id, m as u32)],
-                    array_stride: strides.get(ty).copied(),
-                };
-                types.iter().enumerate().map(member).collect()
-            })
+        let t = StructTypes::of(self);
+        t.structs
+            .iter()
+            .filter(|(id, _)| t.names.get(id).map(String::as_str) == Some(name))
+            .filter_map(|(id, _)| t.members(*id))
             .collect()
     }
 
