@@ -6,8 +6,8 @@ use crate::config::{Config, FrontSpec};
 use crate::font::FAMILY;
 use crate::front::{fronts, SceneFront};
 use crate::plot::{
-    draw_title, ellipsize, encode, err, log_ticks, text_width, tick, DrawResult, Drawing, Plot, GREY, PALETTE,
-    PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
+    draw_title, ellipsize, encode, err, log_light_lines, log_ticks, text_width, tick, DrawResult, Drawing, Plot, GREY,
+    PALETTE, PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
 };
 use crate::results::Results;
 use anyhow::Result;
@@ -122,8 +122,14 @@ fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame, scene: &S
         .x_label_area_size(44)
         .y_label_area_size(84)
         .build_cartesian_2d(
-            (x0 / 1.4..x1 * 1.4).log_scale().with_key_points(log_ticks(x0 / 1.4, x1 * 1.4)),
-            (y0 / 1.4..y1 * 1.4).log_scale().with_key_points(log_ticks(y0 / 1.4, y1 * 1.4)),
+            (x0 / 1.4..x1 * 1.4)
+                .log_scale()
+                .with_key_points(log_ticks(x0 / 1.4, x1 * 1.4))
+                .with_light_points(log_light_lines(x0 / 1.4, x1 * 1.4)),
+            (y0 / 1.4..y1 * 1.4)
+                .log_scale()
+                .with_key_points(log_ticks(y0 / 1.4, y1 * 1.4))
+                .with_light_points(log_light_lines(y0 / 1.4, y1 * 1.4)),
         )
         .map_err(err)?;
     chart

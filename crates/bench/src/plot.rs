@@ -144,6 +144,8 @@ fn draw_figure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &Figure) 
 const MAX_LABEL_DROP: u32 = 360;
 
 /// A panel's height: its chart, and the room its category labels take when turned upright.
+/// Labels are measured in the plot's font: call after [`crate::font::load`] (as [`render`]
+/// does), before which every label measures 0 and fits.
 pub fn panel_height(p: &Panel) -> u32 {
     PANEL_HEIGHT + upright_labels(p).map_or(0, |(drop, _)| drop)
 }
@@ -163,6 +165,7 @@ fn category_slot(p: &Panel) -> u32 {
 /// Bar categories whose labels do not fit across their slots even at 9 px (Table Q4's 56 scene
 /// and technique pairs were each cut to `…`) are written upright, reading down from the axis:
 /// the room they take under the chart and their font size, or None where they fit across.
+/// Call after [`crate::font::load`], as [`panel_height`].
 pub fn upright_labels(p: &Panel) -> Option<(u32, f64)> {
     let room = category_slot(p).saturating_sub(6);
     if !p.bars || p.x_labels.iter().all(|l| text_width(l, 9.0) <= room) {
@@ -219,7 +222,7 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> D
     }
     if p.log_y {
         let (lo, hi) = (lo / 1.6, hi * 1.6);
-        let y = (lo..hi).log_scale().with_key_points(log_ticks(lo, hi));
+        let y = (lo..hi).log_scale().with_key_points(log_ticks(lo, hi)).with_light_points(log_light_lines(lo, hi));
         let mut chart = builder.build_cartesian_2d(x_range, y).map_err(err)?;
         mesh(&mut chart, p, &x_labels, x_font)?;
         plot_series(&mut chart, p, lo)?;
@@ -228,41 +231,76 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> D
         let (lo, hi) = linear_range(lo, hi, p.bars);
         let mut chart = builder.build_cartesian_2d(x_range, lo..hi).map_err(err)?;
         mesh(&mut chart, p, &x_labels, x_font)?;
-        plot_series(&mut chart, p, lo)?;
+        // Bars stand on zero where the axis has it (a negative value hangs below it).
+        plot_series(&mut chart, p, if lo < 0.0 && hi > 0.0 { 0.0 } else { lo })?;
         draw_upright_labels(&chart, area, p, upright)
     }
 }
 
-/// The labelled ticks of a log axis over `lo..=hi`: the powers of ten, with 2 and 5 times them
-/// where fewer than four powers fall inside, and every whole multiple where even those are
-/// fewer than four (plotters labels powers of ten only, so a ratio panel from 0.5 to 3 had a
-/// single tick, at 1).
+/// The labelled ticks of a log axis over `lo..=hi` (plotters labels powers of ten only, so a
+/// ratio panel from 0.5 to 3 had a single tick, at 1): the powers of ten (every k-th of them
+/// past ten powers); where fewer than four fall inside, 1, 2 and 5 times them; where even those
+/// are fewer than four, every whole multiple; and where that still gives fewer than two (a range
+/// inside one step, 1.01 to 1.99), evenly spaced round values.
 pub fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
     if !(lo > 0.0 && hi > lo && hi.is_finite()) {
         return vec![];
     }
-    let inside = |multiples: &[f64]| -> Vec<f64> {
-        let mut out = vec![];
-        for e in lo.log10().floor() as i32..=hi.log10().ceil() as i32 {
-            for m in multiples {
-                let v = if e < 0 { m / 10f64.powi(-e) } else { m * 10f64.powi(e) };
-                if v >= lo && v <= hi {
-                    out.push(v);
-                }
-            }
+    let powers = log_multiples(lo, hi, &[1.0]);
+    if powers.len() >= 4 {
+        let k = powers.len().div_ceil(10);
+        return powers.into_iter().step_by(k).collect();
+    }
+    let fives = log_multiples(lo, hi, &[1.0, 2.0, 5.0]);
+    if fives.len() >= 4 {
+        return fives;
+    }
+    let all = log_multiples(lo, hi, &ALL_MULTIPLES);
+    if all.len() >= 2 {
+        return all;
+    }
+    // Round steps of 1, 2 or 5 times a power of ten, at most ten of them across the range.
+    let mut step = 10f64.powf((hi - lo).log10().floor() - 1.0);
+    for m in [2.0, 2.5, 2.0, 2.0, 2.5, 2.0] {
+        if (hi - lo) / step <= 10.0 {
+            break;
         }
-        out
-    };
-    [&[1.0][..], &[1.0, 2.0, 5.0], &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]]
-        .iter()
-        .map(|m| inside(m))
-        .find(|t| t.len() >= 4)
-        .unwrap_or_else(|| inside(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]))
+        step *= m;
+    }
+    let first = (lo / step).ceil() as i64;
+    let last = (hi / step).floor() as i64;
+    (first..=last).map(|i| i as f64 * step).collect()
 }
 
-/// The y range of a linear panel whose values lie in `lo..=hi`: from zero for bars (a bar's
-/// length is its value) and when zero is near (errors, counts); else around the data (flux
-/// ratios), padded.
+/// The light grid lines of a log axis: every whole multiple of each power of ten inside it
+/// (none when there would be more than a hundred).
+pub fn log_light_lines(lo: f64, hi: f64) -> Vec<f64> {
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) || hi / lo > 1e11 {
+        return vec![];
+    }
+    log_multiples(lo, hi, &ALL_MULTIPLES)
+}
+
+const ALL_MULTIPLES: [f64; 9] = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0];
+
+/// `multiples` of each power of ten, those inside `lo..=hi`, ascending.
+fn log_multiples(lo: f64, hi: f64, multiples: &[f64]) -> Vec<f64> {
+    let mut out = vec![];
+    for e in lo.log10().floor() as i32..=hi.log10().ceil() as i32 {
+        for m in multiples {
+            // Divided for negative powers, so that 0.6 is the double nearest 0.6.
+            let v = if e < 0 { m / 10f64.powi(-e) } else { m * 10f64.powi(e) };
+            if v >= lo && v <= hi {
+                out.push(v);
+            }
+        }
+    }
+    out
+}
+
+/// The y range of a linear panel whose values lie in `lo..=hi`: from zero for bars of values
+/// not below zero (a bar's length is its value; bars stand on zero, see `draw_panel`) and when
+/// zero is near (errors, counts); else around the data (flux ratios), padded.
 pub fn linear_range(lo: f64, hi: f64, bars: bool) -> (f64, f64) {
     let pad = 0.08 * (hi - lo).max(hi.abs() * 0.01).max(1e-9);
     let lo = if lo >= 0.0 && (bars || lo < 0.5 * hi) { 0.0 } else { lo - pad };

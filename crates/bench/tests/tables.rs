@@ -238,7 +238,7 @@ fn a_panel_whose_values_span_decades_is_drawn_on_a_log_axis() {
         subtitle: "s".into(),
         panels: vec![wide]
     })
-    .is_ok_and(|p| p.svg.contains("<polyline")));
+    .is_ok_and(|p| p.svg.contains("<polyline") && p.svg.contains("(log scale)")));
     // The config's own log axis is not relabelled.
     let (config, r) = synthetic();
     let fig = bench::figure::figure(&config, &r, &bench::table::grid(&config, &r));
@@ -266,8 +266,18 @@ fn a_log_axis_is_labelled_more_often_than_at_each_power_of_ten_when_it_spans_few
     assert_eq!(ticks(0.3, 60.0), [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0]);
     // A ratio panel from 0.4 to 3 (W&N Fig. 9): every tenth up to 1, then 2 and 3.
     assert_eq!(ticks(0.4, 3.0), [0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 2.0, 3.0]);
+    // Eighteen decades: every second power (at most ten labels).
+    let t = ticks(1e-6, 1e12);
+    assert_eq!(t.len(), 10, "{t:?}");
+    assert!(t[0] == 1e-6 && (t[1] - 1e-4).abs() < 1e-18 && t[9] == 1e12, "{t:?}");
+    // Inside one step (the F1 front's axis about a single value, 1.01 to 1.99): round tenths.
+    let t = ticks(1.014, 1.988);
+    assert_eq!(t.len(), 9, "{t:?}");
+    assert!((t[0] - 1.1).abs() < 1e-12 && (t[8] - 1.9).abs() < 1e-12, "{t:?}");
     // Nothing to label on an empty or non-positive range.
     assert!(ticks(0.0, 1.0).is_empty() && ticks(2.0, 1.0).is_empty());
+    // The light grid: every multiple, here 0.4 ... 0.9, 1, 2, 3.
+    assert_eq!(bench::plot::log_light_lines(0.4, 3.0).len(), 9);
 }
 
 /// Bar categories too many for their labels to fit across (Table Q4: 56 scene and technique

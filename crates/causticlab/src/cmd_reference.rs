@@ -58,8 +58,11 @@ pub fn run(args: &ReferenceArgs) -> Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     if r.threads < r.threads_asked {
         eprintln!(
-            "warning: the system started {} of the {} threads asked for; the photons were traced by those (the same image)",
-            r.threads, r.threads_asked
+            "warning: the system started {} of the {} threads asked for ({}); the photons were traced by those \
+             (the same image)",
+            r.threads,
+            r.threads_asked,
+            r.thread_refused.as_deref().unwrap_or("no reason given")
         );
     }
     // What made the map, as `render` records it, so that `compare` can tell a mismatch.

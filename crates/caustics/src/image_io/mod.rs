@@ -226,7 +226,8 @@ pub fn read_exr(path: &Path) -> Result<ImageF32> {
 }
 
 /// The kind of a failure to read from the file system, or None where the reader refused the
-/// file's contents (a short read is the file's: it was truncated).
+/// file's contents. (The exr crate already turns a short read, a truncated file, into
+/// `Error::Invalid`; the filter keeps that so should a bare `UnexpectedEof` reach here.)
 fn io_failure(e: &anyhow::Error) -> Option<std::io::ErrorKind> {
     let io = e.downcast_ref::<std::io::Error>().or(match e.downcast_ref::<exr::error::Error>() {
         Some(exr::error::Error::Io(io)) => Some(io),

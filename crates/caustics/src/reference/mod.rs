@@ -121,6 +121,8 @@ pub struct ReferenceResult {
     pub threads: usize,
     /// Threads asked for (`--threads`, or the machine's parallelism, at most one per task).
     pub threads_asked: usize,
+    /// Why the system refused the first thread it did not start, where it refused one.
+    pub thread_refused: Option<String>,
 }
 
 /// One unit of work: `count` photons from `light` sampled in `cone` of object `object`.
@@ -295,16 +297,19 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
     };
     // Workers take tasks from one counter, so a thread the system refuses to start (its
     // limit on threads or memory) leaves its share to the others rather than panicking.
-    let started = std::thread::scope(|s| {
-        let mut started = 1;
+    let (started, thread_refused) = std::thread::scope(|s| {
+        let (mut started, mut refused) = (1, None);
         for _ in 1..threads {
             match std::thread::Builder::new().name("reference".into()).spawn_scoped(s, worker) {
                 Ok(_) => started += 1,
-                Err(_) => break,
+                Err(e) => {
+                    refused = Some(e.to_string());
+                    break;
+                }
             }
         }
         worker();
-        started
+        (started, refused)
     });
     let merger = merger.into_inner().unwrap();
     debug_assert_eq!(merger.next, tasks.len());
@@ -324,6 +329,7 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
         missed_flux: t.missed,
         threads: started,
         threads_asked: threads,
+        thread_refused,
         photons_traced: t.photons,
     })
 }

@@ -169,7 +169,7 @@ thread_local! {
 }
 
 /// A `water` object whose pool scene leads back to a file being loaded: the files of the
-/// loop, from the one that closes it (`a.toml → b.toml → a.toml`).
+/// loop, from the file it returns to (`a.toml → b.toml → a.toml`, raised in b.toml).
 #[derive(Debug)]
 struct WaterLoop(String);
 
