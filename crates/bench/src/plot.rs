@@ -167,11 +167,14 @@ fn category_slot(p: &Panel) -> u32 {
 /// the room they take under the chart and their font size, or None where they fit across.
 /// Call after [`crate::font::load`], as [`panel_height`].
 pub fn upright_labels(p: &Panel) -> Option<(u32, f64)> {
-    let room = category_slot(p).saturating_sub(6);
-    if !p.bars || p.x_labels.iter().all(|l| text_width(l, 9.0) <= room) {
+    if !p.bars {
         return None;
     }
-    let font = (category_slot(p) as f64 - 3.0).clamp(8.0, 13.0);
+    let slot = category_slot(p);
+    if p.x_labels.iter().all(|l| text_width(l, 9.0) <= slot.saturating_sub(6)) {
+        return None;
+    }
+    let font = (slot as f64 - 3.0).clamp(8.0, 13.0);
     let longest = p.x_labels.iter().map(|l| text_width(l, font)).max().unwrap_or(0);
     Some(((longest + 14).min(MAX_LABEL_DROP), font))
 }

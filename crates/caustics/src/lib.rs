@@ -16,5 +16,6 @@ pub mod render;
 pub mod scene;
 pub mod scratch;
 pub mod techniques;
+pub mod workers;
 
 pub use error::InputError;

@@ -578,22 +578,13 @@ pub fn vertex_thickness(positions: &[Vec3], normals: &[Vec3], indices: &[u32]) -
         out.iter_mut().enumerate().for_each(|(i, d)| *d = thickness(i));
         return out;
     }
-    // Each thread takes chunks until none is left, so a thread the system refuses to start
-    // leaves its chunks to the others (this one included) rather than panicking.
+    // Each thread takes chunks until none is left (crate::workers).
     let chunks = std::sync::Mutex::new(out.chunks_mut(chunk).enumerate().collect::<Vec<_>>());
-    let work = || loop {
+    crate::workers::run(threads, "vertex-thickness", || loop {
         let Some((c, slice)) = chunks.lock().unwrap().pop() else { break };
         for (j, d) in slice.iter_mut().enumerate() {
             *d = thickness(c * chunk + j);
         }
-    };
-    std::thread::scope(|s| {
-        for _ in 1..threads {
-            if std::thread::Builder::new().spawn_scoped(s, work).is_err() {
-                break;
-            }
-        }
-        work();
     });
     out
 }

@@ -295,22 +295,8 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
             m.next += 1;
         }
     };
-    // Workers take tasks from one counter, so a thread the system refuses to start (its
-    // limit on threads or memory) leaves its share to the others rather than panicking.
-    let (started, thread_refused) = std::thread::scope(|s| {
-        let (mut started, mut refused) = (1, None);
-        for _ in 1..threads {
-            match std::thread::Builder::new().name("reference".into()).spawn_scoped(s, worker) {
-                Ok(_) => started += 1,
-                Err(e) => {
-                    refused = Some(e.to_string());
-                    break;
-                }
-            }
-        }
-        worker();
-        (started, refused)
-    });
+    // Workers take tasks from one counter (crate::workers).
+    let started = crate::workers::run(threads, "reference", worker);
     let merger = merger.into_inner().unwrap();
     debug_assert_eq!(merger.next, tasks.len());
 
@@ -327,9 +313,9 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
         lost_tir: t.tir,
         lost_other: t.other,
         missed_flux: t.missed,
-        threads: started,
+        threads: started.threads,
         threads_asked: threads,
-        thread_refused,
+        thread_refused: started.refused,
         photons_traced: t.photons,
     })
 }

@@ -35,7 +35,7 @@ fn caustics_has_no_module_cycle_and_no_paper_imports_another() {
 /// The parts from the bottom up (`docs/architecture.md`): each imports only parts of lower
 /// layers. The papers share a layer (and import no other paper).
 const LAYERS: &[&[&str]] = &[
-    &["error"],
+    &["error", "workers"],
     &["image_io", "bvh"],
     &["compare", "diff", "error_png", "settings"],
     &["scene"],
