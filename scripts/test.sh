@@ -4,7 +4,9 @@
 # The default test profile is used: the workspace builds dependencies with opt-level 3 and its
 # own crates with opt-level 1, so there is no need for --release here. --no-fail-fast runs
 # every test binary and still exits non-zero if any test failed. A full run (no arguments) then
-# rehearses the GPU run's scripts on lavapipe with the test build (scripts/gpu_dry_run.sh).
+# rehearses the GPU run's scripts on lavapipe with the test build (scripts/gpu_dry_run.sh), and
+# runs the tests and renders of scripts/mesa25_check.sh on Mesa 25's lavapipe, unpacked beside
+# the system's Mesa 22.3 by scripts/mesa25.sh (docs/testing.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,4 +15,5 @@ unset VK_LOADER_DEBUG
 cargo test --workspace --no-fail-fast "$@"
 if [ $# -eq 0 ]; then
     bash scripts/gpu_dry_run.sh target/debug/causticlab
+    bash scripts/mesa25_check.sh target/debug/causticlab
 fi

@@ -3,7 +3,7 @@
 use crate::cli::GlobalOpts;
 use anyhow::{Context as _, Result};
 use std::sync::Arc;
-use vkcore::{choose_device, enumerate_devices, DeviceInfo, Feature, Instance, ValidationLog};
+use vkcore::{choose_device, driver_label, enumerate_devices, DeviceInfo, Feature, Instance, ValidationLog};
 
 pub fn run(g: &GlobalOpts, validation: &mut Option<Arc<ValidationLog>>) -> Result<()> {
     let opts = crate::context_options(g)?;
@@ -36,7 +36,7 @@ fn print_device(d: &DeviceInfo, marks: &[&str], without: &[Feature]) {
     println!("[{}] {}{mark}", d.index, d.name);
     println!("    type                          {}", d.device_type);
     println!("    Vulkan                        {}", d.api_version);
-    println!("    driver                        {} ({})", d.driver_name, d.driver_info);
+    println!("    driver                        {}", driver_label(d));
     println!("    vendor/device id              {:#06x}/{:#06x}", d.vendor_id, d.device_id);
     println!("    features:");
     for f in Feature::ALL {

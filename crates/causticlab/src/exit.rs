@@ -18,7 +18,7 @@ pub fn code_for(err: &anyhow::Error) -> u8 {
         cause.downcast_ref::<InputError>().is_some()
             || matches!(
                 cause.downcast_ref::<VkError>(),
-                Some(VkError::NoDevice { .. } | VkError::MissingFeature { .. })
+                Some(VkError::NoDevice { .. } | VkError::AmbiguousDevice { .. } | VkError::MissingFeature { .. })
             )
     });
     if is_input {
@@ -41,6 +41,8 @@ mod tests {
         let e = wrapped.context("loading scene").unwrap_err();
         assert_eq!(code_for(&e), INPUT);
         let e = anyhow::Error::new(VkError::NoDevice { query: "q".into(), available: String::new() });
+        assert_eq!(code_for(&e), INPUT);
+        let e = anyhow::Error::new(VkError::AmbiguousDevice { query: "q".into(), count: 2, matches: String::new() });
         assert_eq!(code_for(&e), INPUT);
         let e = anyhow::Error::new(VkError::MissingFeature {
             who: "t".into(),

@@ -120,6 +120,8 @@ impl Context {
             (Some(surface), None) => crate::device::choose_presenting(&instance, &devices, surface)?,
             (_, query) => choose_device(&devices, query)?,
         };
+        let chosen = &devices[index];
+        crate::crash::install(&format!("`{}`, driver {}", chosen.name, crate::device::driver_label(chosen)));
         let device = create_device(&instance, index, &opts.without, present)?;
         let allocator = Allocator::new(&AllocatorCreateDesc {
             instance: instance.shared.raw.clone(),

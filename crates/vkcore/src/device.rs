@@ -144,6 +144,12 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
 
 /// Features a driver reports but gets wrong, found by this project's GPU tests; they are
 /// treated as absent (and `causticlab devices` says why).
+///
+/// Pipeline statistics are not among them: the crash once listed here for lavapipe before Mesa
+/// 23 ("a statistics query brackets some compute dispatches") is the one Mesa 25's lavapipe
+/// showed on every mesh scene, a null compute shader read by `vkCmdBeginQuery` after a graphics
+/// pass had pushed constants for the compute stage. Pipelines now name their own stages only
+/// (`pipeline::layout_stages`), which no lavapipe crashes on (docs/mesa_lavapipe_statistics_crash.md).
 fn driver_quirks(driver: &vk::PhysicalDeviceDriverProperties) -> Vec<(Feature, &'static str)> {
     let mesa_major = driver
         .driver_info_as_c_str()
@@ -153,16 +159,10 @@ fn driver_quirks(driver: &vk::PhysicalDeviceDriverProperties) -> Vec<(Feature, &
     if !old_lavapipe {
         return vec![];
     }
-    vec![
-        (
-            Feature::PipelineStatisticsQuery,
-            "lavapipe before Mesa 23 segfaults when a statistics query brackets some compute dispatches (tests/compaction.rs)",
-        ),
-        (
-            Feature::Multiview,
-            "lavapipe before Mesa 23 renders every view into layer 0 with dynamic rendering (tests/rendering.rs)",
-        ),
-    ]
+    vec![(
+        Feature::Multiview,
+        "lavapipe before Mesa 23 renders every view into layer 0 with dynamic rendering (tests/rendering.rs)",
+    )]
 }
 
 pub(crate) fn graphics_family(families: &[vk::QueueFamilyProperties]) -> Option<u32> {
@@ -179,10 +179,17 @@ pub fn enumerate_devices(instance: &Instance) -> Result<Vec<DeviceInfo>> {
     Ok(pds.iter().enumerate().map(|(i, pd)| query_device(raw, *pd, i)).collect())
 }
 
-/// Picks a device: `query` is an index or a case-insensitive substring of the name; without one,
-/// the first hardware GPU, else the first software device (lavapipe).
+/// Picks a device: `query` is an index, or a case-insensitive substring of the device's name
+/// or of its driver (`causticlab devices`' "driver" line: the driver's name and version, e.g.
+/// "Mesa 25" or "mesa 22.3", which tells two lavapipes apart, both named "llvmpipe (LLVM ...)");
+/// without one, the first hardware GPU, else the first software device (lavapipe). A query that
+/// matches devices of different names or drivers is refused, naming them (identical devices,
+/// such as a node's GPUs of one model, give the first).
 pub fn choose_device(devices: &[DeviceInfo], query: Option<&str>) -> Result<usize> {
-    let available = || devices.iter().map(|d| format!("[{}] {}", d.index, d.name)).collect::<Vec<_>>().join(", ");
+    let list = |ds: &mut dyn Iterator<Item = &DeviceInfo>| {
+        ds.map(|d| format!("[{}] {} ({})", d.index, d.name, driver_label(d))).collect::<Vec<_>>().join(", ")
+    };
+    let available = || list(&mut devices.iter());
     let usable: Vec<&DeviceInfo> = devices.iter().filter(|d| d.api_major_minor >= (1, 3)).collect();
     match query {
         Some(q) => {
@@ -190,7 +197,19 @@ pub fn choose_device(devices: &[DeviceInfo], query: Option<&str>) -> Result<usiz
                 devices.iter().find(|d| d.index == i)
             } else {
                 let ql = q.to_lowercase();
-                devices.iter().find(|d| d.name.to_lowercase().contains(&ql))
+                let matches: Vec<&DeviceInfo> = devices
+                    .iter()
+                    .filter(|d| d.name.to_lowercase().contains(&ql) || driver_label(d).to_lowercase().contains(&ql))
+                    .collect();
+                let same = |a: &&DeviceInfo, b: &&DeviceInfo| (&a.name, &a.driver_info) == (&b.name, &b.driver_info);
+                if matches.iter().any(|d| !same(d, &matches[0])) {
+                    return Err(VkError::AmbiguousDevice {
+                        query: q.to_string(),
+                        count: matches.len(),
+                        matches: list(&mut matches.iter().copied()),
+                    });
+                }
+                matches.first().copied()
             };
             let d = found.ok_or_else(|| VkError::NoDevice { query: q.to_string(), available: available() })?;
             if d.api_major_minor < (1, 3) {
@@ -208,6 +227,11 @@ pub fn choose_device(devices: &[DeviceInfo], query: Option<&str>) -> Result<usiz
             .map(|d| d.index)
             .ok_or_else(|| VkError::NoDevice { query: "(any Vulkan 1.3 device)".into(), available: available() }),
     }
+}
+
+/// The driver as `causticlab devices` and `--device` name it: "llvmpipe Mesa 25.0.7 (LLVM 15.0.6)".
+pub fn driver_label(d: &DeviceInfo) -> String {
+    format!("{} {}", d.driver_name, d.driver_info).trim().to_string()
 }
 
 /// With no `--device` and a window: the device [`choose_device`] prefers if its graphics queue
@@ -390,4 +414,81 @@ pub(crate) fn create_device(
         debug_utils,
         info,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::choose_device;
+    use crate::features::DeviceInfo;
+
+    fn device(index: usize, name: &str, driver_info: &str, software: bool, api: (u32, u32)) -> DeviceInfo {
+        DeviceInfo {
+            index,
+            name: name.into(),
+            device_type: String::new(),
+            is_software: software,
+            api_version: format!("{}.{}.0", api.0, api.1),
+            driver_name: if software { "llvmpipe" } else { "NVIDIA" }.into(),
+            driver_info: driver_info.into(),
+            driver_version: 0,
+            vendor_id: 0,
+            device_id: 0,
+            supported: vec![],
+            baseline_missing: vec![],
+            quirks: vec![],
+            timestamp_valid_bits: 64,
+            timestamp_period_ns: 1.0,
+            point_size_range: [1.0, 1.0],
+            point_size_granularity: 1.0,
+            max_image_dimension_2d: 0,
+            max_image_array_layers: 0,
+            max_framebuffer_layers: 0,
+            max_geometry_output_vertices: 0,
+            max_geometry_total_output_components: 0,
+            max_transform_feedback_buffer_size: 0,
+            max_transform_feedback_buffers: 0,
+            max_compute_work_group_count: [0; 3],
+            max_storage_buffer_range: 0,
+            device_local_bytes: 0,
+            api_major_minor: api,
+        }
+    }
+
+    const LLVMPIPE: &str = "llvmpipe (LLVM 15.0.6, 256 bits)";
+
+    /// Two lavapipes share a name: the driver's version tells them apart, the name alone is
+    /// refused naming both, and an index still picks either.
+    #[test]
+    fn two_lavapipes_are_told_apart_by_their_driver() {
+        let ds = [
+            device(0, LLVMPIPE, "Mesa 25.0.7-2~bpo12+1 (LLVM 15.0.6)", true, (1, 4)),
+            device(1, LLVMPIPE, "Mesa 22.3.6 (LLVM 15.0.6)", true, (1, 3)),
+        ];
+        assert_eq!(choose_device(&ds, Some("Mesa 25")).unwrap(), 0);
+        assert_eq!(choose_device(&ds, Some("mesa 22.3")).unwrap(), 1);
+        assert_eq!(choose_device(&ds, Some("1")).unwrap(), 1);
+        let e = choose_device(&ds, Some("llvmpipe")).unwrap_err();
+        assert!(matches!(e, crate::VkError::AmbiguousDevice { count: 2, .. }), "{e}");
+        let e = e.to_string();
+        assert!(e.contains("matches 2 different devices") && e.contains("[0]") && e.contains("Mesa 22.3.6"), "{e}");
+        let e = choose_device(&ds, Some("Mesa 24")).unwrap_err().to_string();
+        assert!(e.contains("no Vulkan device matches `Mesa 24`") && e.contains("Mesa 25.0.7"), "{e}");
+    }
+
+    /// A node's identical GPUs are one choice (the first), not an ambiguity; a hardware GPU is
+    /// the default over lavapipe, and a device below Vulkan 1.3 is refused by name.
+    #[test]
+    fn identical_devices_give_the_first_and_the_default_prefers_hardware() {
+        let ds = [
+            device(0, LLVMPIPE, "Mesa 22.3.6 (LLVM 15.0.6)", true, (1, 3)),
+            device(1, "NVIDIA H100 80GB HBM3", "570.86", false, (1, 4)),
+            device(2, "NVIDIA H100 80GB HBM3", "570.86", false, (1, 4)),
+            device(3, "Old GPU", "1.0", false, (1, 2)),
+        ];
+        assert_eq!(choose_device(&ds, Some("h100")).unwrap(), 1);
+        assert_eq!(choose_device(&ds, None).unwrap(), 1);
+        assert_eq!(choose_device(&ds[..1], None).unwrap(), 0);
+        let e = choose_device(&ds, Some("old")).unwrap_err().to_string();
+        assert!(e.contains("needs 1.3"), "{e}");
+    }
 }

@@ -14,6 +14,9 @@ pub enum VkError {
     /// `--device` matched nothing.
     #[error("no Vulkan device matches `{query}`; available devices: {available}")]
     NoDevice { query: String, available: String },
+    /// `--device` matched devices of different names or drivers.
+    #[error("--device `{query}` matches {count} different devices: {matches}; name one by index or by its driver (e.g. \"Mesa 25\")")]
+    AmbiguousDevice { query: String, count: usize, matches: String },
     /// The chosen device lacks a feature something asked for.
     #[error("{who} needs the device feature `{feature}` ({vulkan_name}), which `{device}` does not report")]
     MissingFeature { who: String, feature: &'static str, vulkan_name: &'static str, device: String },

@@ -331,6 +331,10 @@ impl Frame {
             )));
         }
         let pass_queries = self.pass_queries;
+        crate::crash::recording(index, name);
+        if self.ring.is_none() && crate::crash::test_segfault_requested(name) {
+            self.segfault_in_pass()?;
+        }
         let res = self.res()?;
         let cb = res.cb;
         sync(&ctx, cb, uses)?;
@@ -365,6 +369,16 @@ impl Frame {
         Ok(())
     }
 
+    /// The test hook ([`crate::crash::TEST_SEGFAULT_ENV`]): runs the passes recorded before
+    /// the pass being recorded, then raises SIGSEGV as a driver crashing in it would, its marker
+    /// reading them.
+    fn segfault_in_pass(&mut self) -> Result<()> {
+        let cb = self.res()?.cb;
+        self.submit_and_wait(cb)?;
+        crate::crash::running(self.res()?.marker.ptr());
+        crate::crash::raise_test_segfault()
+    }
+
     /// Ends `cb`, submits it and waits for it, with the error of a frame that failed (the last
     /// pass its crash marker saw finish) when the wait fails.
     fn submit_and_wait(&self, cb: vk::CommandBuffer) -> Result<()> {
@@ -376,6 +390,7 @@ impl Frame {
         let submit = vk::SubmitInfo2::default().command_buffer_infos(&cbs);
         let timeout = self.fence_timeout.as_nanos().min(u64::MAX as u128) as u64;
         self.ctx.shared.counters.submit();
+        crate::crash::running(self.res.as_ref().map_or(std::ptr::null(), |r| r.marker.ptr()));
         let result = unsafe { d.queue_submit2(self.ctx.shared.device.queue, &[submit], fence) }
             .map_err(|e| {
                 VkError::Invalid(format!(
@@ -396,6 +411,7 @@ impl Frame {
             // the command buffer and the frame's resources are destroyed.
             let _ = unsafe { d.device_wait_idle() };
         }
+        crate::crash::idle();
         unsafe { d.destroy_fence(fence, None) };
         result
     }

@@ -9,6 +9,7 @@ mod buffer;
 pub mod compaction;
 mod context;
 mod counters;
+mod crash;
 mod device;
 mod error;
 mod features;
@@ -40,7 +41,8 @@ pub use compaction::{
 
 pub use context::{Context, ContextOptions};
 pub use counters::Counters;
-pub use device::{choose_device, enumerate_devices};
+pub use crash::TEST_SEGFAULT_ENV;
+pub use device::{choose_device, driver_label, enumerate_devices};
 pub use error::{Result, VkError};
 pub use features::{DeviceInfo, Feature};
 pub use frame::{Frame, FrameOptions, Use};

@@ -38,6 +38,14 @@ impl CrashMarker {
         ctx.shared.counters.barrier();
     }
 
+    /// The mapped word, for the fatal-signal handler (crash.rs); null where it is not mapped.
+    pub fn ptr(&self) -> *const u32 {
+        match self.buffer.mapped() {
+            Some(m) if m.len() >= 4 => m.as_ptr() as *const u32,
+            _ => std::ptr::null(),
+        }
+    }
+
     /// How many passes had finished, as far as the GPU wrote it.
     pub fn read(&self) -> u32 {
         match self.buffer.mapped() {

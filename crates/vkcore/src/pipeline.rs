@@ -138,6 +138,8 @@ pub(crate) struct Built {
     pub layout: vk::PipelineLayout,
     set_layout: vk::DescriptorSetLayout,
     pub bind_point: vk::PipelineBindPoint,
+    /// The stages its layout's descriptors and push constants name: its own shaders'.
+    pub stages: vk::ShaderStageFlags,
     /// Shared with every `Cmd` that binds the pipeline (no copy per pass).
     pub bindings: Arc<[Binding]>,
 }
@@ -162,16 +164,20 @@ fn stage_flags(s: Stage) -> vk::ShaderStageFlags {
     }
 }
 
-fn all_stages(ctx: &Context) -> vk::ShaderStageFlags {
-    let mut s = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT | vk::ShaderStageFlags::COMPUTE;
-    if ctx.info().has(crate::Feature::GeometryShader) {
-        s |= vk::ShaderStageFlags::GEOMETRY;
-    }
-    s
+/// The stages a pipeline's layout names: its own shaders' stages, no others. A layout that named
+/// every stage would make a graphics pass push constants for the compute stage too, which Mesa
+/// 23-25's lavapipe dereferences a null compute shader for at the next statistics query
+/// (docs/mesa_lavapipe_statistics_crash.md); naming a pipeline's own stages is what the
+/// spec's examples do, on every driver.
+fn layout_stages(stages: &[Stage]) -> vk::ShaderStageFlags {
+    stages.iter().fold(vk::ShaderStageFlags::empty(), |all, s| all | stage_flags(*s))
 }
 
-fn make_layout(ctx: &Context, bindings: &[Binding]) -> Result<(vk::DescriptorSetLayout, vk::PipelineLayout)> {
-    let stages = all_stages(ctx);
+fn make_layout(
+    ctx: &Context,
+    bindings: &[Binding],
+    stages: vk::ShaderStageFlags,
+) -> Result<(vk::DescriptorSetLayout, vk::PipelineLayout)> {
     let b: Vec<vk::DescriptorSetLayoutBinding> = bindings
         .iter()
         .map(|b| {
@@ -306,7 +312,8 @@ impl Pipeline {
         };
         let built = ctx.shared.pipelines.get_or_make(key, || {
             let bindings = reflect_bindings(&desc.name, &stages)?;
-            built(ctx, &desc.name, bindings, vk::PipelineBindPoint::GRAPHICS, |layout| {
+            let layout_stages = layout_stages(&stages.iter().map(|s| s.stage).collect::<Vec<_>>());
+            built(ctx, &desc.name, bindings, vk::PipelineBindPoint::GRAPHICS, layout_stages, |layout| {
                 Self::build_graphics(ctx, desc, layout)
             })
         })?;
@@ -412,7 +419,7 @@ impl Pipeline {
         let key = Key { name: name.into(), stages: vec![(shader.stage, shader.words.clone())], state: None };
         let built = ctx.shared.pipelines.get_or_make(key, || {
             let bindings = reflect_bindings(name, &[shader])?;
-            built(ctx, name, bindings, vk::PipelineBindPoint::COMPUTE, |layout| {
+            built(ctx, name, bindings, vk::PipelineBindPoint::COMPUTE, vk::ShaderStageFlags::COMPUTE, |layout| {
                 let d = ctx.shared.raw();
                 let mut modules = Modules { device: d, list: vec![] };
                 let m = modules.add(shader)?;
@@ -437,14 +444,23 @@ fn built(
     name: &str,
     bindings: Vec<Binding>,
     bind_point: vk::PipelineBindPoint,
+    stages: vk::ShaderStageFlags,
     build: impl FnOnce(vk::PipelineLayout) -> Result<vk::Pipeline>,
 ) -> Result<Built> {
-    let (set_layout, layout) = make_layout(ctx, &bindings)?;
+    let (set_layout, layout) = make_layout(ctx, &bindings, stages)?;
     match build(layout) {
         Ok(raw) => {
             ctx.shared.counters.object(2); // its modules (counted as one) and the pipeline
             ctx.set_name(raw, name);
-            Ok(Built { shared: ctx.shared.clone(), raw, layout, set_layout, bind_point, bindings: bindings.into() })
+            Ok(Built {
+                shared: ctx.shared.clone(),
+                raw,
+                layout,
+                set_layout,
+                bind_point,
+                stages,
+                bindings: bindings.into(),
+            })
         }
         Err(e) => {
             let d = ctx.shared.raw();

@@ -72,6 +72,8 @@ struct Bound {
     name: String,
     point: vk::PipelineBindPoint,
     layout: vk::PipelineLayout,
+    /// The stages its layout names, which push constants must name too.
+    stages: vk::ShaderStageFlags,
     bindings: Arc<[Binding]>,
 }
 
@@ -185,8 +187,13 @@ impl<'f> Cmd<'f> {
     pub fn bind_pipeline(&mut self, p: &Pipeline) {
         let b = &p.built;
         unsafe { self.d().cmd_bind_pipeline(self.cb, b.bind_point, b.raw) };
-        self.bound =
-            Some(Bound { name: p.name.clone(), point: b.bind_point, layout: b.layout, bindings: b.bindings.clone() });
+        self.bound = Some(Bound {
+            name: p.name.clone(),
+            point: b.bind_point,
+            layout: b.layout,
+            stages: b.stages,
+            bindings: b.bindings.clone(),
+        });
     }
 
     /// Pushes descriptors for the bound pipeline, each under its shader's name for the binding,
@@ -252,8 +259,8 @@ impl<'f> Cmd<'f> {
         Ok(())
     }
 
-    /// Push constants (at most 128 bytes) for every stage: a struct declared with
-    /// `push_constants!`, twin of the shaders' `layout(push_constant)` block.
+    /// Push constants (at most 128 bytes) for every stage of the bound pipeline: a struct
+    /// declared with `push_constants!`, twin of the shaders' `layout(push_constant)` block.
     pub fn push<T: PushConstants>(&mut self, data: &T) -> Result<()> {
         let bytes = bytemuck::bytes_of(data);
         if bytes.len() as u32 > PUSH_CONSTANT_BYTES {
@@ -262,15 +269,11 @@ impl<'f> Cmd<'f> {
                 bytes.len()
             )));
         }
-        let layout = self
+        let (layout, stages) = self
             .bound
             .as_ref()
-            .map(|b| b.layout)
+            .map(|b| (b.layout, b.stages))
             .ok_or_else(|| VkError::Invalid("push() before bind_pipeline()".into()))?;
-        let mut stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT | vk::ShaderStageFlags::COMPUTE;
-        if self.ctx.info().has(crate::Feature::GeometryShader) {
-            stages |= vk::ShaderStageFlags::GEOMETRY;
-        }
         unsafe { self.d().cmd_push_constants(self.cb, layout, stages, 0, bytes) };
         Ok(())
     }

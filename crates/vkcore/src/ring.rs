@@ -203,6 +203,7 @@ impl FrameRing {
         let submit = vk::SubmitInfo2::default().command_buffer_infos(&cbs);
         let submitted = ended.and_then(|_| {
             self.ctx.shared.counters.submit();
+            crate::crash::ring_submitted();
             unsafe { d.queue_submit2(self.ctx.shared.device.queue, &[submit], slot.fence) }.call("vkQueueSubmit2")
         });
         slot.res = Some(res);

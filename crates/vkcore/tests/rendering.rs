@@ -88,7 +88,8 @@ fn vertex_shader_selects_layer_with_shader_output_layer() {
 
 /// Where the device has multiview, one draw fills every layer. Where it does not, the only
 /// reason allowed is a listed driver quirk (lavapipe before Mesa 23, Debian 12's among them, so
-/// there this test checks the refusal and renders nothing: multiview is covered on GPUs only).
+/// there this test checks the refusal and renders nothing: multiview is covered on GPUs and on
+/// Mesa 25's lavapipe, which scripts/mesa25_check.sh runs this test on).
 #[test]
 fn multiview_renders_every_layer_in_one_draw_or_is_refused_for_a_listed_quirk() {
     let (ctx, _) = context();

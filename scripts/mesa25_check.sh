@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# The Mesa 25 step of the tests (scripts/test.sh runs it after the main suite): with Mesa 25's
+# lavapipe beside the system's Mesa 22.3 (scripts/mesa25.sh), selected by its driver
+# (`--device "Mesa 25"`), under validation (any message is exit code 3):
+#   - `causticlab devices` lists both lavapipes and --device tells them apart;
+#   - vkcore's GPU tests (statistics after pushed constants, layered rendering and multiview,
+#     compaction, passes) on Mesa 25;
+#   - every shipped scene rendered with shah, hcm, adaptive and photon-trace (the pool scenes
+#     with their pool-convolution), 64² photons, statistics queries on (render always asks);
+#   - a --quick run of Wyman 2008 Table 1 (its statistics frame included).
+# Scenes whose models are missing are skipped with one line, as in scripts/demo.sh.
+#
+#   bash scripts/mesa25_check.sh [BIN]     (default target/debug/causticlab)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bin=${1:-target/debug/causticlab}
+[ -x "$bin" ] || { echo "mesa25_check: $bin is not built (cargo build)" >&2; exit 1; }
+eval "$(bash scripts/mesa25.sh --env)"
+device="Mesa 25"
+start=$SECONDS
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+echo "mesa25_check: devices"
+"$bin" devices | grep -E '^\[|driver  ' | tee "$out/devices"
+grep -A1 '\[default\]' "$out/devices" | grep -q 'Mesa 22' ||
+    { echo "mesa25_check: the default device is not the system's Mesa 22.3 lavapipe" >&2; exit 1; }
+"$bin" --device "$device" devices | grep -q 'Mesa 25.*selected\|selected by --device' ||
+    { echo "mesa25_check: --device \"$device\" selected nothing" >&2; exit 1; }
+if "$bin" --device llvmpipe devices >/dev/null 2>&1; then
+    echo "mesa25_check: --device llvmpipe should be refused as matching two devices" >&2
+    exit 1
+fi
+
+echo "mesa25_check: vkcore's GPU tests on $device"
+CAUSTICLAB_TEST_DEVICE="$device" cargo test -q -p vkcore --test statistics --test rendering --test compaction \
+    --test passes --test ring
+
+failed=()
+skipped=()
+renders=0
+for scene in scenes/*.toml; do
+    stem=$(basename "$scene" .toml)
+    techniques=(shah hcm adaptive photon-trace)
+    grep -q '^\[pool\]' "$scene" && techniques=(pool-convolution)
+    for t in "${techniques[@]}"; do
+        status=0
+        "$bin" --device "$device" --validate render --scene "$scene" --technique "$t" --photons 64 \
+            --out "$out/$stem-$t" >"$out/log" 2>&1 || status=$?
+        if [ "$status" -ne 0 ] && missing=$(grep -m1 'not found; searched:' "$out/log"); then
+            echo "mesa25_check: skipped $stem: ${missing#error: }"
+            skipped+=("$stem")
+            break
+        fi
+        if [ "$status" -ne 0 ]; then
+            cat "$out/log" >&2
+            echo "mesa25_check: FAILED $stem with $t (exit $status)" >&2
+            failed+=("$stem/$t")
+        elif ! grep -q "Mesa 25" "$out/log"; then
+            echo "mesa25_check: $stem/$t did not run on $device:" >&2
+            head -1 "$out/log" >&2
+            failed+=("$stem/$t")
+        else
+            renders=$((renders + 1))
+        fi
+        rm -rf "${out:?}/$stem-$t"
+    done
+done
+echo "mesa25_check: $renders renders on $device, validation clean"
+
+echo "mesa25_check: bench --quick wyman2008_table1 on $device"
+"$bin" --device "$device" --validate bench bench_configs/wyman2008_table1.toml --quick --results "$out/results" \
+    >"$out/bench.log" 2>&1 || { cat "$out/bench.log" >&2; failed+=("bench wyman2008_table1"); }
+grep -rq "Mesa 25" "$out/results" || { echo "mesa25_check: the quick table does not name Mesa 25" >&2; failed+=("bench device"); }
+
+if [ "${#skipped[@]}" -ne 0 ]; then
+    echo "mesa25_check: skipped ${#skipped[@]} scene(s) whose models are missing: ${skipped[*]}"
+fi
+if [ "${#failed[@]}" -ne 0 ]; then
+    echo "mesa25_check: failed: ${failed[*]}" >&2
+    exit 1
+fi
+echo "mesa25_check: ok in $((SECONDS - start)) s"
