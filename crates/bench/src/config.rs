@@ -289,6 +289,7 @@ pub const METRIC_KINDS: &[&str] = &[
     "pass_fps",
     "pass_mphotons",
     "pass_host_ms",
+    "pass_host_mphotons",
     "frame_mphotons",
     "gpu_frame_ms",
     "frame_ms",
@@ -334,7 +335,7 @@ pub fn is_quality_metric(kind: &str) -> bool {
 pub struct MetricSpec {
     pub label: String,
     pub kind: String,
-    /// For `pass_ms`, `pass_fps`, `pass_mphotons` and `pass_host_ms`: pass names summed per frame; `*` matches any run of characters.
+    /// For `pass_ms`, `pass_fps`, `pass_mphotons`, `pass_host_ms` and `pass_host_mphotons`: pass names summed per frame; `*` matches any run of characters.
     #[serde(default)]
     pub passes: Vec<String>,
     /// For `frame_ms` and `fps`: passes whose GPU time is taken off each frame's wall time, for
@@ -358,7 +359,7 @@ pub struct MetricSpec {
     /// is implausible (rule d). Its work is then also not taken to grow along them (rule a).
     #[serde(default)]
     pub independent_of: Vec<String>,
-    /// Rule a off for this metric: its work need not grow along `work_grows_with`, and why
+    /// Rules a and g off for this metric: its work (or count) need not grow along `work_grows_with`, and why
     /// (e.g. a per-level time whose level changes meaning with the photon count).
     #[serde(default)]
     pub not_monotonic: Option<String>,
@@ -479,9 +480,9 @@ impl Config {
     }
 
     /// Whether the per-pass frames submit every pass alone to time it on the host: a
-    /// `pass_host_ms` metric asks for it.
+    /// `pass_host_ms` or `pass_host_mphotons` metric asks for it.
     pub fn host_pass_times(&self) -> bool {
-        self.metrics.iter().any(|m| m.kind == "pass_host_ms")
+        self.metrics.iter().any(|m| matches!(m.kind.as_str(), "pass_host_ms" | "pass_host_mphotons"))
     }
 
     /// The frames of every cell: `[run]`, or `[quick]` under `--quick`.

@@ -18,7 +18,7 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
     }
     match kind {
         "pass_ms" | "pass_host_ms" | "gpu_frame_ms" | "frame_ms" | "fps" | "pass_fps" | "pass_mphotons"
-        | "frame_mphotons" => significant(v),
+        | "pass_host_mphotons" | "frame_mphotons" => significant(v),
         "photons_emitted" | "splats_drawn" | "photons_processed" | "valid_photons" | "photon_batches" => {
             thousands(v.round() as u64)
         }
@@ -64,7 +64,7 @@ pub fn unit(kind: &str) -> &'static str {
     match kind {
         "pass_ms" | "pass_host_ms" | "gpu_frame_ms" | "frame_ms" => "ms",
         "fps" | "pass_fps" => "fps",
-        "pass_mphotons" | "frame_mphotons" => "M photons/s",
+        "pass_mphotons" | "pass_host_mphotons" | "frame_mphotons" => "M photons/s",
         "photons_emitted" => "photons",
         "splats_drawn" | "photons_processed" => "points",
         "valid_photons" => "photons",

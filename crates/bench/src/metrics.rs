@@ -133,6 +133,12 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
                 k,
                 pass_samples(run, &m.passes).iter().map(|ms| run.photons_emitted as f64 / ms / 1000.0).collect(),
             ),
+            // The same over the passes' host times (each submitted alone): the rate of a pass
+            // whose device timestamps miss its work.
+            "pass_host_mphotons" => of_samples(
+                k,
+                pass_host_samples(run, &m.passes).iter().map(|ms| run.photons_emitted as f64 / ms / 1000.0).collect(),
+            ),
             "gpu_frame_ms" => of_samples(k, pass_samples(run, &["*".to_string()])),
             "frame_ms" => of_samples(k, wall_ms(run, &m.exclude)),
             // Millions of the frame's emitted photons per second of its host wall time.

@@ -235,7 +235,9 @@ fn plausibility_section(results: &Results) -> String {
     let _ = writeln!(
         s,
         "Rules (bench_configs/README.md#plausibility): a) more work, less time; b) dynamic beats static; c) faster \
-         than the device's memory; d) varies along an axis it does not depend on.\n"
+         than the device's memory; d) varies along an axis it does not depend on; e) the device's timestamps missed \
+         the work its host time shows; f) photons faster than the device can write them; g) a count that falls as \
+         the work grows. Entries found by c, e or f read `not measured`.\n"
     );
     let row = |x: &crate::plausibility::Finding| {
         let cell: Vec<String> = x.keys.iter().filter(|(_, v)| !v.is_empty()).map(|(k, v)| format!("{k}={v}")).collect();

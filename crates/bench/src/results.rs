@@ -218,6 +218,7 @@ pub fn is_timing(kind: &str) -> bool {
             | "fps"
             | "pass_fps"
             | "pass_mphotons"
+            | "pass_host_mphotons"
             | "frame_mphotons"
     )
 }

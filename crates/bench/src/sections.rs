@@ -11,6 +11,8 @@ use crate::text_table::{Style, TextTable, WIDTH};
 pub const NOT_RUN: &str = "N/A";
 /// An entry a partial merge has no cell for (`bench merge --partial`).
 pub const MISSING: &str = "not run";
+/// An entry whose value the device cannot have measured (plausibility rules c, e, f).
+pub const UNMEASURED: &str = "not measured";
 
 /// Superscript markers of the "not comparable" footnotes.
 const MARKS: [&str; 9] = ["¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"];
@@ -47,6 +49,8 @@ pub fn cell_text(e: &Entry, notes: &mut Footnotes) -> String {
         NOT_RUN.to_string()
     } else if e.missing {
         MISSING.to_string()
+    } else if let Some(rule) = &e.unmeasured {
+        format!("{UNMEASURED} ({rule})")
     } else {
         format_value(&e.kind, e.ours)
     };
@@ -150,6 +154,14 @@ pub fn legend(g: &Grid, notes: &Footnotes) -> Vec<String> {
         lines.push(format!(
             "`~` marks {busy} entries whose cell ran while other processes kept the machine busy, even when measured \
              again: not a quiet machine's times."
+        ));
+    }
+    let unmeasured = g.entries.iter().flatten().filter(|e| e.unmeasured.is_some()).count();
+    if unmeasured > 0 {
+        lines.push(format!(
+            "`{UNMEASURED} (rule)` marks {unmeasured} entries whose value the device cannot have done (rules c, e, f \
+             under *Plausibility*: faster than it can copy or write, or far below the host time of the same passes): \
+             its clock missed the work, so no number is given; read the host-timed columns where the table has them."
         ));
     }
     if implausible > 0 {

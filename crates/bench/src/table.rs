@@ -31,6 +31,10 @@ pub struct Entry {
     pub missing: bool,
     /// A plausibility rule found this entry implausible and nothing explains it (`?`).
     pub implausible: bool,
+    /// The rule (c, e or f: [`crate::plausibility::UNMEASURED_RULES`]) that found this entry
+    /// beyond what the device can do, explained or not: its value is not what the device did
+    /// (its clock missed the work), so the entry reads `not measured (rule)`, not a number.
+    pub unmeasured: Option<String>,
     /// The cell ran while other processes kept the machine busy (`~`).
     pub busy: bool,
     /// A timed entry whose cell was measured again for its spread (`spread_attempts`).
@@ -171,9 +175,21 @@ fn entry(config: &Config, results: &Results, keys: BTreeMap<String, String>) -> 
     let implausible = found.is_some_and(|c| {
         results.plausibility.iter().any(|f| f.cell == c.cell.index && f.metric == metric && f.explained.is_none())
     });
+    let unmeasured = found.and_then(|c| {
+        results
+            .plausibility
+            .iter()
+            .find(|f| {
+                f.cell == c.cell.index
+                    && f.metric == metric
+                    && crate::plausibility::UNMEASURED_RULES.contains(&f.rule.as_str())
+            })
+            .map(|f| f.rule.clone())
+    });
+    let (ours, spread) = if unmeasured.is_some() { (None, None) } else { (ours, spread) };
     let busy = found.is_some_and(|c| c.busy) && is_timing(&kind);
     let remeasured = found.is_some_and(|c| c.spread_attempts.len() > 1) && is_timing(&kind);
-    Entry { keys, ours, spread, paper, kind, not_run, missing, implausible, busy, remeasured }
+    Entry { keys, ours, spread, paper, kind, not_run, missing, implausible, unmeasured, busy, remeasured }
 }
 
 impl Grid {

@@ -176,18 +176,18 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     // The plausibility rules' declarations.
     let matrix_axes = ["scene", "technique", "photons", "lights", "resolution", "lighting"];
     for (k, a) in c.plausibility.work_grows_with.iter().enumerate() {
-        if !["scene", "photons", "lights", "resolution"].contains(&a.as_str()) {
+        if !["scene", "technique", "photons", "lights", "resolution"].contains(&a.as_str()) {
             return Err(bad(
                 &format!("plausibility.work_grows_with[{k}]"),
-                format!("`{a}`: the work can grow along scene, photons, lights or resolution"),
+                format!("`{a}`: the work can grow along scene, technique, photons, lights or resolution"),
             ));
         }
     }
     for (k, e) in c.plausibility.explained.iter().enumerate() {
-        if !["a", "b", "c", "d"].contains(&e.rule.as_str()) {
+        if !["a", "b", "c", "d", "e", "f", "g"].contains(&e.rule.as_str()) {
             return Err(bad(
                 &format!("plausibility.explained[{k}].rule"),
-                format!("`{}`: rules are a, b, c and d", e.rule),
+                format!("`{}`: rules are a to g (bench_configs/README.md)", e.rule),
             ));
         }
         if !c.metrics.iter().any(|m| m.label == e.metric) {
@@ -237,12 +237,16 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                 format!("unknown kind `{}`; expected one of {}", mt.kind, METRIC_KINDS.join(", ")),
             ));
         }
-        let per_pass = matches!(mt.kind.as_str(), "pass_ms" | "pass_fps" | "pass_mphotons" | "pass_host_ms");
+        let per_pass = matches!(
+            mt.kind.as_str(),
+            "pass_ms" | "pass_fps" | "pass_mphotons" | "pass_host_ms" | "pass_host_mphotons"
+        );
         if per_pass == mt.passes.is_empty() {
             let msg = if mt.passes.is_empty() {
                 format!("kind {} needs `passes`", mt.kind)
             } else {
-                "only kinds pass_ms, pass_fps, pass_mphotons and pass_host_ms take `passes`".to_string()
+                "only kinds pass_ms, pass_fps, pass_mphotons, pass_host_ms and pass_host_mphotons take `passes`"
+                    .to_string()
             };
             return Err(bad(&format!("metric[{i}].passes"), msg));
         }

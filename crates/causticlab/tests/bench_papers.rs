@@ -337,8 +337,9 @@ fn quick_splat_paths_splat_the_same_photons_and_time_every_splat() {
 
 #[test]
 fn quick_photon_trace_rate_times_the_trace_and_counts_every_emitted_photon() {
-    // T1: the tracer's pass and the whole frame are timed in every cell, and each rate is, frame
-    // for frame, the photons emitted (N², one light) over that frame's time (the JSON keeps six decimals).
+    // T1: the tracer's pass (on the device's clock and, submitted alone, on the host's) and the
+    // whole frame are timed in every cell, and each rate is, frame for frame, the photons emitted
+    // (N², one light) over that frame's time (the JSON keeps six decimals).
     let (_, r) = quick_run("photon_trace_rate.toml");
     let samples = |c: &serde_json::Value, m: &str| -> Vec<f64> {
         c["metrics"][m]["samples"].as_array().expect("samples").iter().filter_map(|v| v.as_f64()).collect()
@@ -347,7 +348,7 @@ fn quick_photon_trace_rate_times_the_trace_and_counts_every_emitted_photon() {
         for photons in [64u64, 128] {
             for t in ["Fresnel on", "Fresnel off"] {
                 let c = cell_in(&r, scene, t, photons);
-                for (time, rate) in [("Trace", "rate"), ("Frame", "frame rate")] {
+                for (time, rate) in [("Trace", "rate"), ("Trace (host)", "host rate"), ("Frame", "frame rate")] {
                     let (ms, per_s) = (samples(c, time), samples(c, rate));
                     assert!(
                         !ms.is_empty() && ms.len() == per_s.len(),
