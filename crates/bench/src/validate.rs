@@ -209,6 +209,26 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                 ));
             }
         }
+        // Rules c and f read a time in ms or a rate in M photons/s: no other kind.
+        let bytes_kinds = [
+            "pass_ms",
+            "pass_host_ms",
+            "gpu_frame_ms",
+            "frame_ms",
+            "pass_mphotons",
+            "pass_host_mphotons",
+            "frame_mphotons",
+        ];
+        if mt.bytes_per_photon.is_some() && !bytes_kinds.contains(&mt.kind.as_str()) {
+            return Err(bad(
+                &format!("metric[{i}].bytes_per_photon"),
+                format!(
+                    "kind `{}` is neither a time in ms nor a photon rate: only {} take it",
+                    mt.kind,
+                    bytes_kinds.join(", ")
+                ),
+            ));
+        }
         if let Some(crate::config::BytesPerPhoton::ByTechnique(m)) = &mt.bytes_per_photon {
             if let Some(t) = m.keys().find(|t| !c.techniques.iter().any(|x| &x.label == *t)) {
                 return Err(bad(&format!("metric[{i}].bytes_per_photon"), format!("no technique is labelled `{t}`")));

@@ -55,6 +55,16 @@ fn config_errors_name_the_file_and_key() {
         ),
         ("few_max_frames.toml", SMALL.replace("[run]", "[run]\nmax_frames = 0"), "run.max_frames"),
         (
+            "bytes_on_a_count.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"splats_drawn\"\nbytes_per_photon = 32"),
+            "metric[1].bytes_per_photon",
+        ),
+        (
+            "technique_axis_typo.toml",
+            format!("{SMALL}\n[plausibility]\nwork_grows_with = [\"techniques\"]\n"),
+            "plausibility.work_grows_with[0]",
+        ),
+        (
             "temporal_still.toml",
             SMALL.replace("kind = \"splats_drawn\"", "kind = \"temporal_change\""),
             "metric[1].kind",

@@ -13,7 +13,7 @@
 //! The statics describe the last frame recorded; with a ring, frames in flight before it are
 //! named by number only.
 
-use std::sync::atomic::{AtomicPtr, AtomicU32, AtomicU64, AtomicU8, AtomicUsize, Ordering::Relaxed};
+use std::sync::atomic::{AtomicBool, AtomicPtr, AtomicU32, AtomicU64, AtomicU8, AtomicUsize, Ordering::Relaxed};
 use std::sync::OnceLock;
 
 /// Names a test sets to raise SIGSEGV in place of the pass of that name, after running the passes
@@ -67,6 +67,11 @@ static CURRENT: AtomicU32 = AtomicU32::new(0);
 static MARKER: AtomicPtr<u32> = AtomicPtr::new(std::ptr::null_mut());
 /// Frames recorded so far by this process (the last one's number).
 static FRAME: AtomicU64 = AtomicU64::new(0);
+/// A ring has submitted frames that may still run (until its `finish` or drop).
+static RING_IN_FLIGHT: AtomicBool = AtomicBool::new(false);
+/// Set by the first fatal signal: a second one (Rust's handler aborting on a stack overflow,
+/// inside ours) goes straight to the default action.
+static REPORTING: AtomicBool = AtomicBool::new(false);
 
 const SIGNALS: [(libc::c_int, &str); 5] = [
     (libc::SIGSEGV, "SIGSEGV"),
@@ -127,7 +132,14 @@ pub(crate) fn running(marker: *const u32) {
 
 /// A ring submitted the frame last recorded (frames before it may still be running).
 pub(crate) fn ring_submitted() {
+    RING_IN_FLIGHT.store(true, Relaxed);
     PHASE.store(RING, Relaxed);
+}
+
+/// A ring waited for all its frames (its `finish`, or its drop).
+pub(crate) fn ring_idle() {
+    RING_IN_FLIGHT.store(false, Relaxed);
+    let _ = PHASE.compare_exchange(RING, IDLE, Relaxed, Relaxed);
 }
 
 /// The device has finished (or failed) what it was given: the marker is no longer read.
@@ -201,6 +213,14 @@ impl Message {
 }
 
 extern "C" fn on_fatal_signal(sig: libc::c_int, info: *mut libc::siginfo_t, context: *mut libc::c_void) {
+    if REPORTING.swap(true, Relaxed) {
+        // SAFETY: signal(2) and raise(3) are async-signal-safe.
+        unsafe {
+            libc::signal(sig, libc::SIG_DFL);
+            libc::raise(sig);
+        }
+        return;
+    }
     let mut m = Message { buf: [0; 2048], len: 0 };
     let name = SIGNALS.iter().find(|(s, _)| *s == sig).map_or("signal", |(_, n)| n);
     m.put(b"\ncausticlab: fatal ");
@@ -216,12 +236,24 @@ extern "C" fn on_fatal_signal(sig: libc::c_int, info: *mut libc::siginfo_t, cont
             m.pass(CURRENT.load(Relaxed));
             m.put(b" of this process's frame ");
             m.num(FRAME.load(Relaxed));
-            m.put(b" (the driver crashed taking its commands, before the device ran them)");
+            if RING_IN_FLIGHT.load(Relaxed) {
+                m.put(b", with earlier frames of a ring running on the device (ring frames mark no pass)");
+            } else {
+                m.put(b" (the driver crashed taking its commands, before the device ran them)");
+            }
         }
         RUNNING => {
+            // What is known so far goes out first: the marker is read last.
+            // SAFETY: write(2) on stderr with our own buffer.
+            unsafe {
+                libc::write(2, m.buf.as_ptr() as *const libc::c_void, m.len);
+            }
+            m.len = 0;
             let marker = MARKER.load(Relaxed);
             // SAFETY: the marker is mapped until `idle` clears it, which the recording thread
-            // does before the frame's resources are freed.
+            // does before the frame's resources are freed. Another thread's frame may finish in
+            // between (several contexts in one process, as in the tests): the header above is
+            // already out if this read then faults.
             let finished = if marker.is_null() { 0 } else { unsafe { std::ptr::read_volatile(marker) } };
             m.put(b", while the device ran this process's frame ");
             m.num(FRAME.load(Relaxed));

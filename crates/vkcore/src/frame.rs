@@ -374,7 +374,11 @@ impl Frame {
     /// reading them.
     fn segfault_in_pass(&mut self) -> Result<()> {
         let cb = self.res()?.cb;
-        self.submit_and_wait(cb)?;
+        if let Err(e) = self.submit_and_wait(cb) {
+            // The command buffer is no longer recording: Drop must not end it.
+            self.finished = true;
+            return Err(e);
+        }
         crate::crash::running(self.res()?.marker.ptr());
         crate::crash::raise_test_segfault()
     }

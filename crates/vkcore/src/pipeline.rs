@@ -165,10 +165,10 @@ fn stage_flags(s: Stage) -> vk::ShaderStageFlags {
 }
 
 /// The stages a pipeline's layout names: its own shaders' stages, no others. A layout that named
-/// every stage would make a graphics pass push constants for the compute stage too, which Mesa
-/// 23-25's lavapipe dereferences a null compute shader for at the next statistics query
-/// (docs/mesa_lavapipe_statistics_crash.md); naming a pipeline's own stages is what the
-/// spec's examples do, on every driver.
+/// every stage made a graphics pass push constants for the compute stage too, which lavapipe
+/// (Mesa 22.3.6 and 25.0.7 seen) answers by dereferencing a null compute shader at the next
+/// statistics query (docs/mesa_lavapipe_statistics_crash.md). With its own stages, a push
+/// names only stages whose pipeline is bound, on every driver.
 fn layout_stages(stages: &[Stage]) -> vk::ShaderStageFlags {
     stages.iter().fold(vk::ShaderStageFlags::empty(), |all, s| all | stage_flags(*s))
 }

@@ -226,6 +226,7 @@ impl FrameRing {
             let s = ((self.next_frame + k) % n) as usize;
             self.retire(s)?;
         }
+        crate::crash::ring_idle();
         Ok(self.reports())
     }
 }
@@ -237,6 +238,7 @@ impl Drop for FrameRing {
         if !fences.is_empty() {
             let _ = unsafe { d.wait_for_fences(&fences, true, u64::MAX) };
         }
+        crate::crash::ring_idle();
         for s in self.slots.drain(..) {
             unsafe { d.destroy_fence(s.fence, None) };
             drop(s.res);
