@@ -285,4 +285,28 @@ mod tests {
         assert!(p.batched() && p.storage_bytes() <= 64 << 20, "{p:?}");
         assert!(plan(8, Metric::MaxError, false, Some(16 << 20), 1, 1).is_err(), "16 MiB: too many worst-case batches");
     }
+
+    /// The batch count need not grow with the photons (plausibility rule g marks it in
+    /// `wyman_nichols2009_adaptive`): under 96 MiB the compute path's max-traversal plan
+    /// batches 8192² from level 7 (198 batches), but at 16384² batches of level 7 fit the 3,936
+    /// passes a light may record only with 60,350 clusters or more each (278 batches), which
+    /// 96 MiB cannot hold, so it batches from level 6: 115 batches, each refined two levels.
+    #[test]
+    fn the_pass_budget_moves_16384s_batches_up_a_level_so_there_are_fewer() {
+        let limit = 96 * 1024 * 1024;
+        let at_8192 = plan(7, Metric::MaxTraversal, false, Some(limit), 1, 1).unwrap();
+        let at_16384 = plan(8, Metric::MaxTraversal, false, Some(limit), 1, 1).unwrap();
+        assert_eq!((at_8192.breadth, at_8192.batches), (7, 198));
+        assert_eq!((at_16384.breadth, at_16384.batches), (6, 115));
+        let budget = (vkcore::MAX_PASSES - OTHER_PASSES) as u64;
+        assert_eq!(budget, 3_936);
+        // Level 7 of 16384² (32 x 2^7 = 4096² clusters) in batches of s: 278 batches fit the
+        // budget, 279 do not; s = 60,350 is the smallest that gives 278.
+        let level7 = clusters_at(7);
+        assert_eq!(level7.div_ceil(60_350), 278);
+        assert!(passes(8, 7, 278) <= budget && passes(8, 7, 279) > budget);
+        assert_eq!(level7.div_ceil(60_349), 279);
+        let fewest = with_batches(8, Metric::MaxTraversal, false, 7, 60_350);
+        assert!(fewest.storage_bytes() > limit, "{} MiB", fewest.storage_bytes() / (1 << 20));
+    }
 }
