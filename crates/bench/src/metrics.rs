@@ -80,6 +80,11 @@ fn summed_passes(run: &CellRun, patterns: &[String], time: fn(&vkcore::PassTimin
         .collect()
 }
 
+/// Millions of the frame's emitted photons per second of each of `ms`.
+fn mphotons(run: &CellRun, ms: Vec<f64>) -> Vec<f64> {
+    ms.iter().map(|ms| run.photons_emitted as f64 / ms / 1000.0).collect()
+}
+
 /// Per measured frame: its host wall time less the GPU time of the passes matching `exclude`.
 fn wall_ms(run: &CellRun, exclude: &[String]) -> Vec<f64> {
     run.frames
@@ -129,23 +134,14 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
             "pass_host_ms" => of_samples(k, pass_host_samples(run, &m.passes)),
             "pass_fps" => of_samples(k, pass_samples(run, &m.passes).iter().map(|ms| 1000.0 / ms).collect()),
             // Millions of the frame's emitted photons per second of the passes.
-            "pass_mphotons" => of_samples(
-                k,
-                pass_samples(run, &m.passes).iter().map(|ms| run.photons_emitted as f64 / ms / 1000.0).collect(),
-            ),
+            "pass_mphotons" => of_samples(k, mphotons(run, pass_samples(run, &m.passes))),
             // The same over the passes' host times (each submitted alone): the rate of a pass
             // whose device timestamps miss its work.
-            "pass_host_mphotons" => of_samples(
-                k,
-                pass_host_samples(run, &m.passes).iter().map(|ms| run.photons_emitted as f64 / ms / 1000.0).collect(),
-            ),
+            "pass_host_mphotons" => of_samples(k, mphotons(run, pass_host_samples(run, &m.passes))),
             "gpu_frame_ms" => of_samples(k, pass_samples(run, &["*".to_string()])),
             "frame_ms" => of_samples(k, wall_ms(run, &m.exclude)),
             // Millions of the frame's emitted photons per second of its host wall time.
-            "frame_mphotons" => of_samples(
-                k,
-                wall_ms(run, &m.exclude).iter().map(|ms| run.photons_emitted as f64 / ms / 1000.0).collect(),
-            ),
+            "frame_mphotons" => of_samples(k, mphotons(run, wall_ms(run, &m.exclude))),
             "fps" => {
                 let wall = wall_ms(run, &m.exclude);
                 let mean = wall.iter().sum::<f64>() / wall.len().max(1) as f64;

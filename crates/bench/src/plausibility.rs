@@ -23,9 +23,9 @@
 //!   `pass_host_mphotons`) whose photons, each writing at least `bytes_per_photon`, would need
 //!   more than the bound of rule c for the bytes they write.
 //! - **g** Fewer with more work: a count (photons emitted, valid, processed, splats, batches;
-//!   not the storage, which a memory limit caps and batching shrinks) lower at a cell with more work along a `work_grows_with` axis than at its
-//!   neighbour with less; counts are exact, so any drop is a finding unless the metric says
-//!   why its count need not grow (`not_monotonic`).
+//!   not the storage, which a memory limit caps and batching shrinks) lower at a cell with more
+//!   work along a `work_grows_with` axis than at its neighbour with less; counts are exact, so
+//!   any drop is a finding unless the metric says why its count need not grow (`not_monotonic`).
 
 use crate::config::{Config, MetricSpec};
 use crate::plan::{Cell, Matrix};
@@ -80,8 +80,13 @@ fn is_growing_count(kind: &str) -> bool {
 }
 
 /// Photon rates (rule f).
-fn is_rate(kind: &str) -> bool {
+pub fn is_rate(kind: &str) -> bool {
     matches!(kind, "pass_mphotons" | "frame_mphotons" | "pass_host_mphotons")
+}
+
+/// Frame rates: timings where higher is faster, like the photon rates.
+fn is_frame_rate(kind: &str) -> bool {
+    matches!(kind, "fps" | "pass_fps")
 }
 
 /// (q1, median, q3) of a metric of a cell.
@@ -95,7 +100,12 @@ fn spread(c: &CellResult, metric: &str) -> Option<(f64, f64, f64)> {
 }
 
 fn lower_is_faster(kind: &str) -> bool {
-    !matches!(kind, "fps" | "pass_fps" | "pass_mphotons" | "frame_mphotons" | "pass_host_mphotons")
+    !is_frame_rate(kind) && !is_rate(kind)
+}
+
+/// Kinds that rules c and f can read with `bytes_per_photon`: a time in ms or a photon rate.
+pub fn takes_bytes_per_photon(kind: &str) -> bool {
+    crate::results::is_timing(kind) && !is_frame_rate(kind)
 }
 
 /// Is `b` (with more work, or dynamic) clearly faster than `a`?

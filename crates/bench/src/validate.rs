@@ -210,22 +210,15 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             }
         }
         // Rules c and f read a time in ms or a rate in M photons/s: no other kind.
-        let bytes_kinds = [
-            "pass_ms",
-            "pass_host_ms",
-            "gpu_frame_ms",
-            "frame_ms",
-            "pass_mphotons",
-            "pass_host_mphotons",
-            "frame_mphotons",
-        ];
-        if mt.bytes_per_photon.is_some() && !bytes_kinds.contains(&mt.kind.as_str()) {
+        if mt.bytes_per_photon.is_some() && !crate::plausibility::takes_bytes_per_photon(&mt.kind) {
+            let takes: Vec<&str> =
+                METRIC_KINDS.iter().copied().filter(|k| crate::plausibility::takes_bytes_per_photon(k)).collect();
             return Err(bad(
                 &format!("metric[{i}].bytes_per_photon"),
                 format!(
                     "kind `{}` is neither a time in ms nor a photon rate: only {} take it",
                     mt.kind,
-                    bytes_kinds.join(", ")
+                    takes.join(", ")
                 ),
             ));
         }
