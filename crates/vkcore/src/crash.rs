@@ -149,8 +149,10 @@ pub(crate) fn idle() {
 }
 
 /// Whether [`TEST_SEGFAULT_ENV`] names pass `name`.
+/// The environment is read once per process, not at every pass.
 pub(crate) fn test_segfault_requested(name: &str) -> bool {
-    std::env::var_os(TEST_SEGFAULT_ENV).is_some_and(|v| v == name)
+    static PASS: OnceLock<Option<std::ffi::OsString>> = OnceLock::new();
+    PASS.get_or_init(|| std::env::var_os(TEST_SEGFAULT_ENV)).as_deref().is_some_and(|v| v == name)
 }
 
 /// Raises SIGSEGV, as a driver crashing inside the running frame would (the test hook).

@@ -48,10 +48,12 @@ impl CrashMarker {
 
     /// How many passes had finished, as far as the GPU wrote it.
     pub fn read(&self) -> u32 {
-        match self.buffer.mapped() {
-            // The GPU may still be writing: a volatile read of the mapped (coherent) memory.
-            Some(m) if m.len() >= 4 => unsafe { std::ptr::read_volatile(m.as_ptr() as *const u32) },
-            _ => 0,
+        let p = self.ptr();
+        // The GPU may still be writing: a volatile read of the mapped (coherent) memory.
+        if p.is_null() {
+            0
+        } else {
+            unsafe { std::ptr::read_volatile(p) }
         }
     }
 }
