@@ -596,6 +596,11 @@ pub struct PaperEntry {
     /// Why these values measure different work than our cell: the cell is marked, the reason
     /// listed under the table, and no ratio against the paper is printed for it.
     pub not_comparable: Option<String>,
+    /// Where in the paper the values are: `Table 3, row 2048²`, `Sec. 5.2, paragraph 'words'`
+    /// or `read from Fig. 8` (grammar: [`crate::paper::citations`]). Required by the config's
+    /// validation, not by parsing: the configs embedded in tables measured before it existed
+    /// still parse. A citation, not a measurement: `bench explain` ignores it.
+    pub source: Option<String>,
 }
 
 /// A config as read from its file, with the file's path, name and a hash of its bytes.

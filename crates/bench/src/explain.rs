@@ -1,11 +1,12 @@
 //! `causticlab bench explain CONFIG TABLE.json`: a committed table judged again with the
 //! explanations (`[[plausibility.explained]]`) its config gained after the run, without timing
 //! anything again. An explanation is a reading of the numbers, not a number: it may come after
-//! them. The config may differ from the one the table embeds in its explanations only (compared
-//! as TOML values, so comments and layout may change too); anything else would make the table
-//! describe a run that did not happen, and is refused. The table then embeds the new config and
-//! says under its commit line which commit added the explanations, and the config's hash when
-//! measured.
+//! them. The config may differ from the one the table embeds in its explanations only, and in
+//! the `source` of its `[[paper]]` entries (where in the paper the published values are: a
+//! citation, not a measurement), compared as TOML values, so comments and layout may change
+//! too; anything else would make the table describe a run that did not happen, and is refused.
+//! The table then embeds the new config and says under its commit line which commit added the
+//! explanations, and the config's hash when measured.
 
 use crate::config::LoadedConfig;
 use crate::plausibility::Finding;
@@ -15,9 +16,15 @@ use anyhow::Result;
 use caustics::input_error;
 use std::path::Path;
 
-/// The config's TOML without its `[[plausibility.explained]]` entries.
-fn without_explanations(text: &str, what: &str) -> Result<toml::Value> {
+/// The config's TOML without its `[[plausibility.explained]]` entries and without the `source`
+/// of its `[[paper]]` entries: what must not change after the run.
+fn without_explanations_or_sources(text: &str, what: &str) -> Result<toml::Value> {
     let mut v: toml::Value = toml::from_str(text).map_err(|e| input_error!("{what}: does not parse: {e}"))?;
+    if let Some(entries) = v.get_mut("paper").and_then(|p| p.as_array_mut()) {
+        for e in entries.iter_mut().filter_map(|e| e.as_table_mut()) {
+            e.remove("source");
+        }
+    }
     if let Some(p) = v.get_mut("plausibility").and_then(|p| p.as_table_mut()) {
         p.remove("explained");
         if p.is_empty() {
@@ -48,11 +55,11 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
         )
         .into());
     }
-    let measured = without_explanations(&r.config.toml, &format!("{t}: the embedded config"))?;
-    if without_explanations(&config.text, &config.path.display().to_string())? != measured {
+    let measured = without_explanations_or_sources(&r.config.toml, &format!("{t}: the embedded config"))?;
+    if without_explanations_or_sources(&config.text, &config.path.display().to_string())? != measured {
         return Err(input_error!(
             "{}: differs from the config {t} was measured with (hash {}) in more than its \
-             [[plausibility.explained]] entries: run the table again",
+             [[plausibility.explained]] entries and its [[paper]] sources: run the table again",
             config.path.display(),
             r.run.explained.as_ref().map_or(&r.config.hash, |e| &e.measured_config_hash)
         )

@@ -6,6 +6,7 @@
 
 #![forbid(unsafe_code)]
 
+pub mod claims;
 pub mod config;
 pub mod explain;
 pub mod figure;

@@ -266,8 +266,8 @@ pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
             }
         }
         // e: the device's timestamps missed the work its host time shows; a rate of the same
-        // passes from the same timestamps (pass_mphotons) with them.
-        if matches!(kind, "pass_ms" | "pass_mphotons") {
+        // passes from the same timestamps (pass_mphotons, pass_fps) with them.
+        if matches!(kind, "pass_ms" | "pass_mphotons" | "pass_fps") {
             let same = |k: &str| config.metrics.iter().find(|h| h.kind == k && same_passes(&h.passes, &m.passes));
             if let (Some(gpu_metric), Some(h)) = (same("pass_ms"), same("pass_host_ms")) {
                 for c in &results.cells {

@@ -95,6 +95,10 @@ pub fn validate_layout(lc: &LoadedConfig, bad: &dyn Fn(&str, String) -> anyhow::
                 ));
             }
         }
+        // Where in the paper the values are (the test `paper_sources` reads them there).
+        crate::paper::citations(e).map_err(|m| {
+            bad(&format!("paper[{i}].source"), format!("{m} (the entry {})", crate::paper::describe(e)))
+        })?;
     }
     Ok(())
 }

@@ -219,6 +219,38 @@ fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
     );
 }
 
+#[test]
+fn bench_explain_ignores_the_sources_of_paper_values() {
+    // A table measured before its config cited where the paper's values are.
+    let paper = "[[paper]]\nphotons = 1024\nlighting = \"static\"\nvalues = { Gather = 5.0 }\n";
+    let measured = format!("{CONFIG}\n{paper}");
+    let (c, r) = table(&measured, [12.0, 6.0, 30.0, 35.0], QUIET_EYE, None);
+    let dir = caustics::scratch::ScratchDir::new("causticlab", "explain-sources");
+    bench::run::write_table(&c, &r, &dir.join("synthetic"), &dir).expect("table written");
+    let json = dir.join("synthetic/synthetic.json");
+    let loaded = |text: &str| bench::LoadedConfig {
+        path: dir.join("synthetic.toml"),
+        name: "synthetic".into(),
+        hash: bench::config::fnv1a(text.as_bytes()),
+        text: text.into(),
+        config: toml::from_str(text).expect("parses"),
+    };
+    let cited =
+        |source: &str| measured.replace("Gather = 5.0 }\n", &format!("Gather = 5.0 }}\nsource = \"{source}\"\n"));
+    // A source added, then changed: a citation, not a measurement.
+    let first = cited("Table 1, row 1024²");
+    assert_ne!(first, measured);
+    bench::explain::explain(&loaded(&first), &json, &dir, "abc1234").expect("a source added is explained");
+    let second = cited("Sec. 4, paragraph 'static'");
+    bench::explain::explain(&loaded(&second), &json, &dir, "def5678").expect("a source changed is explained");
+    // The published value itself is not a citation: changed, the config is refused.
+    let other_value = second.replace("Gather = 5.0", "Gather = 6.0");
+    let Err(err) = bench::explain::explain(&loaded(&other_value), &json, &dir, "abc1234") else {
+        panic!("a changed paper value was accepted")
+    };
+    assert!(format!("{err:#}").contains("run the table again"), "{err:#}");
+}
+
 /// One scene, one technique per entry of `labels`, each at the photon counts of `photons`; the
 /// metrics of each cell from `metrics(technique, photons)` as (label, median) pairs.
 fn grid(
@@ -302,6 +334,18 @@ fn e_a_pass_far_below_its_host_time_is_not_measured() {
     let found = check(&c, &r);
     assert_eq!(rules(&found), vec![("e".into(), "Trace".into(), 0), ("e".into(), "rate".into(), 0)], "{found:?}");
     assert!(found[1].text.contains("`rate` is a rate of `Trace`"), "{}", found[1].text);
+    // So is a frame rate of the same passes (pass_fps: 1000 / pass_ms).
+    let with_fps = text.replace(
+        "[[metric]]\nlabel = \"rate\"",
+        "[[metric]]\nlabel = \"Trace fps\"\nkind = \"pass_fps\"\npasses = [\"photon_trace*\"]\n\n[[metric]]\nlabel = \"rate\"",
+    );
+    assert_ne!(with_fps, text);
+    let (c, r) = grid(&with_fps, &["trace"], &[256, 4096], |_, p| {
+        let (gpu, host) = if p == 256 { (0.05, 130.0) } else { (900.0, 910.0) };
+        vec![("Trace", gpu), ("Trace (host)", host), ("Trace fps", 1000.0 / gpu)]
+    });
+    let found = check(&c, &r);
+    assert_eq!(rules(&found), vec![("e".into(), "Trace".into(), 0), ("e".into(), "Trace fps".into(), 0)], "{found:?}");
     // Just inside: a tenth of the host time (13 ms of 130), or under it by less than 1 ms.
     let (c, r) = grid(&text, &["trace"], &[256, 4096], |_, p| {
         vec![("Trace", if p == 256 { 13.1 } else { 140.0 }), ("Trace (host)", if p == 256 { 130.0 } else { 150.0 })]

@@ -164,6 +164,26 @@ pub enum BenchCommand {
     /// Judge a written table again with the `[[plausibility.explained]]` entries its config
     /// gained after the run (nothing is timed; the config may differ in those entries only).
     Explain(ExplainArgs),
+    /// Recompute every number the README, docs/ and results/ pages quote from the committed
+    /// tables (their `<!--= ... -->` claims), and find measured-looking numbers without one
+    /// (docs/claims.md). Fails naming the page, the line, the number written and the number
+    /// computed.
+    Claims(ClaimsArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ClaimsArgs {
+    /// Pages to check (default: README.md, docs/ and results/ under --root, less the tables the
+    /// bench writes).
+    pub pages: Vec<PathBuf>,
+    /// The repository root: the folder the pages' `<!--claims results/<device>/ -->` paths are
+    /// relative to.
+    #[arg(long, default_value = ".")]
+    pub root: PathBuf,
+    /// Print every entry of this table (results/<device>/<config>.json) with the pick that
+    /// selects it, instead of checking pages.
+    #[arg(long, value_name = "TABLE.json")]
+    pub list: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]

@@ -5,6 +5,7 @@
 use crate::cli::{BenchArgs, BenchCommand, GlobalOpts};
 use anyhow::{Context as _, Result};
 use bench::{BenchOptions, LoadedConfig};
+use std::io::Write as _;
 use std::sync::Arc;
 use vkcore::{Context, ShaderCompiler, ValidationLog};
 
@@ -22,6 +23,9 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
         let out = bench::explain::explain(&config, &e.table, &e.results, &commit)?;
         report(&out);
         return Ok(());
+    }
+    if let Some(BenchCommand::Claims(c)) = &args.merge {
+        return claims(c);
     }
     let Some(path) = &args.config else {
         return Err(caustics::input_error!("bench: give a config file (bench_configs/*.toml) or `merge`").into());
@@ -82,4 +86,51 @@ fn report(out: &bench::Outcome) {
     for f in &out.written {
         println!("wrote {}", f.display());
     }
+}
+
+/// `bench claims`: every page's claims against the committed tables.
+fn claims(c: &crate::cli::ClaimsArgs) -> Result<()> {
+    if let Some(table) = &c.list {
+        print!("{}", bench::claims::list(table)?);
+        return Ok(());
+    }
+    let pages = if c.pages.is_empty() { bench::claims::pages(&c.root)? } else { c.pages.clone() };
+    let checked = bench::claims::check(&c.root, &pages)?;
+    let (mut claims, mut problems, mut unread) = (0, 0, 0);
+    let mut out = std::io::stdout().lock();
+    let mut not_enrolled = vec![];
+    for p in &checked {
+        let page = p.page.strip_prefix(&c.root).unwrap_or(&p.page).display().to_string();
+        if !p.report.enrolled {
+            if !p.report.problems.is_empty() {
+                not_enrolled.push(format!("{page} ({})", p.report.problems.len()));
+            }
+            continue;
+        }
+        for f in &p.report.problems {
+            let _ = writeln!(out, "{page}:{}: `{}`: {}", f.line, f.written, f.what);
+        }
+        claims += p.report.claims;
+        problems += p.report.problems.len();
+        unread += p.report.papers_missing;
+    }
+    if !not_enrolled.is_empty() {
+        let _ = writeln!(
+            out,
+            "not yet held to their numbers (no `<!--claims DIR -->`), with measured-looking numbers: {}",
+            not_enrolled.join(", ")
+        );
+    }
+    if unread > 0 {
+        let _ = writeln!(
+            out,
+            "{unread} paper value(s) not checked: the papers' text is not in {} (CI has it)",
+            c.root.join("../shared/papers").display()
+        );
+    }
+    let _ = writeln!(out, "{} page(s), {claims} claim(s) checked, {problems} problem(s)", checked.len());
+    if problems > 0 {
+        anyhow::bail!("bench claims: {problems} number(s) disagree with the tables or have no source");
+    }
+    Ok(())
 }

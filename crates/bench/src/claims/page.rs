@@ -1,0 +1,617 @@
+//! A page's claims: the HTML comments that tie a written number to its source, and the numbers
+//! that look measured but have none.
+//!
+//! A claim follows the number it checks, on the same line, so the rendered page shows only the
+//! number:
+//!
+//! ```text
+//! <!--claims results/<device>/ -->          the folder of the tables the claims read (first: default)
+//! <!--claims h100 = results/<device>/ -->   another folder, read as `h100:table{...}`
+//! <!--let t3 = wyman2008_table3{metric=Gather} -->   an alias for the page's later claims
+//! 1.47-1.93x<!--= range(t3{technique=H} / t3{technique=D}) -->   the number (or range) before equals this
+//! 89.3 ±4%<!--= t3{photons=2048 technique=D} -->  a value with its spread: both are checked
+//! 12.8<!--=! ... -->                         the sentence says an entry it uses is flagged (`!`, `~`)
+//! on every scene<!--? all(a < b) -->        the sentence is true of the tables
+//! 9.8<!--paper wyman2008 Table 3, Hierarchical Gather, 2048² -->   a paper's value, found in its text
+//! within 0.002<!--at-most max(abs(a - b)) -->   the written number bounds the computed ones
+//! over 5x<!--at-least min(a / b) -->          (each entry of a set) from above or below
+//! 10%<!--given the spread threshold -->      a number that is not a measurement (a setting, a bound)
+//! ```
+//!
+//! The written number is matched at the precision it is written with: `1.93` is right for any
+//! computed value in [1.925, 1.935].
+
+use super::eval::{Cache, Scope, Val};
+use super::expr::{parse, Expr};
+use std::path::Path;
+
+/// Something a page says that its source does not.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Problem {
+    pub line: usize,
+    /// The number as the page writes it (or the claim's text, when there is no number).
+    pub written: String,
+    pub what: String,
+}
+
+/// The papers' plain-text copies in `../shared/papers`, by the key a `<!--paper -->` claim uses.
+pub const PAPERS: [(&str, &str); 5] = [
+    ("trendall2000", "004_c958c6bfba0d8482.txt"),
+    ("wyman_davis2006", "002_56077c0cdf043e6f.txt"),
+    ("shah", "003_a3efa02a5be6c8dc.txt"),
+    ("wyman2008", "000_7c07a484f7a872bb.txt"),
+    ("wyman_nichols2009", "001_703097990e1f01f3.txt"),
+];
+
+/// A number as written: `a`, `a-b`, or `a ±s%`; byte span in the line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Written {
+    pub a: String,
+    pub b: Option<String>,
+    pub spread: Option<String>,
+    pub start: usize,
+}
+
+impl Written {
+    fn text(&self) -> String {
+        match (&self.b, &self.spread) {
+            (Some(b), _) => format!("{}-{b}", self.a),
+            (None, Some(s)) => format!("{} ±{s}%", self.a),
+            _ => self.a.clone(),
+        }
+    }
+}
+
+fn number_at(s: &[char], end: usize) -> Option<usize> {
+    // The start of the number that ends just before `end` (digits, commas and one point).
+    let mut i = end;
+    while i > 0 && (s[i - 1].is_ascii_digit() || s[i - 1] == '.' || s[i - 1] == ',') {
+        i -= 1;
+    }
+    while i < end && !s[i].is_ascii_digit() {
+        i += 1;
+    }
+    (i < end).then_some(i)
+}
+
+/// The last number (or range, or value with spread) in `before`, with at most a unit between
+/// it and the end.
+pub fn written_before(before: &str) -> Option<Written> {
+    let s: Vec<char> = before.chars().collect();
+    // Skip a unit: anything but digits, at most 30 characters.
+    let mut end = s.len();
+    let mut skipped = 0;
+    while end > 0 && !s[end - 1].is_ascii_digit() {
+        if skipped == 30 || matches!(s[end - 1], '(' | '|' | '>') {
+            return None;
+        }
+        end -= 1;
+        skipped += 1;
+    }
+    let text = |a: usize, b: usize| -> String { s[a..b].iter().collect::<String>() };
+    let mut a_start = number_at(&s, end)?;
+    let mut a = text(a_start, end).trim_end_matches(['.', ',']).to_string();
+    let mut spread = None;
+    let mut b = None;
+    // `v ±s%`: the last number is the spread.
+    let mut j = a_start;
+    while j > 0 && s[j - 1] == ' ' {
+        j -= 1;
+    }
+    if j > 0 && s[j - 1] == '±' {
+        let mut k = j - 1;
+        while k > 0 && s[k - 1] == ' ' {
+            k -= 1;
+        }
+        if let Some(v) = number_at(&s, k) {
+            spread = Some(a);
+            a = text(v, k);
+            a_start = v;
+        }
+    } else if j > 0 {
+        // `a-b`, `a–b`, `a to b`.
+        let to = j >= 3 && s[j - 3..j].iter().collect::<String>() == " to";
+        let cut = if s[j - 1] == '-' || s[j - 1] == '–' {
+            Some(1)
+        } else if to {
+            Some(3)
+        } else {
+            None
+        };
+        if let Some(c) = cut {
+            let mut k = j - c;
+            while k > 0 && s[k - 1] == ' ' {
+                k -= 1;
+            }
+            if let Some(v) = number_at(&s, k) {
+                // Not a date or a label (`2026-11-27`, `x-1`).
+                if v == 0 || !(s[v - 1].is_alphanumeric() || s[v - 1] == '-') {
+                    b = Some(a);
+                    a = text(v, k);
+                    a_start = v;
+                }
+            }
+        }
+    }
+    let start = s[..a_start].iter().collect::<String>().len();
+    Some(Written { a, b, spread, start })
+}
+
+fn decimals(s: &str) -> i32 {
+    s.split_once('.').map(|(_, d)| d.len() as i32).unwrap_or(0)
+}
+
+fn parse_num(s: &str) -> Option<f64> {
+    s.replace(',', "").parse().ok()
+}
+
+/// Is `computed` what `written` says, at the precision it is written with?
+pub fn agrees(written: &str, computed: f64) -> bool {
+    let Some(w) = parse_num(written) else { return false };
+    let half = 0.5 * 10f64.powi(-decimals(written));
+    (computed - w).abs() <= half * (1.0 + 1e-9) + 1e-12
+}
+
+fn shown(v: f64) -> String {
+    crate::format::significant(v)
+}
+
+/// Checks a numeric claim's value against what is written.
+fn compare(w: &Written, v: &Val) -> Option<String> {
+    match (v, &w.b) {
+        (Val::Range(lo, hi), Some(b)) => {
+            (!agrees(&w.a, *lo) || !agrees(b, *hi)).then(|| format!("the tables give {}-{}", shown(*lo), shown(*hi)))
+        }
+        (Val::Range(lo, hi), None) => (!(agrees(&w.a, *lo) && agrees(&w.a, *hi)))
+            .then(|| format!("the tables give a range, {}-{}, where one number is written", shown(*lo), shown(*hi))),
+        (Val::Num(x), None) => (!agrees(&w.a, *x)).then(|| format!("the tables give {}", shown(*x))),
+        (Val::Num(x), Some(b)) => {
+            (!(agrees(&w.a, *x) && agrees(b, *x))).then(|| format!("the tables give one number, {}", shown(*x)))
+        }
+        (Val::Set(items, _), _) if items.len() == 1 => {
+            let it = &items[0];
+            if it.implausible {
+                return Some(format!(
+                    "{} is marked `?` (an unexplained plausibility finding): no sentence may cite it",
+                    it.describe()
+                ));
+            }
+            let x = match &it.value {
+                Ok(x) => *x,
+                Err(why) => return Some(format!("{} reads `{why}`", it.describe())),
+            };
+            if w.b.is_some() {
+                return Some(format!("{} is one number, {}", it.describe(), shown(x)));
+            }
+            if !agrees(&w.a, x) {
+                return Some(format!("{} is {}", it.describe(), shown(x)));
+            }
+            match (&w.spread, it.spread) {
+                (Some(s), Some(sp)) if !agrees(s, (100.0 * sp).round()) => {
+                    Some(format!("{}'s spread is ±{:.0}%", it.describe(), 100.0 * sp))
+                }
+                (Some(_), None) => Some(format!("{} has no spread", it.describe())),
+                _ => None,
+            }
+        }
+        (Val::Set(items, _), _) => Some(format!(
+            "the claim picks {} entries ({}, ...): pick more axes, or use range(), min(), max(), mean()",
+            items.len(),
+            items.iter().take(2).map(|i| i.describe()).collect::<Vec<_>>().join(", ")
+        )),
+        (Val::Truth(_), _) => Some("a comparison where a number is written: use `<!--? ... -->`".into()),
+    }
+}
+
+/// A claim comment on a line: its kind (`=`, `=!`, `?`, `let`, `claims`, `paper`, `given`),
+/// its text and its byte span.
+struct Comment {
+    kind: String,
+    body: String,
+    start: usize,
+}
+
+const KINDS: [&str; 9] = ["=!", "=", "?", "at-most ", "at-least ", "let ", "claims ", "paper ", "given"];
+
+/// `line` with its code spans blanked (same byte offsets): a claim written in backticks is an
+/// example, not a claim.
+fn without_code(line: &str) -> String {
+    let mut out = String::with_capacity(line.len());
+    let mut in_code = false;
+    let mut comment_end = 0;
+    for (i, c) in line.char_indices() {
+        if i < comment_end {
+            out.push(c);
+            continue;
+        }
+        if !in_code && line[i..].starts_with("<!--") {
+            // A comment's text (a claim may name `a setting`) is kept whole.
+            comment_end = line[i..].find("-->").map(|q| i + q + 3).unwrap_or(line.len());
+            out.push(c);
+        } else if c == '`' {
+            in_code = !in_code;
+            out.push(' ');
+        } else if in_code {
+            out.push_str(&" ".repeat(c.len_utf8()));
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+fn comments(line: &str) -> Vec<Comment> {
+    let mut out = vec![];
+    let mut from = 0;
+    let bare = without_code(line);
+    while let Some(p) = bare[from..].find("<!--") {
+        let start = from + p;
+        let Some(q) = bare[start..].find("-->") else { break };
+        let end = start + q + 3;
+        let inner = line[start + 4..start + q].trim_start();
+        if let Some(k) = KINDS.iter().find(|k| inner.starts_with(**k)) {
+            out.push(Comment { kind: k.trim().to_string(), body: inner[k.len()..].trim().to_string(), start });
+        }
+        from = end;
+    }
+    out
+}
+
+/// What one page's check found, and how many claims it checked.
+#[derive(Debug, Default)]
+pub struct PageReport {
+    /// Does the page name its tables (`<!--claims DIR -->`)? Only such pages are held to their
+    /// numbers; the others' measured-looking numbers are counted, not failed.
+    pub enrolled: bool,
+    pub claims: usize,
+    pub problems: Vec<Problem>,
+    /// Lines of `<!--paper -->` claims not checked because `../shared/papers` is missing.
+    pub papers_missing: usize,
+}
+
+/// Checks every claim of `text` (a page under `root`) against the tables, and finds the
+/// measured-looking numbers without one.
+pub fn check_page(text: &str, root: &Path, cache: &mut Cache) -> PageReport {
+    let mut scope = Scope::new(root, cache);
+    let mut report = PageReport::default();
+    let mut fenced = false;
+    let papers = root.join("..").join("shared").join("papers");
+    let (mut header, mut in_table) = (Vec::new(), false);
+    for (n, line) in text.lines().enumerate() {
+        let line_no = n + 1;
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+            continue;
+        }
+        if fenced {
+            continue;
+        }
+        let mut sourced: Vec<(usize, usize)> = vec![];
+        let mut problem =
+            |written: String, what: String| report.problems.push(Problem { line: line_no, written, what });
+        for c in comments(line) {
+            match c.kind.as_str() {
+                "claims" => {
+                    let (alias, dir) = match c.body.split_once('=') {
+                        Some((a, d)) => (Some(a.trim().to_string()), d.trim()),
+                        None => (None, c.body.as_str()),
+                    };
+                    if !root.join(dir).is_dir() {
+                        problem(c.body.clone(), format!("no table folder `{dir}`"));
+                    }
+                    scope.devices.push((alias, dir.into()));
+                    report.enrolled = true;
+                }
+                "let" => match c.body.split_once('=').map(|(a, e)| (a.trim(), parse(e.trim()))) {
+                    Some((name, Ok(e @ Expr::Entries { .. }))) => {
+                        scope.aliases.insert(name.to_string(), e);
+                    }
+                    _ => problem(c.body.clone(), "`<!--let NAME = table{axis=label ...} -->` expected".into()),
+                },
+                "?" => {
+                    report.claims += 1;
+                    scope.flagged.clear();
+                    match parse(&c.body).and_then(|e| scope.eval(&e)) {
+                        Ok(Val::Truth(t)) => {
+                            let wrong: Vec<&String> = t.iter().filter(|(b, _)| !b).map(|(_, d)| d).collect();
+                            if !wrong.is_empty() {
+                                let list: Vec<&str> = wrong.iter().take(3).map(|s| s.as_str()).collect();
+                                problem(c.body.clone(), format!("not true of the tables: {}", list.join("; ")));
+                            }
+                        }
+                        Ok(_) => problem(c.body.clone(), "`<!--? -->` needs a comparison".into()),
+                        Err(e) => problem(c.body.clone(), format!("{e:#}")),
+                    }
+                }
+                "at-most" | "at-least" => {
+                    // "within 0.002", "up to 9x", "more than 5x": the written number bounds the
+                    // computed one (each of a set's entries), at its written precision.
+                    let Some(w) = written_before(&line[..c.start]) else {
+                        problem(c.body.clone(), "no number just before the claim".into());
+                        continue;
+                    };
+                    sourced.push((w.start, c.start));
+                    report.claims += 1;
+                    scope.flagged.clear();
+                    let bound = parse_num(w.b.as_ref().unwrap_or(&w.a)).unwrap_or(f64::NAN);
+                    let half = 0.5 * 10f64.powi(-decimals(w.b.as_ref().unwrap_or(&w.a)));
+                    let values = parse(&c.body).and_then(|e| scope.eval(&e)).and_then(|v| match v {
+                        Val::Num(x) => Ok(vec![x]),
+                        Val::Range(a, b) => Ok(vec![a, b]),
+                        Val::Set(items, _) => items.iter().map(|i| scope.used(i)).collect(),
+                        Val::Truth(_) => anyhow::bail!("a bound needs numbers, not a comparison"),
+                    });
+                    match values {
+                        Ok(xs) => {
+                            let beyond: Vec<f64> = xs
+                                .into_iter()
+                                .filter(|x| if c.kind == "at-most" { *x > bound + half } else { *x < bound - half })
+                                .collect();
+                            if let Some(x) = beyond.first() {
+                                let side = if c.kind == "at-most" { "above" } else { "below" };
+                                problem(w.text(), format!("the tables give {} ({side} the written bound)", shown(*x)));
+                            }
+                        }
+                        Err(e) => problem(w.text(), format!("{e:#}")),
+                    }
+                }
+                "=" | "=!" | "paper" | "given" => {
+                    let Some(w) = written_before(&line[..c.start]) else {
+                        problem(c.body.clone(), "no number just before the claim".into());
+                        continue;
+                    };
+                    sourced.push((w.start, c.start));
+                    if c.kind == "given" {
+                        continue;
+                    }
+                    report.claims += 1;
+                    if c.kind == "paper" {
+                        match paper_has(&papers, &c.body, &w) {
+                            Ok(true) => {}
+                            Ok(false) => report.papers_missing += 1,
+                            Err(e) => problem(w.text(), e),
+                        }
+                        continue;
+                    }
+                    scope.flagged.clear();
+                    match parse(&c.body).and_then(|e| scope.eval(&e)) {
+                        Ok(v) => {
+                            // A single entry quoted as it is: its flags count too.
+                            if let Val::Set(items, _) = &v {
+                                if let [it] = items.as_slice() {
+                                    let _ = scope.used(it);
+                                }
+                            }
+                            if let Some(what) = compare(&w, &v) {
+                                problem(w.text(), what);
+                            } else if c.kind == "=" && !scope.flagged.is_empty() {
+                                problem(
+                                    w.text(),
+                                    format!(
+                                        "built from entries a reader should not rank by: {}; say so in the sentence and mark the claim `<!--=! ...-->`",
+                                        scope.flagged.join(", ")
+                                    ),
+                                );
+                            } else if c.kind == "=!" && scope.flagged.is_empty() {
+                                problem(w.text(), "marked `=!` but built from no flagged entry".into());
+                            }
+                        }
+                        Err(e) => problem(w.text(), format!("{e:#}")),
+                    }
+                }
+                _ => {}
+            }
+        }
+        let row = line.trim_start().starts_with('|');
+        if row && !in_table {
+            header = cells(line);
+        }
+        in_table = row;
+        for (start, text) in unsourced(line) {
+            // A column of section, equation or figure numbers holds labels.
+            let label_column = row
+                && header.get(column_at(line, start)).is_some_and(|h| {
+                    let h = h.to_lowercase();
+                    ["sec", "eq.", "fig"].iter().any(|w| h.contains(w))
+                });
+            if !label_column && !sourced.iter().any(|&(a, b)| start >= a && start < b) {
+                report.problems.push(Problem {
+                    line: line_no,
+                    written: text,
+                    what: "a measured number without a source: add a claim (`<!--= ... -->`, `<!--paper ... -->`) or `<!--given why -->`".into(),
+                });
+            }
+        }
+    }
+    report
+}
+
+/// A Markdown table row's cells (escaped `\|` kept inside a cell).
+fn cells(line: &str) -> Vec<String> {
+    let mut out = vec![String::new()];
+    let mut prev = ' ';
+    for c in line.trim().trim_start_matches('|').chars() {
+        if c == '|' && prev != '\\' {
+            out.push(String::new());
+        } else if let Some(last) = out.last_mut() {
+            last.push(c);
+        }
+        prev = c;
+    }
+    out
+}
+
+/// The column (0-based) of byte `at` in a table row.
+fn column_at(line: &str, at: usize) -> usize {
+    let lead = line.len() - line.trim_start().len();
+    let before = &line[lead..at];
+    let bars = before.match_indices('|').filter(|(i, _)| *i == 0 || !before[..*i].ends_with('\\')).count();
+    bars.saturating_sub(1)
+}
+
+/// Checks that a paper's text has the written number(s): `Ok(false)` when the papers are not
+/// beside the repository.
+fn paper_has(papers: &Path, body: &str, w: &Written) -> Result<bool, String> {
+    let key = body.split_whitespace().next().unwrap_or("");
+    let Some((_, file)) = PAPERS.iter().find(|(k, _)| *k == key) else {
+        let keys: Vec<&str> = PAPERS.iter().map(|(k, _)| *k).collect();
+        return Err(format!("`<!--paper KEY where -->`: no paper `{key}` (keys: {})", keys.join(", ")));
+    };
+    if body.split_whitespace().count() < 2 {
+        return Err(format!("`<!--paper {key} -->` must say where in the paper (table, row, column; or section)"));
+    }
+    let Ok(text) = std::fs::read_to_string(papers.join(file)) else { return Ok(false) };
+    for n in [Some(&w.a), w.b.as_ref()].into_iter().flatten() {
+        if !has_token(&text, n) {
+            return Err(format!("`{n}` does not occur in {key}'s text ({file})"));
+        }
+    }
+    Ok(true)
+}
+
+fn has_token(text: &str, n: &str) -> bool {
+    text.match_indices(n).any(|(i, _)| {
+        let before = text[..i].chars().next_back();
+        let after = text[i + n.len()..].chars().next();
+        !before.is_some_and(|c| c.is_ascii_digit() || c == '.')
+            && !after.is_some_and(|c| {
+                c.is_ascii_digit() || (c == '.' && text[i + n.len() + 1..].starts_with(|d: char| d.is_ascii_digit()))
+            })
+    })
+}
+
+/// Units after which a number is a measurement.
+const UNITS: [&str; 11] = ["ms", "fps", "x", "×", "%", "GB/s", "MB/s", "M photons/s", "Mphotons/s", "times", "s"];
+
+/// Words before which a decimal is a label, not a measurement (`Sec. 3.3`, `Mesa 22.3`).
+const LABEL_WORDS: [&str; 17] = [
+    "sec.", "section", "sections", "fig.", "figs.", "figure", "eq.", "eqs.", "equation", "table", "tables", "mesa",
+    "llvm", "vulkan", "version", "ch.", "§",
+];
+
+/// Masks what is not prose: code spans, comments and link targets.
+fn prose(line: &str) -> Vec<char> {
+    let mut s: Vec<char> = line.chars().collect();
+    let mut i = 0;
+    let blank = |s: &mut Vec<char>, a: usize, b: usize| (a..b.min(s.len())).for_each(|k| s[k] = ' ');
+    while i < s.len() {
+        let rest: String = s[i..s.len().min(i + 4)].iter().collect();
+        if s[i] == '`' {
+            let end = s[i + 1..].iter().position(|&c| c == '`').map(|p| i + 2 + p).unwrap_or(s.len());
+            blank(&mut s, i, end);
+            i = end;
+        } else if rest.starts_with("<!--") {
+            let tail: String = s[i..].iter().collect();
+            let end = tail.find("-->").map(|p| i + tail[..p].chars().count() + 3).unwrap_or(s.len());
+            blank(&mut s, i, end);
+            i = end;
+        } else if rest.starts_with("](") {
+            let end = s[i..].iter().position(|&c| c == ')').map(|p| i + p + 1).unwrap_or(s.len());
+            blank(&mut s, i, end);
+            i = end;
+        } else if rest.starts_with("http") {
+            let end = s[i..].iter().position(|c| c.is_whitespace()).map(|p| i + p).unwrap_or(s.len());
+            blank(&mut s, i, end);
+            i = end;
+        } else {
+            i += 1;
+        }
+    }
+    s
+}
+
+/// The measured-looking numbers of a line: (byte offset, text).
+pub fn unsourced(line: &str) -> Vec<(usize, String)> {
+    let s = prose(line);
+    let byte = |i: usize| -> usize { line.chars().take(i).map(char::len_utf8).sum() };
+    let mut out = vec![];
+    let mut i = 0;
+    while i < s.len() {
+        // Not inside a word, a number or a name (`H100`, `Apache-2.0`).
+        let starts = s[i].is_ascii_digit()
+            && (i == 0 || !(s[i - 1].is_alphanumeric() || matches!(s[i - 1], '_' | '.' | ',')))
+            && !(i > 1 && s[i - 1] == '-' && s[i - 2].is_alphabetic());
+        if !starts {
+            i += 1;
+            continue;
+        }
+        let mut j = i;
+        while j < s.len()
+            && (s[j].is_ascii_digit()
+                || ((s[j] == '.' || s[j] == ',') && s.get(j + 1).is_some_and(|c| c.is_ascii_digit())))
+        {
+            j += 1;
+        }
+        let token: String = s[i..j].iter().collect();
+        let next = s.get(j).copied();
+        let label = token.matches('.').count() > 1
+            || next.is_some_and(|c| matches!(c, '²' | '³' | '^' | '°') || (c.is_alphanumeric() && c != 'x'))
+            || (next == Some('x') && s.get(j + 1).is_some_and(|c| c.is_alphanumeric()));
+        let word: String = s[..i].iter().collect::<String>().trim_end().rsplit(' ').next().unwrap_or("").to_lowercase();
+        let word = word.trim_start_matches(['(', '[', '*', '_']);
+        let after: String = s[j..].iter().collect::<String>();
+        let after = after.strip_prefix(' ').unwrap_or(&after);
+        let unit = UNITS
+            .iter()
+            .any(|u| after.strip_prefix(u).is_some_and(|rest| !rest.starts_with(|c: char| c.is_alphanumeric())));
+        let spread = i > 0 && s[..i].iter().rev().find(|c| **c != ' ') == Some(&'±');
+        let measured = spread || unit || (token.contains('.') && !LABEL_WORDS.contains(&word));
+        if !label && measured {
+            out.push((byte(i), token));
+        }
+        i = j.max(i + 1);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn w(s: &str) -> (String, Option<String>, Option<String>) {
+        let w = written_before(s).unwrap();
+        (w.a, w.b, w.spread)
+    }
+
+    #[test]
+    fn the_written_number_is_the_last_one_with_its_unit_range_or_spread() {
+        assert_eq!(w("runs 1.47-1.93x"), ("1.47".into(), Some("1.93".into()), None));
+        assert_eq!(w("| 89.3 ±4%"), ("89.3".into(), None, Some("4".into())));
+        assert_eq!(w("0.065 against 0.095"), ("0.095".into(), None, None));
+        assert_eq!(w("**7 to 12 times**"), ("7".into(), Some("12".into()), None));
+        assert_eq!(w("60,350 clusters"), ("60,350".into(), None, None));
+        assert_eq!(w("on 2026-11-27"), ("27".into(), None, None));
+        assert!(written_before("no number here").is_none());
+        assert!(written_before("3 (a parenthesis between)").is_none());
+    }
+
+    #[test]
+    fn a_number_agrees_at_the_precision_it_is_written_with() {
+        assert!(agrees("1.93", 1.9349));
+        assert!(!agrees("1.93", 1.9351));
+        assert!(agrees("1.93", 1.925));
+        assert!(!agrees("2", 1.47));
+        assert!(agrees("1,125", 1124.6));
+        assert!(agrees("0.10", 0.0966));
+        assert!(!agrees("0.10", 0.0949));
+    }
+
+    #[test]
+    fn measured_looking_numbers_are_found_and_labels_are_not() {
+        let found = |l: &str| unsourced(l).into_iter().map(|(_, t)| t).collect::<Vec<_>>();
+        assert_eq!(found("takes 83.7 ms, 1.7x the 2048² run, ±4%"), vec!["83.7", "1.7", "4"]);
+        assert_eq!(found("Sec. 3.3 on Mesa 22.3.6 at 1024² with `0.5 ms` in code"), Vec::<String>::new());
+        assert_eq!(found("[t](results/a1.5.md) H100 4M photons 16x16 2026-11-27"), Vec::<String>::new());
+        assert_eq!(found("relative error 0.065 (seed 2)"), vec!["0.065"]);
+        assert_eq!(found("as the paper says (Sec. 4.3), **Table 2.1**"), Vec::<String>::new());
+        assert_eq!(found("MIT OR Apache-2.0, at your option"), Vec::<String>::new());
+    }
+
+    #[test]
+    fn a_claim_in_backticks_is_an_example_and_a_claim_may_name_code() {
+        let kinds = |l: &str| comments(l).into_iter().map(|c| c.kind).collect::<Vec<_>>();
+        assert_eq!(kinds("write `<!--claims DIR -->` at the top"), Vec::<String>::new());
+        assert_eq!(kinds("0.5<!--given a level of `[front] levels` --> and 1.2<!--= t{a=b} -->"), vec!["given", "="]);
+        assert_eq!(kinds("0.5<!--given the ` quote --> then `code <!--= x -->`"), vec!["given"]);
+    }
+}
