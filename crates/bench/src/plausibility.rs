@@ -361,3 +361,6 @@ pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
     out.dedup();
     out
 }
+
+#[cfg(test)]
+mod tests;

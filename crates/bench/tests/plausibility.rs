@@ -499,3 +499,112 @@ fn an_entry_the_device_cannot_have_measured_reads_not_measured() {
     let row = out.markdown.lines().find(|l| l.starts_with("| 4096²")).expect("4096 row").to_string();
     assert!(row.contains("900.0") && !row.contains("not measured"), "{row}");
 }
+
+/// The cells (by index) whose findings an explanation lifted.
+fn explained_cells(found: &[Finding]) -> Vec<usize> {
+    found.iter().filter(|f| f.explained.is_some()).map(|f| f.cell).collect()
+}
+
+#[test]
+fn an_explanation_lifts_only_the_findings_it_names() {
+    // Rule c finds all four cells (static/dynamic x 1024²/4096²); an explanation naming one cell
+    // by every field lifts that one, and changing any one field moves it or lifts none: an
+    // explanation written for one cell must not lift its neighbours' marks.
+    let (c, r) = table(CONFIG, [0.01, 0.01, 1.0, 1.1], QUIET_EYE, Some(15.0));
+    assert_eq!(rules(&check(&c, &r)).len(), 4, "{:?}", check(&c, &r));
+    let exact = [
+        ("rule", "\"c\""),
+        ("metric", "\"Gather\""),
+        ("scene", "\"sphere_on_plane\""),
+        ("technique", "\"copy\""),
+        ("photons", "1024"),
+        ("lighting", "\"static\""),
+        ("device", "\"synthetic\""),
+    ];
+    let with = |fields: &[(&str, &str)]| {
+        let body: String = fields.iter().map(|(k, v)| format!("{k} = {v}\n")).collect();
+        let text = format!("{CONFIG}\n[[plausibility.explained]]\n{body}why = \"named by the test\"\n");
+        let (c, r) = table(&text, [0.01, 0.01, 1.0, 1.1], QUIET_EYE, Some(15.0));
+        explained_cells(&check(&c, &r))
+    };
+    assert_eq!(with(&exact), vec![0], "every field names cell 0");
+    let changed = [
+        ("rule", "\"a\"", vec![]),
+        ("metric", "\"Eye\"", vec![]),
+        ("scene", "\"bunny_in_room\"", vec![]),
+        ("technique", "\"gather\"", vec![]),
+        ("photons", "4096", vec![2]),
+        ("lighting", "\"dynamic\"", vec![1]),
+        ("device", "\"llvmpipe\"", vec![]),
+    ];
+    for (field, value, want) in changed {
+        let fields: Vec<(&str, &str)> =
+            exact.iter().map(|&(k, v)| if k == field { (k, value) } else { (k, v) }).collect();
+        assert_eq!(with(&fields), want, "{field} = {value}");
+    }
+    // A field left out matches every cell: lighting out, both 1024² cells.
+    let fields: Vec<(&str, &str)> = exact.iter().copied().filter(|(k, _)| *k != "lighting").collect();
+    assert_eq!(with(&fields), vec![0, 1]);
+}
+
+#[test]
+fn c_counts_every_light_and_leaves_a_zero_time_alone() {
+    // Two lights copy twice the bytes: 4096² x 32 B x 2 = 1074 MB in 50 ms is 21.5 GB/s, above
+    // 15 GB/s x 1.1; one light's 537 MB in 50 ms (10.7 GB/s) is not.
+    let (c, mut r) = table(CONFIG, [1.0, 1.0, 50.0, 55.0], QUIET_EYE, Some(15.0));
+    assert!(check(&c, &r).is_empty(), "{:?}", check(&c, &r));
+    r.cells[2].cell.lights = 2;
+    assert_eq!(rules(&check(&c, &r)), vec![("c".into(), "Gather".into(), 2)]);
+    // A copy that reads 0 ms is no rate: rule c leaves it to the rules that compare times.
+    let (c, r) = table(CONFIG, [0.0, 1.0, 50.0, 55.0], QUIET_EYE, Some(15.0));
+    assert!(check(&c, &r).iter().all(|f| f.rule != "c"), "{:?}", check(&c, &r));
+}
+
+#[test]
+fn c_a_copy_of_exactly_64_mib_gets_no_cache_allowance() {
+    // 1024² x 64 B = 64 MiB exactly: held to 15 GB/s x 1.1 itself, so 67 MB in 1 ms is found,
+    // and the finding does not speak of caches.
+    let text = CONFIG.replace("bytes_per_photon = 32", "bytes_per_photon = 64");
+    assert_ne!(text, CONFIG);
+    let (c, r) = table(&text, [1.0, 1.0, 200.0, 220.0], QUIET_EYE, Some(15.0));
+    let found = check(&c, &r);
+    assert_eq!(rules(&found), vec![("c".into(), "Gather".into(), 0), ("c".into(), "Gather".into(), 1)]);
+    assert!(found.iter().all(|f| !f.text.contains("caches")), "{found:?}");
+}
+
+#[test]
+fn d_twice_the_smallest_is_the_bound_and_zero_is_no_value() {
+    let quiet = [10.0, 10.0, 40.0, 40.0];
+    // Exactly twice: not more than twice.
+    let (c, r) = table(CONFIG, quiet, [5.0, 5.0, 10.0, 10.0], None);
+    assert!(check(&c, &r).is_empty(), "{:?}", check(&c, &r));
+    let (c, r) = table(CONFIG, quiet, [5.0, 5.0, 10.1, 10.0], None);
+    assert_eq!(rules(&check(&c, &r)), vec![("d".into(), "Eye".into(), 2)]);
+    // A zero is no time to compare with.
+    let (c, r) = table(CONFIG, quiet, [0.0, 5.0, 5.0, 5.0], None);
+    assert!(check(&c, &r).is_empty(), "{:?}", check(&c, &r));
+}
+
+#[test]
+fn e_the_share_and_the_gap_are_bounds_not_findings() {
+    let text = format!("{HEADER}{TRACE}");
+    let e = |gpu: f64, host: f64| {
+        let (c, r) = grid(&text, &["trace"], &[256, 4096], |_, p| {
+            if p == 256 {
+                vec![("Trace", gpu), ("Trace (host)", host)]
+            } else {
+                vec![("Trace", 900.0), ("Trace (host)", 910.0)]
+            }
+        });
+        check(&c, &r).iter().filter(|f| f.rule == "e").count()
+    };
+    let share = bench::plausibility::RULE_E_SHARE;
+    // Exactly a tenth of the host time is not under it; just under is.
+    assert_eq!(e(share * 150.0, 150.0), 0);
+    assert_eq!(e(share * 150.0 * 0.99, 150.0), 1);
+    // Exactly 1 ms below the host time is not more than 1 ms below (0.0625 and 1.0625 are exact).
+    assert_eq!(e(0.0625, 1.0625), 0);
+    assert_eq!(e(0.0625, 1.07), 1);
+    // The gap is the host time less the device's: 0.95 - 0.06 is under 1 ms (their sum is not).
+    assert_eq!(e(0.06, 0.95), 0);
+}
