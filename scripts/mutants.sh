@@ -41,7 +41,7 @@ for f in "${files[@]}"; do
     cargo mutants --in-place -f "$f" --test-package "$pkg" "${test_args[@]}" --output "$out" > "$out/run.log" 2>&1 || [ $? -eq 2 ]
     secs=$(( $(date +%s) - start ))
     o=$out/mutants.out
-    count() { [ -f "$o/$1.txt" ] && grep -c . "$o/$1.txt" || echo 0; }
+    count() { local n; n=$(grep -c . "$o/$1.txt" 2>/dev/null) || true; echo "${n:-0}"; }
     caught=$(count caught); missed=$(count missed); unviable=$(count unviable); timeout=$(count timeout)
     viable=$((caught + missed + timeout))
     {
