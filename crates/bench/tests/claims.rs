@@ -222,3 +222,54 @@ fn a_column_of_section_numbers_holds_labels_not_measurements() {
     let written: Vec<String> = problems(&root, page).into_iter().map(|p| p.written).collect();
     assert_eq!(written, vec!["1.5", "3.3"]);
 }
+
+#[test]
+fn a_pass_time_and_a_pipeline_statistic_are_read_from_the_cells_passes() {
+    let (_s, root) = repo(&[]);
+    let h100 = "results/nvidia-nvidia-h100-80gb-hbm3";
+    std::fs::create_dir_all(root.join("results/h100")).unwrap();
+    std::fs::copy(
+        workspace().join(h100).join("wyman2008_table3.json"),
+        root.join("results/h100/wyman2008_table3.json"),
+    )
+    .unwrap();
+    // What the claims must give, summed here from the JSON itself.
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(root.join("results/h100/wyman2008_table3.json")).unwrap())
+            .unwrap();
+    let cell = json["cells"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["cell"]["photons"] == 4096 && c["cell"]["technique_label"] == "hierarchical")
+        .expect("the 4096² hierarchical cell");
+    let traversal: Vec<&serde_json::Value> = cell["passes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["name"].as_str().unwrap().starts_with("hierarchy.traverse."))
+        .collect();
+    let ms: f64 = traversal.iter().map(|p| p["median_ms"].as_f64().unwrap()).sum();
+    let gs: f64 = traversal.iter().map(|p| p["pipeline_stats"]["geometry_invocations"].as_f64().unwrap()).sum();
+    let pick = "h100:wyman2008_table3{photons=4096 metric=Gather technique=hierarchical}";
+    let head = "<!--claims h100 = results/h100/ -->\n";
+    let page = format!(
+        "{head}The traversal takes {ms:.3}<!--= pass({pick}, \"hierarchy.traverse.*\") --> ms and runs {gs:.0}<!--= stat({pick}, \"hierarchy.traverse.*\", \"geometry_invocations\") --> geometry shaders.\n"
+    );
+    assert_eq!(problems(&root, &page), vec![]);
+    let wrong = format!("{head}It takes {:.3}<!--= pass({pick}, \"hierarchy.traverse.*\") --> ms.\n", ms * 1.01);
+    assert_eq!(problems(&root, &wrong).len(), 1);
+    let cases = [
+        (format!("1.0<!--= pass({pick}, \"nosuch*\") -->"), "no pass matches `nosuch*`"),
+        (format!("1.0<!--= stat({pick}, \"splat*\", \"frags\") -->"), "no counter `frags`"),
+        (format!("1.0<!--= pass({pick}) -->"), "takes entries and a quoted pass name"),
+        (
+            "1.0<!--= wyman2008_table3{photons=256 metric=Gather technique=hierarchical} + \"x\" -->".to_string(),
+            "quoted text",
+        ),
+    ];
+    for (claim, want) in cases {
+        let found = problems(&root, &format!("{head}{claim}\n"));
+        assert!(found.iter().any(|p| p.what.contains(want)), "{claim}: want `{want}` in {found:#?}");
+    }
+}

@@ -32,6 +32,8 @@ pub struct Item {
     /// The paper's value for the same cell (`[[paper]]`), as the table prints it in parentheses.
     pub paper: Option<f64>,
     pub table: String,
+    /// The table's JSON, for the per-pass times and statistics of the entry's cell.
+    pub source: PathBuf,
 }
 
 impl Item {
@@ -55,6 +57,7 @@ pub enum Val {
 struct Table {
     entries: Vec<Entry>,
     axes: Vec<String>,
+    cells: Vec<crate::results::CellResult>,
 }
 
 /// The tables a page's claims may read: its device folders (`<!--claims [ALIAS =] DIR -->`),
@@ -90,7 +93,7 @@ fn load(path: &Path) -> Result<Table, String> {
     let mut axes: Vec<String> = grid.entries.iter().flatten().flat_map(|e| e.keys.keys().cloned()).collect();
     axes.sort();
     axes.dedup();
-    Ok(Table { entries: grid.entries.into_iter().flatten().collect(), axes })
+    Ok(Table { entries: grid.entries.into_iter().flatten().collect(), axes, cells: results.cells })
 }
 
 impl<'c> Scope<'c> {
@@ -151,7 +154,7 @@ impl<'c> Scope<'c> {
             .entries
             .iter()
             .filter(|e| pick.iter().all(|(a, l)| e.keys.get(a).is_some_and(|k| label_matches(a, k, l))))
-            .map(|e| item(name, e))
+            .map(|e| item(name, &path, e))
             .collect();
         if items.is_empty() {
             bail!("`{name}` has no entry with {}", picks(pick));
@@ -162,6 +165,7 @@ impl<'c> Scope<'c> {
     pub fn eval(&mut self, e: &Expr) -> Result<Val> {
         match e {
             Expr::Num(v) => Ok(Val::Num(*v)),
+            Expr::Str(t) => bail!("\"{t}\": quoted text is a pass name or a counter, for pass() and stat()"),
             Expr::Entries { device, name, pick } => self.entries(device, name, pick),
             Expr::Neg(x) => {
                 let v = self.eval(x)?;
@@ -171,6 +175,7 @@ impl<'c> Scope<'c> {
                 let (a, b) = (self.eval(a)?, self.eval(b)?);
                 self.binary(*op, a, b)
             }
+            Expr::Call(f, args) if f == "pass" || f == "stat" => self.per_pass(f, args),
             Expr::Call(f, args) => {
                 let vals = args.iter().map(|a| self.eval(a)).collect::<Result<Vec<_>>>()?;
                 self.call(f, vals)
@@ -313,9 +318,76 @@ impl<'c> Scope<'c> {
                 _ => bail!("{f}() takes a comparison"),
             },
             _ => bail!(
-                "no function `{f}` (there are: min, max, mean, median, sum, range, count, union, abs, measured, noisy, timed, remeasured, busy, spread, paper, all, any)"
+                "no function `{f}` (there are: min, max, mean, median, sum, range, count, union, abs, measured, noisy, timed, remeasured, busy, spread, paper, pass, stat, all, any)"
             ),
         }
+    }
+
+    /// `pass(entries, "glob")`: the median GPU time (ms) of the cell's passes whose names match,
+    /// summed; `stat(entries, "glob", "counter")`: a pipeline-statistics counter of those passes
+    /// (`fragment_invocations`, `compute_invocations`, ...), summed. Both read the JSON's
+    /// `passes` of each entry's cell.
+    fn per_pass(&mut self, f: &str, args: &[Expr]) -> Result<Val> {
+        let want = if f == "pass" { 2 } else { 3 };
+        if args.len() != want {
+            bail!(
+                "{f}() takes {} arguments",
+                if f == "pass" {
+                    "entries and a quoted pass name (`*` globs)"
+                } else {
+                    "entries, a quoted pass name and a quoted counter"
+                }
+            );
+        }
+        let text = |e: &Expr| match e {
+            Expr::Entries { device: None, name, pick } if pick.is_empty() => Ok(name.clone()),
+            Expr::Str(s) => Ok(s.clone()),
+            _ => Err(anyhow!("{f}(): quote the pass name and the counter")),
+        };
+        let pattern = text(&args[1])?;
+        let counter = if f == "stat" { Some(text(&args[2])?) } else { None };
+        let Val::Set(items, pinned) = self.eval(&args[0])? else { bail!("{f}() takes table entries first") };
+        let mut out = vec![];
+        for mut it in items {
+            let table = match self.cache.get(&it.source) {
+                Some(Ok(t)) => t,
+                _ => bail!("{}: its table is not loaded", it.describe()),
+            };
+            let cell = table
+                .cells
+                .iter()
+                .find(|c| it.keys.iter().filter(|(a, _)| *a != "metric").all(|(a, k)| c.cell.key(a) == *k))
+                .ok_or_else(|| anyhow!("{} has no cell in its table (not run)", it.describe()))?;
+            let passes: Vec<&crate::record::Pass> =
+                cell.passes.iter().filter(|p| crate::metrics::glob(&pattern, &p.name)).collect();
+            if passes.is_empty() {
+                let names: Vec<&str> = cell.passes.iter().map(|p| p.name.as_str()).take(12).collect();
+                bail!("{}: no pass matches `{pattern}` (its passes: {}, ...)", it.describe(), names.join(", "));
+            }
+            let mut sum = 0.0;
+            for p in passes {
+                sum += match &counter {
+                    None => p.median_ms,
+                    Some(k) => {
+                        let stats = p.pipeline_stats.as_ref().ok_or_else(|| {
+                            anyhow!("{}: pass `{}` has no pipeline statistics", it.describe(), p.name)
+                        })?;
+                        let v = serde_json::to_value(stats)?;
+                        v.get(k).and_then(|x| x.as_f64()).ok_or_else(|| {
+                            let known: Vec<String> =
+                                v.as_object().map(|o| o.keys().cloned().collect()).unwrap_or_default();
+                            anyhow!("no counter `{k}` (there are: {})", known.join(", "))
+                        })?
+                    }
+                };
+            }
+            it.value = Ok(sum);
+            it.spread = None;
+            it.flag = None;
+            it.implausible = false;
+            out.push(it);
+        }
+        Ok(Val::Set(out, pinned))
     }
 
     fn map(&mut self, v: Val, g: impl Fn(f64) -> f64) -> Result<Val> {
@@ -438,7 +510,7 @@ fn label_matches(axis: &str, key: &str, written: &str) -> bool {
     key == written || display(axis, key) == written
 }
 
-fn item(table: &str, e: &Entry) -> Item {
+fn item(table: &str, source: &Path, e: &Entry) -> Item {
     let value = if e.not_run {
         Err(crate::sections::NOT_RUN.to_string())
     } else if e.missing {
@@ -464,6 +536,7 @@ fn item(table: &str, e: &Entry) -> Item {
         remeasured: e.remeasured,
         paper: e.paper.as_ref().map(|p| p.value),
         table: table.to_string(),
+        source: source.to_path_buf(),
     }
 }
 

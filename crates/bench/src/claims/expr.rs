@@ -20,6 +20,8 @@ use anyhow::{bail, Result};
 #[derive(Debug, Clone, PartialEq)]
 pub enum Expr {
     Num(f64),
+    /// A quoted argument: a pass name or a counter (`pass(t{...}, "splat*")`).
+    Str(String),
     /// `device:table{axis=value ...}`; `device` is `None` for the page's first folder.
     Entries {
         device: Option<String>,
@@ -220,6 +222,10 @@ impl Parser<'_> {
             Some(Tok::Num(v)) => {
                 self.at += 1;
                 Ok(Expr::Num(v))
+            }
+            Some(Tok::Str(s)) => {
+                self.at += 1;
+                Ok(Expr::Str(s))
             }
             Some(Tok::Sym("(")) => {
                 self.at += 1;

@@ -544,8 +544,12 @@ pub fn unsourced(line: &str) -> Vec<(usize, String)> {
         }
         let token: String = s[i..j].iter().collect();
         let next = s.get(j).copied();
+        // `4.19M` is a count in millions, not a label; `4M photons` (no decimal) stays a size.
+        let magnitude =
+            next.is_some_and(|c| matches!(c, 'k' | 'M' | 'G')) && !s.get(j + 1).is_some_and(|c| c.is_alphanumeric());
         let label = token.matches('.').count() > 1
-            || next.is_some_and(|c| matches!(c, '²' | '³' | '^' | '°') || (c.is_alphanumeric() && c != 'x'))
+            || next
+                .is_some_and(|c| matches!(c, '²' | '³' | '^' | '°') || (c.is_alphanumeric() && c != 'x' && !magnitude))
             || (next == Some('x') && s.get(j + 1).is_some_and(|c| c.is_alphanumeric()));
         let word: String = s[..i].iter().collect::<String>().trim_end().rsplit(' ').next().unwrap_or("").to_lowercase();
         let word = word.trim_start_matches(['(', '[', '*', '_']);
@@ -605,6 +609,7 @@ mod tests {
         assert_eq!(found("relative error 0.065 (seed 2)"), vec!["0.065"]);
         assert_eq!(found("as the paper says (Sec. 4.3), **Table 2.1**"), Vec::<String>::new());
         assert_eq!(found("MIT OR Apache-2.0, at your option"), Vec::<String>::new());
+        assert_eq!(found("shades 444.5M fragments with 4M photons and 16M3 labels"), vec!["444.5"]);
     }
 
     #[test]
