@@ -151,6 +151,17 @@ fn findings_mark_the_table_and_an_explanation_lifts_the_mark() {
     assert!(out.markdown.contains("Explained, 1 entries"), "{}", out.markdown);
 }
 
+/// `text` as if loaded from `<dir>/synthetic.toml`.
+fn loaded_config(dir: &std::path::Path, text: &str) -> bench::LoadedConfig {
+    bench::LoadedConfig {
+        path: dir.join("synthetic.toml"),
+        name: "synthetic".into(),
+        hash: bench::config::fnv1a(text.as_bytes()),
+        text: text.into(),
+        config: toml::from_str(text).expect("parses"),
+    }
+}
+
 #[test]
 fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
     let (c, r) = table(CONFIG, [12.0, 6.0, 30.0, 35.0], QUIET_EYE, None);
@@ -159,13 +170,7 @@ fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
     let json = dir.join("synthetic/synthetic.json");
     let read = || -> Results { serde_json::from_str(&std::fs::read_to_string(&json).expect("json")).expect("parses") };
     let before = read();
-    let loaded = |text: &str| bench::LoadedConfig {
-        path: dir.join("synthetic.toml"),
-        name: "synthetic".into(),
-        hash: bench::config::fnv1a(text.as_bytes()),
-        text: text.into(),
-        config: toml::from_str(text).expect("parses"),
-    };
+    let loaded = |text: &str| loaded_config(&dir, text);
     // A config changed in more than its explanations is refused, and the table left alone.
     let more_photons = CONFIG.replace("photons = [1024, 4096]", "photons = [1024, 2048]");
     let Err(err) = bench::explain::explain(&loaded(&more_photons), &json, &dir, "abc1234") else {
@@ -228,13 +233,7 @@ fn bench_explain_ignores_the_sources_of_paper_values() {
     let dir = caustics::scratch::ScratchDir::new("causticlab", "explain-sources");
     bench::run::write_table(&c, &r, &dir.join("synthetic"), &dir).expect("table written");
     let json = dir.join("synthetic/synthetic.json");
-    let loaded = |text: &str| bench::LoadedConfig {
-        path: dir.join("synthetic.toml"),
-        name: "synthetic".into(),
-        hash: bench::config::fnv1a(text.as_bytes()),
-        text: text.into(),
-        config: toml::from_str(text).expect("parses"),
-    };
+    let loaded = |text: &str| loaded_config(&dir, text);
     let cited =
         |source: &str| measured.replace("Gather = 5.0 }\n", &format!("Gather = 5.0 }}\nsource = \"{source}\"\n"));
     // A source added, then changed: a citation, not a measurement.
