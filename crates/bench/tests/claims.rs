@@ -133,6 +133,13 @@ fn an_unexplained_finding_makes_its_cell_uncitable() {
     let found = problems(&root, &page);
     assert_eq!(found.len(), 1, "{found:#?}");
     assert!(found[0].what.contains("`?`"), "{}", found[0].what);
+    // The marked entries can be counted, and left out of a range; not quoted.
+    let counted = format!(
+        "{GATHER}The table marks 1<!--= count(marked(g)) --> entry; the other hierarchical gathers run 5.07-554.5<!--= range(unmarked(g{{technique=hierarchical}})) --> ms.\n"
+    );
+    assert_eq!(problems(&root, &counted), vec![]);
+    let quoted = format!("{GATHER}At most 555<!--at-most g{{technique=hierarchical}} --> ms.\n");
+    assert!(problems(&root, &quoted)[0].what.contains("`?`"), "{:#?}", problems(&root, &quoted));
 }
 
 #[test]

@@ -265,12 +265,15 @@ impl<'c> Scope<'c> {
             }
             // Entries flagged for their spread (`!`), timed entries (those with a spread),
             // entries measured again for their spread, entries measured on a busy machine (`~`).
-            "noisy" | "timed" | "remeasured" | "busy" => {
+            "noisy" | "timed" | "remeasured" | "busy" | "marked" | "unmarked" => {
                 let (items, pinned) = set(one(&mut args)?)?;
                 let keep = |i: &Item| match f {
                     "noisy" => i.spread.is_some_and(crate::stats::is_noisy),
                     "remeasured" => i.remeasured,
                     "busy" => i.flag.is_some_and(|f| f.contains('~')),
+                    // Marked `?` (to count them: their values stay uncitable), and the rest.
+                    "marked" => i.implausible,
+                    "unmarked" => !i.implausible,
                     _ => i.spread.is_some(),
                 };
                 Ok(Val::Set(items.into_iter().filter(keep).collect(), pinned))
@@ -318,7 +321,7 @@ impl<'c> Scope<'c> {
                 _ => bail!("{f}() takes a comparison"),
             },
             _ => bail!(
-                "no function `{f}` (there are: min, max, mean, median, sum, range, count, union, abs, measured, noisy, timed, remeasured, busy, spread, paper, pass, stat, all, any)"
+                "no function `{f}` (there are: min, max, mean, median, sum, range, count, union, abs, measured, noisy, timed, remeasured, busy, marked, unmarked, spread, paper, pass, stat, all, any)"
             ),
         }
     }
