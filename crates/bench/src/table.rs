@@ -83,7 +83,7 @@ fn product(axes: &[String], keys: &dyn Fn(&str) -> Vec<String>) -> Vec<Vec<Strin
 }
 
 /// The cell of `results` whose labels match `keys` on every non-metric axis.
-fn find<'r>(results: &'r Results, keys: &BTreeMap<String, String>) -> Option<&'r CellResult> {
+pub(crate) fn find<'r>(results: &'r Results, keys: &BTreeMap<String, String>) -> Option<&'r CellResult> {
     results.cells.iter().find(|c| keys.iter().filter(|(a, _)| *a != "metric").all(|(a, k)| c.cell.key(a) == *k))
 }
 

@@ -57,7 +57,8 @@ pub enum Val {
 struct Table {
     entries: Vec<Entry>,
     axes: Vec<String>,
-    cells: Vec<crate::results::CellResult>,
+    /// For the per-pass columns of an entry's cell (`pass()`, `stat()`).
+    results: crate::results::Results,
 }
 
 /// The tables a page's claims may read: its device folders (`<!--claims [ALIAS =] DIR -->`),
@@ -93,7 +94,7 @@ fn load(path: &Path) -> Result<Table, String> {
     let mut axes: Vec<String> = grid.entries.iter().flatten().flat_map(|e| e.keys.keys().cloned()).collect();
     axes.sort();
     axes.dedup();
-    Ok(Table { entries: grid.entries.into_iter().flatten().collect(), axes, cells: results.cells })
+    Ok(Table { entries: grid.entries.into_iter().flatten().collect(), axes, results })
 }
 
 impl<'c> Scope<'c> {
@@ -356,10 +357,7 @@ impl<'c> Scope<'c> {
                 Some(Ok(t)) => t,
                 _ => bail!("{}: its table is not loaded", it.describe()),
             };
-            let cell = table
-                .cells
-                .iter()
-                .find(|c| it.keys.iter().filter(|(a, _)| *a != "metric").all(|(a, k)| c.cell.key(a) == *k))
+            let cell = crate::table::find(&table.results, &it.keys)
                 .ok_or_else(|| anyhow!("{} has no cell in its table (not run)", it.describe()))?;
             let passes: Vec<&crate::record::Pass> =
                 cell.passes.iter().filter(|p| crate::metrics::glob(&pattern, &p.name)).collect();

@@ -168,32 +168,22 @@ impl Parser<'_> {
         Ok(left)
     }
 
-    fn sum(&mut self) -> Result<Expr> {
-        let mut e = self.product()?;
-        loop {
-            let op = if self.eat("+") {
-                Op::Add
-            } else if self.eat("-") {
-                Op::Sub
-            } else {
-                return Ok(e);
-            };
-            e = Expr::Bin(op, Box::new(e), Box::new(self.product()?));
+    /// A left-associative level of binary operators over `next` (sums over products, products
+    /// over unary terms).
+    fn level(&mut self, ops: &[(&str, Op)], next: fn(&mut Self) -> Result<Expr>) -> Result<Expr> {
+        let mut e = next(self)?;
+        while let Some(&(_, op)) = ops.iter().find(|(sym, _)| self.eat(sym)) {
+            e = Expr::Bin(op, Box::new(e), Box::new(next(self)?));
         }
+        Ok(e)
+    }
+
+    fn sum(&mut self) -> Result<Expr> {
+        self.level(&[("+", Op::Add), ("-", Op::Sub)], Self::product)
     }
 
     fn product(&mut self) -> Result<Expr> {
-        let mut e = self.unary()?;
-        loop {
-            let op = if self.eat("*") {
-                Op::Mul
-            } else if self.eat("/") {
-                Op::Div
-            } else {
-                return Ok(e);
-            };
-            e = Expr::Bin(op, Box::new(e), Box::new(self.unary()?));
-        }
+        self.level(&[("*", Op::Mul), ("/", Op::Div)], Self::unary)
     }
 
     fn unary(&mut self) -> Result<Expr> {

@@ -145,10 +145,14 @@ fn parse_num(s: &str) -> Option<f64> {
     s.replace(',', "").parse().ok()
 }
 
+/// A written number and half a unit of its last written digit: `1.93` is (1.93, 0.005).
+fn precise(written: &str) -> Option<(f64, f64)> {
+    Some((parse_num(written)?, 0.5 * 10f64.powi(-decimals(written))))
+}
+
 /// Is `computed` what `written` says, at the precision it is written with?
 pub fn agrees(written: &str, computed: f64) -> bool {
-    let Some(w) = parse_num(written) else { return false };
-    let half = 0.5 * 10f64.powi(-decimals(written));
+    let Some((w, half)) = precise(written) else { return false };
     (computed - w).abs() <= half * (1.0 + 1e-9) + 1e-12
 }
 
@@ -170,12 +174,6 @@ fn compare(w: &Written, v: &Val) -> Option<String> {
         }
         (Val::Set(items, _), _) if items.len() == 1 => {
             let it = &items[0];
-            if it.implausible {
-                return Some(format!(
-                    "{} is marked `?` (an unexplained plausibility finding): no sentence may cite it",
-                    it.describe()
-                ));
-            }
             let x = match &it.value {
                 Ok(x) => *x,
                 Err(why) => return Some(format!("{} reads `{why}`", it.describe())),
@@ -269,6 +267,59 @@ pub struct PageReport {
     pub papers_missing: usize,
 }
 
+/// What is wrong with a bound (`at-most`, `at-least`): "within 0.002", "up to 9x", "more than
+/// 5x": the written number bounds the computed one (each of a set's entries), at its written
+/// precision.
+fn beyond_bound(scope: &mut Scope, c: &Comment, w: &Written) -> Option<String> {
+    let (bound, half) = precise(w.b.as_ref().unwrap_or(&w.a)).unwrap_or((f64::NAN, 0.0));
+    scope.flagged.clear();
+    let values = parse(&c.body).and_then(|e| scope.eval(&e)).and_then(|v| match v {
+        Val::Num(x) => Ok(vec![x]),
+        Val::Range(a, b) => Ok(vec![a, b]),
+        Val::Set(items, _) => items.iter().map(|i| scope.used(i)).collect(),
+        Val::Truth(_) => anyhow::bail!("a bound needs numbers, not a comparison"),
+    });
+    let xs = match values {
+        Ok(xs) => xs,
+        Err(e) => return Some(format!("{e:#}")),
+    };
+    let at_most = c.kind == "at-most";
+    let x = xs.into_iter().find(|x| if at_most { *x > bound + half } else { *x < bound - half })?;
+    let side = if at_most { "above" } else { "below" };
+    Some(format!("the tables give {} ({side} the written bound)", shown(x)))
+}
+
+/// What is wrong with an equality (`=`, `=!`): the written number (range, value ±spread) against
+/// the claim's value, and the flags of the entries it is built from against what the claim says.
+fn unequal(scope: &mut Scope, c: &Comment, w: &Written) -> Option<String> {
+    scope.flagged.clear();
+    let v = match parse(&c.body).and_then(|e| scope.eval(&e)) {
+        Ok(v) => v,
+        Err(e) => return Some(format!("{e:#}")),
+    };
+    // A single entry quoted as it is goes through the same gate as arithmetic on entries: it
+    // must read a number, carry no `?`, and its flags count.
+    if let Val::Set(items, _) = &v {
+        if let [it] = items.as_slice() {
+            if let Err(e) = scope.used(it) {
+                return Some(format!("{e:#}"));
+            }
+        }
+    }
+    if let Some(what) = compare(w, &v) {
+        Some(what)
+    } else if c.kind == "=" && !scope.flagged.is_empty() {
+        Some(format!(
+            "built from entries a reader should not rank by: {}; say so in the sentence and mark the claim `<!--=! ...-->`",
+            scope.flagged.join(", ")
+        ))
+    } else if c.kind == "=!" && scope.flagged.is_empty() {
+        Some("marked `=!` but built from no flagged entry".into())
+    } else {
+        None
+    }
+}
+
 /// Checks every claim of `text` (a page under `root`) against the tables, and finds the
 /// measured-looking numbers without one.
 pub fn check_page(text: &str, root: &Path, cache: &mut Cache) -> PageReport {
@@ -323,39 +374,7 @@ pub fn check_page(text: &str, root: &Path, cache: &mut Cache) -> PageReport {
                         Err(e) => problem(c.body.clone(), format!("{e:#}")),
                     }
                 }
-                "at-most" | "at-least" => {
-                    // "within 0.002", "up to 9x", "more than 5x": the written number bounds the
-                    // computed one (each of a set's entries), at its written precision.
-                    let Some(w) = written_before(&line[..c.start]) else {
-                        problem(c.body.clone(), "no number just before the claim".into());
-                        continue;
-                    };
-                    sourced.push((w.start, c.start));
-                    report.claims += 1;
-                    scope.flagged.clear();
-                    let bound = parse_num(w.b.as_ref().unwrap_or(&w.a)).unwrap_or(f64::NAN);
-                    let half = 0.5 * 10f64.powi(-decimals(w.b.as_ref().unwrap_or(&w.a)));
-                    let values = parse(&c.body).and_then(|e| scope.eval(&e)).and_then(|v| match v {
-                        Val::Num(x) => Ok(vec![x]),
-                        Val::Range(a, b) => Ok(vec![a, b]),
-                        Val::Set(items, _) => items.iter().map(|i| scope.used(i)).collect(),
-                        Val::Truth(_) => anyhow::bail!("a bound needs numbers, not a comparison"),
-                    });
-                    match values {
-                        Ok(xs) => {
-                            let beyond: Vec<f64> = xs
-                                .into_iter()
-                                .filter(|x| if c.kind == "at-most" { *x > bound + half } else { *x < bound - half })
-                                .collect();
-                            if let Some(x) = beyond.first() {
-                                let side = if c.kind == "at-most" { "above" } else { "below" };
-                                problem(w.text(), format!("the tables give {} ({side} the written bound)", shown(*x)));
-                            }
-                        }
-                        Err(e) => problem(w.text(), format!("{e:#}")),
-                    }
-                }
-                "=" | "=!" | "paper" | "given" => {
+                "at-most" | "at-least" | "=" | "=!" | "paper" | "given" => {
                     let Some(w) = written_before(&line[..c.start]) else {
                         problem(c.body.clone(), "no number just before the claim".into());
                         continue;
@@ -365,38 +384,20 @@ pub fn check_page(text: &str, root: &Path, cache: &mut Cache) -> PageReport {
                         continue;
                     }
                     report.claims += 1;
-                    if c.kind == "paper" {
-                        match paper_has(&papers, &c.body, &w) {
-                            Ok(true) => {}
-                            Ok(false) => report.papers_missing += 1,
-                            Err(e) => problem(w.text(), e),
-                        }
-                        continue;
-                    }
-                    scope.flagged.clear();
-                    match parse(&c.body).and_then(|e| scope.eval(&e)) {
-                        Ok(v) => {
-                            // A single entry quoted as it is: its flags count too.
-                            if let Val::Set(items, _) = &v {
-                                if let [it] = items.as_slice() {
-                                    let _ = scope.used(it);
-                                }
+                    let found = match c.kind.as_str() {
+                        "paper" => match paper_has(&papers, &c.body, &w) {
+                            Ok(true) => None,
+                            Ok(false) => {
+                                report.papers_missing += 1;
+                                None
                             }
-                            if let Some(what) = compare(&w, &v) {
-                                problem(w.text(), what);
-                            } else if c.kind == "=" && !scope.flagged.is_empty() {
-                                problem(
-                                    w.text(),
-                                    format!(
-                                        "built from entries a reader should not rank by: {}; say so in the sentence and mark the claim `<!--=! ...-->`",
-                                        scope.flagged.join(", ")
-                                    ),
-                                );
-                            } else if c.kind == "=!" && scope.flagged.is_empty() {
-                                problem(w.text(), "marked `=!` but built from no flagged entry".into());
-                            }
-                        }
-                        Err(e) => problem(w.text(), format!("{e:#}")),
+                            Err(e) => Some(e),
+                        },
+                        "at-most" | "at-least" => beyond_bound(&mut scope, &c, &w),
+                        _ => unequal(&mut scope, &c, &w),
+                    };
+                    if let Some(what) = found {
+                        problem(w.text(), what);
                     }
                 }
                 _ => {}
