@@ -20,6 +20,16 @@ declare -A TESTS=(
     [crates/bench/src/stats.rs]="-p bench --lib --test plausibility --test tables"
     [crates/bench/src/claims/page.rs]="-p bench --lib --test claims"
     [crates/bench/src/claims/eval.rs]="-p bench --lib --test claims"
+    [crates/bench/src/claims/expr.rs]="-p bench --lib --test claims"
+    [crates/bench/src/claims/data.rs]="-p bench --lib --test claims"
+    [crates/bench/src/steal.rs]="-p bench --lib"
+    [crates/bench/src/run.rs]="-p bench --lib --test plausibility"
+    [crates/bench/src/results.rs]="-p bench --lib --test plausibility --test tables"
+    [crates/bench/src/measure.rs]="-p bench --lib"
+    [crates/caustics/src/reference/optics.rs]="-p caustics --lib"
+    [crates/caustics/src/compare.rs]="-p caustics --lib"
+    [crates/caustics/src/scene/load.rs]="-p caustics --lib --test scene_files"
+    [crates/caustics/src/scene/object.rs]="-p caustics --lib --test scene_files"
 )
 files=("$@")
 [ ${#files[@]} -gt 0 ] || files=("${!TESTS[@]}")

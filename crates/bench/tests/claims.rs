@@ -280,3 +280,69 @@ fn a_pass_time_and_a_pipeline_statistic_are_read_from_the_cells_passes() {
         assert!(found.iter().any(|p| p.what.contains(want)), "{claim}: want `{want}` in {found:#?}");
     }
 }
+
+/// A script's data file (the CPU reference's rate, criterion's medians) beside its page.
+const CPU_RATE: &str = "scene,fresnel,M photons/s,lowest,highest\n\
+sphere_on_plane,on,0.712,0.682,0.734\n\
+sphere_on_plane,off,0.702,0.700,0.721\n\
+\"bunny, in a room\",on,0.755,0.748,0.782\n";
+
+#[test]
+fn a_data_file_is_quoted_like_a_table_and_an_edit_fails_the_sentence() {
+    let (_s, root) = repo(&[]);
+    std::fs::write(root.join("results/cpu_rate.csv"), CPU_RATE).unwrap();
+    let page = "<!--claims cpu = results/cpu_rate.csv -->\n\
+        The CPU traces 0.712<!--= cpu{scene=sphere_on_plane fresnel=on column=\"M photons/s\"} --> M photons/s \
+        (0.682-0.734<!--= range(union(cpu{scene=sphere_on_plane fresnel=on column=lowest}, cpu{scene=sphere_on_plane fresnel=on column=highest})) -->), \
+        the bunny 1.06x<!--= cpu{scene=\"bunny, in a room\" column=\"M photons/s\"} / cpu{scene=sphere_on_plane fresnel=on column=\"M photons/s\"} --> that.\n";
+    assert_eq!(problems(&root, page), vec![]);
+    std::fs::write(root.join("results/cpu_rate.csv"), CPU_RATE.replace("0.712", "0.699")).unwrap();
+    let found = problems(&root, page);
+    let written: Vec<&str> = found.iter().map(|p| p.written.as_str()).collect();
+    assert_eq!(written, ["0.712", "1.06"], "{found:#?}");
+    assert!(found[0].what.contains("0.699"), "{}", found[0].what);
+}
+
+#[test]
+fn a_folder_serves_a_data_file_where_it_has_no_table_of_that_name() {
+    let (_s, root) = repo(&[]);
+    std::fs::write(root.join("results/dev/cpu_rate.csv"), CPU_RATE).unwrap();
+    let page = "Sphere, Fresnel off: 0.702<!--= cpu_rate{scene=sphere_on_plane fresnel=off column=\"M photons/s\"} --> M photons/s.\n\
+        Its passes: 1.0 ms<!--= pass(cpu_rate{scene=sphere_on_plane fresnel=off column=lowest}, \"trace*\") -->.\n";
+    let found = problems(&root, page);
+    assert_eq!(found.len(), 1, "{found:#?}");
+    assert_eq!(found[0].line, 4);
+    assert!(found[0].what.contains("from a data file"), "{}", found[0].what);
+}
+
+#[test]
+fn a_data_file_must_exist_and_be_named() {
+    let (_s, root) = repo(&[]);
+    std::fs::write(root.join("results/cpu_rate.csv"), CPU_RATE).unwrap();
+    for (page, why) in [
+        ("<!--claims cpu = results/missing.csv -->\n", "no data file `results/missing.csv`"),
+        ("<!--claims results/cpu_rate.csv -->\n", "a data file needs a name"),
+        ("<!--claims cpu = results/cpu_rate.csv -->\n1.0<!--= cpu{column=nothing} -->\n", "has no column `nothing`"),
+    ] {
+        let found = problems(&root, page);
+        assert_eq!(found.len(), 1, "{page}: {found:#?}");
+        assert!(found[0].what.contains(why), "{page}: {}", found[0].what);
+    }
+}
+
+#[test]
+fn a_page_a_script_writes_beside_its_data_is_not_read_but_its_neighbours_are() {
+    let (_s, root) = repo(&[]);
+    let dir = root.join("results/quality");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("sphere.csv"), CPU_RATE).unwrap();
+    std::fs::write(dir.join("sphere.md"), "| 0.712 ms |\n").unwrap();
+    std::fs::write(dir.join("README.md"), "It takes 0.712 ms.\n").unwrap();
+    let pages = bench::claims::pages(&root).unwrap();
+    let rel: Vec<String> = pages
+        .iter()
+        .map(|p| p.strip_prefix(&root).unwrap().display().to_string())
+        .filter(|p| p.contains("quality"))
+        .collect();
+    assert_eq!(rel, ["results/quality/README.md"]);
+}

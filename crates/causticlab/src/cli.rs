@@ -180,9 +180,9 @@ pub struct ClaimsArgs {
     /// relative to.
     #[arg(long, default_value = ".")]
     pub root: PathBuf,
-    /// Print every entry of this table (results/<device>/<config>.json) with the pick that
-    /// selects it, instead of checking pages.
-    #[arg(long, value_name = "TABLE.json")]
+    /// Print every entry of this table (results/<device>/<config>.json, or a script's data
+    /// file, FILE.csv) with the pick that selects it, instead of checking pages.
+    #[arg(long, value_name = "TABLE.json|FILE.csv")]
     pub list: Option<PathBuf>,
 }
 

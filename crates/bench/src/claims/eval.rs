@@ -57,15 +57,18 @@ pub enum Val {
 struct Table {
     entries: Vec<Entry>,
     axes: Vec<String>,
-    /// For the per-pass columns of an entry's cell (`pass()`, `stat()`).
-    results: crate::results::Results,
+    /// For the per-pass columns of an entry's cell (`pass()`, `stat()`); none for a data file
+    /// ([`super::data`]).
+    results: Option<crate::results::Results>,
 }
 
 /// The tables a page's claims may read: its device folders (`<!--claims [ALIAS =] DIR -->`),
-/// the first of them the default, and the aliases the page set.
+/// the first of them the default, its data files (`<!--claims NAME = FILE.csv -->`, read as
+/// `NAME{...}`), and the aliases the page set.
 pub struct Scope<'c> {
     pub root: PathBuf,
     pub devices: Vec<(Option<String>, PathBuf)>,
+    pub files: Vec<(String, PathBuf)>,
     pub aliases: HashMap<String, Expr>,
     cache: &'c mut HashMap<PathBuf, Result<Table, String>>,
     /// Entries flagged `!` or `~` that a claim used.
@@ -87,14 +90,23 @@ impl Default for Cache {
 }
 
 fn load(path: &Path) -> Result<Table, String> {
+    if path.extension().is_some_and(|x| x == "csv") {
+        let entries = super::data::read(path).map_err(|e| format!("{e:#}"))?;
+        return Ok(Table { axes: axes(&entries), entries, results: None });
+    }
     let results = crate::results::read(path, "table").map_err(|e| format!("{e:#}"))?;
     let config: crate::config::Config = toml::from_str(&results.config.toml)
         .map_err(|e| format!("{}: the embedded config does not parse: {e}", path.display()))?;
     let grid = crate::table::grid(&config, &results);
-    let mut axes: Vec<String> = grid.entries.iter().flatten().flat_map(|e| e.keys.keys().cloned()).collect();
+    let entries: Vec<Entry> = grid.entries.into_iter().flatten().collect();
+    Ok(Table { axes: axes(&entries), entries, results: Some(results) })
+}
+
+fn axes(entries: &[Entry]) -> Vec<String> {
+    let mut axes: Vec<String> = entries.iter().flat_map(|e| e.keys.keys().cloned()).collect();
     axes.sort();
     axes.dedup();
-    Ok(Table { entries: grid.entries.into_iter().flatten().collect(), axes, results })
+    axes
 }
 
 impl<'c> Scope<'c> {
@@ -102,6 +114,7 @@ impl<'c> Scope<'c> {
         Scope {
             root: root.to_path_buf(),
             devices: vec![],
+            files: vec![],
             aliases: HashMap::new(),
             cache: &mut cache.0,
             flagged: vec![],
@@ -132,7 +145,21 @@ impl<'c> Scope<'c> {
                 return self.entries(&d, &n, &all);
             }
         }
-        let path = self.root.join(self.dir(device)?).join(format!("{name}.json"));
+        let file = self.files.iter().find(|(n, _)| device.is_none() && n == name).map(|(_, f)| f.clone());
+        let path = match file {
+            Some(f) => self.root.join(f),
+            None => {
+                // A bench table, or else a data file of that name in the folder.
+                let dir = self.root.join(self.dir(device)?);
+                let json = dir.join(format!("{name}.json"));
+                let csv = dir.join(format!("{name}.csv"));
+                if !json.is_file() && csv.is_file() {
+                    csv
+                } else {
+                    json
+                }
+            }
+        };
         if !self.cache.contains_key(&path) {
             let t = load(&path);
             self.cache.insert(path.clone(), t);
@@ -353,11 +380,12 @@ impl<'c> Scope<'c> {
         let Val::Set(items, pinned) = self.eval(&args[0])? else { bail!("{f}() takes table entries first") };
         let mut out = vec![];
         for mut it in items {
-            let table = match self.cache.get(&it.source) {
-                Some(Ok(t)) => t,
+            let results = match self.cache.get(&it.source) {
+                Some(Ok(Table { results: Some(r), .. })) => r,
+                Some(Ok(_)) => bail!("{f}() reads a bench table's passes; {} is from a data file", it.describe()),
                 _ => bail!("{}: its table is not loaded", it.describe()),
             };
-            let cell = crate::table::find(&table.results, &it.keys)
+            let cell = crate::table::find(results, &it.keys)
                 .ok_or_else(|| anyhow!("{} has no cell in its table (not run)", it.describe()))?;
             let passes: Vec<&crate::record::Pass> =
                 cell.passes.iter().filter(|p| crate::metrics::glob(&pattern, &p.name)).collect();

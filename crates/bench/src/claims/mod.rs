@@ -9,9 +9,11 @@
 //! the line, the number written and the number computed; so a re-run that changes a cell makes
 //! every sentence that quoted it fail until the sentence is updated. A number that looks measured
 //! (a time, a rate, a ratio, a percentage, a decimal) and has no claim fails too: a number cannot
-//! enter a page without a source. Tables the bench writes (a `.md` beside its `.json`) are not
+//! enter a page without a source. Tables the bench writes (a `.md` beside its `.json`) and pages a
+//! script writes from its data (a `.md` beside a `.csv` of the same name, [`data`]) are not
 //! read: they are the source.
 
+pub mod data;
 pub mod eval;
 pub mod expr;
 pub mod page;
@@ -26,7 +28,8 @@ pub struct Checked {
 }
 
 /// The pages the check reads under `root`: the README, `docs/` and `results/`, less the tables
-/// the bench writes.
+/// the bench writes (a `.json` beside) and the pages scripts write from their data (a `.csv`
+/// beside).
 pub fn pages(root: &Path) -> Result<Vec<PathBuf>> {
     let mut out = vec![];
     let readme = root.join("README.md");
@@ -48,7 +51,10 @@ fn walk(dir: &Path, out: &mut Vec<PathBuf>) -> Result<()> {
         let p = e?.path();
         if p.is_dir() {
             walk(&p, out)?;
-        } else if p.extension().is_some_and(|x| x == "md") && !p.with_extension("json").is_file() {
+        } else if p.extension().is_some_and(|x| x == "md")
+            && !p.with_extension("json").is_file()
+            && !p.with_extension("csv").is_file()
+        {
             out.push(p);
         }
     }
@@ -66,13 +72,21 @@ pub fn check(root: &Path, pages: &[PathBuf]) -> Result<Vec<Checked>> {
     Ok(out)
 }
 
-/// Every entry of a table with the pick that selects it alone, its value and flags: what a
+/// Every entry of a table (or data file) with the pick that selects it alone, its value and flags: what a
 /// claim's author reads to write `table{axis=label ...}`.
 pub fn list(table: &Path) -> Result<String> {
     // The file itself first, so that a wrong path or a file that is no table is named as given.
-    crate::results::read(table, "table")?;
-    if table.extension().is_none_or(|x| x != "json") {
-        return Err(caustics::input_error!("{}: a table is the bench's `<config>.json`", table.display()).into());
+    if table.extension().is_some_and(|x| x == "csv") {
+        data::read(table)?;
+    } else {
+        crate::results::read(table, "table")?;
+        if table.extension().is_none_or(|x| x != "json") {
+            return Err(caustics::input_error!(
+                "{}: a table is the bench's `<config>.json` or a script's `.csv`",
+                table.display()
+            )
+            .into());
+        }
     }
     let dir = table.parent().unwrap_or(Path::new("."));
     let name = table.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string();

@@ -7,6 +7,7 @@
 //! ```text
 //! <!--claims results/<device>/ -->          the folder of the tables the claims read (first: default)
 //! <!--claims h100 = results/<device>/ -->   another folder, read as `h100:table{...}`
+//! <!--claims cpu = results/photon_trace.csv -->   a script's data file, read as `cpu{...}`
 //! <!--let t3 = wyman2008_table3{metric=Gather} -->   an alias for the page's later claims
 //! 1.47-1.93x<!--= range(t3{technique=H} / t3{technique=D}) -->   the number (or range) before equals this
 //! 89.3 ±4%<!--= t3{photons=2048 technique=D} -->  a value with its spread: both are checked
@@ -347,10 +348,22 @@ pub fn check_page(text: &str, root: &Path, cache: &mut Cache) -> PageReport {
                         Some((a, d)) => (Some(a.trim().to_string()), d.trim()),
                         None => (None, c.body.as_str()),
                     };
-                    if !root.join(dir).is_dir() {
-                        problem(c.body.clone(), format!("no table folder `{dir}`"));
+                    if dir.ends_with(".csv") {
+                        // One data file, read by its name: `<!--claims NAME = FILE.csv -->`.
+                        match alias {
+                            _ if !root.join(dir).is_file() => problem(c.body.clone(), format!("no data file `{dir}`")),
+                            Some(name) if super::expr::is_bare_label(&name) => scope.files.push((name, dir.into())),
+                            _ => problem(
+                                c.body.clone(),
+                                "`<!--claims NAME = FILE.csv -->`: a data file needs a name".into(),
+                            ),
+                        }
+                    } else {
+                        if !root.join(dir).is_dir() {
+                            problem(c.body.clone(), format!("no table folder `{dir}`"));
+                        }
+                        scope.devices.push((alias, dir.into()));
                     }
-                    scope.devices.push((alias, dir.into()));
                     report.enrolled = true;
                 }
                 "let" => match c.body.split_once('=').map(|(a, e)| (a.trim(), parse(e.trim()))) {
