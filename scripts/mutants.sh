@@ -3,7 +3,8 @@
 # broken rule"): cargo-mutants changes one operator, constant or return value at a time in each
 # file below and runs the tests that should notice; a mutant they do not notice ("missed") is a
 # rule no test holds. Writes results/mutants/<file stem>.md (mutants, caught, missed, unviable,
-# timeouts, the time it took, and every missed mutant) and keeps cargo-mutants' own output in
+# timeouts, the time it took, and every missed mutant) and <file stem>.csv (the same figures as
+# data) and keeps cargo-mutants' own output in
 # target/mutants/<file stem>/.
 #
 #   bash scripts/mutants.sh                               # every file below (an hour or more on 2 cores)
@@ -14,23 +15,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# file : the tests that judge it (cargo test arguments for its package)
-declare -A TESTS=(
-    [crates/bench/src/plausibility.rs]="-p bench --lib --test plausibility"
-    [crates/bench/src/stats.rs]="-p bench --lib --test plausibility --test tables"
-    [crates/bench/src/claims/page.rs]="-p bench --lib --test claims"
-    [crates/bench/src/claims/eval.rs]="-p bench --lib --test claims"
-    [crates/bench/src/claims/expr.rs]="-p bench --lib --test claims"
-    [crates/bench/src/claims/data.rs]="-p bench --lib --test claims"
-    [crates/bench/src/steal.rs]="-p bench --lib"
-    [crates/bench/src/run.rs]="-p bench --lib --test plausibility"
-    [crates/bench/src/results.rs]="-p bench --lib --test plausibility --test tables"
-    [crates/bench/src/measure.rs]="-p bench --lib"
-    [crates/caustics/src/reference/optics.rs]="-p caustics --lib"
-    [crates/caustics/src/compare.rs]="-p caustics --lib"
-    [crates/caustics/src/scene/load.rs]="-p caustics --lib --test scene_files"
-    [crates/caustics/src/scene/object.rs]="-p caustics --lib --test scene_files"
-)
+# The files and the tests that judge each: scripts/mutants_files.sh.
+source scripts/mutants_files.sh
 files=("$@")
 [ ${#files[@]} -gt 0 ] || files=("${!TESTS[@]}")
 
@@ -48,21 +34,30 @@ for f in "${files[@]}"; do
     mkdir -p "$out"
     start=$(date +%s)
     # cargo-mutants exits 2 when mutants are missed: that is a result, not a failure of the run.
-    cargo mutants --in-place -f "$f" --test-package "$pkg" "${test_args[@]}" --output "$out" > "$out/run.log" 2>&1 || [ $? -eq 2 ]
+    cargo mutants --in-place --profile mutants -f "$f" --test-package "$pkg" "${test_args[@]}" --output "$out" > "$out/run.log" 2>&1 || [ $? -eq 2 ]
     secs=$(( $(date +%s) - start ))
     o=$out/mutants.out
     count() { local n; n=$(grep -c . "$o/$1.txt" 2>/dev/null) || true; echo "${n:-0}"; }
     caught=$(count caught); missed=$(count missed); unviable=$(count unviable); timeout=$(count timeout)
     viable=$((caught + missed + timeout))
+    pct=$(( viable > 0 ? (100 * missed + viable / 2) / viable : 0 ))
+    commit=$(git rev-parse --short HEAD)
+    day=$(date -u +%Y-%m-%d)
+    tool=$(cargo mutants --version)
+    # The run's figures as data (the page below is written from the same values; a page that
+    # quotes them quotes this file: docs/claims.md, "Data files").
+    {
+        echo "file,commit,date,tool,judge,seconds,cores,mutants,caught,missed,unviable,timeouts,missed_pct"
+        echo "$f,$commit,$day,$tool,cargo test $args,$secs,$(nproc),$((viable + unviable)),$caught,$missed,$unviable,$timeout,$pct"
+    } > "results/mutants/$stem.csv"
     {
         echo "# Mutation testing: \`$f\`"
         echo
-        echo "\`bash scripts/mutants.sh $f\` at commit $(git rev-parse --short HEAD), $(date -u +%Y-%m-%d), $(cargo mutants --version);"
-        echo "judged by \`cargo test $args\`. $secs s on $(nproc) cores."
+        echo "\`bash scripts/mutants.sh $f\` at commit $commit, $day, $tool;"
+        echo "judged by \`cargo test $args\`. $secs s on $(nproc) cores. Data: [$stem.csv]($stem.csv)."
         echo
         echo "| mutants | caught | missed | unviable | timeouts | missed of viable |"
         echo "|---|---|---|---|---|---|"
-        pct=$(( viable > 0 ? (100 * missed + viable / 2) / viable : 0 ))
         echo "| $((viable + unviable)) | $caught | $missed | $unviable | $timeout | $pct% |"
         echo
         if [ "$missed" -gt 0 ]; then

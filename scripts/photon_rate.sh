@@ -2,7 +2,8 @@
 # The exact photon tracers' rates on this machine, side by side: the GPU tracer
 # (`--technique photon-trace`, bench_configs/photon_trace_rate.toml, into results/<device>/) and
 # the CPU reference (`causticlab reference`, three runs per cell, the median), both on the glass
-# sphere and the glass bunny, Fresnel on and off. Writes results/photon_trace.md.
+# sphere and the glass bunny, Fresnel on and off. Writes results/photon_trace.csv (one row per
+# scene and Fresnel setting) and results/photon_trace.md, the page, from that file's rows.
 #
 #   bash scripts/photon_rate.sh
 #
@@ -15,6 +16,8 @@ bin=target/release/causticlab
 [ -x "$bin" ] || { echo "photon_rate.sh: build first: cargo build --release" >&2; exit 1; }
 photons=2048
 runs=3
+csv=results/photon_trace.csv
+out=results/photon_trace.md
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # The commit measured, before this run adds its tables to the tree; as the bench does
@@ -39,14 +42,12 @@ for scene in sphere_on_plane bunny_in_room; do
     done
 done
 
-TMP="$tmp" TABLE="$table" PHOTONS="$photons" RUNS="$runs" \
-COMMIT="$commit" DATE="$(date -u +%Y-%m-%dT%H:%M:%SZ)" \
-CPU="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')" CORES="$(nproc)" \
-python3 - <<'EOF'
-import json, os, statistics
+# The measurements, one row per scene and Fresnel setting, into $csv (full precision); then the
+# page from that file's rows: every number on the page is a cell of the CSV, rounded.
+TMP="$tmp" TABLE="$table" PHOTONS="$photons" RUNS="$runs" CSV="$csv" python3 - <<'MEASURED'
+import csv, json, os, statistics
 tmp, n, runs = os.environ["TMP"], int(os.environ["PHOTONS"]), int(os.environ["RUNS"])
 bench = json.load(open(os.environ["TABLE"]))
-device = bench["meta"]["device"]
 def find(scene, label):
     for c in bench["cells"]:
         cell = c["cell"]
@@ -55,15 +56,17 @@ def find(scene, label):
     raise SystemExit(f"no cell {scene} {label} {n}")
 def gpu(scene, label, metric):
     return find(scene, label)["metrics"][metric]["value"]
-def shown(scene, label, metric, fmt):
+def unmeasured(scene, label, metric):
     # As the table shows it: an entry plausibility rules c, e or f found beyond the device is
-    # not a number (bench_configs/README.md#plausibility).
+    # not a number (bench_configs/README.md#plausibility). The CSV leaves its value empty and
+    # names the rule.
     index = find(scene, label)["cell"]["index"]
     for f in bench.get("plausibility", []):
         if f["cell"] == index and f["metric"] == metric and f["rule"] in ("c", "e", "f"):
-            return f"not measured ({f['rule']})"
-    return fmt.format(gpu(scene, label, metric))
-rows = []
+            return f["rule"]
+    return ""
+rows = [["scene", "fresnel", "cpu_mphotons", "cpu_lo", "cpu_hi", "gpu_frame_mphotons", "frame_over_cpu",
+         "gpu_host_mphotons", "host_over_cpu", "gpu_trace_mphotons", "gpu_trace_not_measured"]]
 for scene in ["sphere_on_plane", "bunny_in_room"]:
     for fresnel, label in [("true", "Fresnel on"), ("false", "Fresnel off")]:
         rates = []
@@ -73,12 +76,39 @@ for scene in ["sphere_on_plane", "bunny_in_room"]:
         cpu = statistics.median(rates)
         frame = gpu(scene, label, "frame rate")
         host = gpu(scene, label, "host rate")
-        trace = shown(scene, label, "rate", "{:.3f}")
-        rows.append(f"| `{scene}` | {label} | {cpu:.3f} ({min(rates):.3f}-{max(rates):.3f}) | {frame:.3f} | {frame / cpu:.2f} | {host:.3f} | {host / cpu:.2f} | {trace} |")
+        rule = unmeasured(scene, label, "rate")
+        trace = "" if rule else repr(gpu(scene, label, "rate"))
+        rows.append([scene, "on" if fresnel == "true" else "off", repr(cpu), repr(min(rates)), repr(max(rates)),
+                     repr(frame), repr(frame / cpu), repr(host), repr(host / cpu), trace, rule])
+with open(os.environ["CSV"], "w", newline="") as f:
+    csv.writer(f, lineterminator="\n").writerows(rows)
+MEASURED
+
+CSV="$csv" OUT="$out" PHOTONS="$photons" RUNS="$runs" COMMIT="$commit" DATE="$(date -u +%Y-%m-%dT%H:%M:%SZ)" \
+TABLE_MD="$(python3 -c 'import os, sys; print(os.path.relpath(sys.argv[1].removesuffix(".json") + ".md", "results"))' "$table")" \
+DEVICE="$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["meta"]["device"])' "$table")" \
+CPU="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')" CORES="$(nproc)" \
+python3 - <<'PAGE'
+import csv, os
+env = os.environ
+n, runs = int(env["PHOTONS"]), int(env["RUNS"])
+def num(r, col, fmt):
+    return fmt.format(float(r[col]))
+table = []
+for r in csv.DictReader(open(env["CSV"])):
+    rule = r["gpu_trace_not_measured"]
+    trace = f"not measured ({rule})" if rule else num(r, "gpu_trace_mphotons", "{:.3f}")
+    table.append(
+        f"| `{r['scene']}` | Fresnel {r['fresnel']} "
+        f"| {num(r, 'cpu_mphotons', '{:.3f}')} ({num(r, 'cpu_lo', '{:.3f}')}-{num(r, 'cpu_hi', '{:.3f}')}) "
+        f"| {num(r, 'gpu_frame_mphotons', '{:.3f}')} | {num(r, 'frame_over_cpu', '{:.2f}')} "
+        f"| {num(r, 'gpu_host_mphotons', '{:.3f}')} | {num(r, 'host_over_cpu', '{:.2f}')} | {trace} |"
+    )
+data = os.path.basename(env["CSV"])
 out = f"""# The exact photon tracers' rates, GPU and CPU, on one machine
 
-Written by `bash scripts/photon_rate.sh` (commit {os.environ['COMMIT']}, {os.environ['DATE']}), on
-{os.environ['CPU']} ({os.environ['CORES']} cores); the GPU tracer on {device}.
+Written by `bash scripts/photon_rate.sh` (commit {env['COMMIT']}, {env['DATE']}), on
+{env['CPU']} ({env['CORES']} cores); the GPU tracer on {env['DEVICE']}.
 
 - **CPU reference**: `causticlab reference --photons {n * n}` (every core), end to end (BVH
   build, tracing, binning into the receiver map), median of {runs} runs (the range in brackets).
@@ -93,10 +123,12 @@ Written by `bash scripts/photon_rate.sh` (commit {os.environ['COMMIT']}, {os.env
 
 | scene | Fresnel | CPU reference, M photons/s | GPU tracer, whole frame, M photons/s | GPU / CPU | GPU trace pass, host-timed, M photons/s | host-timed / CPU | GPU trace pass (timestamps), M photons/s |
 |---|---|---|---|---|---|---|---|
-""" + "\n".join(rows) + f"""
+""" + "\n".join(table) + f"""
 
-The table behind the GPU columns: [{os.path.relpath(os.environ['TABLE'].replace('.json', '.md'), 'results')}]({os.path.relpath(os.environ['TABLE'].replace('.json', '.md'), 'results')}).
+The table behind the GPU columns: [{env['TABLE_MD']}]({env['TABLE_MD']}). This page's rows, unrounded
+(the CPU runs' range in `cpu_lo` and `cpu_hi`, a rule's letter where the timestamps' rate is not
+measured), are [{data}]({data}), written by the same run; a page that quotes them cites that file.
 """
-open("results/photon_trace.md", "w").write(out)
+open(env["OUT"], "w").write(out)
 print(out)
-EOF
+PAGE

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Regenerates results/quality/<scene>.md: the caustic techniques listed below (shah, wd-points, its
-# thin-lens splats, shah-vertex and three hcm variants) against the exact CPU photon reference,
-# at 256^2..2048^2 photons, with the reference's own noise (two seeds).
+# Regenerates results/quality/<scene>.csv and <scene>.md: the caustic techniques listed below
+# (shah, wd-points, its thin-lens splats, shah-vertex and three hcm variants) against the exact
+# CPU photon reference, at 256^2..2048^2 photons, with the reference's own noise (two seeds). The
+# CSV has a row per comparison (technique, photons, then compare's metrics, as formatted in the
+# table); the .md prints the same rows, and the results pages quote the CSV.
 #   bash scripts/quality_table.sh [scene ...]      (default: sphere_on_plane sphere_oblique)
 # Needs a release build (cargo build --release) and python3 for the table layout.
 # REF_PHOTONS (default 16M), WORK (default out/quality) and RESULTS (default results/quality)
@@ -45,30 +47,49 @@ for s in "${scenes[@]}"; do
     done
   done
   device=$($bin devices | sed -n 's/^\[\([0-9]*\)\] \(.*\) \[default\].*/\2/p' | head -1)
-  python3 - "$s" "$rows" "$ref_photons" "$device" "$(git rev-parse --short HEAD)" > "$results/$s.md" <<'PY'
-import json, sys, datetime
-scene, rows, ref_photons, device, commit = sys.argv[1:6]
+  python3 - "$s" "$rows" "$ref_photons" "$device" "$(git rev-parse --short HEAD)" "$results/$s.csv" "$results/$s.md" <<'PY'
+import csv, json, sys, datetime
+scene, rows, ref_photons, device, commit, csv_out, md_out = sys.argv[1:8]
 device = device.strip()
-print(f"# Caustic quality: `{scene}` against the exact CPU photon reference\n")
-print(f"Device: {device or 'default device'}; commit {commit}; {datetime.date.today()}. "
-      f"Reference: `causticlab reference --photons {ref_photons} --fresnel false` (seed 1); all techniques "
-      "`--fresnel false` (two refractions, all power transmitted), default splat (Gaussian, radius 1.5 texels; "
-      "the `hcm varying` rows size each splat from its neighbours instead, the `thin-lens` row from a per-photon "
-      "thin-lens model), "
-      "caustic map 1024^2, 4 back-face iterations. Regenerate: `bash scripts/quality_table.sh " + scene + "`.\n")
-print("Errors are over the texels where either receiver map differs from 1 by more than 0.05 "
-      "(see `causticlab compare`). `shah-vertex` traces one photon per mesh vertex, so its photon count is "
-      "the tessellation's, not N^2.\n")
-print("| technique | photons | region texels | rel. RMSE | rel. RMSE after best scale | best scale | peak ratio | peak offset (texels) | caustic flux ratio |")
-print("|---|---|---|---|---|---|---|---|---|")
+REFERENCE = "reference, seed 2 vs seed 1"
+COLUMNS = ["technique", "photons", "region_texels", "rel_rmse", "rel_rmse_scaled", "best_scale",
+           "peak_ratio", "peak_offset_texels", "caustic_flux_ratio"]
+# One row per comparison, every value formatted once: the CSV holds these strings and the
+# Markdown table prints them. A metric is null where a map has a texel that is not finite
+# (non_finite_texels > 0): an empty CSV cell (the column stays numeric), `nan` in the table.
+table = []
 for line in open(rows):
     t, n, js = line.rstrip("\n").split("|", 2)
-    # A metric is null where a map has a texel that is not finite (non_finite_texels > 0).
-    c = {k: (float("nan") if v is None else v) for k, v in json.loads(js).items()}
-    label = "reference, seed 2 vs seed 1" if t == "reference-noise" else t
-    count = f"{int(n):,} per light" if t == "reference-noise" else ("mesh vertices" if t == "shah-vertex" else f"{n}^2")
-    print(f"| {label} | {count} | {c['region_texels']} | {c['rel_rmse']:.4f} | {c['rel_rmse_scaled']:.4f} | "
-          f"{c['best_scale']:.4f} | {c['peak_ratio']:.4f} | {c['peak_offset_texels']:.2f} | {c['caustic_flux_ratio']:.4f} |")
+    c = json.loads(js)
+    fmt = lambda k, spec: "" if c[k] is None else format(c[k], spec)
+    label = REFERENCE if t == "reference-noise" else t
+    photons = n if t == "reference-noise" else ("mesh vertices" if t == "shah-vertex" else f"{n}^2")
+    table.append([label, photons, fmt("region_texels", "d"), fmt("rel_rmse", ".4f"), fmt("rel_rmse_scaled", ".4f"),
+                  fmt("best_scale", ".4f"), fmt("peak_ratio", ".4f"), fmt("peak_offset_texels", ".2f"),
+                  fmt("caustic_flux_ratio", ".4f")])
+with open(csv_out, "w", newline="") as f:
+    w = csv.writer(f, lineterminator="\n")
+    w.writerow(COLUMNS)
+    w.writerows(table)
+with open(md_out, "w") as f:
+    out = lambda s="": print(s, file=f)
+    out(f"# Caustic quality: `{scene}` against the exact CPU photon reference\n")
+    out(f"Device: {device or 'default device'}; commit {commit}; {datetime.date.today()}. "
+        f"Reference: `causticlab reference --photons {ref_photons} --fresnel false` (seed 1); all techniques "
+        "`--fresnel false` (two refractions, all power transmitted), default splat (Gaussian, radius 1.5 texels; "
+        "the `hcm varying` rows size each splat from its neighbours instead, the `thin-lens` row from a per-photon "
+        "thin-lens model), "
+        "caustic map 1024^2, 4 back-face iterations. Regenerate: `bash scripts/quality_table.sh " + scene + "`.\n")
+    out("Errors are over the texels where either receiver map differs from 1 by more than 0.05 "
+        "(see `causticlab compare`). `shah-vertex` traces one photon per mesh vertex, so its photon count is "
+        "the tessellation's, not N^2.\n")
+    out(f"The script writes the same rows to [`{scene}.csv`]({scene}.csv) (the values as printed here; "
+        "a `nan` here is an empty cell there), which the results pages quote.\n")
+    out("| technique | photons | region texels | rel. RMSE | rel. RMSE after best scale | best scale | peak ratio | peak offset (texels) | caustic flux ratio |")
+    out("|---|---|---|---|---|---|---|---|---|")
+    for r in table:
+        count = f"{int(r[1]):,} per light" if r[0] == REFERENCE else r[1]
+        out("| " + " | ".join([r[0], count] + [v or "nan" for v in r[2:]]) + " |")
 PY
-  echo "wrote $results/$s.md"
+  echo "wrote $results/$s.csv and $results/$s.md"
 done

@@ -6,7 +6,9 @@
 # every test binary and still exits non-zero if any test failed. A full run (no arguments) then
 # rehearses the GPU run's scripts on lavapipe with the test build (scripts/gpu_dry_run.sh), and
 # runs the tests and renders of scripts/mesa25_check.sh on Mesa 25's lavapipe, unpacked beside
-# the system's Mesa 22.3 by scripts/mesa25.sh (docs/testing.md).
+# the system's Mesa 22.3 by scripts/mesa25.sh (docs/testing.md), and mutation-tests the last
+# commit's changes to the code that judges the numbers (scripts/mutants_diff.sh; nothing to do
+# when the commit leaves that code alone).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -16,4 +18,5 @@ cargo test --workspace --no-fail-fast "$@"
 if [ $# -eq 0 ]; then
     bash scripts/gpu_dry_run.sh target/debug/causticlab
     bash scripts/mesa25_check.sh target/debug/causticlab
+    bash scripts/mutants_diff.sh
 fi

@@ -4,6 +4,8 @@
 /// A label as the papers print it: photon counts as N².
 pub fn display(axis: &str, key: &str) -> String {
     match axis {
+        // A data file may write its photon counts with the square already.
+        "photons" if key.ends_with('²') => key.to_string(),
         "photons" => format!("{key}²"),
         "lights" if key != "scene" => format!("{key} light{}", if key == "1" { "" } else { "s" }),
         _ => key.to_string(),
@@ -141,6 +143,7 @@ mod tests {
         assert_eq!(format_value("valid_fraction", Some(0.0062103271484375)), "0.621%");
         assert_eq!(format_value("valid_photons", Some(8216.0)), "8,216");
         assert_eq!(display("photons", "256"), "256²");
+        assert_eq!(display("photons", "512²"), "512²");
         assert_eq!(display("lights", "2"), "2 lights");
     }
 }

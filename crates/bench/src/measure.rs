@@ -33,6 +33,7 @@ pub struct ThroughputRun {
 }
 
 /// What one cell measured.
+#[derive(Default)]
 pub struct CellRun {
     /// The per-pass frames (empty when no metric of the config is per-pass).
     pub frames: Vec<FrameReport>,
@@ -574,5 +575,14 @@ mod tests {
         assert_eq!(d.percentile(0.0), Some(1.0));
         let empty = DepthComplexity { covered: vec![], pixels: 4 };
         assert_eq!((empty.mean(), empty.percentile(0.5), empty.coverage()), (None, None, Some(0.0)));
+    }
+
+    #[test]
+    fn the_temporal_change_is_the_mean_over_the_pairs_of_frames() {
+        let run = |changes: &[f64]| CellRun { temporal_changes: changes.to_vec(), ..CellRun::default() };
+        assert_eq!(run(&[0.25, 0.5, 0.0]).temporal_change(), Some(0.25));
+        assert_eq!(run(&[0.125]).temporal_change(), Some(0.125));
+        // One measured frame has no pair: no value, not a change of 0.
+        assert_eq!(run(&[]).temporal_change(), None);
     }
 }

@@ -363,7 +363,7 @@ pub struct ViewArgs {
     /// What the GPU timestamps bracket: every pass (the per-pass graph) or whole frames (as the
     /// bench's throughput frames). `auto`: every pass on a GPU, whole frames on a software
     /// device such as lavapipe, where each timestamp flushes the rasterizer and the per-pass
-    /// frame ran 1.15-1.32x longer (results/viewer_frame_time.md). T switches while running.
+    /// frame ran longer (results/viewer_frame_time.md). T switches while running.
     #[arg(long, value_enum, default_value_t = PassTiming::Auto, help_heading = "Window")]
     pub pass_timing: PassTiming,
     /// Do not watch shaders_glsl/ for edits (R still reloads).

@@ -91,21 +91,24 @@ fn report(out: &bench::Outcome) {
 /// `bench claims`: every page's claims against the committed tables.
 fn claims(c: &crate::cli::ClaimsArgs) -> Result<()> {
     if let Some(table) = &c.list {
-        print!("{}", bench::claims::list(table)?);
+        // A closed pipe (`| head`) ends the listing, not the program.
+        let _ = std::io::stdout().lock().write_all(bench::claims::list(table)?.as_bytes());
         return Ok(());
     }
     let pages = if c.pages.is_empty() { bench::claims::pages(&c.root)? } else { c.pages.clone() };
     let checked = bench::claims::check(&c.root, &pages)?;
     let (mut claims, mut problems, mut unread) = (0, 0, 0);
     let mut out = std::io::stdout().lock();
-    let mut not_enrolled = vec![];
     for p in &checked {
         let page = p.page.strip_prefix(&c.root).unwrap_or(&p.page).display().to_string();
-        if !p.report.enrolled {
-            if !p.report.problems.is_empty() {
-                not_enrolled.push(format!("{page} ({})", p.report.problems.len()));
-            }
-            continue;
+        // Every page is held to its numbers: one that names no source yet fails on each
+        // measured-looking number, as an enrolled page fails on one without a claim.
+        if !p.report.enrolled && !p.report.problems.is_empty() {
+            let _ = writeln!(
+                out,
+                "{page}: names no tables (`<!--claims DIR -->` or `<!--claims NAME = FILE.csv -->` near the top) and has {} measured-looking number(s):",
+                p.report.problems.len()
+            );
         }
         for f in &p.report.problems {
             let _ = writeln!(out, "{page}:{}: `{}`: {}", f.line, f.written, f.what);
@@ -113,13 +116,6 @@ fn claims(c: &crate::cli::ClaimsArgs) -> Result<()> {
         claims += p.report.claims;
         problems += p.report.problems.len();
         unread += p.report.papers_missing;
-    }
-    if !not_enrolled.is_empty() {
-        let _ = writeln!(
-            out,
-            "not yet held to their numbers (no `<!--claims DIR -->`), with measured-looking numbers: {}",
-            not_enrolled.join(", ")
-        );
     }
     if unread > 0 {
         let _ = writeln!(

@@ -265,3 +265,6 @@ fn compare_labelled(
         err,
     ))
 }
+
+#[cfg(test)]
+mod tests;

@@ -92,6 +92,14 @@ pub fn written_before(before: &str) -> Option<Written> {
     let text = |a: usize, b: usize| -> String { s[a..b].iter().collect::<String>() };
     let mut a_start = number_at(&s, end)?;
     let mut a = text(a_start, end).trim_end_matches(['.', ',']).to_string();
+    // `1.8e-7`, `3e5`: the mantissa before the exponent is part of the number.
+    let sign = usize::from(a_start >= 1 && matches!(s[a_start - 1], '-' | '+'));
+    if a_start > sign && s[a_start - sign - 1] == 'e' {
+        if let Some(m) = number_at(&s, a_start - sign - 1) {
+            a = text(m, end).trim_end_matches(['.', ',']).to_string();
+            a_start = m;
+        }
+    }
     let mut spread = None;
     let mut b = None;
     // `v ±s%`: the last number is the spread.
@@ -138,8 +146,10 @@ pub fn written_before(before: &str) -> Option<Written> {
     Some(Written { a, b, spread, start })
 }
 
+/// The power of ten of a written number's last digit, negated: 2 for `1.93`, 8 for `1.8e-7`.
 fn decimals(s: &str) -> i32 {
-    s.split_once('.').map(|(_, d)| d.len() as i32).unwrap_or(0)
+    let (mantissa, exponent) = s.split_once('e').unwrap_or((s, "0"));
+    mantissa.split_once('.').map(|(_, d)| d.len() as i32).unwrap_or(0) - exponent.parse::<i32>().unwrap_or(0)
 }
 
 fn parse_num(s: &str) -> Option<f64> {
@@ -494,8 +504,32 @@ fn has_token(text: &str, n: &str) -> bool {
     })
 }
 
-/// Units after which a number is a measurement.
-const UNITS: [&str; 11] = ["ms", "fps", "x", "×", "%", "GB/s", "MB/s", "M photons/s", "Mphotons/s", "times", "s"];
+/// Units after which a number is a measurement (a size in memory is one too: a setting that
+/// names one says so with `given`).
+const UNITS: [&str; 22] = [
+    "ms",
+    "µs",
+    "fps",
+    "x",
+    "×",
+    "%",
+    "GB/s",
+    "MB/s",
+    "GiB/s",
+    "MiB/s",
+    "M photons/s",
+    "Mphotons/s",
+    "times",
+    "s",
+    "seconds",
+    "minutes",
+    "min",
+    "KiB",
+    "MiB",
+    "GiB",
+    "MB",
+    "GB",
+];
 
 /// Words before which a decimal is a label, not a measurement (`Sec. 3.3`, `Mesa 22.3`).
 const LABEL_WORDS: [&str; 17] = [
@@ -556,12 +590,26 @@ pub fn unsourced(line: &str) -> Vec<(usize, String)> {
         {
             j += 1;
         }
+        // Scientific notation (`1.8e-7`, `3e-7`): one number, read as far as its exponent.
+        // Not a commit (`064e926`): no leading zero before a digit, an exponent of at most 3 digits.
+        let mut sci = false;
+        let leading_zero = s[i] == '0' && s.get(i + 1).is_some_and(|c| c.is_ascii_digit());
+        if s.get(j) == Some(&'e') && !leading_zero {
+            let k = j + 1 + usize::from(s.get(j + 1).is_some_and(|c| matches!(c, '-' | '+')));
+            if s.get(k).is_some_and(|c| c.is_ascii_digit()) {
+                j = k;
+                while s.get(j).is_some_and(|c| c.is_ascii_digit()) {
+                    j += 1;
+                }
+                sci = j - k <= 3 && !s.get(j).is_some_and(|c| c.is_alphanumeric());
+            }
+        }
         let token: String = s[i..j].iter().collect();
         let next = s.get(j).copied();
         // `4.19M` is a count in millions, not a label; `4M photons` (no decimal) stays a size.
         let magnitude =
             next.is_some_and(|c| matches!(c, 'k' | 'M' | 'G')) && !s.get(j + 1).is_some_and(|c| c.is_alphanumeric());
-        let label = token.matches('.').count() > 1
+        let label = (token.matches('.').count() > 1 && !sci)
             || next
                 .is_some_and(|c| matches!(c, '²' | '³' | '^' | '°') || (c.is_alphanumeric() && c != 'x' && !magnitude))
             || (next == Some('x') && s.get(j + 1).is_some_and(|c| c.is_alphanumeric()));
@@ -573,7 +621,7 @@ pub fn unsourced(line: &str) -> Vec<(usize, String)> {
             .iter()
             .any(|u| after.strip_prefix(u).is_some_and(|rest| !rest.starts_with(|c: char| c.is_alphanumeric())));
         let spread = i > 0 && s[..i].iter().rev().find(|c| **c != ' ') == Some(&'±');
-        let measured = spread || unit || (token.contains('.') && !LABEL_WORDS.contains(&word));
+        let measured = spread || unit || ((token.contains('.') || sci) && !LABEL_WORDS.contains(&word));
         if !label && measured {
             out.push((byte(i), token));
         }
@@ -598,6 +646,8 @@ mod tests {
         assert_eq!(w("0.065 against 0.095"), ("0.095".into(), None, None));
         assert_eq!(w("**7 to 12 times**"), ("7".into(), Some("12".into()), None));
         assert_eq!(w("60,350 clusters"), ("60,350".into(), None, None));
+        assert_eq!(w("within 1.8e-7"), ("1.8e-7".into(), None, None));
+        assert_eq!(w("0.5-3e-7 of it"), ("0.5".into(), Some("3e-7".into()), None));
         assert_eq!(w("on 2026-11-27"), ("27".into(), None, None));
         assert!(written_before("no number here").is_none());
         assert!(written_before("3 (a parenthesis between)").is_none());
@@ -611,6 +661,9 @@ mod tests {
         assert!(!agrees("2", 1.47));
         assert!(agrees("1,125", 1124.6));
         assert!(agrees("0.10", 0.0966));
+        assert!(agrees("1.8e-7", 1.84e-7));
+        assert!(!agrees("1.8e-7", 1.86e-7));
+        assert!(agrees("3e5", 349_000.0));
         assert!(!agrees("0.10", 0.0949));
     }
 
@@ -624,6 +677,10 @@ mod tests {
         assert_eq!(found("as the paper says (Sec. 4.3), **Table 2.1**"), Vec::<String>::new());
         assert_eq!(found("MIT OR Apache-2.0, at your option"), Vec::<String>::new());
         assert_eq!(found("shades 444.5M fragments with 4M photons and 16M3 labels"), vec!["444.5"]);
+        // Scientific notation is one number, measured-looking; sizes in memory and durations too.
+        assert_eq!(found("differ by 1.8e-7 and 3e-7, not 2e5x3 (e-7 alone)"), vec!["1.8e-7", "3e-7"]);
+        assert_eq!(found("at 064e926, 1e5abc0 and 3e1234f"), Vec::<String>::new());
+        assert_eq!(found("holds 450 MB, 2 MiB more, in 3 minutes or 0.5 µs; 64 MiBs"), vec!["450", "2", "3", "0.5"]);
     }
 
     #[test]

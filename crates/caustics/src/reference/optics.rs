@@ -92,6 +92,8 @@ mod tests {
         let crit = critical_angle(n1, n2).unwrap();
         assert!((crit - 0.72972765622697).abs() < 1e-13, "{crit}");
         assert!(critical_angle(1.0, 1.5).is_none());
+        // Equal indices are no interface: no critical angle (not one of 90 degrees).
+        assert!(critical_angle(1.5, 1.5).is_none());
         assert!(refract(dir_at(crit - 1e-6), DVec3::Y, n1 / n2).is_some());
         assert!(refract(dir_at(crit + 1e-6), DVec3::Y, n1 / n2).is_none());
         assert_eq!(fresnel_dielectric((crit + 1e-6).cos(), n1, n2), 1.0);
@@ -148,5 +150,17 @@ mod tests {
         let r = reflect(d, DVec3::Y);
         assert!((r - DVec3::new(d.x, -d.y, d.z)).length() < 1e-15);
         assert!((reflect(d, -DVec3::Y) - r).length() < 1e-15);
+    }
+
+    #[test]
+    fn equal_indices_pass_the_ray_on_unbent_even_at_grazing_incidence() {
+        // eta = 1 is no interface: every ray goes straight on. At grazing incidence (d · n = 0)
+        // Snell's k = 1 - eta²(1 - cos²θ) is exactly 0, the boundary of total internal
+        // reflection: the ray is transmitted (sin θ_t = 1), not reflected.
+        let n = DVec3::Y;
+        for d in [DVec3::X, dir_at(0.3), dir_at(1.2), DVec3::new(0.6, 0.0, -0.8)] {
+            let t = refract(d, n, 1.0).unwrap_or_else(|| panic!("{d}: reflected totally at eta = 1"));
+            assert!((t - d).length() < 1e-12, "{d} -> {t}");
+        }
     }
 }

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Mutation testing of a commit's own changes to the judging code (docs/testing.md, "Tests that
+# catch a broken rule"): cargo-mutants on the lines that BASE..HEAD changed in the files of
+# scripts/mutants_files.sh, each judged by its tests. Fails when a mutant of a changed line is
+# missed: a rule changed without a test that holds it. scripts/test.sh runs it after the tests
+# (CI); a commit that changes none of those files costs nothing.
+#
+#   bash scripts/mutants_diff.sh [BASE]     # BASE defaults to HEAD~1, the previous commit
+#
+# Installs cargo-mutants (27.1.0, from crates.io) when a judged file changed and it is missing.
+# Builds in the test profile, as scripts/test.sh has just done, so only the mutated crate is
+# rebuilt per mutant.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/mutants_files.sh
+
+base=${1:-HEAD~1}
+if ! git rev-parse -q --verify "$base^{commit}" > /dev/null; then
+    echo "mutants_diff.sh: no commit $base in this clone (shallow?): no diff to judge, skipped"
+    exit 0
+fi
+changed=()
+for f in "${!TESTS[@]}"; do
+    git diff --quiet "$base" HEAD -- "$f" || changed+=("$f")
+done
+if [ ${#changed[@]} -eq 0 ]; then
+    echo "mutants_diff.sh: $base..HEAD changes none of the judged files"
+    exit 0
+fi
+command -v cargo-mutants > /dev/null || cargo install cargo-mutants --locked --version 27.1.0
+mkdir -p target/mutants/diff
+patch=target/mutants/diff/changes.patch
+git diff "$base" HEAD -- "${changed[@]}" > "$patch"
+missed_all=0
+start=$(date +%s)
+for f in "${changed[@]}"; do
+    read -r -a a <<< "${TESTS[$f]}"
+    test_args=()
+    for x in "${a[@]:2}"; do test_args+=("--cargo-test-arg=$x"); done
+    out=target/mutants/diff/$(basename "$f" .rs)
+    mkdir -p "$out"
+    # Exit 2: mutants missed (counted below); anything else but 0 is a failed run.
+    rc=0
+    cargo mutants --in-place -f "$f" --in-diff "$patch" --test-package "${a[1]}" "${test_args[@]}" \
+        --output "$out" > "$out/run.log" 2>&1 || rc=$?
+    if [ $rc -ne 0 ] && [ $rc -ne 2 ]; then
+        # No mutant on the changed lines (a comment, a test) is not a failure.
+        grep -q "No mutants" "$out/run.log" && { echo "mutants_diff.sh: $f: no mutant on the changed lines"; continue; }
+        tail -20 "$out/run.log" >&2
+        echo "mutants_diff.sh: cargo mutants failed on $f (exit $rc): $out/run.log" >&2
+        exit 1
+    fi
+    o=$out/mutants.out
+    n() { local c; c=$(grep -c . "$o/$1.txt" 2>/dev/null) || true; echo "${c:-0}"; }
+    echo "mutants_diff.sh: $f: $(n caught) caught, $(n missed) missed, $(n unviable) unviable, $(n timeout) timeouts"
+    if [ "$(n missed)" -gt 0 ]; then
+        sed 's/^/  missed: /' "$o/missed.txt"
+        missed_all=$((missed_all + $(n missed)))
+    fi
+done
+echo "mutants_diff.sh: $base..HEAD, ${#changed[@]} file(s), $(( $(date +%s) - start )) s"
+if [ $missed_all -gt 0 ]; then
+    echo "mutants_diff.sh: $missed_all mutant(s) of changed lines missed: add tests that catch them, or name them as equivalent in .cargo/mutants.toml with the reason" >&2
+    exit 1
+fi
