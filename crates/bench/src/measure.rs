@@ -62,6 +62,8 @@ pub struct CellRun {
     /// The caustic settings in effect (after the technique entry and `--quick`).
     pub caustics: CausticSettings,
     pub triangles: usize,
+    /// The model files the cell's scene loaded, by checksum (docs/scenes.md).
+    pub models: Vec<caustics::scene::models::ModelFile>,
     /// Share of the host's CPU time stolen by the hypervisor over the warm-up and measured
     /// frames (see [`crate::steal`]); `None` where the OS does not say.
     pub cpu_steal: Option<f64>,
@@ -361,6 +363,7 @@ impl<'a> Runner<'a> {
             lights: scene.lights.len() as u64,
             caustics: scene.caustics.clone(),
             triangles: scene.triangle_count(),
+            models: scene.models(),
             cpu_steal,
             other_cores,
             host_probe_ms,

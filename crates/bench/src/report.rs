@@ -66,6 +66,9 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     if let Some(gbs) = r.copy_bandwidth_gbs {
         let _ = writeln!(s, "- **Device copy bandwidth:** {gbs:.1} GB/s (bytes read plus written by a buffer copy, measured at the start of the run)");
     }
+    if let Some(line) = models_line(results) {
+        let _ = writeln!(s, "{line}");
+    }
     if let Some(line) = host_speed_line(results) {
         let _ = writeln!(s, "{line}");
     }
@@ -261,6 +264,27 @@ fn plausibility_section(results: &Results) -> String {
         let _ = writeln!(s);
     }
     s
+}
+
+/// The model files the cells loaded, by checksum; a table made with a file other than the one
+/// docs/scenes.md lists says so first.
+fn models_line(results: &Results) -> Option<String> {
+    let mut models: Vec<&caustics::scene::models::ModelFile> = results.cells.iter().flat_map(|c| &c.models).collect();
+    models.sort();
+    models.dedup();
+    if models.is_empty() {
+        return None;
+    }
+    let list: Vec<String> = models.iter().map(|m| m.describe()).collect();
+    Some(if models.iter().any(|m| m.differs()) {
+        format!(
+            "- **Made with another model:** a model file is not the one the project's tables use, so these \
+             numbers are of another scene: {}",
+            list.join("; ")
+        )
+    } else {
+        format!("- **Models:** {}", list.join("; "))
+    })
 }
 
 /// How fast the host ran from cell to cell (`crate::host_speed`), where that was measured.

@@ -105,6 +105,10 @@ pub struct CellResult {
     pub caustics: serde_json::Value,
     pub photon_copy: String,
     pub triangles: usize,
+    /// The model files the cell's scene loaded, by checksum (absent in results written before
+    /// they were kept, and for scenes without models).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub models: Vec<caustics::scene::models::ModelFile>,
     /// Metric label → value.
     pub metrics: BTreeMap<String, Value>,
     /// Host wall time of each measured frame, ms.
@@ -231,6 +235,7 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         caustics: serde_json::to_value(&run.caustics).unwrap_or(serde_json::Value::Null),
         photon_copy: photon_copy.to_string(),
         triangles: run.triangles,
+        models: run.models.clone(),
         metrics,
         wall_ms: run.wall_ms.clone(),
         passes,

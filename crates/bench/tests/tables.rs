@@ -394,3 +394,33 @@ fn a_figures_data_is_not_titled_a_table() {
     let (config, r) = synthetic();
     assert!(bench::report::markdown(&config, &r).starts_with("# Synthetic, Table S\n"));
 }
+
+/// The model files behind a table: listed by checksum; a file other than docs/scenes.md's is
+/// said first, so a table made with another dragon cannot pass for the committed one.
+#[test]
+fn the_header_names_the_models_and_says_when_one_is_not_the_listed_file() {
+    use caustics::scene::models::{ModelFile, KNOWN};
+    let (config, mut r) = synthetic();
+    assert!(!bench::report::markdown(&config, &r).contains("odel"), "no models, no line");
+    let listed = ModelFile {
+        file: "stanford-bunny.obj".into(),
+        sha256: KNOWN[0].sha256.into(),
+        expected: Some(KNOWN[0].sha256.into()),
+    };
+    for c in &mut r.cells {
+        c.models = vec![listed.clone()];
+    }
+    let md = bench::report::markdown(&config, &r);
+    let line = md.lines().find(|l| l.contains("**Models:**")).unwrap_or_else(|| panic!("{md}"));
+    assert!(line.contains("stanford-bunny.obj (SHA-256 1eb35d1e21ce…, as docs/scenes.md lists)"), "{line}");
+    assert_eq!(line.matches("stanford-bunny").count(), 1, "each file once: {line}");
+    let other = ModelFile { sha256: "0".repeat(64), ..listed };
+    r.cells[2].models.push(other);
+    let md = bench::report::markdown(&config, &r);
+    assert!(!md.contains("**Models:**"), "{md}");
+    let line = md.lines().find(|l| l.contains("**Made with another model:**")).unwrap_or_else(|| panic!("{md}"));
+    assert!(line.contains("000000000000…: NOT the file docs/scenes.md lists, 1eb35d1e21ce…"), "{line}");
+    // The JSON keeps the checksums; a table without them (older) reads as before.
+    let json = bench::results::to_json(&r).unwrap();
+    assert!(json.contains(&"0".repeat(64)));
+}

@@ -35,6 +35,7 @@ pub fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: 
         caustics: serde_json::Value::Null,
         photon_copy: "none".into(),
         triangles: 0,
+        models: vec![],
         metrics: BTreeMap::from([("Gather".to_string(), value(samples))]),
         wall_ms: samples.to_vec(),
         passes: vec![],

@@ -6,6 +6,7 @@
 
 pub mod load;
 pub mod mesh;
+pub mod models;
 pub mod obj;
 mod object;
 mod parse;
@@ -114,6 +115,8 @@ pub struct Object {
     pub mesh: Mesh,
     /// Index into [`Scene::materials`].
     pub material: usize,
+    /// The model file of a `shape = "obj"` object, by its checksum ([`models`]).
+    pub model: Option<models::ModelFile>,
 }
 
 /// The horizontal rectangle on which caustic maps are gathered: `resolution` × `resolution`
@@ -143,6 +146,14 @@ impl Default for RenderSettings {
 }
 
 impl Scene {
+    /// The model files its objects were loaded from, each once.
+    pub fn models(&self) -> Vec<models::ModelFile> {
+        let mut out: Vec<models::ModelFile> = self.objects.iter().filter_map(|o| o.model.clone()).collect();
+        out.sort();
+        out.dedup();
+        out
+    }
+
     /// Loads `path`, looking for OBJ files on [`ModelSearchPath::for_scene`].
     pub fn load(path: &Path) -> anyhow::Result<Scene> {
         Self::load_with_search_path(path, &ModelSearchPath::for_scene(path))

@@ -57,6 +57,7 @@ pub(super) fn build_object(
         Ok(v.clone())
     };
     let mut fit = Affine3A::IDENTITY;
+    let mut model = None;
     let mut mesh = match o.shape {
         ShapeType::Plane => {
             let s = size(2)?;
@@ -103,6 +104,10 @@ pub(super) fn build_object(
                     ),
                 )
             })?;
+            let bytes = std::fs::read(&path).map_err(|e| ctx.err(&k("file"), format!("{}: {e}", path.display())))?;
+            let file = super::models::ModelFile::of(&path, &bytes);
+            super::models::warn_once(&file);
+            model = Some(file);
             let mesh = obj::load_obj(&path).map_err(|e| ctx.err(&k("file"), format!("{}: {e}", path.display())))?;
             let (lo, hi) = mesh.bounds();
             let origin = match o.fit_origin {
@@ -160,7 +165,7 @@ pub(super) fn build_object(
         return Err(ctx.err(&key, "the transformed mesh has non-finite coordinates (absurd scale or translate?)"));
     }
     let name = o.name.clone().unwrap_or_else(|| format!("{}{index}", o.shape.name()));
-    Ok(Object { name, mesh, material })
+    Ok(Object { name, mesh, material, model })
 }
 
 thread_local! {

@@ -155,6 +155,32 @@ fn malformed_obj_is_named() {
     }
 }
 
+/// A user's own copy of a shared model loads, and the scene knows it is not the listed file;
+/// a model the project does not list is loaded as it is.
+#[test]
+fn a_model_file_is_known_by_its_checksum() {
+    let dir = temp_dir();
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::fs::write(dir.join("spot.obj"), tri).unwrap();
+    std::fs::write(dir.join("mine.obj"), tri).unwrap();
+    let text = format!(
+        "{BASE}\n[[objects]]\nshape = \"obj\"\nfile = \"spot.obj\"\nmaterial = \"glass\"\n\
+         [[objects]]\nshape = \"obj\"\nfile = \"mine.obj\"\nmaterial = \"glass\"\n\
+         [[objects]]\nshape = \"obj\"\nfile = \"mine.obj\"\nmaterial = \"glass\"\n"
+    );
+    let path = dir.join("models.toml");
+    std::fs::write(&path, text).unwrap();
+    let s = Scene::load(&path).expect("a differing model still loads");
+    let models = s.models();
+    let names: Vec<&str> = models.iter().map(|m| m.file.as_str()).collect();
+    assert_eq!(names, ["mine.obj", "spot.obj"], "each file once");
+    let sha = crate::scene::models::sha256_hex(tri.as_bytes());
+    assert!(models.iter().all(|m| m.sha256 == sha));
+    assert!(models[1].differs() && models[1].expected.as_deref() == Some(crate::scene::models::KNOWN[6].sha256));
+    assert!(!models[0].differs() && models[0].expected.is_none());
+    assert!(s.objects[0].model.is_none(), "the floor is no model file");
+}
+
 #[test]
 fn other_invalid_values() {
     let cases: Vec<(String, &[&str])> = vec![
