@@ -45,30 +45,23 @@ pub struct Outcome {
     pub summary: String,
 }
 
-/// Measures `cell`, again after a pause while other processes kept the machine busy (up to
-/// `busy_retries` times); whether the run kept was still busy.
+/// Measures a cell with `measure`, again after `pause` (given the attempt and the other
+/// processes' cores) while other processes kept the machine busy, up to `busy_retries` times;
+/// whether the run kept was still busy.
 fn measure_quiet(
-    runner: &mut Runner,
-    cell: &crate::plan::Cell,
+    mut measure: impl FnMut() -> Result<crate::measure::CellRun>,
+    mut pause: impl FnMut(u32, f64),
     opts: &BenchOptions,
 ) -> Result<(crate::measure::CellRun, bool)> {
     let mut attempt = 0;
     loop {
-        let run = runner.run(cell).with_context(|| format!("bench cell {}", cell.describe()))?;
+        let run = measure()?;
         let busy = !opts.quick && run.other_cores.is_some_and(|c| c > opts.busy_cores);
         if !busy || attempt >= opts.busy_retries {
             return Ok((run, busy));
         }
         attempt += 1;
-        eprintln!(
-            "bench: cell {} ran while other processes used {:.2} cores (above {}); measuring it again in {BUSY_PAUSE_S} s \
-             ({attempt}/{})",
-            cell.describe(),
-            run.other_cores.unwrap_or(0.0),
-            opts.busy_cores,
-            opts.busy_retries
-        );
-        std::thread::sleep(std::time::Duration::from_secs(BUSY_PAUSE_S));
+        pause(attempt, run.other_cores.unwrap_or(0.0));
     }
 }
 
@@ -109,6 +102,18 @@ fn worst_spread(
     specs.iter().filter_map(|m| crate::results::timed_spread(&m.kind, values.get(&m.label)?)).fold(0.0, f64::max)
 }
 
+/// The cells of `all` that the filter and the shard (if any) take, in order.
+fn selected(all: &[crate::plan::Cell], filter: &Filter, shard: Option<&Shard>) -> Vec<crate::plan::Cell> {
+    all.iter().filter(|cell| filter.matches(cell) && shard.is_none_or(|s| s.takes(cell))).cloned().collect()
+}
+
+/// A cell's expected share of the run, for the progress line's time left: its photons (every
+/// light's) and pixels (a default 1024² where the cell names no resolution), times its frames.
+fn cost(cell: &crate::plan::Cell, frames: u32) -> f64 {
+    let px = if cell.resolution == [0, 0] { 1 << 20 } else { cell.resolution[0] as u64 * cell.resolution[1] as u64 };
+    (cell.photons as u64 * cell.photons as u64 * cell.lights.max(1) as u64 + px) as f64 * frames as f64
+}
+
 /// Runs the cells `opts` selects and writes the table (or, for a filtered or sharded run, a
 /// part for `bench merge`).
 pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &BenchOptions) -> Result<Outcome> {
@@ -121,22 +126,13 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         None => Filter::default(),
     };
     let shard = opts.shard.as_deref().map(Shard::parse).transpose()?;
-    let cells: Vec<_> =
-        all.iter().filter(|cell| filter.matches(cell) && shard.iter().all(|s| s.takes(cell))).cloned().collect();
+    let cells = selected(&all, &filter, shard.as_ref());
     if cells.is_empty() {
         return Err(input_error!("{}: --filter/--shard selects no cell", lc.path.display()).into());
     }
     let plan = c.frame_plan(opts.quick);
     let (warmup, measured) = (plan.warmup, plan.min);
-    let costs = cells
-        .iter()
-        .map(|cell| {
-            let px =
-                if cell.resolution == [0, 0] { 1 << 20 } else { cell.resolution[0] as u64 * cell.resolution[1] as u64 };
-            (cell.photons as u64 * cell.photons as u64 * cell.lights.max(1) as u64 + px) as f64
-                * (warmup + measured + 1) as f64
-        })
-        .collect();
+    let costs = cells.iter().map(|cell| cost(cell, warmup + measured + 1)).collect();
     // The plots need a font: fail now rather than after the last cell.
     crate::font::load()?;
     // The device's copy bandwidth, for the plausibility rule on copies (GPU memory: 256 MiB is
@@ -179,7 +175,20 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         let mut attempts = Attempts::new(if opts.quick { 0 } else { opts.spread_retries });
         let mut kept = None;
         loop {
-            let (run, busy) = measure_quiet(&mut runner, cell, opts)?;
+            let (run, busy) = measure_quiet(
+                || runner.run(cell).with_context(|| format!("bench cell {}", cell.describe())),
+                |attempt, cores| {
+                    eprintln!(
+                        "bench: cell {} ran while other processes used {cores:.2} cores (above {}); measuring it \
+                         again in {BUSY_PAUSE_S} s ({attempt}/{})",
+                        cell.describe(),
+                        opts.busy_cores,
+                        opts.busy_retries
+                    );
+                    std::thread::sleep(std::time::Duration::from_secs(BUSY_PAUSE_S));
+                },
+                opts,
+            )?;
             check_patterns(lc, cell, &run)?;
             let metrics = crate::metrics::evaluate(&c.metrics, &run);
             let worst = worst_spread(&c.metrics, &metrics);
@@ -421,7 +430,100 @@ fn make_dir(dir: &Path) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::Attempts;
+    use super::{cost, measure_quiet, selected, worst_spread, Attempts, BenchOptions};
+    use crate::measure::CellRun;
+
+    /// Runs `measure_quiet` over runs whose other processes used `cores`, in turn: the attempts
+    /// it made, the pauses it took, and whether the kept run is busy.
+    fn quiet(cores: &[Option<f64>], opts: &BenchOptions) -> (usize, Vec<(u32, f64)>, bool, Option<f64>) {
+        let mut made = 0;
+        let mut pauses = vec![];
+        let (run, busy) = measure_quiet(
+            || {
+                made += 1;
+                Ok(CellRun { other_cores: cores[made - 1], ..CellRun::default() })
+            },
+            |attempt, c| pauses.push((attempt, c)),
+            opts,
+        )
+        .unwrap();
+        (made, pauses, busy, run.other_cores)
+    }
+
+    #[test]
+    fn a_busy_cell_is_measured_again_after_a_pause_then_marked_busy() {
+        let opts = BenchOptions { busy_cores: 0.1, busy_retries: 2, ..BenchOptions::default() };
+        // Quiet at once, or unknown: one run.
+        assert_eq!(quiet(&[Some(0.05)], &opts), (1, vec![], false, Some(0.05)));
+        assert_eq!(quiet(&[None], &opts), (1, vec![], false, None));
+        // At the bound is quiet; just above is busy.
+        assert_eq!(quiet(&[Some(0.1)], &opts), (1, vec![], false, Some(0.1)));
+        // Busy, then quiet: the quiet run kept after one pause that names the cores.
+        assert_eq!(quiet(&[Some(0.5), Some(0.02)], &opts), (2, vec![(1, 0.5)], false, Some(0.02)));
+        // Busy every time: two pauses (the retries), the third run kept and marked busy.
+        assert_eq!(quiet(&[Some(0.5), Some(0.4), Some(0.3)], &opts), (3, vec![(1, 0.5), (2, 0.4)], true, Some(0.3)));
+        // No retries: the busy run is kept and marked at once.
+        let none = BenchOptions { busy_retries: 0, ..opts.clone() };
+        assert_eq!(quiet(&[Some(0.5)], &none), (1, vec![], true, Some(0.5)));
+        // A quick run (a smoke test) never waits and marks nothing.
+        let quick = BenchOptions { quick: true, ..opts };
+        assert_eq!(quiet(&[Some(0.5)], &quick), (1, vec![], false, Some(0.5)));
+    }
+
+    fn cell(index: usize, photons: u32, lights: u32, resolution: [u32; 2]) -> crate::plan::Cell {
+        serde_json::from_value(serde_json::json!({
+            "index": index, "scene": "s.toml", "technique": 0, "technique_label": "t", "photons": photons,
+            "lights": lights, "resolution": resolution, "lighting": "dynamic"
+        }))
+        .unwrap()
+    }
+
+    #[test]
+    fn a_cells_cost_is_its_photons_and_pixels_times_its_frames() {
+        // 256² photons of 2 lights and a 64 x 32 image, 3 frames.
+        assert_eq!(cost(&cell(0, 256, 2, [64, 32]), 3), ((256 * 256 * 2 + 64 * 32) * 3) as f64);
+        // No light counts as one; no resolution as 1024².
+        assert_eq!(cost(&cell(0, 16, 0, [0, 0]), 1), (16 * 16 + (1 << 20)) as f64);
+    }
+
+    #[test]
+    fn the_filter_and_the_shard_both_select() {
+        let all: Vec<_> = (0..6).map(|i| cell(i, 64, 1, [8, 8])).collect();
+        let every = crate::plan::Filter::default();
+        let index = |v: Vec<crate::plan::Cell>| v.iter().map(|c| c.index).collect::<Vec<_>>();
+        assert_eq!(index(selected(&all, &every, None)), [0, 1, 2, 3, 4, 5]);
+        let shard = crate::plan::Shard::parse("2/3").unwrap();
+        let sharded = index(selected(&all, &every, Some(&shard)));
+        assert!(!sharded.is_empty() && sharded.len() < 6, "{sharded:?}");
+        assert!(sharded.iter().all(|&i| shard.takes(&all[i])), "{sharded:?}");
+    }
+
+    #[test]
+    fn the_worst_spread_is_the_largest_of_the_timed_metrics() {
+        let metric = |label: &str, kind: &str| -> crate::config::MetricSpec {
+            toml::from_str(&format!("label = \"{label}\"\nkind = \"{kind}\"")).unwrap()
+        };
+        let value = |samples: &[f64]| -> crate::results::Value {
+            serde_json::from_value(serde_json::json!({
+                "kind": "pass_ms", "value": samples[0], "min": null, "max": null, "samples": samples
+            }))
+            .unwrap()
+        };
+        let specs = [metric("a", "pass_ms"), metric("b", "frame_ms"), metric("n", "photons_emitted")];
+        // Spreads (interquartile range over the median): a 0, b 0.5; n is a count, not timed.
+        let values = [
+            ("a".to_string(), value(&[10.0, 10.0, 10.0, 10.0, 10.0])),
+            ("b".to_string(), value(&[8.0, 8.0, 10.0, 12.0, 12.0])),
+            ("n".to_string(), value(&[1.0, 5.0, 9.0, 20.0, 40.0])),
+        ]
+        .into_iter()
+        .collect();
+        let want = crate::stats::relative_spread(&[8.0, 8.0, 10.0, 12.0, 12.0]).unwrap();
+        assert!(want > 0.1, "{want}");
+        assert_eq!(worst_spread(&specs, &values), want);
+        assert_eq!(worst_spread(&specs[..1], &values), 0.0);
+        assert_eq!(worst_spread(&[], &values), 0.0, "nothing timed: no spread");
+    }
 
     #[test]
     fn a_wide_spread_is_measured_again_and_the_narrowest_quiet_attempt_kept() {
@@ -442,6 +544,10 @@ mod tests {
         let mut a = Attempts::new(2);
         assert_eq!(a.add(false, 0.30), (true, true));
         assert_eq!(a.add(true, 0.01), (false, false));
+        // Equal spreads: the first is kept.
+        let mut a = Attempts::new(2);
+        assert_eq!(a.add(false, 0.30), (true, true));
+        assert_eq!(a.add(false, 0.30), (false, true));
         // No retries (quick runs): one attempt, however wide.
         let mut a = Attempts::new(0);
         assert_eq!(a.add(false, 0.90), (true, false));

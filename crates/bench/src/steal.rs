@@ -113,4 +113,22 @@ mod tests {
             assert!(a.own.is_some(), "/proc/self/stat gives this process's CPU time");
         }
     }
+
+    #[test]
+    fn busy_is_user_nice_system_irq_and_softirq_each_counted_once() {
+        // Each field a distinct power of two: user 1, nice 2, system 4, idle 8, iowait 16, irq 32,
+        // softirq 64, steal 128; then guest and guest_nice, already inside user and nice.
+        let t = parse("cpu  1 2 4 8 16 32 64 128 256 512\ncpu0 1 1 1 1 1 1 1 1\n").unwrap();
+        assert_eq!((t.busy, t.total, t.steal), (1 + 2 + 4 + 32 + 64, 255, 128));
+    }
+
+    #[test]
+    fn no_time_passed_says_nothing_rather_than_divide_by_it() {
+        let mut a = parse("cpu  100 0 50 800 0 0 0 0 0 0\ncpu0 1 1 1 1 1 1 1 1\n").unwrap();
+        a.own = Some(10);
+        assert_eq!(other_cores(a, a), None);
+        let mut b = parse("cpu  101 0 50 800 0 0 0 0 0 0\ncpu0 1 1 1 1 1 1 1 1\n").unwrap();
+        b.own = Some(10);
+        assert_eq!(other_cores(a, b), Some(1.0), "one tick passed, all of it another process's");
+    }
 }

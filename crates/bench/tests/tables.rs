@@ -424,3 +424,44 @@ fn the_header_names_the_models_and_says_when_one_is_not_the_listed_file() {
     let json = bench::results::to_json(&r).unwrap();
     assert!(json.contains(&"0".repeat(64)));
 }
+
+/// What each frame asked of the driver: medians per frame, the most objects any frame made.
+#[test]
+fn frame_counters_are_medians_per_frame_and_the_most_objects() {
+    use bench::results::FrameCounters;
+    let c = |objects, submits, barriers, timestamps| vkcore::Counters { objects, submits, barriers, timestamps };
+    let frames = [c(0, 1, 10, 4), c(7, 3, 30, 8), c(1, 2, 20, 6)];
+    let f = FrameCounters::of(&frames, &[5, 9, 7]).expect("three frames");
+    assert_eq!(
+        f,
+        FrameCounters {
+            frames: 3,
+            passes: 7.0,
+            submits: 2.0,
+            barriers: 20.0,
+            timestamps: 6.0,
+            objects: 1.0,
+            most_objects: 7,
+        }
+    );
+    assert_eq!(FrameCounters::of(&[], &[]), None, "no frame measured in that mode");
+}
+
+/// The JSON a table is kept as: one cell per line (diffs name the cell that changed), empty
+/// lists inline, every float to 9 significant digits so that a merge redraws the same table.
+#[test]
+fn the_json_keeps_a_cell_per_line_and_nine_significant_digits() {
+    let (_config, mut r) = synthetic();
+    r.cells[0].wall_ms = vec![0.1 + 0.2, 1.234567891234, 3.0];
+    let json = bench::results::to_json(&r).unwrap();
+    let start = json.lines().position(|l| l == "\"cells\": [").unwrap_or_else(|| panic!("{json}"));
+    let cell_lines: Vec<&str> = json.lines().skip(start + 1).take_while(|l| *l != "]" && *l != "],").collect();
+    assert_eq!(cell_lines.len(), r.cells.len(), "{json}");
+    assert!(cell_lines.iter().all(|l| l.starts_with("{\"cell\":")), "{cell_lines:#?}");
+    assert!(cell_lines[0].contains("\"wall_ms\":[0.3,1.23456789,3.0]"), "{}", cell_lines[0]);
+    assert_eq!(bench::results::rounded(&r).unwrap().cells[0].wall_ms, [0.3, 1.23456789, 3.0]);
+    // A table with no cell keeps the key, inline.
+    r.cells.clear();
+    let json = bench::results::to_json(&r).unwrap();
+    assert!(json.lines().any(|l| l == "\"cells\": []"), "{json}");
+}
