@@ -38,6 +38,7 @@ const BUSY_PAUSE_S: u64 = 3;
 /// from one second to the next (results/llvmpipe-*/anomalies.md, "The host's own speed").
 const SPREAD_PAUSE_S: u64 = 1;
 
+#[derive(Debug)]
 pub struct Outcome {
     pub written: Vec<PathBuf>,
     pub markdown: String,
@@ -496,6 +497,48 @@ mod tests {
         let sharded = index(selected(&all, &every, Some(&shard)));
         assert!(!sharded.is_empty() && sharded.len() < 6, "{sharded:?}");
         assert!(sharded.iter().all(|&i| shard.takes(&all[i])), "{sharded:?}");
+    }
+
+    #[test]
+    fn a_metric_whose_passes_the_cell_did_not_record_is_an_error_unless_it_says_why() {
+        let config = |extra: &str| -> crate::config::LoadedConfig {
+            let text = format!(
+                "[table]\npaper = \"p\"\nnumber = \"1\"\ncaption = \"c\"\n[matrix]\nscenes = [\"s.toml\"]\n\
+                 photons = [64]\n[[technique]]\nlabel = \"t\"\ntechnique = \"shah\"\n\
+                 [[metric]]\nlabel = \"Gather\"\nkind = \"pass_ms\"\npasses = [\"splat*\", \"gather\"]\n{extra}\
+                 [layout]\nrows = [\"photons\"]\ncolumns = [\"technique\"]\n"
+            );
+            crate::config::LoadedConfig {
+                path: "c.toml".into(),
+                name: "c".into(),
+                hash: "0".into(),
+                config: toml::from_str(&text).unwrap(),
+                text,
+            }
+        };
+        let run = |names: &[&str]| CellRun {
+            frames: vec![vkcore::FrameReport {
+                passes: names
+                    .iter()
+                    .map(|n| vkcore::PassTiming { name: n.to_string(), gpu_ms: None, host_ms: None, stats: None })
+                    .collect(),
+                ..Default::default()
+            }],
+            ..CellRun::default()
+        };
+        let c = cell(0, 64, 1, [8, 8]);
+        // Either pattern matching one pass is enough.
+        super::check_patterns(&config(""), &c, &run(&["eye", "gather"])).unwrap();
+        super::check_patterns(&config(""), &c, &run(&["splat.light0"])).unwrap();
+        let err = super::check_patterns(&config(""), &c, &run(&["eye", "shadow"])).unwrap_err();
+        let msg = format!("{err:#}");
+        assert!(
+            msg.contains("metric[0].passes") && msg.contains("`splat*`, `gather`") && msg.contains("eye, shadow"),
+            "{msg}"
+        );
+        // A metric that says why its pass may be missing, and a cell without per-pass frames.
+        super::check_patterns(&config("absent = \"no gather on this path\"\n"), &c, &run(&["eye"])).unwrap();
+        super::check_patterns(&config(""), &c, &CellRun::default()).unwrap();
     }
 
     #[test]

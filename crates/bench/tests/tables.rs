@@ -465,3 +465,56 @@ fn the_json_keeps_a_cell_per_line_and_nine_significant_digits() {
     let json = bench::results::to_json(&r).unwrap();
     assert!(json.lines().any(|l| l == "\"cells\": []"), "{json}");
 }
+
+/// `bench merge`: parts of one config on one device make the table; anything else is refused
+/// by name, and a missing cell reads `not run` only when asked for.
+#[test]
+fn parts_merge_into_one_table_and_mismatched_parts_are_refused() {
+    use std::path::PathBuf;
+    let (_config, whole) = synthetic();
+    let dir = caustics::scratch::ScratchDir::new("bench", "merge");
+    let root = dir.join("results");
+    let write = |name: &str, r: &Results| -> PathBuf {
+        let p = dir.join(name);
+        std::fs::write(&p, bench::results::to_json(r).unwrap()).unwrap();
+        p
+    };
+    let part = |indices: &[usize]| {
+        let mut r = whole.clone();
+        r.cells.retain(|c| indices.contains(&c.cell.index));
+        r.run.filter.terms = vec![("photons".into(), "256".into())];
+        r
+    };
+    let (a, b) = (write("a.json", &part(&[0, 2])), write("b.json", &part(&[1, 3])));
+    bench::run::merge(&[a.clone(), b.clone()], &root, false).expect("two halves merge");
+    let merged = bench::results::read(&root.join("synthetic/synthetic.json"), "table").unwrap();
+    let indices: Vec<usize> = merged.cells.iter().map(|c| c.cell.index).collect();
+    assert_eq!(indices, [0, 1, 2, 3]);
+    assert!(merged.run.filter.terms.is_empty() && merged.run.not_run.is_empty());
+    // A half alone: refused unless --partial, which marks the rest `not run`.
+    let err = bench::run::merge(std::slice::from_ref(&a), &root, false).unwrap_err();
+    assert!(format!("{err:#}").contains("2 cell(s) missing"), "{err:#}");
+    bench::run::merge(std::slice::from_ref(&a), &root, true).expect("a partial table");
+    let merged = bench::results::read(&root.join("synthetic/synthetic.json"), "table").unwrap();
+    assert_eq!(merged.run.not_run, [1, 3]);
+    // The same cell twice, and no part at all.
+    let err = bench::run::merge(&[a.clone(), a.clone()], &root, false).unwrap_err();
+    assert!(format!("{err:#}").contains("is also in another part"), "{err:#}");
+    let err = bench::run::merge(&[], &root, false).unwrap_err();
+    assert!(format!("{err:#}").contains("give the part files"), "{err:#}");
+    // Parts of another config, device, driver or mode.
+    let changes: [(&str, fn(&mut Results)); 5] = [
+        ("config hash", |r| r.config.hash = "1".into()),
+        ("device", |r| r.meta.device = "another".into()),
+        ("driver", |r| r.meta.driver_info = "another".into()),
+        ("quick flag", |r| r.run.quick = true),
+        ("validation flag", |r| r.run.validation = true),
+    ];
+    for (what, change) in changes {
+        let mut other = part(&[1, 3]);
+        change(&mut other);
+        let odd = write("odd.json", &other);
+        let err = bench::run::merge(&[a.clone(), odd], &root, false).unwrap_err();
+        assert!(format!("{err:#}").contains(&format!("{what} `")), "{what}: {err:#}");
+    }
+}
