@@ -503,7 +503,8 @@ fn parts_merge_into_one_table_and_mismatched_parts_are_refused() {
     let err = bench::run::merge(&[], &root, false).unwrap_err();
     assert!(format!("{err:#}").contains("give the part files"), "{err:#}");
     // Parts of another config, device, driver or mode.
-    let changes: [(&str, fn(&mut Results)); 5] = [
+    type Change = fn(&mut Results);
+    let changes: [(&str, Change); 5] = [
         ("config hash", |r| r.config.hash = "1".into()),
         ("device", |r| r.meta.device = "another".into()),
         ("driver", |r| r.meta.driver_info = "another".into()),
