@@ -9,6 +9,7 @@
 #
 #   bash scripts/mutants.sh                               # every file below (an hour or more on 2 cores)
 #   bash scripts/mutants.sh crates/bench/src/plausibility.rs
+#   MUTANTS_ARGS=--iterate bash scripts/mutants.sh FILE    # only the mutants its last run did not catch
 #
 # Needs cargo-mutants (`cargo install cargo-mutants --locked`). It mutates the files in place
 # (--in-place: the build reuses target/): do not edit or commit while it runs.
@@ -34,7 +35,8 @@ for f in "${files[@]}"; do
     mkdir -p "$out"
     start=$(date +%s)
     # cargo-mutants exits 2 when mutants are missed: that is a result, not a failure of the run.
-    cargo mutants --in-place --profile mutants -f "$f" --test-package "$pkg" "${test_args[@]}" --output "$out" > "$out/run.log" 2>&1 || [ $? -eq 2 ]
+    read -r -a extra <<< "${MUTANTS_ARGS:-}"
+    cargo mutants --in-place --profile mutants -f "$f" --test-package "$pkg" "${test_args[@]}" "${extra[@]}" --output "$out" > "$out/run.log" 2>&1 || [ $? -eq 2 ]
     secs=$(( $(date +%s) - start ))
     o=$out/mutants.out
     count() { local n; n=$(grep -c . "$o/$1.txt" 2>/dev/null) || true; echo "${n:-0}"; }
@@ -53,7 +55,7 @@ for f in "${files[@]}"; do
     {
         echo "# Mutation testing: \`$f\`"
         echo
-        echo "\`bash scripts/mutants.sh $f\` at commit $commit, $day, $tool;"
+        echo "\`${MUTANTS_ARGS:+MUTANTS_ARGS=\"$MUTANTS_ARGS\" }bash scripts/mutants.sh $f\` at commit $commit, $day, $tool;"
         echo "judged by \`cargo test $args\`. $secs s on $(nproc) cores. Data: [$stem.csv]($stem.csv)."
         echo
         echo "| mutants | caught | missed | unviable | timeouts | missed of viable |"
