@@ -331,4 +331,32 @@ mod tests {
             assert!(err.contains(bad) || err.contains("quote"), "{bad}: {err}");
         }
     }
+
+    #[test]
+    fn each_operator_names_itself_in_messages() {
+        let ops = [Op::Add, Op::Sub, Op::Mul, Op::Div, Op::Lt, Op::Le, Op::Gt, Op::Ge, Op::Eq, Op::Ne];
+        let symbols: Vec<&str> = ops.iter().map(|o| o.symbol()).collect();
+        assert_eq!(symbols, ["+", "-", "*", "/", "<", "<=", ">", ">=", "==", "!="]);
+    }
+
+    #[test]
+    fn a_bare_label_needs_no_quotes() {
+        for bare in ["Gather", "W&D", "2048²", "wd-points".replace('-', "_").as_str(), "Sec.4", "#1"] {
+            assert!(is_bare_label(bare), "{bare}");
+        }
+        for quoted in ["", "W&D + Sec. 4", "wd-points", "a b", "x/y"] {
+            assert!(!is_bare_label(quoted), "{quoted}");
+        }
+    }
+
+    #[test]
+    fn names_and_labels_may_end_the_claim_and_equality_is_one_symbol() {
+        assert_eq!(parse("t3").unwrap(), entries("t3", &[]));
+        assert_eq!(parse("2048²").unwrap(), entries("2048²", &[]));
+        assert_eq!(
+            parse("t3 == 2").unwrap(),
+            Expr::Bin(Op::Eq, Box::new(entries("t3", &[])), Box::new(Expr::Num(2.0)))
+        );
+        assert_eq!(parse("2!=t3").unwrap(), Expr::Bin(Op::Ne, Box::new(Expr::Num(2.0)), Box::new(entries("t3", &[]))));
+    }
 }
