@@ -588,4 +588,43 @@ mod tests {
         // One measured frame has no pair: no value, not a change of 0.
         assert_eq!(run(&[]).temporal_change(), None);
     }
+
+    #[test]
+    fn a_moving_frame_count_ends_on_whole_loops_or_at_the_most_frames() {
+        let orbit = Animation { light: true, camera: false, object: false, period_frames: 60 };
+        assert!(whole_loops(&orbit, 120, 1000) && !whole_loops(&orbit, 90, 1000));
+        assert!(whole_loops(&orbit, 90, 90), "the most frames end the cell mid-loop");
+        assert!(!whole_loops(&orbit, 90, 91));
+        let still = Animation { light: false, ..orbit.clone() };
+        assert!(whole_loops(&still, 7, 1000), "a static cell ends anywhere");
+        // A period of 0 counts as 1.
+        assert!(whole_loops(&Animation { period_frames: 0, ..orbit }, 7, 1000));
+    }
+
+    #[test]
+    fn more_lights_are_copies_of_the_last_turned_evenly_about_the_scenes_centre() {
+        let mut s = shipped("sphere_on_plane.toml");
+        assert_eq!(s.lights.len(), 1);
+        let direction = Vec3::new(1.0, -1.0, 0.0).normalize();
+        s.lights[0].kind = caustics::scene::LightKind::Spot { direction, cone_angle_deg: 30.0, texture: None };
+        let (lo, hi) = s.bounds();
+        let pivot = 0.5 * (lo + hi);
+        let first = s.lights[0].position - pivot;
+        set_light_count(&mut s, 3).unwrap();
+        assert_eq!(s.lights.len(), 3);
+        for (j, l) in s.lights.iter().enumerate() {
+            // The j-th turned by 120° j about the vertical axis through the centre of the bounds.
+            let turn = Mat3::from_rotation_y(std::f32::consts::TAU * j as f32 / 3.0);
+            assert!((l.position - (pivot + turn * first)).length() < 1e-4, "light {j}: {}", l.position);
+            let caustics::scene::LightKind::Spot { direction: d, .. } = l.kind else { panic!("a spot") };
+            assert!((d - turn * direction).length() < 1e-5 && (d.length() - 1.0).abs() < 1e-6, "light {j}: {d}");
+        }
+        // Fewer: the first ones kept.
+        let kept = s.lights[0].clone();
+        set_light_count(&mut s, 1).unwrap();
+        assert_eq!(s.lights, [kept]);
+        s.lights.clear();
+        let err = set_light_count(&mut s, 2).unwrap_err();
+        assert!(format!("{err}").contains("no light to copy"), "{err}");
+    }
 }
