@@ -34,9 +34,10 @@ for f in "${files[@]}"; do
     out=target/mutants/$stem
     mkdir -p "$out"
     start=$(date +%s)
-    # cargo-mutants exits 2 when mutants are missed: that is a result, not a failure of the run.
+    # cargo-mutants exits 2 when mutants are missed and 3 when some timed out (a mutant that
+    # loops forever): results, not failures of the run.
     read -r -a extra <<< "${MUTANTS_ARGS:-}"
-    cargo mutants --in-place --profile mutants -f "$f" --test-package "$pkg" "${test_args[@]}" "${extra[@]}" --output "$out" > "$out/run.log" 2>&1 || [ $? -eq 2 ]
+    cargo mutants --in-place --profile mutants -f "$f" --test-package "$pkg" "${test_args[@]}" "${extra[@]}" --output "$out" > "$out/run.log" 2>&1 || { rc=$?; [ $rc -eq 2 ] || [ $rc -eq 3 ]; }
     secs=$(( $(date +%s) - start ))
     o=$out/mutants.out
     count() { local n; n=$(grep -c . "$o/$1.txt" 2>/dev/null) || true; echo "${n:-0}"; }

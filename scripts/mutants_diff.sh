@@ -39,11 +39,11 @@ for f in "${changed[@]}"; do
     for x in "${a[@]:2}"; do test_args+=("--cargo-test-arg=$x"); done
     out=target/mutants/diff/$(basename "$f" .rs)
     mkdir -p "$out"
-    # Exit 2: mutants missed (counted below); anything else but 0 is a failed run.
+    # Exit 2: mutants missed, 3: some timed out (counted below); anything else but 0 is a failed run.
     rc=0
     cargo mutants --in-place -f "$f" --in-diff "$patch" --test-package "${a[1]}" "${test_args[@]}" \
         --output "$out" > "$out/run.log" 2>&1 || rc=$?
-    if [ $rc -ne 0 ] && [ $rc -ne 2 ]; then
+    if [ $rc -ne 0 ] && [ $rc -ne 2 ] && [ $rc -ne 3 ]; then
         # No mutant on the changed lines (a comment, a test) is not a failure.
         grep -q "No mutants" "$out/run.log" && { echo "mutants_diff.sh: $f: no mutant on the changed lines"; continue; }
         tail -20 "$out/run.log" >&2
