@@ -106,16 +106,17 @@ fn rmse_best_scale_and_peak_follow_their_definitions() {
 
 #[test]
 fn the_peak_offset_is_the_distance_between_the_two_maxima_in_texels() {
-    // 4 wide, 3 high: a's peak at (x 3, y 2), b's at (x 1, y 0): sqrt(2² + 2²).
+    // 4 wide, 3 high: a's peak at (x 3, y 2), b's at (x 0, y 1): sqrt(3² + 1²) (offsets that
+    // differ in x and y, so that a sum for a difference or for a square shows).
     let mut va = [1.0f32; 12];
     let mut vb = [1.0f32; 12];
     va[2 * 4 + 3] = 4.0;
     va[0] = 3.0;
-    vb[1] = 2.0;
+    vb[4] = 2.0;
     vb[2 * 4 + 3] = 1.5;
     let lit = [1.0f32; 12];
     let (c, _) = compare(&map(4, 3, &va, Some(&lit)), &map(4, 3, &vb, Some(&lit))).unwrap();
-    assert!(close(c.peak_offset_texels, 8f64.sqrt()), "{}", c.peak_offset_texels);
+    assert!(close(c.peak_offset_texels, 10f64.sqrt()), "{}", c.peak_offset_texels);
     assert!(close(c.peak_ratio, 2.0), "{}", c.peak_ratio);
 }
 
