@@ -31,6 +31,9 @@ for f in "${files[@]}"; do
     test_args=()
     for x in "${a[@]:2}"; do test_args+=("--cargo-test-arg=$x"); done
     stem=$(basename "$f" .rs)
+    # A run of the last run's survivors only is kept beside the full run, not over it.
+    page=$stem
+    [[ "${MUTANTS_ARGS:-}" != *--iterate* ]] || page=${stem}_iterate
     out=target/mutants/$stem
     mkdir -p "$out"
     start=$(date +%s)
@@ -52,12 +55,12 @@ for f in "${files[@]}"; do
     {
         echo "file,commit,date,tool,judge,seconds,cores,mutants,caught,missed,unviable,timeouts,missed_pct"
         echo "$f,$commit,$day,$tool,cargo test $args,$secs,$(nproc),$((viable + unviable)),$caught,$missed,$unviable,$timeout,$pct"
-    } > "results/mutants/$stem.csv"
+    } > "results/mutants/$page.csv"
     {
         echo "# Mutation testing: \`$f\`"
         echo
         echo "\`${MUTANTS_ARGS:+MUTANTS_ARGS=\"$MUTANTS_ARGS\" }bash scripts/mutants.sh $f\` at commit $commit, $day, $tool;"
-        echo "judged by \`cargo test $args\`. $secs s on $(nproc) cores. Data: [$stem.csv]($stem.csv)."
+        echo "judged by \`cargo test $args\`. $secs s on $(nproc) cores. Data: [$page.csv]($page.csv)."
         echo
         echo "| mutants | caught | missed | unviable | timeouts | missed of viable |"
         echo "|---|---|---|---|---|---|"
@@ -70,6 +73,6 @@ for f in "${files[@]}"; do
         else
             echo "No mutant missed."
         fi
-    } > "results/mutants/$stem.md"
-    echo "mutants.sh: $f: $caught caught, $missed missed, $unviable unviable, $timeout timeouts in ${secs} s: results/mutants/$stem.md"
+    } > "results/mutants/$page.md"
+    echo "mutants.sh: $f: $caught caught, $missed missed, $unviable unviable, $timeout timeouts in ${secs} s: results/mutants/$page.md"
 done
