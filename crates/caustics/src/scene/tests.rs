@@ -188,6 +188,21 @@ fn other_invalid_values() {
         (BASE.replace("target = [0.0, 0.0, 0.0]", "target = [0.0, 0.0, 5.0]\nup = [0.0, 1.0, 0.0]"), &["camera.up"]),
         (BASE.replace("eye = [0.0, 2.0, 5.0]", "eye = [0.0, nan, 5.0]"), &["camera.eye", "finite"]),
         (BASE.replace("fov_y = 40.0", "fov_y = 180.0"), &["camera.fov_y"]),
+        // A target within a millionth of the eye's distance from the origin is the eye.
+        (
+            BASE.replace("eye = [0.0, 2.0, 5.0]", "eye = [10000.0, 0.0, 0.0]")
+                .replace("target = [0.0, 0.0, 0.0]", "target = [10000.005, 0.0, 0.0]"),
+            &["camera.target", "must differ"],
+        ),
+        // A positive setting: zero, negative and infinite are each refused.
+        (format!("{BASE}\n[render]\nexposure = 0.0\n"), &["render.exposure", "finite number > 0"]),
+        (format!("{BASE}\n[render]\nexposure = -1.0\n"), &["render.exposure", "finite number > 0"]),
+        (format!("{BASE}\n[render]\nexposure = inf\n"), &["render.exposure", "finite number > 0"]),
+        // A count of the wrong length.
+        (
+            format!("{BASE}\n[[objects]]\nshape = \"torus\"\nmajor_radius = 1.0\nminor_radius = 0.2\nsegments = [16]\nmaterial = \"glass\"\n"),
+            &["objects[1].segments", "2 integers"],
+        ),
         (BASE.replace("size = [4.0, 4.0]", "size = [0.0, 4.0]"), &["objects[0].size"]),
         (BASE.replace("size = [4.0, 4.0]", "size = [4.0, 4.0, 1.0]"), &["objects[0].size"]),
         (BASE.replace("size = [4.0, 4.0]", "radius = 1.0"), &["objects[0].radius", "plane"]),
