@@ -26,10 +26,7 @@ mkdir -p results/mutants
 for f in "${files[@]}"; do
     args=${TESTS[$f]:-}
     [ -n "$args" ] || { echo "mutants.sh: no tests listed for $f (edit TESTS in this script)" >&2; exit 2; }
-    read -r -a a <<< "$args"
-    pkg=${a[1]}
-    test_args=()
-    for x in "${a[@]:2}"; do test_args+=("--cargo-test-arg=$x"); done
+    judge_of "$f"
     stem=$(basename "$f" .rs)
     # A run of the last run's survivors only is kept beside the full run, not over it.
     page=$stem
@@ -40,10 +37,10 @@ for f in "${files[@]}"; do
     # cargo-mutants exits 2 when mutants are missed and 3 when some timed out (a mutant that
     # loops forever): results, not failures of the run.
     read -r -a extra <<< "${MUTANTS_ARGS:-}"
-    cargo mutants --in-place --profile mutants -f "$f" --test-package "$pkg" "${test_args[@]}" "${extra[@]}" --output "$out" > "$out/run.log" 2>&1 || { rc=$?; [ $rc -eq 2 ] || [ $rc -eq 3 ]; }
+    cargo mutants --in-place --profile mutants -f "$f" "${judge[@]}" "${extra[@]}" --output "$out" > "$out/run.log" 2>&1 || { rc=$?; [ $rc -eq 2 ] || [ $rc -eq 3 ]; }
     secs=$(( $(date +%s) - start ))
     o=$out/mutants.out
-    count() { local n; n=$(grep -c . "$o/$1.txt" 2>/dev/null) || true; echo "${n:-0}"; }
+    count() { count_in "$o" "$1"; }
     caught=$(count caught); missed=$(count missed); unviable=$(count unviable); timeout=$(count timeout)
     viable=$((caught + missed + timeout))
     pct=$(( viable > 0 ? (100 * missed + viable / 2) / viable : 0 ))

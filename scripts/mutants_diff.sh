@@ -49,14 +49,12 @@ fi
 missed_all=0
 start=$(date +%s)
 for f in "${changed[@]}"; do
-    read -r -a a <<< "${TESTS[$f]}"
-    test_args=()
-    for x in "${a[@]:2}"; do test_args+=("--cargo-test-arg=$x"); done
+    judge_of "$f"
     out=target/mutants/diff/$(basename "$f" .rs)
     mkdir -p "$out"
     # Exit 2: mutants missed, 3: some timed out (counted below); anything else but 0 is a failed run.
     rc=0
-    cargo mutants --in-place -f "$f" --in-diff "$patch" "${shard[@]}" --test-package "${a[1]}" "${test_args[@]}" \
+    cargo mutants --in-place -f "$f" --in-diff "$patch" "${shard[@]}" "${judge[@]}" \
         --output "$out" > "$out/run.log" 2>&1 || rc=$?
     if [ $rc -ne 0 ] && [ $rc -ne 2 ] && [ $rc -ne 3 ]; then
         # No mutant on the changed lines (a comment, a test) is not a failure.
@@ -66,7 +64,7 @@ for f in "${changed[@]}"; do
         exit 1
     fi
     o=$out/mutants.out
-    n() { local c; c=$(grep -c . "$o/$1.txt" 2>/dev/null) || true; echo "${c:-0}"; }
+    n() { count_in "$o" "$1"; }
     echo "mutants_diff.sh: $f: $(n caught) caught, $(n missed) missed, $(n unviable) unviable, $(n timeout) timeouts"
     if [ "$(n missed)" -gt 0 ]; then
         sed 's/^/  missed: /' "$o/missed.txt"

@@ -19,3 +19,19 @@ declare -A TESTS=(
     [crates/caustics/src/scene/load.rs]="-p caustics --lib --test scene_files"
     [crates/caustics/src/scene/object.rs]="-p caustics --lib --test scene_files"
 )
+
+# The cargo-mutants arguments that name FILE's tests: sets `judge` to (--test-package PKG
+# --cargo-test-arg=... ...).
+judge_of() {
+    local a x
+    read -r -a a <<< "${TESTS[$1]}"
+    judge=(--test-package "${a[1]}")
+    for x in "${a[@]:2}"; do judge+=("--cargo-test-arg=$x"); done
+}
+
+# How many mutants a run's output folder lists as KIND (caught, missed, unviable, timeout).
+count_in() {
+    local n
+    n=$(grep -c . "$1/$2.txt" 2> /dev/null) || true
+    echo "${n:-0}"
+}
