@@ -8,8 +8,17 @@ use std::path::Path;
 /// Loads `path` in object space. The error is a sentence without the file name (the caller
 /// adds the scene file, key and OBJ path).
 pub fn load_obj(path: &Path) -> Result<Mesh, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read: {e}"))?;
+    load_obj_bytes(&bytes)
+}
+
+/// [`load_obj`] of a file already read (the scene loader hashes the same bytes,
+/// [`super::models`]). Materials are not read: the scene gives them.
+pub fn load_obj_bytes(bytes: &[u8]) -> Result<Mesh, String> {
     let options = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
-    let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| format!("malformed OBJ: {e}"))?;
+    let (models, _materials) =
+        tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |_| Err(tobj::LoadError::OpenFileFailed))
+            .map_err(|e| format!("malformed OBJ: {e}"))?;
     let mut mesh = Mesh::default();
     let mut file_normals_ok = true;
     for model in &models {

@@ -108,7 +108,8 @@ pub(super) fn build_object(
             let file = super::models::ModelFile::of(&path, &bytes);
             super::models::warn_once(&file);
             model = Some(file);
-            let mesh = obj::load_obj(&path).map_err(|e| ctx.err(&k("file"), format!("{}: {e}", path.display())))?;
+            let mesh =
+                obj::load_obj_bytes(&bytes).map_err(|e| ctx.err(&k("file"), format!("{}: {e}", path.display())))?;
             let (lo, hi) = mesh.bounds();
             let origin = match o.fit_origin {
                 None => Vec3::ZERO,
