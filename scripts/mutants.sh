@@ -41,8 +41,10 @@ for f in "${files[@]}"; do
     secs=$(( $(date +%s) - start ))
     o=$out/mutants.out
     count() { count_in "$o" "$1"; }
-    caught=$(count caught); missed=$(count missed); unviable=$(count unviable); timeout=$(count timeout)
-    viable=$((caught + missed + timeout))
+    split_missed "$o"
+    caught=$(count caught); missed=$(count missed_left); named=$(count missed_named)
+    unviable=$(count unviable); timeout=$(count timeout)
+    viable=$((caught + missed + named + timeout))
     pct=$(( viable > 0 ? (100 * missed + viable / 2) / viable : 0 ))
     commit=$(git rev-parse --short HEAD)
     day=$(date -u +%Y-%m-%d)
@@ -50,8 +52,8 @@ for f in "${files[@]}"; do
     # The run's figures as data (the page below is written from the same values; a page that
     # quotes them quotes this file: docs/claims.md, "Data files").
     {
-        echo "file,commit,date,tool,judge,seconds,cores,mutants,caught,missed,unviable,timeouts,missed_pct"
-        echo "$f,$commit,$day,$tool,cargo test $args,$secs,$(nproc),$((viable + unviable)),$caught,$missed,$unviable,$timeout,$pct"
+        echo "file,commit,date,tool,judge,seconds,cores,mutants,caught,missed,unviable,timeouts,missed_pct,named"
+        echo "$f,$commit,$day,$tool,cargo test $args,$secs,$(nproc),$((viable + unviable)),$caught,$missed,$unviable,$timeout,$pct,$named"
     } > "results/mutants/$page.csv"
     {
         echo "# Mutation testing: \`$f\`"
@@ -66,9 +68,16 @@ for f in "${files[@]}"; do
         if [ "$missed" -gt 0 ]; then
             echo "Missed (each a change no test noticed):"
             echo
-            sed 's/^/- /' "$o/missed.txt"
+            sed 's/^/- /' "$o/missed_left.txt"
         else
             echo "No mutant missed."
+        fi
+        if [ "$named" -gt 0 ]; then
+            echo
+            echo "Not caught, and named in .cargo/mutants.toml with the reason (cargo-mutants 27.1 does not"
+            echo "apply its exclude_re to struct-field deletions; the run's 'missed' counts them):"
+            echo
+            sed 's/^/- /' "$o/missed_named.txt"
         fi
     } > "results/mutants/$page.md"
     echo "mutants.sh: $f: $caught caught, $missed missed, $unviable unviable, $timeout timeouts in ${secs} s: results/mutants/$page.md"

@@ -65,10 +65,11 @@ for f in "${changed[@]}"; do
     fi
     o=$out/mutants.out
     n() { count_in "$o" "$1"; }
-    echo "mutants_diff.sh: $f: $(n caught) caught, $(n missed) missed, $(n unviable) unviable, $(n timeout) timeouts"
-    if [ "$(n missed)" -gt 0 ]; then
-        sed 's/^/  missed: /' "$o/missed.txt"
-        missed_all=$((missed_all + $(n missed)))
+    split_missed "$o"
+    echo "mutants_diff.sh: $f: $(n caught) caught, $(n missed_left) missed, $(n missed_named) named in .cargo/mutants.toml, $(n unviable) unviable, $(n timeout) timeouts"
+    if [ "$(n missed_left)" -gt 0 ]; then
+        sed 's/^/  missed: /' "$o/missed_left.txt"
+        missed_all=$((missed_all + $(n missed_left)))
     fi
 done
 echo "mutants_diff.sh: $base..HEAD, ${#changed[@]} file(s), $total mutant(s) on changed lines${shard:+ (1 in $k tested)}, $(( $(date +%s) - start )) s"

@@ -578,6 +578,9 @@ mod tests {
         assert_eq!(d.percentile(0.0), Some(1.0));
         let empty = DepthComplexity { covered: vec![], pixels: 4 };
         assert_eq!((empty.mean(), empty.percentile(0.5), empty.coverage()), (None, None, Some(0.0)));
+        // A dump with no pixels has no coverage (not 0/0).
+        let nothing = DepthComplexity::of(&ImageF32 { width: 0, height: 0, layers: vec![] }).expect("no layers");
+        assert_eq!((nothing.pixels, nothing.coverage()), (0, None));
     }
 
     #[test]

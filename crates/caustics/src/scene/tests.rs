@@ -244,6 +244,44 @@ fn other_invalid_values() {
     }
 }
 
+/// Each range's edge, from both sides: the value just outside is refused by name, the edge
+/// itself (where the range includes it) and the value just inside load.
+#[test]
+fn range_edges_are_held_from_both_sides() {
+    let spot = |angle: &str| {
+        BASE.replace("type = \"point\"", &format!("type = \"spot\"\ndirection = [0, -1, 0]\ncone_angle = {angle}"))
+    };
+    let receiver =
+        |x: &str, z: &str| format!("{BASE}\n[receiver_map]\nx_range = {x}\nz_range = {z}\nresolution = 16\n");
+    let refused: Vec<(String, &[&str])> = vec![
+        // fov_y in (0, 180): zero is no view.
+        (BASE.replace("fov_y = 40.0", "fov_y = 0.0"), &["camera.fov_y", "exclusive"]),
+        // A spot's half-angle in (0, 90]: zero lights nothing.
+        (spot("0.0"), &["lights[0].cone_angle"]),
+        (spot("90.01"), &["lights[0].cone_angle"]),
+        // A receiver range is [min, max] with min < max: equal or reversed ends are refused,
+        // and so is a finite end beyond the coordinate bound.
+        (receiver("[1.0, 1.0]", "[-1.0, 1.0]"), &["receiver_map.x_range", "min < max"]),
+        (receiver("[-1.0, 1.0]", "[2.0, -2.0]"), &["receiver_map.z_range", "min < max"]),
+        (receiver("[-1.0, 2e6]", "[-1.0, 1.0]"), &["receiver_map.x_range", "1e6"]),
+    ];
+    for (i, (text, needles)) in refused.iter().enumerate() {
+        expect_error(&format!("edge{i}.toml"), text, needles);
+    }
+    let accepted = [
+        BASE.replace("fov_y = 40.0", "fov_y = 0.01"),
+        BASE.replace("fov_y = 40.0", "fov_y = 179.99"),
+        spot("90.0"),
+        spot("0.01"),
+        receiver("[-1e6, 1e6]", "[0.0, 0.001]"),
+    ];
+    for (i, text) in accepted.iter().enumerate() {
+        if let Err(e) = load_text(&format!("inside{i}.toml"), text) {
+            panic!("inside{i}.toml: refused a value inside its range: {e:#}");
+        }
+    }
+}
+
 #[test]
 fn no_lights_and_no_objects() {
     let no_lights =
