@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Regenerates results/quality/<scene>.csv and <scene>.md: the caustic techniques listed below
-# (shah, wd-points, its thin-lens splats, shah-vertex and three hcm variants) against the exact
+# Regenerates results/quality/<scene>.csv and <scene>.md: the registry's variants marked
+# `quality` (`causticlab variants --quality`: shah, wd-points, its thin-lens splats, shah-vertex
+# and three hcm variants) against the exact
 # CPU photon reference, at 256^2..2048^2 photons, with the reference's own noise (two seeds). The
 # CSV has a row per comparison (technique, photons, then compare's metrics, as formatted in the
 # table); the .md prints the same rows, and the results pages quote the CSV.
@@ -26,18 +27,11 @@ for s in "${scenes[@]}"; do
       $bin reference --scene "$scene" --photons "$ref_photons" --seed $seed --fresnel false --out "$work/$s/ref$seed"
   done
   echo "reference-noise|$ref_photons|$($bin compare "$work/$s/ref2/receiver.exr" "$work/$s/ref1/receiver.exr" --json | tr -d '\n')" >> "$rows"
-  # label|folder|render flags
-  variants=(
-    "shah|shah|--technique shah"
-    "wd-points|wd-points|--technique wd-points"
-    "wd-points thin-lens (Wyman 2008 Fig. 7)|wd-points-thin-lens|--technique wd-points --splat thin-lens"
-    "shah-vertex|shah-vertex|--technique shah-vertex"
-    "hcm (compute, combine last)|hcm|--technique hcm --path compute --cluster last"
-    "hcm varying multi-res (max distance)|hcm-varying|--technique hcm --path compute --cluster last --splat varying-multires"
-    "hcm varying multi-res (beam area, Eq. 2)|hcm-beam-area|--technique hcm --path compute --cluster last --splat varying-multires --varying-radius beam-area"
-  )
+  # The registry's rows marked `quality` (crates/caustics/src/techniques/variants.toml):
+  # name|label|scenes|render flags.
+  mapfile -t variants < <($bin variants --lines --quality)
   for v in "${variants[@]}"; do
-    IFS='|' read -r label folder flags <<< "$v"
+    IFS='|' read -r folder label _ flags <<< "$v"
     for n in 256 512 1024 2048; do
       [ "$folder" = shah-vertex ] && [ "$n" != 256 ] && continue   # photons follow the tessellation
       out=$work/$s/$folder-$n

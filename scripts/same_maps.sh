@@ -8,6 +8,10 @@
 #   bash scripts/same_maps.sh record DIR   # render every case into DIR/<scene>/<case>/
 #   bash scripts/same_maps.sh check DIR    # render again into DIR.now/ and compare with DIR/
 #
+# The cases: every row of the registry of variants (`causticlab variants`) on its scenes, the
+# frame modes and sweeps listed below, and a few cases on other scenes. A case that DIR does
+# not have (a row added since it was recorded) is rendered and listed as new, not compared.
+#
 # `check` runs `causticlab diff --tolerance 1e-5` on each case's folder: final.exr and every
 # dump, channel by channel (largest |now - recorded| over the channel's largest |recorded|),
 # and the pass names and photon counts of timings.json exactly (the counts the bench reports:
@@ -31,34 +35,21 @@ if [ ! -x "$bin" ]; then
     cargo build --release
 fi
 
-# case name -> flags. Small sizes: the point is equality, not quality.
+# The registry's rows (crates/caustics/src/techniques/variants.toml, `causticlab variants`):
+# every variant, on its scenes. A row added there is rendered here at once.
+all=()
+while IFS='|' read -r name _ scenes flags; do
+    for scene in ${scenes//,/ }; do
+        all+=("$scene:$name:$flags")
+    done
+done < <("$bin" variants --lines)
+# Frame modes over several frames (static-light reuse, temporal filters, throughput) and the
+# sweeps of hcm's and adaptive's settings, on the sphere scenes.
 cases=(
-    "none:--technique none"
-    "shah:--technique shah"
-    "shah-vertex:--technique shah-vertex"
-    "shah-one-iteration:--technique shah --iterations 1 --fresnel false"
-    "wd-points:--technique wd-points"
-    "wd-points-compute-splat:--technique wd-points --splat-path compute"
-    "wd-points-box:--technique wd-points --splat-kernel box --splat-radius 3"
-    "wd-points-thin-lens:--technique wd-points --splat thin-lens"
-    "shah-thin-lens:--technique shah --splat thin-lens"
-    "wd-points-deferred-photons:--technique wd-points --photon-refraction deferred"
-    "wd-points-deferred-refraction:--technique wd-points --refraction deferred"
-    "wd-points-fixed-fov:--technique wd-points --photon-view fixed-fov"
-    "wd-points-shadow-map-view:--technique wd-points --photon-view shadow-map"
-    "wd-points-shah-intersect:--technique wd-points --intersect shah-iterative"
     "wd-points-throughput-3:--technique wd-points --frames 3 --frame-mode throughput"
-    "wd-eye-points-eq9:--technique wd-eye-points --gather-lighting eq9"
-    "wd-eye-points-eq10:--technique wd-eye-points --gather-lighting eq10"
-    "wd-eye-points-eq11:--technique wd-eye-points --gather-lighting eq11"
     "wd-eye-points-temporal-4:--technique wd-eye-points --temporal-filter on --frames 4"
-    "wd-quads-eye-eq3:--technique wd-quads --space eye --quad-lighting eq3"
-    "wd-quads-eye-eq4:--technique wd-quads --space eye --quad-lighting eq4"
-    "wd-quads-light:--technique wd-quads --space light"
     "wd-quads-light-static-3:--technique wd-quads --space light --frames 3"
-    "wd-gather-eye:--technique wd-gather --space eye"
     "wd-gather-eye-temporal-4:--technique wd-gather --space eye --temporal-filter on --frames 4"
-    "wd-gather-light:--technique wd-gather --space light"
     "wd-gather-light-static-3:--technique wd-gather --space light --frames 3"
 )
 for path in xfb compute; do
@@ -82,10 +73,13 @@ for path in xfb compute; do
     cases+=("adaptive-$path-gbuffer-1:--technique adaptive --path $path --gbuffer-scale 1")
     cases+=("adaptive-$path-throughput-3:--technique adaptive --path $path --frames 3 --frame-mode throughput")
 done
-cases+=("hcm-compute-last-compute-splat:--technique hcm --path compute --cluster last --splat-path compute")
-cases+=("adaptive-compute-compute-splat:--technique adaptive --path compute --splat-path compute")
+for scene in sphere_on_plane sphere_oblique; do
+    for c in "${cases[@]}"; do
+        all+=("$scene:$c")
+    done
+done
 # Scenes beyond the sphere scenes, each with the cases that matter there.
-more=(
+all+=(
     "two_lights:shah:--technique shah"
     "two_lights:wd-points:--technique wd-points"
     "two_lights:shah-thin-lens:--technique shah --splat thin-lens"
@@ -101,19 +95,7 @@ more=(
     "octahedron:hcm:--technique hcm"
     "stacked_spheres:wd-points-deferred-photons:--technique wd-points --photon-refraction deferred --refraction deferred"
     "stacked_spheres:adaptive:--technique adaptive"
-    "pool:unorm8:--technique pool-convolution --precision unorm8"
-    "pool:float:--technique pool-convolution --precision float"
-    "pool:f64:--technique pool-convolution --precision f64"
-    "pool:kernel-3:--technique pool-convolution --kernel 3"
-    "pool_oblique:float:--technique pool-convolution"
 )
-all=()
-for scene in sphere_on_plane sphere_oblique; do
-    for c in "${cases[@]}"; do
-        all+=("$scene:$c")
-    done
-done
-all+=("${more[@]}")
 
 out="$dir"
 if [ "$mode" = check ]; then
@@ -121,6 +103,7 @@ if [ "$mode" = check ]; then
     rm -rf "$out"
 fi
 failed=()
+new=()
 ran=0
 for c in "${all[@]}"; do
     scene="${c%%:*}"
@@ -135,10 +118,20 @@ for c in "${all[@]}"; do
     if [[ "$scene" == pool* ]]; then
         sizes=(--photons 64)
     fi
+    # A row that sets its own photon count keeps it.
+    if [[ " ${flags[*]} " == *" --photons "* ]]; then
+        sizes=("${sizes[@]:2}")
+    fi
     target="$out/$scene/$name"
     rm -rf "$target"
     "$bin" render --scene "scenes/$scene.toml" --out "$target" "${sizes[@]}" --dump all "${flags[@]}" >/dev/null
     ran=$((ran + 1))
+    if [ "$mode" = check ] && [ ! -d "$dir/$scene/$name" ]; then
+        # A case added since the recording (a new registry row) has nothing to compare with.
+        printf '%-16s %-44s new (not in %s)\n' "$scene" "$name" "$dir"
+        new+=("$scene/$name")
+        continue
+    fi
     if [ "$mode" = check ]; then
         unordered=()
         if [[ " ${flags[*]} " == *" compute "* ]]; then
@@ -165,4 +158,4 @@ if [ "${#failed[@]}" -ne 0 ]; then
     echo "same_maps: ${#failed[@]} of $ran cases differ: ${failed[*]}" >&2
     exit 1
 fi
-echo "same_maps: $mode done ($ran cases)"
+echo "same_maps: $mode done ($ran cases${new[0]:+; ${#new[@]} new, not compared: ${new[*]}})"

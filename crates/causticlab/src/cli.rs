@@ -58,6 +58,19 @@ pub enum Command {
     /// Render many animated throughput frames and sample resident memory, device memory and
     /// Vulkan objects made: a real-time loop holds them flat (scripts/soak.sh).
     Soak(SoakArgs),
+    /// The registry of variants: every technique variant the project stands behind, with its
+    /// paper, section, stated accuracy and flags (crates/caustics/src/techniques/variants.toml).
+    Variants(VariantsArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct VariantsArgs {
+    /// One line per row, `name|label|scenes|flags`, for scripts (default: a Markdown table).
+    #[arg(long)]
+    pub lines: bool,
+    /// Only the rows in the quality tables (scripts/quality_table.sh).
+    #[arg(long)]
+    pub quality: bool,
 }
 
 #[derive(Debug, Args)]

@@ -15,6 +15,7 @@ mod cmd_pool_reference;
 mod cmd_reference;
 mod cmd_render;
 mod cmd_soak;
+mod cmd_variants;
 mod exit;
 mod view;
 
@@ -41,6 +42,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => ok(cmd_bench::run(&cli.global, args, &mut validation)),
         Command::Soak(args) => ok(cmd_soak::run(&cli.global, args, &mut validation)),
         Command::View(args) => ok(view::run(&cli.global, args, &mut validation)),
+        Command::Variants(args) => ok(cmd_variants::run(args)),
     };
     let mut code = match result {
         Ok(code) => code,

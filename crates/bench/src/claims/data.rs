@@ -143,6 +143,10 @@ mod tests {
         assert_eq!(fields(r#"a,"b, c","say ""hi""",,d"#).unwrap(), ["a", "b, c", "say \"hi\"", "", "d"]);
         assert!(fields(r#"a,"b"#).is_err(), "an open quote");
         assert!(fields(r#"a,b"c"#).is_err(), "a quote inside a field");
+        // A quoted part after a field's first characters is not a quoted field: `b"c"` is refused,
+        // not read as `bc`.
+        let inside = fields(r#"a,b"c",d"#).expect_err("a quoted part inside a field");
+        assert!(inside.to_string().contains("inside an unquoted field"), "{inside}");
         assert!(fields(r#""b"c,d"#).is_err(), "text after the closing quote");
     }
 

@@ -28,6 +28,7 @@ mod technique;
 pub mod trendall_stewart2000;
 pub mod uniforms;
 mod value_enum;
+pub mod variants;
 pub mod wyman2008;
 pub mod wyman_davis2006;
 pub mod wyman_nichols2009;
