@@ -404,6 +404,11 @@ pub struct RenderArgs {
     /// of 2 frames in flight, timed per frame, creating nothing once warm (docs/bench.md).
     #[arg(long, default_value = "per-pass", value_parser = ["per-pass", "throughput"], help_heading = "Output")]
     pub frame_mode: String,
+    /// Write the frame graph of the last frame: graph.txt (every pass in recording order with the
+    /// resources it read and wrote, from vkcore's declarations; also printed) and graph.dot
+    /// (Graphviz: `dot -Tpng graph.dot -o graph.png`).
+    #[arg(long, help_heading = "Output")]
+    pub graph: bool,
 }
 
 /// Writes the `render` flags that override the scene's `[caustics]` (`flags`) over `s`, the

@@ -118,11 +118,19 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let json = serde_json::to_string_pretty(&timings).context("serialising timings.json")?;
     image_io::write_file_atomically(&out.path("timings.json"), json.as_bytes())?;
     written.push("timings.json".to_string());
+    let graph = rendered.frames.last().map(|f| f.graph.as_slice()).unwrap_or_default();
+    if args.graph {
+        let title = format!("{} · {technique}", args.scene.display());
+        image_io::write_file_atomically(&out.path(GRAPH_TXT), render::graph::text(graph).as_bytes())?;
+        image_io::write_file_atomically(&out.path(GRAPH_DOT), render::graph::dot(graph, &title).as_bytes())?;
+        written.extend([GRAPH_TXT.to_string(), GRAPH_DOT.to_string()]);
+    }
     let final_dir = out.final_dir().to_path_buf();
     out.commit()?;
     // Dumps an earlier render left in the same folder would read as this run's: remove the
     // buffers this run did not write (only names causticlab writes; nothing else is touched).
-    for file in render::all_dump_names().iter().map(|n| format!("{n}.exr")).chain([RECEIVER_PNG.to_string()]) {
+    let ours = [RECEIVER_PNG, GRAPH_TXT, GRAPH_DOT].map(String::from);
+    for file in render::all_dump_names().iter().map(|n| format!("{n}.exr")).chain(ours) {
         if !written.contains(&file) && final_dir.join(&file).is_file() {
             std::fs::remove_file(final_dir.join(&file))
                 .with_context(|| format!("removing the stale {}", final_dir.join(&file).display()))?;
@@ -163,6 +171,10 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             }
         }
     }
+    if args.graph {
+        println!("frame graph (the last frame's passes, what each read and wrote):");
+        print!("{}", render::graph::text(graph));
+    }
     for f in &written {
         println!("wrote {}", final_dir.join(f).display());
     }
@@ -191,6 +203,9 @@ fn photon_buffer_header(scene: &Scene) -> String {
 
 /// The receiver map as a PNG, beside receiver.exr.
 const RECEIVER_PNG: &str = "receiver.png";
+/// The frame graph (`--graph`): text and Graphviz DOT.
+const GRAPH_TXT: &str = "graph.txt";
+const GRAPH_DOT: &str = "graph.dot";
 
 /// The mean of R, G, B of the receiver map's main layer (E/E0), per texel.
 fn receiver_ratio(image: &ImageF32) -> Result<Vec<f32>> {

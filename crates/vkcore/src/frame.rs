@@ -25,6 +25,7 @@ pub struct Use<'a>(Kind<'a>);
 pub(crate) enum Kind<'a> {
     Buffer(&'a Buffer, Access),
     Image {
+        name: &'a str,
         image_id: u64,
         raw: vk::Image,
         format: vk::Format,
@@ -42,6 +43,7 @@ impl<'a> Use<'a> {
     /// Every subresource the view covers.
     pub fn view(v: &'a ImageView, access: Access) -> Use<'a> {
         Use(Kind::Image {
+            name: &v.image_name,
             image_id: v.image_id,
             raw: v.image,
             format: v.format,
@@ -50,6 +52,14 @@ impl<'a> Use<'a> {
             layers: v.layers.clone(),
             access,
         })
+    }
+    /// The resource's name and whether the pass reads and writes it (the frame graph).
+    fn node_entry(&self) -> (&str, bool, bool) {
+        let (name, a) = match &self.0 {
+            Kind::Buffer(b, access) => (b.name(), access),
+            Kind::Image { name, access, .. } => (*name, access),
+        };
+        (name, a.is_read(), a.is_write())
     }
     /// The resource's id and the access, to check pushed descriptors against what a pass
     /// declared.
@@ -62,6 +72,7 @@ impl<'a> Use<'a> {
     /// Some mips and layers of an image, without a view.
     pub fn image(i: &'a Image, mips: Range<u32>, layers: Range<u32>, access: Access) -> Use<'a> {
         Use(Kind::Image {
+            name: &i.desc.name,
             image_id: i.id,
             raw: i.raw,
             format: i.desc.format,
@@ -110,7 +121,7 @@ pub(crate) fn sync(ctx: &Context, cb: vk::CommandBuffer, uses: &[Use]) -> Result
                     );
                 }
             }
-            Kind::Image { image_id, raw, format, total_layers, mips, layers, access } => {
+            Kind::Image { image_id, raw, format, total_layers, mips, layers, access, .. } => {
                 let subs = mips.clone().flat_map(|m| layers.clone().map(move |l| (m * total_layers + l) as usize));
                 for (i, t) in tracker.access(*image_id, subs, supported(ctx, *access), true) {
                     let (mip, layer) = (i as u32 / total_layers, i as u32 % total_layers);
@@ -229,12 +240,39 @@ pub(crate) struct RingTag {
     pub frame: u64,
 }
 
+/// One pass of a recorded frame as the frame graph shows it: its name and the resources it
+/// read and wrote, from what it declared (`Pass::bind`'s descriptors and `Pass::uses`: the same
+/// declarations the barriers come from), each resource once, in declaration order.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct PassNode {
+    pub name: String,
+    pub reads: Vec<String>,
+    pub writes: Vec<String>,
+}
+
+impl PassNode {
+    fn of(name: &str, uses: &[Use]) -> PassNode {
+        let mut node = PassNode { name: name.to_string(), ..Default::default() };
+        for u in uses {
+            let (resource, read, write) = u.node_entry();
+            for (yes, list) in [(read, &mut node.reads), (write, &mut node.writes)] {
+                if yes && !list.iter().any(|r| r == resource) {
+                    list.push(resource.to_string());
+                }
+            }
+        }
+        node
+    }
+}
+
 pub struct Frame {
     pub(crate) ctx: Context,
     /// Taken back by the ring at its submit; freed by `Drop` otherwise.
     pub(crate) res: Option<FrameResources>,
     fence_timeout: Duration,
     pub(crate) passes: Vec<String>,
+    /// Each recorded pass with what it read and wrote (the frame graph).
+    pub(crate) graph: Vec<PassNode>,
     pub(crate) finished: bool,
     /// A ring frame: no crash-marker barrier after each pass (one at the frame's end), and it is
     /// submitted by its ring.
@@ -265,6 +303,7 @@ impl Context {
             res: Some(res),
             fence_timeout,
             passes: vec![],
+            graph: vec![],
             finished: false,
             ring: None,
             counters_at_begin,
@@ -292,6 +331,7 @@ impl Frame {
             res: Some(res),
             fence_timeout: FENCE_TIMEOUT,
             passes: vec![],
+            graph: vec![],
             finished: false,
             ring: Some(tag),
             counters_at_begin,
@@ -342,6 +382,7 @@ impl Frame {
             res.queries.begin(&ctx, cb, index)?;
         }
         self.passes.push(name.to_string());
+        self.graph.push(PassNode::of(name, uses));
         let mut cmd = Cmd::new(&ctx, cb, uses.iter().map(Use::key).collect());
         cmd.begin_label(name);
         let result = record(&mut cmd);
@@ -433,6 +474,7 @@ impl Frame {
         let counters = self.ctx.counters().since(&self.counters_at_begin);
         let mut report = read_report(&self.ctx, &res, &self.passes, None)?;
         report.counters = counters;
+        report.graph = std::mem::take(&mut self.graph);
         if let Some(host) = &self.host_pass_ms {
             for (p, ms) in report.passes.iter_mut().zip(host) {
                 p.host_ms = Some(*ms);

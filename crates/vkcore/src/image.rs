@@ -203,6 +203,7 @@ impl Image {
             raw,
             image: self.raw,
             image_id: self.id,
+            image_name: self.desc.name.as_str().into(),
             mips,
             layers,
             total_layers: self.desc.array_layers,
@@ -238,6 +239,8 @@ pub struct ImageView {
     pub(crate) raw: vk::ImageView,
     pub(crate) image: vk::Image,
     pub(crate) image_id: u64,
+    /// The image's name (its `ImageDesc::name`), for the frame graph.
+    pub(crate) image_name: std::sync::Arc<str>,
     pub mips: Range<u32>,
     pub layers: Range<u32>,
     pub(crate) total_layers: u32,

@@ -45,7 +45,7 @@ pub use crash::TEST_SEGFAULT_ENV;
 pub use device::{choose_device, driver_label, enumerate_devices};
 pub use error::{Result, VkError};
 pub use features::{DeviceInfo, Feature};
-pub use frame::{Frame, FrameOptions, Use};
+pub use frame::{Frame, FrameOptions, PassNode, Use};
 pub use grid::{dispatch_grid, MAX_GROUPS_PER_AXIS};
 pub use image::{texel_size, Filter, Image, ImageDesc, ImageView, Sampler, ViewKind};
 pub use instance::{Instance, ValidationLog};

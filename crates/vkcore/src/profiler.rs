@@ -67,6 +67,8 @@ pub struct FrameReport {
     /// What recording and submitting the frame asked of the driver (objects created, submits,
     /// barriers, timestamps).
     pub counters: crate::Counters,
+    /// Every pass in recording order with the resources it read and wrote.
+    pub graph: Vec<crate::frame::PassNode>,
 }
 
 impl FrameReport {

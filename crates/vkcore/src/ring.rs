@@ -51,6 +51,7 @@ impl Default for RingOptions {
 struct Pending {
     frame: u64,
     passes: Vec<String>,
+    graph: Vec<crate::frame::PassNode>,
     counters: crate::Counters,
 }
 
@@ -149,6 +150,7 @@ impl FrameRing {
         report.index = p.frame;
         report.slot = Some(s);
         report.counters = p.counters;
+        report.graph = p.graph;
         self.done.push(report);
         Ok(())
     }
@@ -189,6 +191,7 @@ impl FrameRing {
         frame.finished = true;
         let res = frame.res.take().ok_or_else(|| VkError::Invalid("the frame was already submitted".into()))?;
         let passes = std::mem::take(&mut frame.passes);
+        let graph = std::mem::take(&mut frame.graph);
         let counters_at_begin = frame.counters_at_begin;
         drop(frame);
         let d = self.ctx.shared.raw();
@@ -209,7 +212,7 @@ impl FrameRing {
         slot.res = Some(res);
         submitted?;
         let counters = self.ctx.counters().since(&counters_at_begin);
-        slot.pending = Some(Pending { frame: tag.frame, passes, counters });
+        slot.pending = Some(Pending { frame: tag.frame, passes, graph, counters });
         Ok(())
     }
 

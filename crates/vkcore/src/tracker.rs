@@ -73,7 +73,7 @@ impl Access {
         L::UNDEFINED,
     );
 
-    fn is_write(&self) -> bool {
+    pub(crate) fn is_write(&self) -> bool {
         let w = A::SHADER_WRITE
             | A::SHADER_STORAGE_WRITE
             | A::COLOR_ATTACHMENT_WRITE
@@ -83,6 +83,11 @@ impl Access {
             | A::TRANSFORM_FEEDBACK_COUNTER_WRITE_EXT
             | A::HOST_WRITE;
         self.access.intersects(w)
+    }
+    /// Whether the access reads: any access type beyond its writes (a read-modify-write, a
+    /// sampled read, an attachment load).
+    pub(crate) fn is_read(&self) -> bool {
+        !(self.access & !self.write_part()).is_empty()
     }
     fn write_part(&self) -> A {
         self.access

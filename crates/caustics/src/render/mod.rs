@@ -6,6 +6,7 @@ mod dispatch;
 pub mod display;
 mod dumps;
 mod eye;
+pub mod graph;
 pub mod memory;
 pub mod pipelines;
 mod renderer;
