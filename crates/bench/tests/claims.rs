@@ -270,6 +270,9 @@ fn a_pass_time_and_a_pipeline_statistic_are_read_from_the_cells_passes() {
         (format!("1.0<!--= pass({pick}, \"nosuch*\") -->"), "no pass matches `nosuch*`"),
         (format!("1.0<!--= stat({pick}, \"splat*\", \"frags\") -->"), "no counter `frags`"),
         (format!("1.0<!--= pass({pick}) -->"), "takes entries and a quoted pass name"),
+        // A bare word is a pass name too; a pick is not.
+        (format!("1.0<!--= pass({pick}, nosuch) -->"), "no pass matches `nosuch`"),
+        (format!("1.0<!--= pass({pick}, nosuch{{a=b}}) -->"), "quote the pass name"),
         (
             "1.0<!--= wyman2008_table3{photons=256 metric=Gather technique=hierarchical} + \"x\" -->".to_string(),
             "quoted text",
@@ -345,4 +348,120 @@ fn a_page_a_script_writes_beside_its_data_is_not_read_but_its_neighbours_are() {
         .filter(|p| p.contains("quality"))
         .collect();
     assert_eq!(rel, ["results/quality/README.md"]);
+}
+
+/// A data file whose values make each function and operator give a different number.
+const ABC: &str = "x,a,b,c\np,2,8,1\nq,3,12,\nr,5,20,1\n";
+
+/// Every function and arithmetic operator, on a data file whose values tell them apart: each
+/// claim is right, so one function or operator computing something else fails its sentence.
+#[test]
+fn each_function_and_operator_computes_what_it_says() {
+    let (_s, root) = repo(&[]);
+    std::fs::write(root.join("results/abc.csv"), ABC).unwrap();
+    let head = "<!--claims d = results/abc.csv -->\n";
+    let right = [
+        "10<!--= sum(d{column=a}) -->",
+        "2<!--= min(d{column=a}) -->",
+        "5<!--= max(d{column=a}) -->",
+        "3.33<!--= mean(d{column=a}) -->",
+        "3<!--= median(d{column=a}) -->",
+        "2-5<!--= range(d{column=a}) -->",
+        "3<!--= abs(d{x=p column=a} - d{x=r column=a}) -->",
+        "10<!--= d{x=p column=a} + d{x=p column=b} -->",
+        "6<!--= d{x=p column=b} - d{x=p column=a} -->",
+        "16<!--= d{x=p column=a} * d{x=p column=b} -->",
+        "4<!--= d{x=p column=b} / d{x=p column=a} -->",
+        "5<!--= 2 + 3 -->",
+        "20<!--= sum(d{column=a} * 2) -->",
+        "20<!--= sum(2 * d{column=a}) -->",
+        "20<!--= sum(10 - d{column=a}) -->",
+        // Entries that read a number (c has an empty cell), and counting a comparison.
+        "2<!--= count(measured(d{column=c})) -->",
+        "3<!--= count(d{column=c}) -->",
+        "3<!--= count(d{column=a} < d{column=b}) -->",
+        "1<!--= count(d{column=a} > 3) -->",
+    ];
+    let statements = [
+        "all(d{column=a} < d{column=b})",
+        "all(d{column=a} <= d{column=a})",
+        "all(d{column=b} > d{column=a})",
+        "all(d{column=a} >= d{column=a})",
+        "all(d{column=a} == d{column=a})",
+        "all(d{column=a} != d{column=b})",
+        "all(1 < d{column=a})",
+        "any(d{column=a} > 4)",
+    ];
+    let mut page = head.to_string();
+    for r in right {
+        page += &format!("{r}.\n");
+    }
+    for s in statements {
+        page += &format!("So it is<!--? {s} -->.\n");
+    }
+    assert_eq!(problems(&root, &page), vec![]);
+    // Each false statement fails, and says which entries make it so.
+    for (s, says, not) in [
+        ("all(d{column=a} < d{column=a})", "x=p} = 2 < d{column=a x=p} = 2", ""),
+        ("all(d{column=a} > d{column=a})", "x=p} = 2 > d{column=a x=p} = 2", ""),
+        ("all(d{column=a} > 2)", "x=p} = 2 > 2", "= 5 > 2"),
+        ("any(d{column=a} > 10)", "x=p} = 2 > 10", ""),
+        ("all(d{column=a} - 1 < 2)", "x=r} = 4 < 2", "= 1 < 2"),
+    ] {
+        let found = problems(&root, &format!("{head}So it is<!--? {s} -->.\n"));
+        assert_eq!(found.len(), 1, "{s}: {found:#?}");
+        assert!(found[0].what.contains(says), "{s}: want `{says}` in {}", found[0].what);
+        assert!(not.is_empty() || !found[0].what.contains(not), "{s}: `{not}` holds, yet named in {}", found[0].what);
+    }
+    // Arithmetic on a range is refused (range() comes last); a pick that names no entry says
+    // what it picked.
+    let found = problems(&root, &format!("{head}4<!--= range(d{{column=a}}) * 2 -->.\n"));
+    assert!(found.iter().any(|p| p.what.contains("on a range")), "{found:#?}");
+    std::fs::write(root.join("results/xy.csv"), "x,y,v\np,one,5\nq,two,6\n").unwrap();
+    let found = problems(&root, "<!--claims xy = results/xy.csv -->\n5<!--= xy{x=p y=two column=v} -->.\n");
+    assert!(found.iter().any(|p| p.what.contains("no entry with x=p y=two")), "{found:#?}");
+}
+
+/// The filters by a cell's marks: `noisy` (`!`, spread over 10%), `busy` (`~`) and
+/// `remeasured`, each on the committed Table 3 and on a copy with one cell marked by hand.
+#[test]
+fn the_filters_by_mark_pick_the_marked_entries() {
+    let (_s, root) = repo(&[]);
+    // The committed table marks three entries `!` and none `~`, and its note says 30 timed
+    // entries come from cells measured again.
+    let page = "3<!--= count(noisy(wyman2008_table3)) -->, 0<!--= count(busy(wyman2008_table3)) -->, \
+                30<!--= count(remeasured(wyman2008_table3)) -->.\n";
+    assert_eq!(problems(&root, page), vec![]);
+    // One cell (the 2048² hierarchical one, whose entries are not noisy) marked busy and measured
+    // again: its three timed entries.
+    let path = root.join("results/dev/wyman2008_table3.json");
+    let mut json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let cell = json["cells"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|c| c["cell"]["photons"] == 2048 && c["cell"]["technique_label"] == "hierarchical")
+        .expect("the 2048² hierarchical cell");
+    cell["busy"] = serde_json::Value::Bool(true);
+    assert!(cell.get("spread_attempts").is_none(), "the cell was measured once");
+    cell["spread_attempts"] = serde_json::json!([0.2, 0.05]);
+    std::fs::write(&path, serde_json::to_string(&json).unwrap()).unwrap();
+    let page = "3<!--= count(busy(wyman2008_table3{photons=2048 technique=hierarchical})) -->, \
+                3<!--= count(remeasured(wyman2008_table3{photons=2048 technique=hierarchical})) -->, \
+                0<!--= count(busy(wyman2008_table3{photons=1024})) -->.\n";
+    assert_eq!(problems(&root, page), vec![]);
+}
+
+/// A name is read from the page's own data file only without a device prefix, and a folder's
+/// table is read from its JSON when it has both a JSON and a CSV of that name.
+#[test]
+fn a_prefixed_name_reads_its_folder_and_a_table_its_json() {
+    let (_s, root) = repo(&[]);
+    std::fs::write(root.join("results/abc.csv"), ABC).unwrap();
+    std::fs::write(root.join("results/dev/abc.csv"), ABC.replace("p,2,", "p,7,")).unwrap();
+    std::fs::write(root.join("results/dev/wyman2008_table3.csv"), "x,y\nz,1\n").unwrap();
+    let page = "<!--claims abc = results/abc.csv -->\n<!--claims dev = results/dev/ -->\n\
+                2<!--= abc{x=p column=a} -->, 7<!--= dev:abc{x=p column=a} -->, \
+                20.8<!--= paper(wyman2008_table3{photons=2048 metric=Gather technique=\"W&D + Sec. 4\"}) -->.\n";
+    assert_eq!(problems(&root, page), vec![]);
 }
