@@ -360,6 +360,47 @@ fn obj_fit_scales_and_places() {
     assert!(o.mesh.signed_volume() > 0.0);
 }
 
+/// The object keys' edges and the forms each takes: a size up to twice the coordinate bound,
+/// subdivisions up to their maximum, a scale as one number, a scale of 1e12 refused by its key,
+/// an OBJ fitted about its centre.
+#[test]
+fn object_sizes_scales_and_fits_at_their_edges() {
+    let obj = |extra: &str| format!("{BASE}\n[[objects]]\n{extra}\nmaterial = \"glass\"\n");
+    let loaded = |name: &str, text: &str| load_text(name, text).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+    // A plane 1.5e6 wide: within 2 x 1e6 (its half-width is within the coordinate bound).
+    let wide = loaded("wide.toml", &obj("shape = \"plane\"\nsize = [1.5e6, 1.0]"));
+    let (lo, hi) = wide.objects[1].mesh.bounds();
+    assert!((hi.x - lo.x - 1.5e6).abs() < 1.0, "{lo} {hi}");
+    expect_error("wider.toml", &obj("shape = \"plane\"\nsize = [2.5e6, 1.0]"), &["objects[1].size"]);
+    // Subdivisions up to MAX_SUBDIVISIONS (7), not beyond.
+    let fine = loaded("fine.toml", &obj("shape = \"icosphere\"\nradius = 1.0\nsubdivisions = 7"));
+    assert_eq!(fine.objects[1].mesh.triangle_count(), 20 * 4usize.pow(7));
+    expect_error(
+        "finer.toml",
+        &obj("shape = \"icosphere\"\nradius = 1.0\nsubdivisions = 8"),
+        &["objects[1].subdivisions"],
+    );
+    // One number scales every axis.
+    let twice = loaded("twice.toml", &obj("shape = \"plane\"\nsize = [2.0, 4.0]\nscale = 2.0"));
+    let (lo, hi) = twice.objects[1].mesh.bounds();
+    assert!((hi - lo - Vec3::new(4.0, 0.0, 8.0)).length() < 1e-5, "{lo} {hi}");
+    expect_error(
+        "huge.toml",
+        &obj("shape = \"plane\"\nsize = [2.0, 4.0]\nscale = 1e12"),
+        &["objects[1].scale", "each factor"],
+    );
+    // An OBJ fitted about the centre of its bounds: x 1..3, y 5..9, z 0..1 -> centred, scale 0.5.
+    let dir = temp_dir();
+    std::fs::write(dir.join("t.obj"), "v 1 5 0\nv 3 5 0\nv 1 9 0\nv 1 5 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+        .unwrap();
+    let path = dir.join("centre.toml");
+    std::fs::write(&path, obj("shape = \"obj\"\nfile = \"t.obj\"\nfit_size = 2.0\nfit_origin = \"center\"")).unwrap();
+    let s = Scene::load(&path).unwrap();
+    let (lo, hi) = s.objects[1].mesh.bounds();
+    assert!((lo - Vec3::new(-0.5, -1.0, -0.25)).length() < 1e-5, "{lo}");
+    assert!((hi - Vec3::new(0.5, 1.0, 0.25)).length() < 1e-5, "{hi}");
+}
+
 #[test]
 fn hierarchy_settings_belong_to_hcm() {
     let with = |caustics: &str| format!("{BASE}\n[caustics]\n{caustics}\n");
