@@ -29,7 +29,8 @@ for s in "${scenes[@]}"; do
   echo "reference-noise|$ref_photons|$($bin compare "$work/$s/ref2/receiver.exr" "$work/$s/ref1/receiver.exr" --json | tr -d '\n')" >> "$rows"
   # The registry's rows marked `quality` (crates/caustics/src/techniques/variants.toml):
   # name|label|scenes|render flags.
-  mapfile -t variants < <($bin variants --lines --quality)
+  rows=$($bin variants --lines --quality)   # fails here with a binary that has no registry
+  mapfile -t variants <<< "$rows"
   for v in "${variants[@]}"; do
     IFS='|' read -r folder label _ flags <<< "$v"
     for n in 256 512 1024 2048; do

@@ -38,11 +38,12 @@ fi
 # The registry's rows (crates/caustics/src/techniques/variants.toml, `causticlab variants`):
 # every variant, on its scenes. A row added there is rendered here at once.
 all=()
+rows=$("$bin" variants --lines)   # a binary without the registry fails here, not silently
 while IFS='|' read -r name _ scenes flags; do
     for scene in ${scenes//,/ }; do
         all+=("$scene:$name:$flags")
     done
-done < <("$bin" variants --lines)
+done <<< "$rows"
 # Frame modes over several frames (static-light reuse, temporal filters, throughput) and the
 # sweeps of hcm's and adaptive's settings, on the sphere scenes.
 cases=(
@@ -118,9 +119,13 @@ for c in "${all[@]}"; do
     if [[ "$scene" == pool* ]]; then
         sizes=(--photons 64)
     fi
-    # A row that sets its own photon count keeps it.
+    # A row that sets its own photon count or caustic map keeps it (a flag given twice is an
+    # error).
     if [[ " ${flags[*]} " == *" --photons "* ]]; then
         sizes=("${sizes[@]:2}")
+    fi
+    if [[ " ${flags[*]} " == *" --caustic-map-resolution "* ]]; then
+        sizes=("${sizes[@]:0:2}")
     fi
     target="$out/$scene/$name"
     rm -rf "$target"
@@ -154,6 +159,20 @@ for c in "${all[@]}"; do
         printf '%-16s %-44s recorded (%s files)\n' "$scene" "$name" "$(ls "$target" | wc -l)"
     fi
 done
+# A case the recording has and this run did not render (a renamed or removed case) would
+# otherwise pass unnoticed.
+gone=()
+if [ "$mode" = check ] && [ -z "${CASES:-}" ]; then
+    for d in "$dir"/*/*/; do
+        d=${d%/}
+        case=${d#"$dir"/}
+        [ -d "$out/$case" ] || gone+=("$case")
+    done
+fi
+if [ "${#gone[@]}" -ne 0 ]; then
+    echo "same_maps: ${#gone[@]} recorded case(s) not rendered now (renamed or removed): ${gone[*]}" >&2
+    exit 1
+fi
 if [ "${#failed[@]}" -ne 0 ]; then
     echo "same_maps: ${#failed[@]} of $ran cases differ: ${failed[*]}" >&2
     exit 1

@@ -9,9 +9,10 @@
 //!   flux ratio of the receiver map, `caustics::compare`; `stated.rel_rmse`);
 //! - writes every dump it declares (`render::dumps_for`) and no other.
 //!
-//! Rows marked `deferred_photons` are held to the same with their photon buffer made by
-//! deferred shading. Every technique that renders meshes has such a row (checked below), so a
-//! technique is covered the moment it is added; a row added to the registry is run here at once.
+//! Every technique that renders meshes has a row that states an accuracy (checked below), so a
+//! technique is covered the moment it is added; a row added to the registry is run here at once
+//! (one test per paper of `variants::PAPERS`, checked below too). Rows marked `deferred_photons`
+//! are also held to it with their photon buffer made by deferred shading.
 //! `none` has no caustics, and `pool-convolution` renders pool scenes only (it refuses the
 //! sphere scenes, checked here); its own suite is `tests/trendall_stewart2000_pool.rs`.
 //!
@@ -48,6 +49,7 @@ use caustics::techniques::wyman2008::SplatMode;
 use caustics::techniques::{PhotonRefraction, Technique};
 use std::path::PathBuf;
 use std::sync::OnceLock;
+use vkcore::Context;
 
 mod common;
 use common::context;
@@ -153,7 +155,6 @@ fn receiver_flux(receiver: &ImageF32, scene: &Scene) -> f64 {
     power(receiver, "caustic", None) * area
 }
 
-/// Runs `techniques` (in `space` where they have one) on both scenes; returns the failures.
 /// The exact reference of `scene_name`, traced the first time a test needs it.
 fn reference_of<'a>(scene_name: &str, cell: &'a OnceLock<ImageF32>) -> &'a ImageF32 {
     cell.get_or_init(|| {
@@ -188,7 +189,7 @@ fn check(rows: &[Variant], photon_refraction: PhotonRefraction) -> Vec<String> {
             }
             let mut r = Renderer::new(&ctx, &sh, &scene, &RendererOptions::default()).expect("renderer");
             r.frame(FrameStep::default()).expect("frame");
-            let dumps = every_dump(&mut r, &scene, &label, scene_name);
+            let dumps = every_dump(&ctx, &mut r, &scene, &label, scene_name);
             let receiver = &dumps.iter().find(|(n, _)| n == "receiver").expect("a receiver map").1;
             let (c, _) = compare(receiver, reference).expect("compare");
             let want = row.stated.expect("a row with a stated accuracy");
@@ -224,12 +225,18 @@ fn check(rows: &[Variant], photon_refraction: PhotonRefraction) -> Vec<String> {
 }
 
 /// Every dump the frame declares (`render::dumps_for`) and no other, with no validation message.
-fn every_dump(r: &mut Renderer, scene: &Scene, label: &str, scene_name: &str) -> Vec<(String, ImageF32)> {
+fn every_dump(
+    ctx: &Context,
+    r: &mut Renderer,
+    scene: &Scene,
+    label: &str,
+    scene_name: &str,
+) -> Vec<(String, ImageF32)> {
     let all: Vec<String> = all_dump_names().iter().map(|s| s.to_string()).collect();
     let dumps = r.dumps(&all).expect("dumps");
     let names: Vec<&str> = dumps.iter().map(|(n, _)| n.as_str()).collect();
     assert_eq!(names, dumps_for(&scene.caustics), "{label} on {scene_name}: dumps written vs declared");
-    let log = context().0.validation_log();
+    let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "{label} on {scene_name}: validation messages:\n{}", log.messages().join("\n"));
     dumps
 }
@@ -265,7 +272,7 @@ fn none_has_no_caustics_and_pool_convolution_refuses_a_mesh_scene() {
         let scene = load(scene_name, Technique::None);
         let mut r = Renderer::new(&ctx, &sh, &scene, &RendererOptions::default()).expect("renderer");
         r.frame(FrameStep::default()).expect("frame");
-        let dumps = every_dump(&mut r, &scene, "none", scene_name);
+        let dumps = every_dump(&ctx, &mut r, &scene, "none", scene_name);
         let receiver = &dumps.iter().find(|(n, _)| n == "receiver").expect("a receiver map").1;
         let (c, _) = compare(receiver, reference).expect("compare");
         assert_eq!(c.caustic_flux_ratio, 0.0, "none on {scene_name}: {c:?}");
@@ -273,6 +280,16 @@ fn none_has_no_caustics_and_pool_convolution_refuses_a_mesh_scene() {
 }
 
 // One test per paper (they run in parallel): a row added to the registry is held here at once.
+const TESTED_PAPERS: [&str; 5] = ["shah", "wyman_davis2006", "wyman2008", "wyman_nichols2009", "causticlab"];
+
+/// Every row that states an accuracy is of a paper with its test below (a paper added to the
+/// registry's list needs its test here).
+#[test]
+fn every_stated_row_is_of_a_tested_paper() {
+    for v in registry().expect("the registry").iter().filter(|v| v.stated.is_some()) {
+        assert!(TESTED_PAPERS.contains(&v.paper.as_str()), "{}: paper `{}` has no conformance test", v.name, v.paper);
+    }
+}
 
 #[test]
 fn conformance_shah() {

@@ -2,7 +2,8 @@
 //! Wyman 2008 Fig. 7's third column), validation layer on: what it needs of the other settings,
 //! the four layers it splats (radius 2^i times `splat_radius` in layer i), and what it is for,
 //! less undersampling noise than constant splats where photons are sparse. Its power and error
-//! at the conformance suite's settings are `conformance_interpolated_splats`.
+//! at the conformance suite's settings are the registry row `hcm-interpolated`'s
+//! (`conformance_wyman2008`).
 
 use caustics::compare::compare;
 use caustics::image_io::ImageF32;

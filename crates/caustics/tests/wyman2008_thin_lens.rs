@@ -1,6 +1,7 @@
 //! Wyman 2008 Fig. 7's varying splats from a per-photon thin-lens model (`splat = thin-lens`):
 //! what the setting needs of the others, and the uniform the shaders read it by. Its caustic,
-//! against the exact photon reference, is the conformance suite's `conformance_thin_lens_splats`.
+//! against the exact photon reference, is held by the conformance suite to the registry rows `shah-thin-lens` and
+//! `wd-points-thin-lens` (`conformance_wyman2008`).
 
 use caustics::render::{Renderer, RendererOptions};
 use caustics::scene::Scene;

@@ -137,6 +137,15 @@ impl<'c> Renderer<'c> {
     }
 
     /// The hierarchy of `hcm` (None for the other techniques).
+    /// The caustic stages of a mesh technique (`CausticPipeline::stages`); none for `none` and
+    /// the pool.
+    pub fn caustic_stages(&self) -> Option<[(&'static str, &'static [crate::gpu::Stage]); 3]> {
+        match self {
+            Renderer::Mesh(r) => r.caustics().map(|c| c.stages()),
+            Renderer::Pool(_) => None,
+        }
+    }
+
     pub fn hierarchy(&self) -> Option<&Hierarchy> {
         match self {
             Renderer::Mesh(r) => r.caustics().and_then(|c| c.hierarchy()),

@@ -58,8 +58,9 @@ pub fn dot(graph: &[PassNode], title: &str) -> String {
             let id = match latest.iter().find(|(n, _)| n == r) {
                 Some((_, id)) => id.clone(),
                 None => {
-                    // Read before any pass of this frame wrote it: an input (uploaded, or the
-                    // previous frame's).
+                    // Read before any pass of this frame wrote it: what the resource held
+                    // before the frame (uploaded, the previous frame's, or a cleared
+                    // attachment's declared read: declarations name accesses, not load ops).
                     versions += 1;
                     let id = format!("r{versions}");
                     let _ = writeln!(out, "  {id} [shape=ellipse, style=dashed, label={}];", q(r));
@@ -102,7 +103,7 @@ mod tests {
         ];
         let d = dot(&g, "t");
         // photons: read, never written: in the inputs' note, no node of its own; caustic_map
-        // read by splat before any write (dashed, the previous frame's), then written twice:
+        // read by splat before any write (dashed: what it held before the frame), then written twice:
         // r2 by splat, r3 by blur.
         for edge in ["r1 -> p0;", "p0 -> r2;", "r2 -> p1;", "p1 -> r3;", "r3 -> p2;", "p2 -> r4;"] {
             assert!(d.contains(edge), "{edge} missing:\n{d}");

@@ -37,7 +37,7 @@ pub struct Variant {
     pub label: String,
     pub paper: String,
     pub section: String,
-    /// These are the paper's settings for its technique.
+    /// The technique's defaults: what `--technique` alone renders.
     #[serde(default)]
     pub default: bool,
     pub settings: CausticOverrides,
@@ -121,6 +121,23 @@ pub fn parse(text: &str, origin: &str) -> anyhow::Result<Vec<Variant>> {
         if rows[..i].iter().any(|o| o.label == v.label) {
             return Err(bad(n, format!("label `{}` is another row's", v.label)));
         }
+        // `causticlab variants --lines` separates its fields with `|`, one row per line.
+        if v.label.contains(['|', '\n']) || v.section.contains('\n') {
+            return Err(bad(n, "a label has no `|` and a label or section no line break".into()));
+        }
+        if v.scenes.as_ref().is_some_and(|s| s.is_empty() || s.iter().any(|x| x.is_empty() || x.contains([',', '|']))) {
+            return Err(bad(n, "scenes: one or more scene names (files under scenes/, without .toml)".into()));
+        }
+        if v.technique() == Technique::PoolConvolution && v.scenes.is_none() {
+            return Err(bad(n, "pool-convolution renders pool scenes only: name them in `scenes`".into()));
+        }
+        // The quality table sets the photon count and Fresnel itself.
+        if v.quality && (v.settings.photons.is_some() || v.settings.fresnel.is_some()) {
+            return Err(bad(n, "a quality row leaves photons and fresnel to scripts/quality_table.sh".into()));
+        }
+        if v.flags().len() != 2 * v.settings.keys_set().len() {
+            return Err(bad(n, format!("settings {:?} do not all read as flags", v.settings.keys_set())));
+        }
         if v.settings.technique.is_none() {
             return Err(bad(n, "settings name no technique".into()));
         }
@@ -180,18 +197,27 @@ mod tests {
         };
         let defaults: String = Technique::ALL
             .iter()
-            .map(|t| row(&format!("d-{t}"), &format!("default = true\nsettings = {{ technique = \"{t}\" }}")))
+            .map(|t| {
+                let scenes = if *t == Technique::PoolConvolution { "\nscenes = [\"pool\"]" } else { "" };
+                row(&format!("d-{t}"), &format!("default = true\nsettings = {{ technique = \"{t}\" }}{scenes}"))
+            })
             .collect();
         assert!(parse(&defaults, "r.toml").is_ok(), "{:?}", parse(&defaults, "r.toml").err());
         let cases = [
             (row("Bad_Name", "settings = { technique = \"shah\" }"), "lower-case"),
+            (row("x", "settings = { technique = \"shah\" }").replace("label = \"x\"", "label = \"d-shah\""), "is another row's"),
+            (row("x", "settings = { technique = \"shah\" }").replace("label = \"x\"", "label = \"a|b\""), "no `|`"),
+            (row("x", "settings = { technique = \"shah\" }\nscenes = []"), "scenes"),
+            (row("x", "settings = { technique = \"pool-convolution\", precision = \"f64\" }"), "pool scenes only"),
+            (row("x", "settings = { technique = \"shah\", photons = 256 }\nquality = true"), "leaves photons"),
+            (row("x", "settings = { technique = \"shah\" }\nstated = { power = 0.1, rel_rmse = -1.0 }"), "> 0"),
             (row("d-shah", "settings = { technique = \"shah\" }"), "a second row"),
             (row("x", "settings = { photons = 256 }"), "no technique"),
             (row("x", "settings = { technique = \"shah\" }").replace("\"shah\"\nsection", "\"nobody\"\nsection"), "paper"),
             (row("x", "settings = { technique = \"shah\", photons = 5 }"), "settings.photons"),
             (row("x", "settings = { technique = \"shah\", cluster = \"last\" }"), "settings.cluster"),
             (row("x", "settings = { technique = \"shah\" }\nstated = { power = 0.0, rel_rmse = 0.1 }"), "> 0"),
-            (row("x", "settings = { technique = \"pool-convolution\" }\nstated = { power = 1.0, rel_rmse = 0.1 }"), "renders no mesh"),
+            (row("x", "settings = { technique = \"pool-convolution\" }\nscenes = [\"pool\"]\nstated = { power = 1.0, rel_rmse = 0.1 }"), "renders no mesh"),
             (row("x", "settings = { technique = \"adaptive\" }\nstated = { power = 1.0, rel_rmse = 0.1 }\ndeferred_photons = true"), "deferred_photons"),
             (row("x", "settings = { technique = \"shah\" }\ndeferred_photons = true"), "deferred_photons"),
             (row("x", "default = true\nsettings = { technique = \"shah\" }"), "2 rows marked default"),

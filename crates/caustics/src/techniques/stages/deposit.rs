@@ -2,6 +2,7 @@
 //! eye's view.
 
 use super::Selection;
+use crate::gpu::Stage;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::shared::compute_splat::Photons;
@@ -37,6 +38,28 @@ pub enum Deposit {
 }
 
 impl Deposit {
+    /// The variant's name, as the stages table in `stages/mod.rs` writes it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Deposit::Points(_) => "Points",
+            Deposit::Compute(_) => "Compute",
+            Deposit::ThinLens(_) => "ThinLens",
+            Deposit::Interpolated(_) => "Interpolated",
+            Deposit::ImageSpace(_) => "ImageSpace",
+        }
+    }
+
+    /// The passes it records, by their [`Stage`] (`tests/frame_graph_stages.rs`).
+    pub fn stages(&self) -> &'static [Stage] {
+        match self {
+            Deposit::Points(_) | Deposit::ThinLens(_) | Deposit::Interpolated(_) => &[Stage::Splat],
+            Deposit::Compute(_) => &[Stage::SplatClear, Stage::SplatArguments, Stage::Splat, Stage::SplatResolve],
+            Deposit::ImageSpace(_) => {
+                &[Stage::WdPhotons, Stage::WdGather, Stage::WdQuads, Stage::WdShade, Stage::WdReceiverView]
+            }
+        }
+    }
+
     pub fn new(ctx: &Context, sh: &ShaderCompiler, scene: &Scene, selection: &Selection) -> Result<Deposit> {
         if let Some(is) = ImageSpace::new(ctx, sh, scene)? {
             return Ok(Deposit::ImageSpace(is));

@@ -9,9 +9,13 @@
 //! | `shah`, `wd-points` | `Rasterized` (or `Deferred`) | `Dense` (or `Copy`) | `Points`, `Compute` or `ThinLens` |
 //! | `shah-vertex` | `PerVertex` | `Dense` | `Points` or `Compute` |
 //! | `wd-eye-points`, `wd-quads`, `wd-gather` | `Rasterized` (or `Deferred`) | `Dense` | `ImageSpace` |
-//! | `hcm` | `Rasterized` (or `Deferred`) | `Hierarchy` | `Points` or `Compute` |
+//! | `hcm` | `Rasterized` (or `Deferred`) | `Hierarchy` | `Points`, `Compute` or `Interpolated` |
 //! | `adaptive` | `GeometryBuffers` | `Adaptive` | `Points` or `Compute` |
 //! | `photon-trace` | `Traced` | `Dense` | `Points` or `Compute` |
+//!
+//! Each stage declares the pass stages it records (`Source::stages`, `Selection::stages`,
+//! `Deposit::stages`); `tests/frame_graph_stages.rs` renders every row of the registry of
+//! variants and holds its frame graph, and this table, to them.
 
 mod deposit;
 mod dumps;
@@ -169,6 +173,16 @@ impl CausticPipeline {
     }
 
     /// Whether the caustics are deposited in the eye's view.
+    /// The three stages, each by its name in the table above with the pass stages it records
+    /// (source, selection, deposit).
+    pub fn stages(&self) -> [(&'static str, &'static [crate::gpu::Stage]); 3] {
+        [
+            (self.source.name(), self.source.stages()),
+            (self.selection.name(), self.selection.stages()),
+            (self.deposit.name(), self.deposit.stages()),
+        ]
+    }
+
     pub fn eye_space(&self) -> bool {
         self.deposit.eye_space()
     }

@@ -1,6 +1,6 @@
 //! The selection: which of a light's photons, or clusters of them, reach the deposit.
 
-use crate::gpu::GpuMesh;
+use crate::gpu::{GpuMesh, Stage};
 use crate::scene::Scene;
 use crate::techniques::shared::{CausticPasses, LightDump, SplatList};
 use crate::techniques::wyman2008::photon_copy::{CopyType, PhotonCopy};
@@ -30,6 +30,47 @@ pub enum Selection {
 }
 
 impl Selection {
+    /// The variant's name, as the stages table in `stages/mod.rs` writes it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Selection::Dense => "Dense",
+            Selection::Copy(_) => "Copy",
+            Selection::Hierarchy(..) => "Hierarchy",
+            Selection::Adaptive(_) => "Adaptive",
+        }
+    }
+
+    /// The passes it records, by their [`Stage`] (`tests/frame_graph_stages.rs`).
+    pub fn stages(&self) -> &'static [Stage] {
+        match self {
+            Selection::Dense => &[],
+            Selection::Copy(_) => &[Stage::PhotonBufferTo16bit, Stage::PhotonCopy],
+            Selection::Hierarchy(..) => &[
+                Stage::HierarchyBuild,
+                Stage::HierarchyReset,
+                Stage::HierarchyTraverse,
+                Stage::HierarchyFinalize,
+                Stage::HierarchyCounts,
+                Stage::SplatFootprints,
+            ],
+            Selection::Adaptive(_) => &[
+                Stage::AdaptiveGeometry,
+                Stage::AdaptiveCoverage,
+                Stage::AdaptiveReset,
+                Stage::AdaptiveSelect,
+                Stage::AdaptiveTraverse,
+                Stage::AdaptiveFinalize,
+                Stage::AdaptiveSubdivide,
+                Stage::AdaptiveEmit,
+                Stage::AdaptiveHits,
+                Stage::AdaptiveConverged,
+                Stage::AdaptiveRefine,
+                Stage::AdaptiveFinalizePhotons,
+                Stage::AdaptiveCounts,
+            ],
+        }
+    }
+
     /// The selection of `scene`'s technique over `photon_side`² photons; `copy`: Wyman 2008
     /// Table 1's copy into a vertex array (checked by [`super::check_photon_copy`]).
     pub fn new(

@@ -1,6 +1,6 @@
 //! The photon source: where a light's photons come from, before any is selected or deposited.
 
-use crate::gpu::GpuMesh;
+use crate::gpu::{GpuMesh, Stage};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::photon_trace::PhotonTracer;
@@ -34,6 +34,30 @@ pub enum Source {
 }
 
 impl Source {
+    /// The variant's name, as the stages table in `stages/mod.rs` writes it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Source::Rasterized => "Rasterized",
+            Source::Deferred(_) => "Deferred",
+            Source::PerVertex(_) => "PerVertex",
+            Source::GeometryBuffers => "GeometryBuffers",
+            Source::Traced(_) => "Traced",
+        }
+    }
+
+    /// The passes it records, by their [`Stage`] (`tests/frame_graph_stages.rs` holds each
+    /// frame's graph to them).
+    pub fn stages(&self) -> &'static [Stage] {
+        match self {
+            Source::Rasterized => &[Stage::PhotonBackFaces, Stage::PhotonBuffer],
+            Source::Deferred(_) => &[Stage::DeferredPhotonsGeometry, Stage::DeferredPhotons],
+            Source::PerVertex(_) => &[Stage::PhotonBackFaces, Stage::VertexPhotonsClear, Stage::VertexPhotons],
+            // The geometry buffers are drawn by the adaptive selection's first pass.
+            Source::GeometryBuffers => &[],
+            Source::Traced(_) => &[Stage::PhotonTraceClear, Stage::PhotonTrace],
+        }
+    }
+
     pub fn new(ctx: &Context, sh: &ShaderCompiler, scene: &Scene, meshes: &[GpuMesh]) -> Result<Source> {
         let s = &scene.caustics;
         Ok(match s.technique {
