@@ -391,6 +391,8 @@ fn each_function_and_operator_computes_what_it_says() {
         "all(d{column=a} != d{column=b})",
         "all(1 < d{column=a})",
         "any(d{column=a} > 4)",
+        // A number against a number (an aggregate against a bound).
+        "all(max(d{column=a}) < 6)",
     ];
     let mut page = head.to_string();
     for r in right {
@@ -407,6 +409,7 @@ fn each_function_and_operator_computes_what_it_says() {
         ("all(d{column=a} > 2)", "x=p} = 2 > 2", "= 5 > 2"),
         ("any(d{column=a} > 10)", "x=p} = 2 > 10", ""),
         ("all(d{column=a} - 1 < 2)", "x=r} = 4 < 2", "= 1 < 2"),
+        ("all(max(d{column=a}) < 5)", "5 < 5", ""),
     ] {
         let found = problems(&root, &format!("{head}So it is<!--? {s} -->.\n"));
         assert_eq!(found.len(), 1, "{s}: {found:#?}");
