@@ -73,6 +73,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
     *validation = Some(ctx.validation_log());
     check_sizes(&scene, ctx.info())?;
+    ctx.record_frame_graphs(args.graph);
     render::check_device(&ctx, &scene)?;
 
     let shaders = ShaderCompiler::new(&render::shader_root()).context("creating the shader compiler")?;

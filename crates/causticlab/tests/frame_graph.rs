@@ -1,7 +1,8 @@
 //! `render --graph` (GPU on lavapipe, validation on): the frame graph names every pass the
 //! frame timed, in order, with what each read and wrote, so that a pass reads what an earlier
 //! pass wrote; graph.dot is a digraph with a box per pass; a later render without `--graph`
-//! removes the stale graph files.
+//! removes the stale graph files; frames through the throughput mode's ring record the same
+//! graph.
 
 mod common;
 
@@ -13,7 +14,7 @@ fn passes(text: &str) -> Vec<(String, Vec<String>, Vec<String>)> {
         .map(|l| {
             let (head, rest) = l.split_once("  reads: ").unwrap_or_else(|| panic!("no reads in {l:?}"));
             let (reads, writes) = rest.split_once("  writes: ").unwrap_or_else(|| panic!("no writes in {l:?}"));
-            let list = |s: &str| if s == "-" { vec![] } else { s.split(", ").map(str::to_string).collect() };
+            let list = |s: &str| if s == "-" { vec![] } else { s.split("; ").map(str::to_string).collect() };
             let name = head.split_whitespace().nth(1).unwrap_or_else(|| panic!("no name in {l:?}")).to_string();
             (name, list(reads), list(writes))
         })
@@ -69,6 +70,20 @@ fn the_frame_graph_shows_each_pass_reading_what_an_earlier_pass_wrote() {
     for (i, p) in graph.iter().enumerate() {
         assert!(dot.contains(&format!("p{i} [shape=box")) && dot.contains(&format!("{i}: {}", p.0)), "{dot}");
     }
+    // Frames through the throughput mode's ring record the same graph, but for the ring's
+    // per-slot uniforms (`frame uniforms, slot 1` for `frame uniforms`).
+    let mut ring = args(true);
+    ring.extend(["--frames", "2", "--frame-mode", "throughput"].map(String::from));
+    let run = causticlab(&ring);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    let ring_text = std::fs::read_to_string(dir.join("out/graph.txt")).expect("graph.txt");
+    let unslotted = |l: &[String]| -> Vec<String> {
+        l.iter().map(|r| r.split(", slot ").next().unwrap_or(r).to_string()).collect()
+    };
+    let ring_graph: Vec<_> =
+        passes(&ring_text).into_iter().map(|(n, r, w)| (n, unslotted(&r), unslotted(&w))).collect();
+    assert!(ring_text.contains(", slot "), "the ring's per-slot uniforms:\n{ring_text}");
+    assert_eq!(ring_graph, graph, "throughput frames' graph vs a per-pass frame's");
     // Without --graph, the same folder loses the graph of the earlier render.
     let again = causticlab(&args(false));
     assert_eq!(again.code, Some(0), "{}", again.describe());

@@ -55,6 +55,11 @@ fn table_row(technique: Technique) -> String {
 #[test]
 fn every_variant_records_its_declared_stages_in_order() {
     let (ctx, sh) = context();
+    // Off by default: a frame records no graph until asked.
+    let mut plain =
+        Renderer::new(&ctx, &sh, &shipped("sphere_on_plane.toml"), &RendererOptions::default()).expect("renderer");
+    assert!(plain.frame(FrameStep::default()).expect("frame").graph.is_empty(), "a graph recorded unasked");
+    ctx.record_frame_graphs(true);
     let mut failures = vec![];
     for v in registry().expect("the registry") {
         let t = v.technique();

@@ -8,7 +8,7 @@ use crate::instance::{Instance, ValidationLog};
 use crate::tracker::Tracker;
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// How to open a device.
@@ -45,6 +45,8 @@ pub(crate) struct Shared {
     pub counters: crate::counters::AtomicCounters,
     pub pipelines: crate::shared_pipelines::SharedPipelines,
     next_id: AtomicU64,
+    /// Whether frames record their graph ([`Context::record_frame_graphs`]).
+    pub frame_graphs: AtomicBool,
 }
 
 impl Shared {
@@ -145,6 +147,7 @@ impl Context {
                 counters: Default::default(),
                 pipelines: Default::default(),
                 next_id: AtomicU64::new(1),
+                frame_graphs: AtomicBool::new(false),
             }),
             instance,
         })
@@ -166,6 +169,12 @@ impl Context {
 
     pub fn validation_enabled(&self) -> bool {
         self.instance.validation_enabled()
+    }
+
+    /// From now on, every frame records its graph: each pass with the resources it read and
+    /// wrote ([`crate::FrameReport::graph`]; off by default, to keep the recording loop lean).
+    pub fn record_frame_graphs(&self, on: bool) {
+        self.shared.frame_graphs.store(on, Ordering::Relaxed);
     }
 
     /// Objects created, submits, barriers and timestamps so far (see [`crate::Counters`]).

@@ -382,7 +382,9 @@ impl Frame {
             res.queries.begin(&ctx, cb, index)?;
         }
         self.passes.push(name.to_string());
-        self.graph.push(PassNode::of(name, uses));
+        if ctx.shared.frame_graphs.load(std::sync::atomic::Ordering::Relaxed) {
+            self.graph.push(PassNode::of(name, uses));
+        }
         let mut cmd = Cmd::new(&ctx, cb, uses.iter().map(Use::key).collect());
         cmd.begin_label(name);
         let result = record(&mut cmd);

@@ -67,7 +67,8 @@ pub struct FrameReport {
     /// What recording and submitting the frame asked of the driver (objects created, submits,
     /// barriers, timestamps).
     pub counters: crate::Counters,
-    /// Every pass in recording order with the resources it read and wrote.
+    /// Every pass in recording order with the resources it read and wrote, where the context
+    /// records frame graphs (`Context::record_frame_graphs`); empty otherwise.
     pub graph: Vec<crate::frame::PassNode>,
 }
 

@@ -6,12 +6,13 @@
 use std::fmt::Write as _;
 use vkcore::PassNode;
 
-/// One line per pass: `index  name  reads: a, b  writes: c`.
+/// One line per pass: `index  name  reads: a; b  writes: c` (`;` between resources: a
+/// resource's name may hold a comma, `frame uniforms, slot 1`).
 pub fn text(graph: &[PassNode]) -> String {
     let width = graph.iter().map(|p| p.name.len()).max().unwrap_or(0);
     let mut out = String::new();
     for (i, p) in graph.iter().enumerate() {
-        let list = |l: &[String]| if l.is_empty() { "-".to_string() } else { l.join(", ") };
+        let list = |l: &[String]| if l.is_empty() { "-".to_string() } else { l.join("; ") };
         let _ = writeln!(out, "{i:>3}  {:<width$}  reads: {}  writes: {}", p.name, list(&p.reads), list(&p.writes));
     }
     out
@@ -114,7 +115,7 @@ mod tests {
         let t = text(&g);
         assert_eq!(t.lines().nth(1), Some("  1  blur   reads: caustic_map  writes: caustic_map"));
         assert!(
-            t.lines().next().is_some_and(|l| l.contains("reads: photons, caustic_map  writes: caustic_map")),
+            t.lines().next().is_some_and(|l| l.contains("reads: photons; caustic_map  writes: caustic_map")),
             "{t}"
         );
     }
