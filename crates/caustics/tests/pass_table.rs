@@ -8,10 +8,16 @@
 //!
 //! Every recorded pass must match exactly one row's pattern; in every frame the rows must first
 //! appear in the table's order ("Per frame, in order"); every row must be matched by some frame
-//! (a stale row fails as a missing pass does). The pool's paragraph must name every pass a pool
-//! frame records, and each name it gives must be recorded by one of them.
+//! (a stale row fails as a missing pass does). The same of the pool's table, but for the order
+//! (its f64 passes run on the CPU first).
+//!
+//! The README's "How a frame flows": the pass stages its left column names (`gpu::Stage` names)
+//! must each be recorded by some frame, and in every frame that records two of them (the
+//! eye-space techniques' aside, which render the eye first) in the diagram's order; its right
+//! column must name only buffers `--dump` has.
 
 use caustics::animation::{scene_at, Animation};
+use caustics::gpu::Stage;
 use caustics::render::{FrameStep, Renderer, RendererOptions};
 use caustics::scene::Scene;
 use caustics::techniques::variants::registry;
@@ -219,7 +225,7 @@ fn all_used(rows: &[Row], used: &[usize], failures: &mut Vec<String>) {
 }
 
 #[test]
-fn the_pass_table_names_every_recorded_pass_in_order() {
+fn the_pass_tables_and_the_readme_diagram_follow_the_recorded_frames() {
     let text = readme();
     let (rows, pool_rows) = (table(&text, "| pass | when |"), table(&text, "| pool pass | when |"));
     let row_of = |pattern: &str| rows.iter().position(|r| r.patterns[0] == pattern).expect(pattern);
@@ -253,7 +259,77 @@ fn the_pass_table_names_every_recorded_pass_in_order() {
         used.extend(rows_of(&f.what, &f.passes, &pool_rows, &mut failures));
     }
     all_used(&pool_rows, &used, &mut failures);
+    diagram_follows(&mesh, &mut failures);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The README's "How a frame flows" against the frames (see the module docs).
+fn diagram_follows(mesh: &[Frame], failures: &mut Vec<String>) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md");
+    let text = std::fs::read_to_string(path).expect("README.md");
+    let block: Vec<&str> = text
+        .lines()
+        .skip_while(|l| *l != "## How a frame flows")
+        .skip_while(|l| *l != "```")
+        .skip(2)
+        .take_while(|l| *l != "```")
+        .collect();
+    assert!(block.len() > 10, "no diagram under \"## How a frame flows\": {block:?}");
+    let word = |c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_' || c == '.');
+    let (mut stages, mut dumps) = (vec![], vec![]);
+    for line in &block {
+        // The columns are apart by three spaces or more.
+        let trimmed = line.trim_start();
+        let (left, right) = match trimmed.find("   ") {
+            Some(i) => (&trimmed[..i], trimmed[i..].trim()),
+            None => (trimmed, ""),
+        };
+        for w in left.split(word).map(|w| w.trim_end_matches('.')) {
+            if let Some(s) = Stage::ALL.iter().find(|s| s.name() == w) {
+                if !stages.contains(s) {
+                    stages.push(*s);
+                }
+            }
+        }
+        dumps.extend(right.split(',').map(str::trim).filter(|d| !d.is_empty()));
+    }
+    assert!(stages.len() > 10 && dumps.len() > 10, "the diagram's columns: {stages:?} {dumps:?}");
+    let known = caustics::render::all_dump_names();
+    for d in dumps {
+        if !known.contains(&d) {
+            failures.push(format!("the README's diagram names `{d}`, which `--dump` does not have"));
+        }
+    }
+    // Where a pass of `stage` (the longest stage name its name starts with) is first recorded.
+    let stage_of = |pass: &str| {
+        Stage::ALL
+            .iter()
+            .copied()
+            .filter(|s| pass == s.name() || pass.starts_with(&format!("{}.", s.name())))
+            .max_by_key(|s| s.name().len())
+    };
+    let mut seen = vec![false; stages.len()];
+    for f in mesh.iter().filter(|f| !f.eye_space) {
+        let firsts: Vec<Option<usize>> =
+            stages.iter().map(|s| f.passes.iter().position(|p| stage_of(p) == Some(*s))).collect();
+        let recorded: Vec<(usize, usize)> =
+            firsts.iter().enumerate().filter_map(|(i, at)| at.map(|at| (i, at))).collect();
+        for &(i, _) in &recorded {
+            seen[i] = true;
+        }
+        if recorded.windows(2).any(|w| w[0].1 > w[1].1) {
+            let order: Vec<&str> = recorded.iter().map(|&(i, _)| stages[i].name()).collect();
+            let mut by_frame = recorded.clone();
+            by_frame.sort_by_key(|&(_, at)| at);
+            let frame: Vec<&str> = by_frame.iter().map(|&(i, _)| stages[i].name()).collect();
+            failures.push(format!("{}: the diagram says {order:?}, the frame {frame:?}", f.what));
+        }
+    }
+    for (s, seen) in stages.iter().zip(seen) {
+        if !seen {
+            failures.push(format!("the README's diagram names the pass `{}`, which no frame records", s.name()));
+        }
+    }
 }
 
 #[test]
