@@ -1,7 +1,7 @@
 //! The claims check against a committed table copied into a scratch repository: each kind of
 //! wrong sentence is caught, and its right twin is not.
 
-use bench::claims::{check, page::Problem};
+use bench::claims::{check, page::PageReport, page::Problem};
 use caustics::scratch::ScratchDir;
 use std::path::{Path, PathBuf};
 
@@ -36,6 +36,13 @@ fn problems(root: &Path, page: &str) -> Vec<Problem> {
     std::fs::write(&path, format!("# A page\n<!--claims results/dev/ -->\n{page}")).unwrap();
     let checked = check(root, &[path]).unwrap();
     checked.into_iter().flat_map(|c| c.report.problems).collect()
+}
+
+/// The whole report of `page` (written as `problems` writes it).
+fn report(root: &Path, page: &str) -> PageReport {
+    let path = root.join("page.md");
+    std::fs::write(&path, format!("# A page\n<!--claims results/dev/ -->\n{page}")).unwrap();
+    check(root, &[path]).unwrap().pop().expect("one page").report
 }
 
 const GATHER: &str = "<!--let g = wyman2008_table3{metric=Gather} -->\n";
@@ -467,4 +474,44 @@ fn a_prefixed_name_reads_its_folder_and_a_table_its_json() {
                 2<!--= abc{x=p column=a} -->, 7<!--= dev:abc{x=p column=a} -->, \
                 20.8<!--= paper(wyman2008_table3{photons=2048 metric=Gather technique=\"W&D + Sec. 4\"}) -->.\n";
     assert_eq!(problems(&root, page), vec![]);
+}
+
+/// How a page is read around its claims: fenced code is skipped until the fence closes, each
+/// claim is counted, a data file's name must be a bare label, a bound holds up to half a unit
+/// of its last digit, and a written range, spread or single number must match what the claim
+/// computes.
+#[test]
+fn fences_counts_names_bounds_and_the_shape_of_a_written_number() {
+    let (_s, root) = repo(&[]);
+    std::fs::write(root.join("results/abc.csv"), ABC).unwrap();
+    let head = "<!--claims d = results/abc.csv -->\n";
+    // Line 5 is fenced; line 7 is not.
+    let found =
+        problems(&root, &format!("{head}```\n9<!--= d{{x=p column=a}} -->\n```\n9<!--= d{{x=p column=a}} -->\n"));
+    assert_eq!(found.iter().map(|p| p.line).collect::<Vec<_>>(), [7], "{found:#?}");
+    let r = report(&root, &format!("{head}2<!--= d{{x=p column=a}} --> and 3<!--at-most d{{x=q column=a}} --> if<!--? all(d{{column=a}} > 1) -->.\n"));
+    assert_eq!((r.claims, r.problems.len()), (3, 0), "{:#?}", r.problems);
+    let found = problems(&root, "<!--claims a b = results/abc.csv -->\n");
+    assert!(found.len() == 1 && found[0].what.contains("needs a name"), "{found:#?}");
+    // A bound written as 5 holds up to 5.5 and at least 3 down to 2.5, not beyond.
+    for (page, holds) in [
+        ("5<!--at-most max(d{column=a}) + 0.5 -->", true),
+        ("3<!--at-least min(d{column=a}) + 0.5 -->", true),
+        ("5<!--at-most max(d{column=a}) + 0.51 -->", false),
+        ("3<!--at-least min(d{column=a}) + 0.49 -->", false),
+    ] {
+        assert_eq!(problems(&root, &format!("{head}{page}.\n")).is_empty(), holds, "{page}");
+    }
+    for (page, says) in [
+        ("5-6<!--= max(d{column=a}) -->", "one number"),
+        ("5<!--= range(d{column=a}) -->", "a range, 2.00-5.00"),
+        ("3 ±4%<!--= d{x=q column=a} -->", "has no spread"),
+    ] {
+        let found = problems(&root, &format!("{head}{page}.\n"));
+        assert!(found.len() == 1 && found[0].what.contains(says), "{page}: {found:#?}");
+    }
+    let found =
+        problems(&root, &format!("{GATHER}It takes 89.3 ±9%<!--= g{{photons=2048 technique=\"W&D + Sec. 4\"}} -->.\n"));
+    assert!(found.len() == 1 && found[0].what.contains("spread is ±4%"), "{found:#?}");
+    assert_eq!(found[0].written, "89.3 ±9%");
 }

@@ -255,7 +255,8 @@ fn comments(line: &str) -> Vec<Comment> {
     let bare = without_code(line);
     while let Some(p) = bare[from..].find("<!--") {
         let start = from + p;
-        let Some(q) = bare[start..].find("-->") else { break };
+        // The comment's end, after its opening (`<!-->` is not a closed comment).
+        let Some(q) = bare[start + 4..].find("-->").map(|q| q + 4) else { break };
         let end = start + q + 3;
         let inner = line[start + 4..start + q].trim_start();
         if let Some(k) = KINDS.iter().find(|k| inner.starts_with(**k)) {
@@ -654,6 +655,24 @@ mod tests {
     }
 
     #[test]
+    fn ranges_spreads_and_units_at_their_edges() {
+        // Spaces around a hyphen, an en dash, a range or a spread at the line's start.
+        assert_eq!(w("from 3 - 5 ms"), ("3".into(), Some("5".into()), None));
+        assert_eq!(w("1.47–1.93x"), ("1.47".into(), Some("1.93".into()), None));
+        assert_eq!(w("- 5 ms"), ("5".into(), None, None));
+        assert_eq!(w("±4%"), ("4".into(), None, None));
+        // A number's leading comma or point is not part of it.
+        let lead = written_before("see ,12 ms").unwrap();
+        assert_eq!((lead.a.as_str(), lead.start), ("12", 5));
+        // At most 30 characters of unit between the number and the claim.
+        assert_eq!(w(&format!("12{}", "x".repeat(30))), ("12".into(), None, None));
+        assert!(written_before(&format!("12{}", "x".repeat(31))).is_none());
+        // A problem shows the number as written, with its range or spread.
+        let text = |s: &str| written_before(s).unwrap().text();
+        assert_eq!((text("89.3 ±4%"), text("1-2 ms"), text("7 s")), ("89.3 ±4%".into(), "1-2".into(), "7".into()));
+    }
+
+    #[test]
     fn a_number_agrees_at_the_precision_it_is_written_with() {
         assert!(agrees("1.93", 1.9349));
         assert!(!agrees("1.93", 1.9351));
@@ -689,5 +708,19 @@ mod tests {
         assert_eq!(kinds("write `<!--claims DIR -->` at the top"), Vec::<String>::new());
         assert_eq!(kinds("0.5<!--given a level of `[front] levels` --> and 1.2<!--= t{a=b} -->"), vec!["given", "="]);
         assert_eq!(kinds("0.5<!--given the ` quote --> then `code <!--= x -->`"), vec!["given"]);
+        // Code spans at the line's start and right after a comment.
+        assert_eq!(kinds("`x` 5<!--= y -->"), vec!["="]);
+        assert_eq!(without_code("<!--x-->`a`b"), "<!--x-->   b");
+        assert_eq!(kinds("2<!--= a -->`<!--= b -->`"), vec!["="]);
+        // `<!-->` (which used to panic the check) opens a comment that the next `-->` closes.
+        assert_eq!(kinds("a <!--> b 5<!--= y --> c"), Vec::<String>::new());
+        assert_eq!(kinds("a <!--> b"), Vec::<String>::new());
+    }
+
+    #[test]
+    fn float_noise_below_a_trillionth_is_equality() {
+        // Written with 14 decimals, half a unit is 5e-15; the difference 5e-13 is float noise.
+        assert!(agrees("0.00000000000000", 5e-13));
+        assert!(!agrees("0.00000000000000", 2e-12));
     }
 }
