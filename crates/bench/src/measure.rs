@@ -291,7 +291,7 @@ impl<'a> Runner<'a> {
                 if temporal {
                     // Read back after the frame's time was taken (validation refuses timed
                     // per-pass metrics beside temporal_change).
-                    let map = renderer.dump("receiver")?.context("the render has no receiver map")?;
+                    let map = renderer.receiver_map()?.context("the render has no receiver map")?;
                     if let Some(last) = &last_receiver {
                         temporal_changes.push(compare(&map, last)?.0.rel_rmse);
                     }
@@ -317,9 +317,9 @@ impl<'a> Runner<'a> {
         let valid_photons = if self.needs_valid_photons() { renderer.valid_photons(None)? } else { None };
         let depth_complexity = if self.needs_depth_complexity() {
             // Eye-space quads count into the eye's caustic, light-space ones into the caustic map.
-            let dump = match renderer.dump("eye_caustic")? {
+            let dump = match renderer.read_dump(&caustics::techniques::wyman_davis2006::settings::EYE_CAUSTIC)? {
                 Some(img) => Some(img),
-                None => renderer.dump("caustic_map")?,
+                None => renderer.read_dump(&caustics::techniques::shared::settings::CAUSTIC_MAP)?,
             };
             let img = dump.context("depth complexity: the technique has neither an eye_caustic nor a caustic_map")?;
             Some(DepthComplexity::of(&img)?)
@@ -479,7 +479,7 @@ impl<'a> Runner<'a> {
             self.references.insert(key.clone(), r.image);
         }
         let reference = &self.references[&key];
-        let ours = renderer.dump("receiver")?.context("the render has no receiver map to compare")?;
+        let ours = renderer.receiver_map()?.context("the render has no receiver map to compare")?;
         Ok(compare(&ours, reference)?.0)
     }
 }

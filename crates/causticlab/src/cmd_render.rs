@@ -26,22 +26,23 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let own = render::dumps_for(&scene.caustics);
     // (The pool's techniques make their own `receiver`.)
     let no_receiver_map = technique.renders_meshes() && scene.receiver_map.is_none();
-    if no_receiver_map && !dump_all(args.dump.as_deref()) && dumps.iter().any(|d| d == "receiver") {
+    let receiver = render::dumps::RECEIVER.name;
+    if no_receiver_map && !dump_all(args.dump.as_deref()) && dumps.iter().any(|d| d == receiver) {
         return Err(input_error!(
             "--dump: `receiver` is the receiver map, and {} has no [receiver_map] table",
             args.scene.display()
         )
         .into());
     }
-    if let Some(n) = dumps.iter().find(|d| !own.contains(&d.as_str()) && !dump_all(args.dump.as_deref())) {
-        if let Some(r) = Refraction::ALL.iter().find(|r| r.dumps().contains(&n.as_str())) {
+    if let Some(n) = dumps.iter().find(|d| !named_in(&own, d) && !dump_all(args.dump.as_deref())) {
+        if let Some(r) = Refraction::ALL.iter().find(|r| named_in(render::dumps::refraction_dumps(**r), n)) {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of --refraction {r}, not of `{}`",
                 scene.caustics.refraction
             )
             .into());
         }
-        if n == caustics::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP
+        if n == caustics::techniques::wyman_nichols2009::settings::PHOTON_GEOMETRY_BUFFERS.name
             && technique.has_photon_buffer()
         {
             return Err(input_error!(
@@ -50,7 +51,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             )
             .into());
         }
-        if technique.dumps().contains(&n.as_str()) {
+        if named_in(&technique.dumps(), n) {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of `{technique}` with --space {}, not with --space {}",
                 if scene.caustics.eye_space() { "light" } else { "eye" },
@@ -58,8 +59,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             )
             .into());
         }
-        let owners: Vec<&str> =
-            Technique::ALL.iter().filter(|t| t.dumps().contains(&n.as_str())).map(|t| t.name()).collect();
+        let owners: Vec<&str> = Technique::ALL.iter().filter(|t| named_in(&t.dumps(), n)).map(|t| t.name()).collect();
         return Err(input_error!(
             "--dump: `{n}` is a buffer of technique {}, not of `{technique}`; add --technique {}",
             owners.join(", "),
@@ -67,7 +67,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         )
         .into());
     }
-    dumps.retain(|d| own.contains(&d.as_str()));
+    dumps.retain(|d| named_in(&own, d));
     // Before the device: an --out that cannot become a directory fails now, not after the render.
     let out = OutputDir::create(&args.out).context("--out")?;
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
@@ -94,11 +94,11 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         (header::SCENE, args.scene.display().to_string()),
     ];
     let mut written = write_final_images(&out, &rendered.final_image, &header, scene.render.exposure)?;
-    for (name, image) in &rendered.dumps {
-        let file = format!("{name}.exr");
+    for (dump, image) in &rendered.dumps {
+        let file = format!("{}.exr", dump.name);
         image_io::write_exr_with(&out.path(&file), image, &header)?;
         written.push(file);
-        if name == "receiver" {
+        if [&render::dumps::RECEIVER, &caustics::techniques::trendall_stewart2000::settings::RECEIVER].contains(dump) {
             // To look at without an EXR viewer: E/E0 from black (0) through grey (1) to white (2).
             let ratio = receiver_ratio(image)?;
             image_io::write_png_grey(&out.path(RECEIVER_PNG), image.width, image.height, &ratio, 2.0)?;
@@ -212,6 +212,11 @@ const GRAPH_DOT: &str = "graph.dot";
 fn receiver_ratio(image: &ImageF32) -> Result<Vec<f32>> {
     let (_, _, rgb) = main_rgb(image)?;
     Ok(rgb.chunks_exact(3).map(|p| (p[0] + p[1] + p[2]) / 3.0).collect())
+}
+
+/// Whether one of `dumps` is called `name` (a `--dump` name read against the declarations).
+fn named_in(dumps: &[&'static caustics::dump::Dump], name: &str) -> bool {
+    dumps.iter().any(|d| d.name == name)
 }
 
 /// Whether `--dump` says `all`.

@@ -7,6 +7,7 @@ pub mod animation;
 pub mod bvh;
 pub mod compare;
 pub mod diff;
+pub mod dump;
 pub mod error;
 pub mod error_png;
 pub mod gpu;

@@ -40,6 +40,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use caustics::compare::compare;
+use caustics::dump::Dump;
 use caustics::image_io::ImageF32;
 use caustics::reference::{trace_reference, ReferenceOptions};
 use caustics::render::{all_dump_names, dumps_for, FrameStep, Renderer, RendererOptions};
@@ -234,11 +235,11 @@ fn every_dump(
 ) -> Vec<(String, ImageF32)> {
     let all: Vec<String> = all_dump_names().iter().map(|s| s.to_string()).collect();
     let dumps = r.dumps(&all).expect("dumps");
-    let names: Vec<&str> = dumps.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(names, dumps_for(&scene.caustics), "{label} on {scene_name}: dumps written vs declared");
+    let written: Vec<&'static Dump> = dumps.iter().map(|(d, _)| *d).collect();
+    assert_eq!(written, dumps_for(&scene.caustics), "{label} on {scene_name}: dumps written vs declared");
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "{label} on {scene_name}: validation messages:\n{}", log.messages().join("\n"));
-    dumps
+    dumps.into_iter().map(|(d, img)| (d.name.to_string(), img)).collect()
 }
 
 fn assert_none(failures: Vec<String>) {

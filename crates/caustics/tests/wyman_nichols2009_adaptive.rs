@@ -59,7 +59,7 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene, dumps: &[&str]) -> Run {
     let mut r = Renderer::new(ctx, sh, s, &RendererOptions::default()).expect("renderer");
     r.frame(FrameStep::default()).expect("frame");
     let names: Vec<String> = dumps.iter().map(|d| d.to_string()).collect();
-    let dumps = r.dumps(&names).expect("dumps").into_iter().collect();
+    let dumps = r.dumps(&names).expect("dumps").into_iter().map(|(d, img)| (d.name.to_string(), img)).collect();
     let (photons, counts) = match r.adaptive() {
         Some(a) => (a.read_photons(ctx).expect("photons"), a.level_counts(ctx).expect("counts").remove(0)),
         None => (vec![], (vec![], vec![])),

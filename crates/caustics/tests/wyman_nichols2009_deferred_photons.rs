@@ -49,7 +49,8 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene, dumps: &[&str]) -> BTreeMa
     let mut r = Renderer::new(ctx, sh, s, &RendererOptions::default()).expect("renderer");
     r.frame(FrameStep::default()).expect("frame");
     let names: Vec<String> = dumps.iter().map(|d| d.to_string()).collect();
-    let out: BTreeMap<String, ImageF32> = r.dumps(&names).expect("dumps").into_iter().collect();
+    let out: BTreeMap<String, ImageF32> =
+        r.dumps(&names).expect("dumps").into_iter().map(|(d, img)| (d.name.to_string(), img)).collect();
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
     out

@@ -376,16 +376,16 @@ impl<'c> Session<'c> {
         let wanted: Vec<String> = match names {
             Some(list) => crate::cmd_render::parse_dumps(Some(list))?,
             None if !self.dumps.is_empty() => self.dumps.clone(),
-            None => own.iter().map(|s| s.to_string()).collect(),
+            None => own.iter().map(|d| d.name.to_string()).collect(),
         };
-        let wanted: Vec<String> = wanted.into_iter().filter(|n| own.contains(&n.as_str())).collect();
+        let wanted: Vec<String> = wanted.into_iter().filter(|n| own.iter().any(|d| d.name == n)).collect();
         let out = OutputDir::create(dir)?;
         self.finish()?;
         let header = self.header(&settings);
         let images = self.shown_renderer().dumps(&wanted)?;
         let mut written = vec![];
-        for (name, image) in &images {
-            let file = format!("{name}.exr");
+        for (dump, image) in &images {
+            let file = format!("{}.exr", dump.name);
             image_io::write_exr_with(&out.path(&file), image, &header)?;
             written.push(out.final_dir().join(file));
         }

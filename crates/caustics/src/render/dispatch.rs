@@ -5,9 +5,10 @@
 
 use super::renderer::{MeshRenderer, RendererOptions};
 use super::FrameStep;
+use crate::dump::Dump;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
-use crate::techniques::trendall_stewart2000::{self as ts, PoolRenderer};
+use crate::techniques::trendall_stewart2000::PoolRenderer;
 use crate::techniques::wyman2008::Hierarchy;
 use anyhow::Result;
 use vkcore::{Context, FrameReport, ShaderCompiler};
@@ -107,16 +108,36 @@ impl<'c> Renderer<'c> {
         Ok(self.dumps(&[name.to_string()])?.pop().map(|(_, img)| img))
     }
 
-    /// The named intermediate buffers of the last frame, skipping those this render has none of.
-    pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
+    /// The intermediate buffer `d` of the last frame (None where this render has none).
+    pub fn read_dump(&mut self, d: &'static Dump) -> Result<Option<ImageF32>> {
+        Ok(match self {
+            Renderer::Mesh(r) => r.dumps(&[d])?,
+            Renderer::Pool(r) => r.dumps(&[d])?,
+        }
+        .pop()
+        .map(|(_, img)| img))
+    }
+
+    /// The last frame's receiver map (the eye render's `receiver`, or the pool bottom's).
+    pub fn receiver_map(&mut self) -> Result<Option<ImageF32>> {
+        let d = match self {
+            Renderer::Mesh(_) => &super::dumps::RECEIVER,
+            Renderer::Pool(_) => &crate::techniques::trendall_stewart2000::settings::RECEIVER,
+        };
+        self.read_dump(d)
+    }
+
+    /// The named intermediate buffers of the last frame (`--dump` names: each is read here
+    /// once, as the declaration of that name this render has), skipping those it has none of.
+    pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(&'static Dump, ImageF32)>> {
+        let settings = match self {
+            Renderer::Mesh(r) => &r.scene().caustics,
+            Renderer::Pool(r) => &r.scene().caustics,
+        };
+        let wanted: Vec<&'static Dump> = names.iter().filter_map(|n| crate::dump::named(n, settings)).collect();
         match self {
-            Renderer::Mesh(r) => {
-                // The pool's own buffers are no mesh render's.
-                let pool_only = |n: &str| ts::DUMPS.contains(&n) && !super::EYE_DUMPS.contains(&n);
-                let mesh: Vec<String> = names.iter().filter(|n| !pool_only(n)).cloned().collect();
-                r.dumps(&mesh)
-            }
-            Renderer::Pool(r) => r.dumps(names),
+            Renderer::Mesh(r) => r.dumps(&wanted),
+            Renderer::Pool(r) => r.dumps(&wanted),
         }
     }
 

@@ -1,12 +1,53 @@
-//! Reads intermediate buffers back as named EXR layers (`--dump`).
+//! The eye render's intermediate buffers (`--dump`), declared here and read back as EXR layers;
+//! the light-space buffers of the photon techniques that the eye render holds too
+//! (`receiver_positions`, `caustic_map`) and deferred refraction's (declared by their owners).
 
 use super::targets::{EyeTargets, Target};
+use crate::dump::{Dump, Format, Space};
 use crate::gpu::target::read_image_layer;
 use crate::image_io::{ImageF32, Layer};
+use crate::techniques::shared::settings::{CAUSTIC_MAP, RECEIVER_POSITIONS};
+use crate::techniques::wyman_nichols2009::settings::{self as wn2009, REFRACTION_LAYERS, REFRACTOR_GEOMETRY};
 use crate::techniques::wyman_nichols2009::DeferredRefraction;
-use crate::techniques::{CausticTargets, PhotonTargets};
+use crate::techniques::{CausticTargets, PhotonTargets, Refraction};
 use anyhow::Result;
 use vkcore::Context;
+
+/// The distance to the nearest occluder, per light and cube face.
+pub static SHADOW_MAP: Dump = Dump::new("shadow_map", module_path!(), Space::LightLayers, Format::Image);
+/// The diffuse surfaces' radiance from the eye.
+pub static BACKGROUND: Dump = Dump::new("background", module_path!(), Space::Eye, Format::Image);
+/// Forward refraction's first pass (Wyman 2005): the refractors' nearest back faces.
+pub static REFRACTOR_BACK_FACES: Dump = Dump::new("refractor_back_faces", module_path!(), Space::Eye, Format::Image);
+/// Forward refraction's radiance of the refractive and reflective surfaces.
+pub static REFRACTOR_FRONT_FACES: Dump = Dump::new("refractor_front_faces", module_path!(), Space::Eye, Format::Image);
+/// The diffuse surfaces' world position and normal per pixel.
+pub static EYE_GBUFFER: Dump = Dump::new("eye_gbuffer", module_path!(), Space::Eye, Format::Image);
+/// The receiver map: E/E0, E0, E and its caustic part on the scene's `[receiver_map]`.
+pub static RECEIVER: Dump = Dump::new("receiver", module_path!(), Space::Eye, Format::Image);
+
+/// The eye render's buffers, with both refractions' (the order of `--dump all`).
+pub static EYE_DUMPS: &[&Dump] = &[
+    &SHADOW_MAP,
+    &BACKGROUND,
+    &REFRACTOR_BACK_FACES,
+    &REFRACTOR_FRONT_FACES,
+    &REFRACTOR_GEOMETRY,
+    &REFRACTION_LAYERS,
+    &EYE_GBUFFER,
+    &RECEIVER,
+];
+
+/// The eye render's buffers only forward refraction (Wyman 2005) has.
+pub static FORWARD_REFRACTION_DUMPS: &[&Dump] = &[&REFRACTOR_BACK_FACES, &REFRACTOR_FRONT_FACES];
+
+/// The eye render's buffers that only `refraction` has.
+pub fn refraction_dumps(refraction: Refraction) -> &'static [&'static Dump] {
+    match refraction {
+        Refraction::Forward => FORWARD_REFRACTION_DUMPS,
+        Refraction::Deferred => wn2009::DEFERRED_REFRACTION_DUMPS,
+    }
+}
 
 const FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
@@ -23,18 +64,18 @@ fn per_light(ctx: &Context, t: &Target, names: &[&str], pick: &[usize]) -> Resul
     Ok(t.as_image(layers))
 }
 
-/// The named intermediate buffer; None if this render has no such buffer (no receiver map, or
-/// no caustic technique).
+/// The eye render's buffer `d` (or the receiver positions or caustic map it holds); None if this
+/// render has no such buffer (no receiver map, or no caustic technique).
 pub fn dump(
     ctx: &Context,
     t: &EyeTargets,
     ct: &CausticTargets,
     photons: Option<&PhotonTargets>,
-    name: &str,
+    d: &'static Dump,
 ) -> Result<Option<ImageF32>> {
     let rgb = ["R", "G", "B"];
-    Ok(Some(match name {
-        "shadow_map" => {
+    Ok(Some(match d {
+        d if d == &SHADOW_MAP => {
             let mut layers = vec![];
             for l in 0..t.shadow.lights {
                 for (f, face) in FACES.iter().enumerate() {
@@ -44,22 +85,24 @@ pub fn dump(
             }
             t.shadow.distance.as_image(layers)
         }
-        "background" => t.background.as_image(vec![t.background.read_layer(ctx, 0, None, &rgb, &[0, 1, 2])?]),
-        "eye_gbuffer" => t.position.as_image(vec![
+        d if d == &BACKGROUND => {
+            t.background.as_image(vec![t.background.read_layer(ctx, 0, None, &rgb, &[0, 1, 2])?])
+        }
+        d if d == &EYE_GBUFFER => t.position.as_image(vec![
             t.position.read_layer(ctx, 0, Some("position"), &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?,
             t.normal.read_layer(ctx, 0, Some("normal"), &["X", "Y", "Z"], &[0, 1, 2])?,
         ]),
-        "refractor_back_faces" => t.back_faces.as_image(vec![t.back_faces.read_layer(
+        d if d == &REFRACTOR_BACK_FACES => t.back_faces.as_image(vec![t.back_faces.read_layer(
             ctx,
             0,
             None,
             &["NX", "NY", "NZ", "distance"],
             &[0, 1, 2, 3],
         )?]),
-        "refractor_front_faces" => {
+        d if d == &REFRACTOR_FRONT_FACES => {
             t.surface.as_image(vec![t.surface.read_layer(ctx, 0, None, &["R", "G", "B", "A"], &[0, 1, 2, 3])?])
         }
-        "receiver" => match &t.receiver {
+        d if d == &RECEIVER => match &t.receiver {
             None => return Ok(None),
             Some((ratio, irradiance, caustic)) => {
                 // Main layer: E/E0 per channel and mean E0 (W/m^2); layer `irradiance`: E (W/m^2);
@@ -75,9 +118,11 @@ pub fn dump(
             }
         },
         // Light-space buffers of the caustic techniques.
-        "receiver_positions" | "caustic_map" if photons.is_none() => return Ok(None),
-        "receiver_positions" => per_light(ctx, &ct.receiver_positions, &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?,
-        "caustic_map" if ct.levels > 1 => {
+        d if (d == &RECEIVER_POSITIONS || d == &CAUSTIC_MAP) && photons.is_none() => return Ok(None),
+        d if d == &RECEIVER_POSITIONS => {
+            per_light(ctx, &ct.receiver_positions, &["X", "Y", "Z", "hit"], &[0, 1, 2, 3])?
+        }
+        d if d == &CAUSTIC_MAP && ct.levels > 1 => {
             // The multi-resolution map: level i of light l in layer 4l + i, its splats in the
             // layer's corner of (M / 2^i)^2 texels (Wyman 2008 Sec. 3.3); interpolated splats:
             // radius splat_radius 2^i in layer 4l + i, full resolution (Fig. 7).
@@ -90,19 +135,19 @@ pub fn dump(
                 .collect::<Result<Vec<_>>>()?;
             t.as_image(layers)
         }
-        "caustic_map" => per_light(ctx, &ct.caustic_map, &["R", "G", "B", "photons"], &[0, 1, 2, 3])?,
-        other => anyhow::bail!("no intermediate buffer called `{other}`"),
+        d if d == &CAUSTIC_MAP => per_light(ctx, &ct.caustic_map, &["R", "G", "B", "photons"], &[0, 1, 2, 3])?,
+        other => anyhow::bail!("the eye render has no buffer `{other}`"),
     }))
 }
 
 /// The deferred refraction's buffers (Wyman & Nichols 2009 Sec. 3.1), refractor k (0: the
 /// farthest) in layers `layer<k>.*`: `refractor_geometry`, its front and back faces (normal and
 /// distance, window depth and thickness); `refraction_layers`, the image after its pass.
-pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, name: &str) -> Result<ImageF32> {
+pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, dump: &'static Dump) -> Result<ImageF32> {
     let mut layers = vec![];
     for k in 0..d.layers.len() as u32 {
-        match name {
-            "refractor_geometry" => {
+        match dump {
+            dump if dump == &REFRACTOR_GEOMETRY => {
                 for (face, l) in [("front", 2 * k), ("back", 2 * k + 1)] {
                     let (surface, depth) = (format!("layer{k}.{face}"), format!("layer{k}.{face}_depth"));
                     layers.push(read_image_layer(
@@ -116,7 +161,7 @@ pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, name: &st
                     layers.push(read_image_layer(ctx, &d.depths, l, Some(&depth), &["depth", "thickness"], &[0, 1])?);
                 }
             }
-            "refraction_layers" => {
+            dump if dump == &REFRACTION_LAYERS => {
                 let n = Some(format!("layer{k}"));
                 layers.push(match &d.results {
                     Some(r) if k + 1 < d.layers.len() as u32 => {
@@ -125,7 +170,7 @@ pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, name: &st
                     _ => t.final_image.read_layer(ctx, 0, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?,
                 });
             }
-            other => anyhow::bail!("no deferred refraction buffer called `{other}`"),
+            other => anyhow::bail!("deferred refraction has no buffer `{other}`"),
         }
     }
     Ok(t.final_image.as_image(layers))

@@ -4,7 +4,7 @@
 
 mod dispatch;
 pub mod display;
-mod dumps;
+pub mod dumps;
 mod eye;
 pub mod graph;
 pub mod memory;
@@ -17,36 +17,19 @@ pub use crate::gpu::frame_mode::{FrameMode, FrameStep};
 pub use dispatch::Renderer;
 pub use renderer::{MeshRenderer, RendererOptions};
 
+use crate::dump::Dump;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
+use crate::techniques::shared::settings::PHOTON_BUFFER;
 use crate::techniques::{Refraction, SplatPath, Technique};
 use anyhow::Result;
 use vkcore::{Context, FrameReport, ShaderCompiler};
 
-/// The intermediate buffers of the eye render (`--dump` names): those of every render, and
-/// those of forward or deferred refraction only ([`Refraction::dumps`]); each caustic technique
-/// adds its own ([`Technique::dumps`]).
-pub const EYE_DUMPS: &[&str] = &[
-    "shadow_map",
-    "background",
-    "refractor_back_faces",
-    "refractor_front_faces",
-    "refractor_geometry",
-    "refraction_layers",
-    "eye_gbuffer",
-    "receiver",
-];
-
-pub use crate::techniques::LIGHT_SPACE_DUMPS;
-
-/// Whether the eye-render buffer `name` belongs to the other refraction than `refraction`.
-pub(crate) fn other_refractions(name: &str, refraction: Refraction) -> bool {
-    Refraction::ALL.iter().any(|r| *r != refraction && r.dumps().contains(&name))
-}
+pub use dumps::EYE_DUMPS;
 
 /// The buffers `technique` can dump under any of its settings: the eye render's (both
 /// refractions'), then the technique's own.
-pub fn dumps_of(technique: Technique) -> Vec<&'static str> {
+pub fn dumps_of(technique: Technique) -> Vec<&'static Dump> {
     if !technique.renders_meshes() {
         return technique.dumps();
     }
@@ -55,31 +38,24 @@ pub fn dumps_of(technique: Technique) -> Vec<&'static str> {
 
 /// The buffers a render with `settings` dumps: the eye render's (with its refraction's), then
 /// its technique's own under those settings.
-pub fn dumps_for(settings: &crate::techniques::CausticSettings) -> Vec<&'static str> {
+pub fn dumps_for(settings: &crate::techniques::CausticSettings) -> Vec<&'static Dump> {
     if !settings.technique.renders_meshes() {
         return settings.dumps();
     }
-    let eye = EYE_DUMPS.iter().copied().filter(|n| !other_refractions(n, settings.refraction));
-    eye.chain(settings.dumps()).collect()
+    let other = |d: &&'static Dump| {
+        Refraction::ALL.iter().any(|r| *r != settings.refraction && dumps::refraction_dumps(*r).contains(d))
+    };
+    EYE_DUMPS.iter().copied().filter(|d| !other(d)).chain(settings.dumps()).collect()
 }
 
-/// Every buffer some technique can dump (what `--dump` accepts), in the order of
-/// [`dumps_of`] over [`Technique::ALL`].
+/// Every buffer some technique can dump (what `--dump` accepts): [`crate::dump::all_names`].
 pub fn all_dump_names() -> Vec<&'static str> {
-    let mut all: Vec<&'static str> = EYE_DUMPS.to_vec();
-    for t in Technique::ALL {
-        for d in t.dumps() {
-            if !all.contains(&d) {
-                all.push(d);
-            }
-        }
-    }
-    all
+    crate::dump::all_names()
 }
 
 #[derive(Debug, Clone, Default)]
 pub struct RenderRequest {
-    /// Names from `DUMP_NAMES` (already validated by the caller).
+    /// `--dump` names (those the render does not have are skipped).
     pub dumps: Vec<String>,
     /// Frames rendered (timings are kept for each; the image is the last frame's).
     pub frames: u32,
@@ -90,8 +66,8 @@ pub struct RenderRequest {
 pub struct Rendered {
     /// Linear radiance, RGB, row 0 = top of the image.
     pub final_image: ImageF32,
-    /// (file stem, image) for each requested dump, e.g. ("shadow_map", ...) -> shadow_map.exr.
-    pub dumps: Vec<(String, ImageF32)>,
+    /// Each requested dump the render has and its image (written as `<name>.exr`).
+    pub dumps: Vec<(&'static Dump, ImageF32)>,
     /// Per-pass GPU timings of every frame.
     pub frames: Vec<FrameReport>,
     /// Per-pass frames: each frame's host wall time (record, submit, wait), ms.
@@ -183,7 +159,7 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
     let final_image = renderer.final_image()?;
     let dumps = renderer.dumps(&req.dumps)?;
     // The photon buffer is read back once: from its dump where one was asked for.
-    let photon_buffer = dumps.iter().find(|(n, _)| n == "photon_buffer").map(|(_, img)| img);
+    let photon_buffer = dumps.iter().find(|(d, _)| *d == &PHOTON_BUFFER).map(|(_, img)| img);
     let valid_photons = renderer.valid_photons(photon_buffer)?;
     let counts = Counts {
         photons_emitted: renderer.photons_emitted(),
@@ -225,28 +201,36 @@ mod tests {
     use super::*;
 
     #[test]
-    fn light_space_dumps_belong_to_techniques_and_names_are_unique() {
-        let all = all_dump_names();
-        for light_space in LIGHT_SPACE_DUMPS {
-            assert!(!EYE_DUMPS.contains(light_space), "{light_space}");
-            assert!(all.contains(light_space), "{light_space}");
+    fn a_render_has_each_name_once_and_its_refractions_buffers() {
+        use crate::dump::{all, Space};
+        // The eye render's buffers are read from its own targets, none light by light.
+        for d in EYE_DUMPS {
+            assert!(matches!(d.space, Space::Eye | Space::LightLayers), "{d}");
         }
-        let mut sorted = all.clone();
-        sorted.sort();
-        sorted.dedup();
-        assert_eq!(sorted.len(), all.len());
+        // One name, one declaration, but the pool's receiver map (a render has one or the other).
+        for (i, a) in all().iter().enumerate() {
+            for b in &all()[i + 1..] {
+                let pool_and_eye = (a.space == Space::Pool) != (b.space == Space::Pool);
+                assert!(a != b && (a.name != b.name || pool_and_eye), "{a} declared twice");
+            }
+        }
+        for t in Technique::ALL {
+            let names: Vec<&str> = dumps_of(*t).iter().map(|d| d.name).collect();
+            let mut unique = names.clone();
+            unique.sort();
+            unique.dedup();
+            assert_eq!(unique.len(), names.len(), "{t}: {names:?}");
+        }
+        let names = |c: &crate::techniques::CausticSettings| dumps_for(c).iter().map(|d| d.name).collect::<Vec<_>>();
         let mut c = crate::techniques::CausticSettings::default();
         assert_eq!(
-            dumps_for(&c),
+            names(&c),
             ["shadow_map", "background", "refractor_back_faces", "refractor_front_faces", "eye_gbuffer", "receiver"]
         );
         c.refraction = Refraction::Deferred;
         assert_eq!(
-            dumps_for(&c),
+            names(&c),
             ["shadow_map", "background", "refractor_geometry", "refraction_layers", "eye_gbuffer", "receiver"]
         );
-        for r in Refraction::ALL {
-            assert!(r.dumps().iter().all(|d| EYE_DUMPS.contains(d)), "{r}");
-        }
     }
 }

@@ -3,11 +3,15 @@
 //! frame) and time each one. (Pool scenes have their own: see `super::dispatch`.)
 
 use super::{dumps, eye, pipelines, targets};
+use crate::dump::{Dump, Space};
 use crate::gpu::frame_mode::{FrameMode, FrameStep, Slots};
 use crate::gpu::{self, setup, Stage};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
+use crate::techniques::shared::settings::PHOTON_BUFFER;
 use crate::techniques::stages::{self, CausticPipeline};
+use crate::techniques::wyman_davis2006::settings::EYE_CAUSTIC;
+use crate::techniques::wyman_nichols2009::settings::DEFERRED_REFRACTION_DUMPS;
 use crate::techniques::wyman_nichols2009::{deferred_refraction, DeferredRefraction, Refraction};
 use crate::techniques::{self, CopyType, EyeView};
 use anyhow::{Context as _, Result};
@@ -386,68 +390,67 @@ impl<'c> MeshRenderer<'c> {
         }
     }
 
-    /// The named intermediate buffer of the last frame (None where this render has none).
-    pub fn dump(&mut self, name: &str) -> Result<Option<ImageF32>> {
-        Ok(self.dumps(&[name.to_string()])?.pop().map(|(_, img)| img))
-    }
-
-    /// The named intermediate buffers of the last frame, as (name, image), skipping those this
-    /// render has none of. The light-space buffers (`techniques::LIGHT_SPACE_DUMPS`) serve every
-    /// light in turn and are read light by light by the caustic stages
-    /// (`CausticPipeline::light_space_dumps`): layers `light<l>.<layer>`.
-    pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
-        let mut unique: Vec<&String> = vec![];
-        for n in names {
-            if !unique.contains(&n) {
-                unique.push(n);
+    /// The buffers `wanted` of the last frame that this render has, each with its image. The
+    /// light-space buffers that serve every light in turn (`dump::Space::LightInTurn`) are read
+    /// light by light by the caustic stages (`CausticPipeline::light_space_dumps`): layers
+    /// `light<l>.<layer>`; the deposit's eye-space ones by the deposit; deferred refraction's
+    /// by it; the rest from the eye render's targets.
+    pub fn dumps(&mut self, wanted: &[&'static Dump]) -> Result<Vec<(&'static Dump, ImageF32)>> {
+        let declared = super::dumps_for(&self.scene.caustics);
+        let mut unique: Vec<&'static Dump> = vec![];
+        for &d in wanted {
+            if declared.contains(&d) && !unique.contains(&d) {
+                unique.push(d);
             }
         }
-        let light_space = |n: &str| techniques::LIGHT_SPACE_DUMPS.contains(&n);
-        let declared = super::dumps_for(&self.scene.caustics);
-        let wanted: Vec<&str> = unique
+        let in_turn: Vec<&'static Dump> = unique
             .iter()
-            .map(|n| n.as_str())
-            .filter(|n| declared.contains(n) && self.caustic.as_ref().is_some_and(|c| c.has_light_space_dump(n)))
+            .copied()
+            .filter(|&d| self.caustic.as_ref().is_some_and(|c| c.has_light_space_dump(d)))
             .collect();
         anyhow::ensure!(
-            wanted.is_empty() || self.pending_uniforms.is_none(),
+            in_turn.is_empty() || self.pending_uniforms.is_none(),
             "dumps: the renderer moved to a new pose after its last frame; render a frame first"
         );
         if let Some(c) = self.caustic.as_mut() {
-            c.prepare_dumps(self.ctx, self.shaders, &wanted)?;
+            c.prepare_dumps(self.ctx, self.shaders, &in_turn)?;
         }
         let mut read = match &self.caustic {
             Some(c) => {
                 let lights = self.targets.shadow.lights;
-                c.light_space_dumps(self.ctx, &self.caustic_inputs(), &self.caustic_targets, lights, &wanted)?
+                c.light_space_dumps(self.ctx, &self.caustic_inputs(), &self.caustic_targets, lights, &in_turn)?
             }
             None => vec![],
         };
         let mut out = vec![];
-        for name in unique {
-            let img = match read.iter().position(|(n, _)| n == name) {
+        for d in unique {
+            let img = match read.iter().position(|(r, _)| *r == d) {
                 Some(i) => Some(read.swap_remove(i).1),
-                None if light_space(name) => None,
-                None if !declared.contains(&name.as_str()) => None,
-                None if name == "eye_caustic" => match &self.caustic {
-                    Some(c) => c.dump(self.ctx, name)?,
+                None if d.space == Space::LightInTurn => None,
+                None if d == &EYE_CAUSTIC => match &self.caustic {
+                    Some(c) => c.dump(self.ctx, d)?,
                     None => None,
                 },
                 None => match &self.deferred {
-                    Some(d) if Refraction::Deferred.dumps().contains(&name.as_str()) => {
-                        Some(dumps::deferred(self.ctx, d, &self.targets, name)?)
+                    Some(r) if DEFERRED_REFRACTION_DUMPS.contains(&d) => {
+                        Some(dumps::deferred(self.ctx, r, &self.targets, d)?)
                     }
                     _ => {
                         let photons = self.caustic.as_ref().map(|c| c.photon_targets());
-                        dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, name)?
+                        dumps::dump(self.ctx, &self.targets, &self.caustic_targets, photons, d)?
                     }
                 },
             };
             if let Some(img) = img {
-                out.push((name.clone(), img));
+                out.push((d, img));
             }
         }
         Ok(out)
+    }
+
+    /// The scene as this renderer was made for it (its pose may have moved since).
+    pub fn scene(&self) -> &Scene {
+        &self.scene
     }
 
     /// Photons emitted per frame over all lights (0 without a caustic technique).
@@ -471,7 +474,7 @@ impl<'c> MeshRenderer<'c> {
         if let Some(img) = read {
             return Ok(Some(valid_photons_in(img)?));
         }
-        let Some(img) = self.dump("photon_buffer")? else { return Ok(None) };
+        let Some((_, img)) = self.dumps(&[&PHOTON_BUFFER])?.pop() else { return Ok(None) };
         Ok(Some(valid_photons_in(&img)?))
     }
 

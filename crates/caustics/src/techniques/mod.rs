@@ -39,7 +39,7 @@ pub use shared::{CausticPasses, EyeView, FrameInputs};
 pub use shared::{
     CausticPipelines, CausticTargets, ComputeSplat, Intersect, PhotonTargets, PhotonView, SplatKernel, SplatPath,
 };
-pub use stages::{CausticPipeline, LIGHT_SPACE_DUMPS};
+pub use stages::CausticPipeline;
 pub use technique::Technique;
 pub use wyman2008::photon_copy::{CopyType, PhotonCopy};
 pub use wyman2008::Hierarchy;

@@ -16,6 +16,7 @@ use super::wyman_davis2006::settings::{GatherLighting, QuadDraw, QuadLighting, R
 use super::wyman_nichols2009::adaptive::batches as wn2009_batches;
 use super::wyman_nichols2009::settings::{self as wn2009, Metric, PhotonRefraction, Refraction};
 use super::{shared, wyman2008, wyman_davis2006};
+use crate::dump::Dump;
 use serde::{Deserialize, Serialize};
 
 macro_rules! caustic_settings {
@@ -270,24 +271,24 @@ impl CausticSettings {
         }
     }
 
-    /// The intermediate buffers this render's technique adds to the eye render's (`--dump`
-    /// names).
-    pub fn dumps(&self) -> Vec<&'static str> {
+    /// The intermediate buffers this render's technique adds to the eye render's (`--dump`),
+    /// as their owners declare them.
+    pub fn dumps(&self) -> Vec<&'static Dump> {
+        use shared::settings::{CAUSTIC_MAP, PHOTON_BUFFER, RECEIVER_POSITIONS};
         let mut dumps = match self.technique {
             Technique::None => vec![],
             Technique::PoolConvolution => super::trendall_stewart2000::settings::DUMPS.to_vec(),
             _ if self.eye_space() => wyman_davis2006::settings::EYE_DUMPS.to_vec(),
             Technique::Hcm => [shared::settings::DUMPS, wyman2008::settings::DUMPS].concat(),
             // No photon buffer: photons come from the geometry buffers (Wyman & Nichols 2009 Sec. 3.2).
-            Technique::Adaptive => [&["receiver_positions", "caustic_map"], wn2009::ADAPTIVE_DUMPS].concat(),
+            Technique::Adaptive => [&[&RECEIVER_POSITIONS, &CAUSTIC_MAP], wn2009::ADAPTIVE_DUMPS].concat(),
             Technique::PhotonTrace => super::photon_trace::settings::DUMPS.to_vec(),
             _ => shared::settings::DUMPS.to_vec(),
         };
         if self.technique.has_photon_buffer() && self.photon_refraction == PhotonRefraction::Deferred {
-            // After the photon buffer and its caustic map, where `render::all_dump_names` has it.
-            let last = ["caustic_map", "photon_buffer"].iter().find_map(|n| dumps.iter().position(|d| d == n));
-            dumps
-                .insert(last.map_or(dumps.len(), |i| i + 1), super::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP);
+            // After the photon buffer and its caustic map.
+            let last = [&CAUSTIC_MAP, &PHOTON_BUFFER].iter().find_map(|n| dumps.iter().position(|d| d == n));
+            dumps.insert(last.map_or(dumps.len(), |i| i + 1), &wn2009::PHOTON_GEOMETRY_BUFFERS);
         }
         dumps
     }

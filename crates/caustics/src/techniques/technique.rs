@@ -136,13 +136,13 @@ impl Technique {
         }
     }
 
-    /// The intermediate buffers the technique can add to the eye render's (`--dump` names), under
-    /// any of its settings (see [`CausticSettings::dumps`] for those of one render).
-    pub fn dumps(self) -> Vec<&'static str> {
+    /// The intermediate buffers the technique can add to the eye render's (`--dump`), under any
+    /// of its settings (see [`CausticSettings::dumps`] for those of one render).
+    pub fn dumps(self) -> Vec<&'static crate::dump::Dump> {
         let mut all = CausticSettings { technique: self, ..Default::default() }.dumps();
         if self.has_photon_buffer() {
             // With photon_refraction `deferred`.
-            all.push(super::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP);
+            all.push(&super::wyman_nichols2009::settings::PHOTON_GEOMETRY_BUFFERS);
         }
         if matches!(self, Technique::WdQuads | Technique::WdGather) {
             let light = CausticSettings { technique: self, space: Space::Light, ..Default::default() }.dumps();

@@ -32,5 +32,5 @@ pub fn render_dumps(scene: &Scene, frames: u32, names: &[&str]) -> Vec<(String, 
     let dumps = r.dumps(&names.iter().map(|s| s.to_string()).collect::<Vec<_>>()).expect("dumps");
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
-    dumps
+    dumps.into_iter().map(|(d, img)| (d.name.to_string(), img)).collect()
 }

@@ -1,6 +1,8 @@
 //! What the GPU photon tracer declares (a leaf module: the technique enum reads it).
 
+use super::super::shared::settings as shared;
 use super::super::value_enum::value_enum;
+use crate::dump::Dump;
 use vkcore::Feature;
 
 /// The technique's source, as tables and `--help` cite it.
@@ -8,7 +10,7 @@ pub const PAPER: &str = "beyond the papers: exact photon tracing through a BVH (
 
 /// Its light-space buffers: the receiver positions the caustic-map lookup tests against, the
 /// traced photons (the photon buffer's layout) and the caustic map they are splatted into.
-pub const DUMPS: &[&str] = &["receiver_positions", "photon_buffer", "caustic_map"];
+pub static DUMPS: &[&Dump] = &[&shared::RECEIVER_POSITIONS, &shared::PHOTON_BUFFER, &shared::CAUSTIC_MAP];
 
 /// The most specular interactions `max_bounces` may allow.
 pub const MAX_BOUNCES: u32 = 64;

@@ -2,10 +2,20 @@
 //! command line name them (a leaf module: the scene description reads it).
 
 use super::super::value_enum::value_enum;
+use crate::dump::{Dump, Format, Space};
 use vkcore::{CompactionPath, Feature};
 
-/// The buffers every caustic technique has (`--dump` names).
-pub const DUMPS: &[&str] = &["receiver_positions", "photon_back_faces", "photon_buffer", "caustic_map"];
+/// The receivers' world positions from the light (Shah's positions texture).
+pub static RECEIVER_POSITIONS: Dump =
+    Dump::new("receiver_positions", module_path!(), Space::LightLayers, Format::Image);
+/// The refractors' back faces from the light.
+pub static PHOTON_BACK_FACES: Dump = Dump::new("photon_back_faces", module_path!(), Space::LightInTurn, Format::Image);
+/// Where each photon lands, its direction and power.
+pub static PHOTON_BUFFER: Dump = Dump::new("photon_buffer", module_path!(), Space::LightInTurn, Format::Image);
+/// The caustic map the photons are splatted into.
+pub static CAUSTIC_MAP: Dump = Dump::new("caustic_map", module_path!(), Space::LightLayers, Format::Image);
+/// The buffers every light-space caustic technique has.
+pub static DUMPS: &[&Dump] = &[&RECEIVER_POSITIONS, &PHOTON_BACK_FACES, &PHOTON_BUFFER, &CAUSTIC_MAP];
 
 value_enum! {
     /// The splat kernel (`caustics.splat_kernel`, `--splat-kernel`).

@@ -1,6 +1,8 @@
 //! Images of the caustic techniques: per-light receiver positions and caustic map layers, and the
 //! photon buffer (reused light after light).
 
+use super::settings::{PHOTON_BACK_FACES, PHOTON_BUFFER};
+use crate::dump::Dump;
 pub use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::{Target, MAX_LIGHTS};
 use crate::image_io::ImageF32;
@@ -82,24 +84,24 @@ impl PhotonTargets {
         })
     }
 
-    /// The photon buffer or its back faces (`name`) as they are now: the light that rendered
+    /// The photon buffer or its back faces (`d`) as they are now: the light that rendered
     /// them last. Layers are unprefixed (`super::super::stages` names them per light).
-    pub fn dump(&self, ctx: &Context, name: &str) -> Result<ImageF32> {
+    pub fn dump(&self, ctx: &Context, d: &'static Dump) -> Result<ImageF32> {
         let xyzw = [0, 1, 2, 3];
-        Ok(match name {
-            "photon_back_faces" => self.back_faces.as_image(vec![self.back_faces.read_layer(
+        Ok(match d {
+            d if d == &PHOTON_BACK_FACES => self.back_faces.as_image(vec![self.back_faces.read_layer(
                 ctx,
                 0,
                 None,
                 &["NX", "NY", "NZ", "distance"],
                 &xyzw,
             )?]),
-            "photon_buffer" => self.position.as_image(vec![
+            d if d == &PHOTON_BUFFER => self.position.as_image(vec![
                 self.position.read_layer(ctx, 0, Some("position"), &["X", "Y", "Z", "valid"], &xyzw)?,
                 self.direction.read_layer(ctx, 0, Some("direction"), &["X", "Y", "Z", "W"], &xyzw)?,
                 self.power.read_layer(ctx, 0, Some("power"), &["R", "G", "B"], &[0, 1, 2])?,
             ]),
-            other => anyhow::bail!("no photon buffer called `{other}`"),
+            other => anyhow::bail!("the photon buffer has no dump `{other}`"),
         })
     }
 }

@@ -2,6 +2,7 @@
 //! eye's view.
 
 use super::Selection;
+use crate::dump::Dump;
 use crate::gpu::Stage;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
@@ -11,6 +12,7 @@ use crate::techniques::shared::{CausticPasses, ComputeSplat, EyeView, SplatPath}
 use crate::techniques::wyman2008::interpolated::InterpolatedSplat;
 use crate::techniques::wyman2008::thin_lens::ThinLensSplat;
 use crate::techniques::wyman2008::SplatMode;
+use crate::techniques::wyman_davis2006::settings::EYE_CAUSTIC;
 use crate::techniques::wyman_davis2006::ImageSpace;
 use crate::techniques::wyman_nichols2009::adaptive;
 use anyhow::Result;
@@ -169,11 +171,11 @@ impl Deposit {
         }
     }
 
-    /// The dump `name` of the eye's view that this stage owns (`eye_caustic`; None where it has
+    /// The dump `d` of the eye's view that this stage owns (`eye_caustic`; None where it has
     /// none).
-    pub fn dump(&self, ctx: &Context, name: &str) -> Result<Option<ImageF32>> {
+    pub fn dump(&self, ctx: &Context, d: &'static Dump) -> Result<Option<ImageF32>> {
         match self {
-            Deposit::ImageSpace(is) if name == "eye_caustic" => is.dump_eye(ctx),
+            Deposit::ImageSpace(is) if d == &EYE_CAUSTIC => is.dump_eye(ctx),
             Deposit::ImageSpace(_)
             | Deposit::Points(_)
             | Deposit::Compute(_)

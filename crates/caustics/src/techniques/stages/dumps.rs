@@ -4,23 +4,11 @@
 //! buffers) and read back; the layers of light l are named `light<l>.<layer>`.
 
 use super::CausticPipeline;
+use crate::dump::{Dump, Space};
 use crate::image_io::ImageF32;
 use crate::techniques::shared::{records_image, CausticTargets, FrameInputs, LightDump};
 use anyhow::Result;
 use vkcore::{Context, FrameOptions, ShaderCompiler};
-
-/// The light-space buffers that serve every light in turn (dumped light by light, layers
-/// `light<l>.<layer>`).
-pub const LIGHT_SPACE_DUMPS: &[&str] = &[
-    "photon_back_faces",
-    "photon_buffer",
-    "hierarchy",
-    "hierarchy_lists",
-    "splats",
-    "adaptive_geometry",
-    "adaptive_lists",
-    crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP,
-];
 
 /// A light-space dump put together light by light.
 enum Collected {
@@ -29,14 +17,14 @@ enum Collected {
 }
 
 impl CausticPipeline {
-    /// Whether this pipeline's stages have the light-space buffer `name` (one of
-    /// [`LIGHT_SPACE_DUMPS`]).
-    pub fn has_light_space_dump(&self, name: &str) -> bool {
-        LIGHT_SPACE_DUMPS.contains(&name) && self.source.has_dump(name) && self.selection.has_dump(name)
+    /// Whether this pipeline's stages have the light-space buffer `d`, one that every light
+    /// uses in turn ([`Space::LightInTurn`]).
+    pub fn has_light_space_dump(&self, d: &'static Dump) -> bool {
+        d.space == Space::LightInTurn && self.source.has_dump(d) && self.selection.has_dump(d)
     }
 
     /// Makes what reading the light-space dumps `wanted` needs beyond the frame's passes.
-    pub fn prepare_dumps(&mut self, ctx: &Context, sh: &ShaderCompiler, wanted: &[&str]) -> Result<()> {
+    pub fn prepare_dumps(&mut self, ctx: &Context, sh: &ShaderCompiler, wanted: &[&'static Dump]) -> Result<()> {
         self.selection.prepare_dumps(ctx, sh, wanted)
     }
 
@@ -49,8 +37,8 @@ impl CausticPipeline {
         inputs: &FrameInputs,
         targets: &CausticTargets,
         lights: u32,
-        wanted: &[&str],
-    ) -> Result<Vec<(String, ImageF32)>> {
+        wanted: &[&'static Dump],
+    ) -> Result<Vec<(&'static Dump, ImageF32)>> {
         if wanted.is_empty() {
             return Ok(vec![]);
         }
@@ -62,33 +50,33 @@ impl CausticPipeline {
                 f.submit()?;
             }
             let c = self.passes(inputs, targets);
-            for (i, name) in wanted.iter().enumerate() {
-                let part = match self.source.dump(ctx, name)? {
+            for (i, d) in wanted.iter().enumerate() {
+                let part = match self.source.dump(ctx, d)? {
                     Some(img) => LightDump::Image(img),
-                    None => match self.selection.dump(ctx, &c, name, l)? {
+                    None => match self.selection.dump(ctx, &c, d, l)? {
                         Some(part) => part,
-                        None => LightDump::Image(self.photons.dump(ctx, name)?),
+                        None => LightDump::Image(self.photons.dump(ctx, d)?),
                     },
                 };
                 collected[i] = Some(add_light(collected[i].take(), part, l)?);
             }
         }
         let mut out = vec![];
-        for (name, got) in wanted.iter().zip(collected) {
+        for (d, got) in wanted.iter().zip(collected) {
             let img = match got {
                 Some(Collected::Image(img)) => img,
                 Some(Collected::Records(channels, lists)) => records_image(lists, channels),
                 None => continue,
             };
-            out.push((name.to_string(), img));
+            out.push((*d, img));
         }
         Ok(out)
     }
 
-    /// The dump `name` of the eye's view that the deposit owns (`eye_caustic`), None where it
-    /// has none.
-    pub fn dump(&self, ctx: &Context, name: &str) -> Result<Option<ImageF32>> {
-        self.deposit.dump(ctx, name)
+    /// The dump `d` of the eye's view that the deposit owns (`eye_caustic`), None where it has
+    /// none.
+    pub fn dump(&self, ctx: &Context, d: &'static Dump) -> Result<Option<ImageF32>> {
+        self.deposit.dump(ctx, d)
     }
 }
 

@@ -23,7 +23,6 @@ mod selection;
 mod source;
 
 pub use deposit::Deposit;
-pub use dumps::LIGHT_SPACE_DUMPS;
 pub use selection::Selection;
 pub use source::Source;
 

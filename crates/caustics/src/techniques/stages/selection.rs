@@ -1,13 +1,15 @@
 //! The selection: which of a light's photons, or clusters of them, reach the deposit.
 
+use crate::dump::Dump;
 use crate::gpu::{GpuMesh, Stage};
 use crate::scene::Scene;
 use crate::techniques::shared::{CausticPasses, LightDump, SplatList};
 use crate::techniques::wyman2008::photon_copy::{CopyType, PhotonCopy};
+use crate::techniques::wyman2008::settings::{HIERARCHY, HIERARCHY_LISTS, SPLATS};
 use crate::techniques::wyman2008::splat_footprints::{self, SplatFootprints};
 use crate::techniques::wyman2008::{self, Hierarchy};
 use crate::techniques::wyman_nichols2009::adaptive::{self, AdaptiveCaustics, Part};
-use crate::techniques::wyman_nichols2009::settings::ADAPTIVE_DUMPS;
+use crate::techniques::wyman_nichols2009::settings::{ADAPTIVE_DUMPS, ADAPTIVE_GEOMETRY, ADAPTIVE_LISTS};
 use crate::techniques::Technique;
 use anyhow::{Context as _, Result};
 use vkcore::{Context, Frame, FrameOptions, ShaderCompiler};
@@ -115,10 +117,10 @@ impl Selection {
         }
     }
 
-    /// Whether this stage has the light-space buffer `name` (it owns `hierarchy*` and `splats`
+    /// Whether this stage has the light-space buffer `d` (it owns `hierarchy*` and `splats`
     /// with a hierarchy, `adaptive_*` with the adaptive traversal).
-    pub fn has_dump(&self, name: &str) -> bool {
-        let (hierarchy, adaptive) = (wyman2008::DUMPS.contains(&name), ADAPTIVE_DUMPS.contains(&name));
+    pub fn has_dump(&self, d: &'static Dump) -> bool {
+        let (hierarchy, adaptive) = (wyman2008::DUMPS.contains(&d), ADAPTIVE_DUMPS.contains(&d));
         match self {
             Selection::Hierarchy(..) => !adaptive,
             Selection::Adaptive(_) => !hierarchy,
@@ -127,24 +129,26 @@ impl Selection {
     }
 
     /// Makes what dumping `wanted` needs beyond the frame's passes.
-    pub fn prepare_dumps(&mut self, ctx: &Context, sh: &ShaderCompiler, wanted: &[&str]) -> Result<()> {
+    pub fn prepare_dumps(&mut self, ctx: &Context, sh: &ShaderCompiler, wanted: &[&'static Dump]) -> Result<()> {
         if let Selection::Hierarchy(_, footprints @ None) = self {
-            if wanted.contains(&"splats") {
+            if wanted.contains(&&SPLATS) {
                 *footprints = Some(SplatFootprints::new(ctx, sh)?);
             }
         }
         Ok(())
     }
 
-    /// Light `l`'s part of the light-space dump `name` that this stage owns, after the light's
+    /// Light `l`'s part of the light-space dump `d` that this stage owns, after the light's
     /// passes were recorded last (None: not this stage's).
-    pub fn dump(&self, ctx: &Context, c: &CausticPasses, name: &str, l: u32) -> Result<Option<LightDump>> {
+    pub fn dump(&self, ctx: &Context, c: &CausticPasses, d: &'static Dump, l: u32) -> Result<Option<LightDump>> {
         let records = |channels, lists| Some(LightDump::Records { channels, lists });
         Ok(match self {
-            Selection::Hierarchy(h, footprints) => match name {
-                "hierarchy" => Some(LightDump::Image(h.dump_levels(ctx)?)),
-                "hierarchy_lists" => records(&wyman2008::LIST_CHANNELS, wyman2008::list_records(&h.read_lists(ctx)?)),
-                "splats" => {
+            Selection::Hierarchy(h, footprints) => match d {
+                d if d == &HIERARCHY => Some(LightDump::Image(h.dump_levels(ctx)?)),
+                d if d == &HIERARCHY_LISTS => {
+                    records(&wyman2008::LIST_CHANNELS, wyman2008::list_records(&h.read_lists(ctx)?))
+                }
+                d if d == &SPLATS => {
                     let footprints = footprints.as_ref().context("no splat footprints pipeline")?;
                     let splats = footprints.read(ctx, h, c.inputs, c.photons, l)?;
                     let list = (String::new(), splat_footprints::splat_records(&splats));
@@ -152,9 +156,9 @@ impl Selection {
                 }
                 _ => None,
             },
-            Selection::Adaptive(a) => match name {
-                "adaptive_geometry" => Some(LightDump::Image(a.dump_geometry(ctx)?)),
-                "adaptive_lists" => {
+            Selection::Adaptive(a) => match d {
+                d if d == &ADAPTIVE_GEOMETRY => Some(LightDump::Image(a.dump_geometry(ctx)?)),
+                d if d == &ADAPTIVE_LISTS => {
                     records(&adaptive::LIST_CHANNELS, adaptive::list_records(&adaptive_lists(ctx, c, a, l)?))
                 }
                 _ => None,

@@ -1,12 +1,14 @@
 //! The photon source: where a light's photons come from, before any is selected or deposited.
 
+use crate::dump::Dump;
 use crate::gpu::{GpuMesh, Stage};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::photon_trace::PhotonTracer;
 use crate::techniques::shah2007::VertexPhotons;
+use crate::techniques::shared::settings::PHOTON_BACK_FACES;
 use crate::techniques::shared::{photon_buffer, CausticPasses};
-use crate::techniques::wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMP;
+use crate::techniques::wyman_nichols2009::settings::PHOTON_GEOMETRY_BUFFERS;
 use crate::techniques::wyman_nichols2009::{DeferredPhotons, PhotonRefraction};
 use crate::techniques::Technique;
 use anyhow::Result;
@@ -93,28 +95,26 @@ impl Source {
         }
     }
 
-    /// The light-space dump `name` that this stage owns, as its buffers hold it now (None:
+    /// The light-space dump `dump` that this stage owns, as its buffers hold it now (None:
     /// not this stage's).
-    pub fn dump(&self, ctx: &Context, name: &str) -> Result<Option<ImageF32>> {
+    pub fn dump(&self, ctx: &Context, dump: &'static Dump) -> Result<Option<ImageF32>> {
         Ok(match self {
-            Source::Deferred(d) => match name {
-                DEFERRED_PHOTONS_DUMP => Some(d.dump(ctx)?),
-                // Deferred photons: the back faces are the geometry buffers' back layer.
-                "photon_back_faces" => Some(d.dump_back_faces(ctx)?),
-                _ => None,
-            },
+            Source::Deferred(d) if dump == &PHOTON_GEOMETRY_BUFFERS => Some(d.dump(ctx)?),
+            // Deferred photons: the back faces are the geometry buffers' back layer.
+            Source::Deferred(d) if dump == &PHOTON_BACK_FACES => Some(d.dump_back_faces(ctx)?),
+            Source::Deferred(_) => None,
             Source::Rasterized | Source::PerVertex(_) | Source::GeometryBuffers | Source::Traced(_) => None,
         })
     }
 
-    /// Whether this stage has the light-space buffer `name` (a name it owns but does not
-    /// have, it never dumps).
-    pub fn has_dump(&self, name: &str) -> bool {
+    /// Whether this stage has the light-space buffer `d` (one it owns but does not have, it
+    /// never dumps).
+    pub fn has_dump(&self, d: &'static Dump) -> bool {
         match self {
             Source::Deferred(_) => true,
-            Source::Rasterized | Source::PerVertex(_) | Source::GeometryBuffers => name != DEFERRED_PHOTONS_DUMP,
+            Source::Rasterized | Source::PerVertex(_) | Source::GeometryBuffers => d != &PHOTON_GEOMETRY_BUFFERS,
             // No back faces: photons cross the refractors' triangles themselves.
-            Source::Traced(_) => !matches!(name, DEFERRED_PHOTONS_DUMP | "photon_back_faces"),
+            Source::Traced(_) => d != &PHOTON_GEOMETRY_BUFFERS && d != &PHOTON_BACK_FACES,
         }
     }
 }

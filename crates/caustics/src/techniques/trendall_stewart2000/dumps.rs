@@ -4,7 +4,11 @@
 
 use super::adjusted::{Adjustments, Encoding};
 use super::cpu::CpuPasses;
+use super::settings::{
+    HEIGHT_FIELD, PASS1_NORMALS, PASS2_GAMMA_N, PASS3_TRANSMITTED, PASS4_DIRECTION, PASS5_INTEGRAND, PASS6_CONVOLUTIONS,
+};
 use super::targets::PoolTargets;
+use crate::dump::Dump;
 use crate::gpu::Target;
 use crate::image_io::{ImageF32, Layer};
 use anyhow::{Context as _, Result};
@@ -15,27 +19,29 @@ const XYZ: &[&str] = &["X", "Y", "Z"];
 const CONVOLUTIONS: &[&str] = &["E_x", "E_y", "E_z", "E"];
 
 /// The channels each dump of a pass target holds, and the encodings of the faithful path.
-fn layout(name: &str, adj: &Adjustments) -> Option<(&'static [&'static str], [Encoding; 4])> {
-    Some(match name {
-        "height_field" => (&["h"], [adj.height, U, U, U]),
-        "pass1_normals" => (XYZ, [adj.normal[0], adj.normal[1], adj.normal[2], U]),
-        "pass2_gamma_n" => (XYZ, [adj.gamma_n[0], adj.gamma_n[1], adj.gamma_n[2], U]),
-        "pass3_transmitted" => (&["value"], [U; 4]),
-        "pass4_direction" | "pass5_integrand" => (XYZ, [adj.direction[0], adj.direction[1], adj.direction[2], U]),
-        "pass6_convolutions" => (CONVOLUTIONS, adj.convolution),
+fn layout(d: &'static Dump, adj: &Adjustments) -> Option<(&'static [&'static str], [Encoding; 4])> {
+    Some(match d {
+        d if d == &HEIGHT_FIELD => (&["h"], [adj.height, U, U, U]),
+        d if d == &PASS1_NORMALS => (XYZ, [adj.normal[0], adj.normal[1], adj.normal[2], U]),
+        d if d == &PASS2_GAMMA_N => (XYZ, [adj.gamma_n[0], adj.gamma_n[1], adj.gamma_n[2], U]),
+        d if d == &PASS3_TRANSMITTED => (&["value"], [U; 4]),
+        d if d == &PASS4_DIRECTION || d == &PASS5_INTEGRAND => {
+            (XYZ, [adj.direction[0], adj.direction[1], adj.direction[2], U])
+        }
+        d if d == &PASS6_CONVOLUTIONS => (CONVOLUTIONS, adj.convolution),
         _ => return None,
     })
 }
 
-fn target<'a>(t: &'a PoolTargets, name: &str) -> Option<&'a Target> {
-    Some(match name {
-        "height_field" => &t.height,
-        "pass1_normals" => &t.normals,
-        "pass2_gamma_n" => &t.gamma_n,
-        "pass3_transmitted" => &t.transmitted,
-        "pass4_direction" => &t.direction,
-        "pass5_integrand" => &t.integrand,
-        "pass6_convolutions" => &t.convolutions,
+fn target<'a>(t: &'a PoolTargets, d: &'static Dump) -> Option<&'a Target> {
+    Some(match d {
+        d if d == &HEIGHT_FIELD => &t.height,
+        d if d == &PASS1_NORMALS => &t.normals,
+        d if d == &PASS2_GAMMA_N => &t.gamma_n,
+        d if d == &PASS3_TRANSMITTED => &t.transmitted,
+        d if d == &PASS4_DIRECTION => &t.direction,
+        d if d == &PASS5_INTEGRAND => &t.integrand,
+        d if d == &PASS6_CONVOLUTIONS => &t.convolutions,
         _ => return None,
     })
 }
@@ -64,16 +70,16 @@ pub(super) fn gpu_pass(
     ctx: &Context,
     t: &PoolTargets,
     adj: &Adjustments,
-    name: &str,
+    d: &'static Dump,
     n: usize,
 ) -> Result<Option<ImageF32>> {
-    let (Some((channels, enc)), Some(target)) = (layout(name, adj), target(t, name)) else {
+    let (Some((channels, enc)), Some(target)) = (layout(d, adj), target(t, d)) else {
         return Ok(None);
     };
-    let stored = read(ctx, target).with_context(|| format!("reading back {name}"))?;
+    let stored = read(ctx, target).with_context(|| format!("reading back {d}"))?;
     if target.image.desc.format != Format::R8G8B8A8_UNORM {
         let mut layers = vec![layer(None, channels, &stored)];
-        if name == "pass6_convolutions" {
+        if d == &PASS6_CONVOLUTIONS {
             layers.push(layer(Some("flat"), CONVOLUTIONS, &read(ctx, &t.flat)?));
         }
         return Ok(Some(image(n, layers)));
@@ -81,7 +87,7 @@ pub(super) fn gpu_pass(
     let decoded: Vec<[f32; 4]> =
         stored.iter().map(|s| [0, 1, 2, 3].map(|k| (enc[k].lo + enc[k].span * s[k] as f64) as f32)).collect();
     let mut layers = vec![layer(None, channels, &decoded), layer(Some("adjusted"), channels, &stored)];
-    if name == "pass6_convolutions" {
+    if d == &PASS6_CONVOLUTIONS {
         let flat = read(ctx, &t.flat)?;
         let flat: Vec<[f32; 4]> =
             flat.iter().map(|s| [0, 1, 2, 3].map(|k| (enc[k].lo + enc[k].span * s[k] as f64) as f32)).collect();
@@ -91,19 +97,19 @@ pub(super) fn gpu_pass(
 }
 
 /// A pass's dump from the CPU path.
-pub(super) fn cpu_pass(c: &CpuPasses, flat: &CpuPasses, name: &str) -> Option<ImageF32> {
+pub(super) fn cpu_pass(c: &CpuPasses, flat: &CpuPasses, d: &'static Dump) -> Option<ImageF32> {
     let v3 =
         |v: &[glam::DVec3]| -> Vec<[f32; 4]> { v.iter().map(|d| [d.x as f32, d.y as f32, d.z as f32, 0.0]).collect() };
     let s1 = |v: &[f64]| -> Vec<[f32; 4]> { v.iter().map(|&x| [x as f32, 0.0, 0.0, 0.0]).collect() };
     let c4 = |v: &[[f64; 4]]| -> Vec<[f32; 4]> { v.iter().map(|e| e.map(|x| x as f32)).collect() };
-    let layers = match name {
-        "height_field" => vec![layer(None, &["h"], &s1(&c.height))],
-        "pass1_normals" => vec![layer(None, XYZ, &v3(&c.normals))],
-        "pass2_gamma_n" => vec![layer(None, XYZ, &v3(&c.gamma_n))],
-        "pass3_transmitted" => vec![layer(None, &["value"], &s1(&c.transmitted))],
-        "pass4_direction" => vec![layer(None, XYZ, &v3(&c.direction))],
-        "pass5_integrand" => vec![layer(None, XYZ, &v3(&c.integrand))],
-        "pass6_convolutions" => vec![
+    let layers = match d {
+        d if d == &HEIGHT_FIELD => vec![layer(None, &["h"], &s1(&c.height))],
+        d if d == &PASS1_NORMALS => vec![layer(None, XYZ, &v3(&c.normals))],
+        d if d == &PASS2_GAMMA_N => vec![layer(None, XYZ, &v3(&c.gamma_n))],
+        d if d == &PASS3_TRANSMITTED => vec![layer(None, &["value"], &s1(&c.transmitted))],
+        d if d == &PASS4_DIRECTION => vec![layer(None, XYZ, &v3(&c.direction))],
+        d if d == &PASS5_INTEGRAND => vec![layer(None, XYZ, &v3(&c.integrand))],
+        d if d == &PASS6_CONVOLUTIONS => vec![
             layer(None, CONVOLUTIONS, &c4(&c.convolutions)),
             layer(Some("flat"), CONVOLUTIONS, &c4(&flat.convolutions)),
         ],

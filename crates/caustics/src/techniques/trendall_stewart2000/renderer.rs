@@ -7,9 +7,11 @@
 use super::cpu::{self, CpuPasses};
 use super::gpu_passes::{record_passes, PassInputs};
 use super::pipelines::PoolPipelines;
+use super::settings::RECEIVER;
 use super::targets::PoolTargets;
 use super::uniforms::{pool_uniforms, PoolUniforms};
 use super::{dumps, pool_of, water_surface, Init, Precision};
+use crate::dump::Dump;
 use crate::gpu::frame_mode::{FrameMode, FrameStep, Slots};
 use crate::gpu::Stage;
 use crate::image_io::ImageF32;
@@ -269,27 +271,32 @@ impl<'c> PoolRenderer<'c> {
         Ok(ImageF32 { width: w, height: h, layers: vec![crate::image_io::Layer::new(None, &["R", "G", "B"], data)] })
     }
 
-    /// The named buffers of the last frame (names from `settings::DUMPS`; others are skipped).
-    pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(String, ImageF32)>> {
+    /// The buffers `wanted` of the last frame (from `settings::DUMPS`; others are skipped).
+    pub fn dumps(&mut self, wanted: &[&'static Dump]) -> Result<Vec<(&'static Dump, ImageF32)>> {
         let n = self.init.n;
-        let mut out: Vec<(String, ImageF32)> = vec![];
-        for name in names {
-            if out.iter().any(|(m, _)| m == name) {
+        let mut out: Vec<(&'static Dump, ImageF32)> = vec![];
+        for &d in wanted {
+            if out.iter().any(|(m, _)| *m == d) {
                 continue;
             }
-            let img = match (&self.cpu, name.as_str()) {
-                (Some((last, flat)), "receiver") => {
+            let img = match &self.cpu {
+                Some((last, flat)) if d == &RECEIVER => {
                     Some(dumps::receiver_image(n, &last.irradiance(), &flat.irradiance()))
                 }
-                (Some((last, flat)), other) => dumps::cpu_pass(last, flat, other),
-                (None, "receiver") => Some(dumps::gpu_receiver(self.ctx, &self.targets, n)?),
-                (None, other) => dumps::gpu_pass(self.ctx, &self.targets, &self.init.adjustments, other, n)?,
+                Some((last, flat)) => dumps::cpu_pass(last, flat, d),
+                None if d == &RECEIVER => Some(dumps::gpu_receiver(self.ctx, &self.targets, n)?),
+                None => dumps::gpu_pass(self.ctx, &self.targets, &self.init.adjustments, d, n)?,
             };
             if let Some(img) = img {
-                out.push((name.clone(), img));
+                out.push((d, img));
             }
         }
         Ok(out)
+    }
+
+    /// The scene this renderer was made for.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
     }
 
     /// What Init computed (the pool at its current time, the kernels, the encodings).

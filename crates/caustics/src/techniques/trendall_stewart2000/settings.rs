@@ -3,22 +3,32 @@
 //! leaf module: the scene description reads it).
 
 use super::super::value_enum::value_enum;
+use crate::dump::{Dump, Format, Space};
 
 /// The paper, as tables and `--help` cite it.
 pub const PAPER: &str = "Trendall & Stewart 2000, pool caustics as convolutions";
 
 /// The buffers `pool-convolution` has (`--dump` names): the height field, each pass's function,
 /// the convolutions, and the pool-bottom receiver map.
-pub const DUMPS: &[&str] = &[
-    "height_field",
-    "pass1_normals",
-    "pass2_gamma_n",
-    "pass3_transmitted",
-    "pass4_direction",
-    "pass5_integrand",
-    "pass6_convolutions",
-    "receiver",
+pub static DUMPS: &[&Dump] = &[
+    &HEIGHT_FIELD,
+    &PASS1_NORMALS,
+    &PASS2_GAMMA_N,
+    &PASS3_TRANSMITTED,
+    &PASS4_DIRECTION,
+    &PASS5_INTEGRAND,
+    &PASS6_CONVOLUTIONS,
+    &RECEIVER,
 ];
+pub static HEIGHT_FIELD: Dump = Dump::new("height_field", module_path!(), Space::Pool, Format::Image);
+pub static PASS1_NORMALS: Dump = Dump::new("pass1_normals", module_path!(), Space::Pool, Format::Image);
+pub static PASS2_GAMMA_N: Dump = Dump::new("pass2_gamma_n", module_path!(), Space::Pool, Format::Image);
+pub static PASS3_TRANSMITTED: Dump = Dump::new("pass3_transmitted", module_path!(), Space::Pool, Format::Image);
+pub static PASS4_DIRECTION: Dump = Dump::new("pass4_direction", module_path!(), Space::Pool, Format::Image);
+pub static PASS5_INTEGRAND: Dump = Dump::new("pass5_integrand", module_path!(), Space::Pool, Format::Image);
+pub static PASS6_CONVOLUTIONS: Dump = Dump::new("pass6_convolutions", module_path!(), Space::Pool, Format::Image);
+/// The pool bottom's receiver map (not the eye render's `receiver`: another declaration).
+pub static RECEIVER: Dump = Dump::new("receiver", module_path!(), Space::Pool, Format::Image);
 
 /// The default side of the Pass 6 kernels (the paper's 7 x 7).
 pub const DEFAULT_KERNEL: u32 = 7;

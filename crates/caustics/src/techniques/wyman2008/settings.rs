@@ -9,12 +9,19 @@ pub const MULTIRES_LEVELS: u32 = 4;
 
 use super::super::technique::Technique;
 use super::super::value_enum::value_enum;
+use crate::dump::{Dump, Format, Space};
 
 /// The paper, as tables and `--help` cite it.
 pub const PAPER: &str = "Wyman 2008, hierarchical caustic maps";
 
-/// The buffers only `hcm` has (`--dump` names).
-pub const DUMPS: &[&str] = &["hierarchy", "hierarchy_lists", "splats"];
+/// The photon hierarchy's levels (Sec. 3.1).
+pub static HIERARCHY: Dump = Dump::new("hierarchy", module_path!(), Space::LightInTurn, Format::Image);
+/// The traversal's lists, level by level.
+pub static HIERARCHY_LISTS: Dump = Dump::new("hierarchy_lists", module_path!(), Space::LightInTurn, Format::Records);
+/// Each splat of the final list as drawn (Sec. 3.3).
+pub static SPLATS: Dump = Dump::new("splats", module_path!(), Space::LightInTurn, Format::Records);
+/// The buffers only `hcm` has.
+pub static DUMPS: &[&Dump] = &[&HIERARCHY, &HIERARCHY_LISTS, &SPLATS];
 
 value_enum! {
     /// Converging-photon clustering (Sec. 3.2; `caustics.cluster`, `--cluster`).

@@ -1,14 +1,21 @@
 //! Wyman & Davis 2006's settings and dumps, as the scene's `[caustics]`, the bench configs and
 //! the command line name them (a leaf module: the scene description reads it).
 
+use super::super::shared::settings as shared;
 use super::super::value_enum::value_enum;
+use crate::dump::{self, Dump, Format};
 
 /// The paper, as tables and `--help` cite it.
 pub const PAPER: &str = "Wyman & Davis 2006, image-space caustics";
 
-/// What the eye-space variants dump beside the shared buffers: the eye's caustic irradiance
-/// and the eye-space photon buffer it was gathered from.
-pub const EYE_DUMPS: &[&str] = &["receiver_positions", "photon_back_faces", "photon_buffer", "eye_caustic"];
+/// The eye's caustic irradiance and the eye-space photon buffer it was gathered from.
+pub static EYE_CAUSTIC: Dump = Dump::new("eye_caustic", module_path!(), dump::Space::Eye, Format::Image);
+/// The buffers only the eye-space variants have.
+pub static DUMPS: &[&Dump] = &[&EYE_CAUSTIC];
+/// What the eye-space variants dump: the shared light-space buffers but the caustic map, and
+/// their own.
+pub static EYE_DUMPS: &[&Dump] =
+    &[&shared::RECEIVER_POSITIONS, &shared::PHOTON_BACK_FACES, &shared::PHOTON_BUFFER, &EYE_CAUSTIC];
 
 value_enum! {
     /// Where caustic quads and gathers are rendered (`caustics.space`, `--space`; Sec. 3.2.1-3.2.2).

@@ -4,6 +4,7 @@
 //! geometry-buffer resolution (Sec. 3.2).
 
 use super::super::value_enum::value_enum;
+use crate::dump::{Dump, Format, Space};
 use vkcore::Feature;
 
 /// The paper, as tables and `--help` cite it.
@@ -39,14 +40,6 @@ value_enum! {
 }
 
 impl Refraction {
-    /// The eye render's buffers that only this refraction has (`--dump` names).
-    pub fn dumps(self) -> &'static [&'static str] {
-        match self {
-            Refraction::Forward => &["refractor_back_faces", "refractor_front_faces"],
-            Refraction::Deferred => &["refractor_geometry", "refraction_layers"],
-        }
-    }
-
     /// The device features it needs beyond the baseline.
     pub fn required_features(self) -> &'static [Feature] {
         match self {
@@ -68,16 +61,29 @@ impl PhotonRefraction {
     }
 }
 
-/// The `--dump` name of the geometry buffers deferred photons (Sec. 3.2) are created from.
-pub const DEFERRED_PHOTONS_DUMP: &str = "photon_geometry_buffers";
+/// The light-space geometry buffers deferred photons (Sec. 3.1.1, Fig. 10) are created from.
+pub static PHOTON_GEOMETRY_BUFFERS: Dump =
+    Dump::new("photon_geometry_buffers", module_path!(), Space::LightInTurn, Format::Image);
+/// The buffers only deferred photons have (`photon_refraction = "deferred"`).
+pub static DEFERRED_PHOTONS_DUMPS: &[&Dump] = &[&PHOTON_GEOMETRY_BUFFERS];
+
+/// Deferred refraction's geometry buffers, refractor by refractor (Sec. 3.1).
+pub static REFRACTOR_GEOMETRY: Dump = Dump::new("refractor_geometry", module_path!(), Space::Eye, Format::Image);
+/// The image after each refractor's full-screen pass (Sec. 3.1).
+pub static REFRACTION_LAYERS: Dump = Dump::new("refraction_layers", module_path!(), Space::Eye, Format::Image);
+/// The eye render's buffers only deferred refraction has (`refraction = "deferred"`).
+pub static DEFERRED_REFRACTION_DUMPS: &[&Dump] = &[&REFRACTOR_GEOMETRY, &REFRACTION_LAYERS];
 
 /// The most batches a traversal may be asked for (`photon_batches`); one frame records fewer
 /// (see `adaptive::batches::plan`).
 pub const MAX_BATCHES: u32 = 256;
 
-/// The buffers only technique `adaptive` has (`--dump` names): the light-space geometry buffers
-/// and their coverage pyramid (Sec. 3.2), the traversal's lists and its photons.
-pub const ADAPTIVE_DUMPS: &[&str] = &["adaptive_geometry", "adaptive_lists"];
+/// The light-space geometry buffers and their coverage pyramid (Sec. 3.2).
+pub static ADAPTIVE_GEOMETRY: Dump = Dump::new("adaptive_geometry", module_path!(), Space::LightInTurn, Format::Image);
+/// The traversal's lists and its photons.
+pub static ADAPTIVE_LISTS: Dump = Dump::new("adaptive_lists", module_path!(), Space::LightInTurn, Format::Records);
+/// The buffers only technique `adaptive` has.
+pub static ADAPTIVE_DUMPS: &[&Dump] = &[&ADAPTIVE_GEOMETRY, &ADAPTIVE_LISTS];
 
 /// Sec. 3.2: "We used a 64² grid for this coarse sampling": the photons per side of level 0.
 pub const TOP_PHOTONS: u32 = 64;
