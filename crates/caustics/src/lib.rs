@@ -9,6 +9,7 @@ pub mod compare;
 pub mod diff;
 pub mod error;
 pub mod error_png;
+pub mod flip;
 pub mod gpu;
 pub mod image_io;
 pub mod reference;
