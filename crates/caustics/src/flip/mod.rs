@@ -205,8 +205,9 @@ pub fn ldr(reference: &Rgb, test: &Rgb, ppd: f64) -> Result<FlipMap, InputError>
 }
 
 /// HDR-FLIP of `test` against `reference` at `ppd` pixels per degree over `exposures`. Besides
-/// [`ldr()`]'s input errors: a given range that is not finite, starts after it stops or spans more
-/// than [`MAX_EXPOSURES`] exposures, and an automatic range of a black reference.
+/// [`ldr()`]'s input errors: a given range that is not finite (in f32), starts after it stops or
+/// spans more than [`MAX_EXPOSURES`] exposures, and an automatic range of a black reference or
+/// of one so dim that its range is not finite.
 pub fn hdr(reference: &Rgb, test: &Rgb, ppd: f64, exposures: Exposures) -> Result<HdrFlip, InputError> {
     check_pair(reference, test, ppd)?;
     let (start, stop) = match exposures {
@@ -220,6 +221,12 @@ pub fn hdr(reference: &Rgb, test: &Rgb, ppd: f64, exposures: Exposures) -> Resul
             (start as f32, stop as f32)
         }
     };
+    if !(start.is_finite() && stop.is_finite()) {
+        return Err(crate::input_error!(
+            "HDR-FLIP: exposures from {start} to {stop} stops do not fit in f32 (a reference too dim to set them, \
+             or given ones too large)"
+        ));
+    }
     let count = hdr::exposure_count(start, stop);
     if count > MAX_EXPOSURES {
         return Err(crate::input_error!(

@@ -59,6 +59,11 @@ fn given_exposures_must_be_finite_ordered_and_few() {
         let err = hdr(&img, &img, 67.0, Exposures::Given { start, stop }).unwrap_err();
         assert!(err.0.contains("exposures from"), "{err}");
     }
+    let err = hdr(&img, &img, 67.0, Exposures::Given { start: 0.0, stop: 1e300 }).unwrap_err();
+    assert!(err.0.contains("do not fit in f32"), "{err}");
+    let dim = grey(4, 4, 1e-40);
+    let err = hdr(&dim, &img, 67.0, Exposures::Auto).unwrap_err();
+    assert!(err.0.contains("too dim"), "{err}");
     let err = hdr(&img, &img, 67.0, Exposures::Given { start: -200.0, stop: 200.0 }).unwrap_err();
     assert!(err.0.contains("400") && err.0.contains("more than 256"), "{err}");
 }
