@@ -515,3 +515,33 @@ fn fences_counts_names_bounds_and_the_shape_of_a_written_number() {
     assert!(found.len() == 1 && found[0].what.contains("spread is ±4%"), "{found:#?}");
     assert_eq!(found[0].written, "89.3 ±9%");
 }
+
+/// A paper's value is a whole token of its text (not part of a longer number, nor a decimal's
+/// tail; a sentence's full stop after it is no decimal point); two words say where; without the
+/// papers the claim is counted as unchecked.
+#[test]
+fn a_paper_token_its_place_and_missing_papers() {
+    let (_s, root) = repo(&[("000_7c07a484f7a872bb.txt", "12 9.8 x; ratio 0.8 only; it was 7.5. Then")]);
+    let paper = |v: &str| problems(&root, &format!("The paper's {v}<!--paper wyman2008 T3 --> ms.\n"));
+    assert_eq!(paper("9.8"), vec![]);
+    assert_eq!(paper("7.5"), vec![]);
+    let tail = paper("8");
+    assert!(tail.len() == 1 && tail[0].what.contains("does not occur"), "{tail:#?}");
+    let (_t, bare) = repo(&[]);
+    let r = report(&bare, "The paper's 9.8<!--paper wyman2008 Table 3 --> ms.\n");
+    assert_eq!((r.papers_missing, r.claims, r.problems.len()), (1, 1, 0), "{:#?}", r.problems);
+}
+
+/// A number after a claim on the same line still needs its own; a column is counted past an
+/// escaped bar.
+#[test]
+fn a_sourced_span_ends_at_its_claim_and_an_escaped_bar_is_no_column() {
+    let (_s, root) = repo(&[]);
+    std::fs::write(root.join("results/abc.csv"), ABC).unwrap();
+    let head = "<!--claims d = results/abc.csv -->\n";
+    let found = problems(&root, &format!("{head}2<!--= d{{x=p column=a}} --> then 4.5 ms.\n"));
+    assert_eq!(found.iter().map(|p| p.written.as_str()).collect::<Vec<_>>(), ["4.5"], "{found:#?}");
+    let table = "| name | Sec. | time |\n|---|---|---|\n| a \\| b | 3.3 | 1.5 ms |\n";
+    let written: Vec<String> = problems(&root, table).into_iter().map(|p| p.written).collect();
+    assert_eq!(written, ["1.5"]);
+}

@@ -255,8 +255,7 @@ fn comments(line: &str) -> Vec<Comment> {
     let bare = without_code(line);
     while let Some(p) = bare[from..].find("<!--") {
         let start = from + p;
-        // The comment's end, after its opening (`<!-->` is not a closed comment).
-        let Some(q) = bare[start + 4..].find("-->").map(|q| q + 4) else { break };
+        let Some(q) = bare[start + 4..].find("-->").map(|q| q + 4) else { break }; // `<!-->` closes nothing
         let end = start + q + 3;
         let inner = line[start + 4..start + q].trim_start();
         if let Some(k) = KINDS.iter().find(|k| inner.starts_with(**k)) {
@@ -700,6 +699,39 @@ mod tests {
         assert_eq!(found("differ by 1.8e-7 and 3e-7, not 2e5x3 (e-7 alone)"), vec!["1.8e-7", "3e-7"]);
         assert_eq!(found("at 064e926, 1e5abc0 and 3e1234f"), Vec::<String>::new());
         assert_eq!(found("holds 450 MB, 2 MiB more, in 3 minutes or 0.5 µs; 64 MiBs"), vec!["450", "2", "3", "0.5"]);
+    }
+
+    #[test]
+    fn code_comments_links_and_addresses_are_not_prose_wherever_they_sit() {
+        let found = |l: &str| unsourced(l);
+        let none: Vec<(usize, String)> = vec![];
+        assert_eq!(found("see `x 12 ms` here"), none);
+        assert_eq!(found("`a` 1.5 ms and `b 12 ms` 2.5 ms"), vec![(4, "1.5".to_string()), (25, "2.5".to_string())]);
+        assert_eq!(found("<!--given 3.5 ms -->"), none);
+        assert_eq!(found("a <!--given x 1.2--> b"), none);
+        assert_eq!(found("[t](x/1.5/y) 2.5 ms"), vec![(13, "2.5".to_string())]);
+        assert_eq!(found("see http://x/1.5 now 2.5 ms"), vec![(21, "2.5".to_string())]);
+    }
+
+    #[test]
+    fn where_a_number_starts_and_ends_and_what_makes_it_a_label() {
+        let found = |l: &str| unsourced(l).into_iter().map(|(_, t)| t).collect::<Vec<_>>();
+        let none: Vec<String> = vec![];
+        // Inside a name (`v1.5`, `ab-2.5`), a version (`1.2.3`), an angle, a 2.5D view: labels.
+        assert_eq!(found("build v1.5 here"), none);
+        assert_eq!(found("1 2 3 ab-2.5"), none);
+        assert_eq!(found("at 1.2.3 now"), none);
+        assert_eq!(found("a 2.5° turn"), none);
+        assert_eq!(found("the 2.5d view"), none);
+        // A leading minus, a full stop, thousands, exponents (not four digits of one).
+        assert_eq!(unsourced("-1.5 ms"), vec![(1, "1.5".to_string())]);
+        assert_eq!(found("takes 1.5. Then"), ["1.5"]);
+        assert_eq!(found("60,350 ms"), ["60,350"]);
+        assert_eq!(found("about 12e3 of them"), ["12e3"]);
+        assert_eq!(found("about 0.5e3 of them"), ["0.5e3"]);
+        assert_eq!(found("about 1e1234 of them"), none);
+        // A spread is measured without a unit.
+        assert_eq!(unsourced("varies ±4 between runs"), vec![(9, "4".to_string())]);
     }
 
     #[test]
