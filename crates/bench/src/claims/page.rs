@@ -659,6 +659,7 @@ mod tests {
         assert_eq!(w("from 3 - 5 ms"), ("3".into(), Some("5".into()), None));
         assert_eq!(w("1.47–1.93x"), ("1.47".into(), Some("1.93".into()), None));
         assert_eq!(w("- 5 ms"), ("5".into(), None, None));
+        assert_eq!(w("3 -5 ms"), ("3".into(), Some("5".into()), None));
         assert_eq!(w("±4%"), ("4".into(), None, None));
         // A number's leading comma or point is not part of it.
         let lead = written_before("see ,12 ms").unwrap();
