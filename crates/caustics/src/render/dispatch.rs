@@ -134,7 +134,7 @@ impl<'c> Renderer<'c> {
             Renderer::Mesh(r) => &r.scene().caustics,
             Renderer::Pool(r) => &r.scene().caustics,
         };
-        let wanted: Vec<&'static Dump> = names.iter().filter_map(|n| crate::dump::named(n, settings)).collect();
+        let wanted: Vec<&'static Dump> = names.iter().filter_map(|n| super::dumps::named(n, settings)).collect();
         match self {
             Renderer::Mesh(r) => r.dumps(&wanted),
             Renderer::Pool(r) => r.dumps(&wanted),

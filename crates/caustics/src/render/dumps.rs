@@ -7,7 +7,9 @@ use crate::dump::{Dump, Format, Space};
 use crate::gpu::target::read_image_layer;
 use crate::image_io::{ImageF32, Layer};
 use crate::techniques::shared::settings::{CAUSTIC_MAP, RECEIVER_POSITIONS};
-use crate::techniques::wyman_nichols2009::settings::{self as wn2009, REFRACTION_LAYERS, REFRACTOR_GEOMETRY};
+use crate::techniques::wyman_nichols2009::deferred_refraction::{
+    DEFERRED_REFRACTION_DUMPS, REFRACTION_LAYERS, REFRACTOR_GEOMETRY,
+};
 use crate::techniques::wyman_nichols2009::DeferredRefraction;
 use crate::techniques::{CausticTargets, PhotonTargets, Refraction};
 use anyhow::Result;
@@ -45,7 +47,7 @@ pub static FORWARD_REFRACTION_DUMPS: &[&Dump] = &[&REFRACTOR_BACK_FACES, &REFRAC
 pub fn refraction_dumps(refraction: Refraction) -> &'static [&'static Dump] {
     match refraction {
         Refraction::Forward => FORWARD_REFRACTION_DUMPS,
-        Refraction::Deferred => wn2009::DEFERRED_REFRACTION_DUMPS,
+        Refraction::Deferred => DEFERRED_REFRACTION_DUMPS,
     }
 }
 
@@ -62,6 +64,38 @@ fn per_light(ctx: &Context, t: &Target, names: &[&str], pick: &[usize]) -> Resul
         .map(|l| t.read_layer(ctx, l, Some(&format!("light{l}")), names, pick))
         .collect::<Result<Vec<_>>>()?;
     Ok(t.as_image(layers))
+}
+
+/// Every declared dump, owner by owner: the order of `--dump all`, and of every render's dumps
+/// (`render::dumps_for` lists each render's in this order; the conformance suite checks it).
+pub fn all() -> Vec<&'static Dump> {
+    use crate::techniques::{shared, trendall_stewart2000, wyman2008, wyman_davis2006, wyman_nichols2009 as wn2009};
+    [
+        EYE_DUMPS,
+        shared::settings::DUMPS,
+        wn2009::settings::DEFERRED_PHOTONS_DUMPS,
+        wyman_davis2006::settings::DUMPS,
+        wyman2008::DUMPS,
+        wn2009::settings::ADAPTIVE_DUMPS,
+        trendall_stewart2000::DUMPS,
+    ]
+    .concat()
+}
+
+/// The distinct names of [`all`] (what `--dump` accepts besides `all`), in its order.
+pub fn all_names() -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = vec![];
+    for d in all() {
+        if !names.contains(&d.name) {
+            names.push(d.name);
+        }
+    }
+    names
+}
+
+/// The dump called `name` that a render with `settings` has (None: it has none of that name).
+pub fn named(name: &str, settings: &crate::techniques::CausticSettings) -> Option<&'static Dump> {
+    super::dumps_for(settings).into_iter().find(|d| d.name == name)
 }
 
 /// The eye render's buffer `d` (or the receiver positions or caustic map it holds); None if this
@@ -174,4 +208,49 @@ pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, dump: &'s
         }
     }
     Ok(t.final_image.as_image(layers))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::techniques::CausticSettings;
+
+    /// The names docs/dumps.md's tables describe (the first cell of each row).
+    fn documented() -> Vec<String> {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/dumps.md");
+        let text = std::fs::read_to_string(path).expect("docs/dumps.md");
+        let mut names: Vec<String> = vec![];
+        for line in text.lines().filter(|l| l.starts_with("| `")) {
+            let name = line.split('`').nth(1).expect("a name").to_string();
+            if !names.contains(&name) {
+                names.push(name);
+            }
+        }
+        names
+    }
+
+    #[test]
+    fn docs_describe_every_declared_dump_and_no_other() {
+        let docs = documented();
+        for name in all_names() {
+            assert!(docs.iter().any(|d| d == name), "docs/dumps.md does not describe `{name}`");
+        }
+        for d in &docs {
+            assert!(all_names().contains(&d.as_str()), "docs/dumps.md describes `{d}`, which nothing declares");
+        }
+    }
+
+    #[test]
+    fn a_dump_is_its_declaration_not_its_name() {
+        use crate::techniques::trendall_stewart2000::settings::RECEIVER as POOL_RECEIVER;
+        let eye = &RECEIVER;
+        assert_eq!(eye.name, POOL_RECEIVER.name);
+        assert!(eye != &POOL_RECEIVER && eye == &RECEIVER);
+        assert!(eye.owner.ends_with("render::dumps") && POOL_RECEIVER.owner.contains("trendall_stewart2000"));
+        // Each render reads a name as the one declaration it has.
+        let pool = CausticSettings { technique: crate::techniques::Technique::PoolConvolution, ..Default::default() };
+        assert!(named("receiver", &pool) == Some(&POOL_RECEIVER));
+        assert!(named("receiver", &CausticSettings::default()) == Some(eye));
+        assert!(named("hierarchy", &CausticSettings::default()).is_none());
+    }
 }

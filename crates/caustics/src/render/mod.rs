@@ -48,9 +48,9 @@ pub fn dumps_for(settings: &crate::techniques::CausticSettings) -> Vec<&'static 
     EYE_DUMPS.iter().copied().filter(|d| !other(d)).chain(settings.dumps()).collect()
 }
 
-/// Every buffer some technique can dump (what `--dump` accepts): [`crate::dump::all_names`].
+/// Every buffer some technique can dump (what `--dump` accepts): [`dumps::all_names`].
 pub fn all_dump_names() -> Vec<&'static str> {
-    crate::dump::all_names()
+    dumps::all_names()
 }
 
 #[derive(Debug, Clone, Default)]
@@ -202,7 +202,8 @@ mod tests {
 
     #[test]
     fn a_render_has_each_name_once_and_its_refractions_buffers() {
-        use crate::dump::{all, Space};
+        use crate::dump::Space;
+        use dumps::all;
         // The eye render's buffers are read from its own targets, none light by light.
         for d in EYE_DUMPS {
             assert!(matches!(d.space, Space::Eye | Space::LightLayers), "{d}");

@@ -10,8 +10,7 @@ use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::shared::settings::PHOTON_BUFFER;
 use crate::techniques::stages::{self, CausticPipeline};
-use crate::techniques::wyman_davis2006::settings::EYE_CAUSTIC;
-use crate::techniques::wyman_nichols2009::settings::DEFERRED_REFRACTION_DUMPS;
+use crate::techniques::wyman_nichols2009::deferred_refraction::DEFERRED_REFRACTION_DUMPS;
 use crate::techniques::wyman_nichols2009::{deferred_refraction, DeferredRefraction, Refraction};
 use crate::techniques::{self, CopyType, EyeView};
 use anyhow::{Context as _, Result};
@@ -393,7 +392,8 @@ impl<'c> MeshRenderer<'c> {
     /// The buffers `wanted` of the last frame that this render has, each with its image. The
     /// light-space buffers that serve every light in turn (`dump::Space::LightInTurn`) are read
     /// light by light by the caustic stages (`CausticPipeline::light_space_dumps`): layers
-    /// `light<l>.<layer>`; the deposit's eye-space ones by the deposit; deferred refraction's
+    /// `light<l>.<layer>`; the eye-space ones the eye render does not own by the caustic
+    /// deposit; deferred refraction's
     /// by it; the rest from the eye render's targets.
     pub fn dumps(&mut self, wanted: &[&'static Dump]) -> Result<Vec<(&'static Dump, ImageF32)>> {
         let declared = super::dumps_for(&self.scene.caustics);
@@ -427,7 +427,8 @@ impl<'c> MeshRenderer<'c> {
             let img = match read.iter().position(|(r, _)| *r == d) {
                 Some(i) => Some(read.swap_remove(i).1),
                 None if d.space == Space::LightInTurn => None,
-                None if d == &EYE_CAUSTIC => match &self.caustic {
+                // An eye-space buffer the eye render does not own is its caustic deposit's.
+                None if d.space == Space::Eye && !dumps::EYE_DUMPS.contains(&d) => match &self.caustic {
                     Some(c) => c.dump(self.ctx, d)?,
                     None => None,
                 },

@@ -35,9 +35,9 @@ fn caustics_has_no_module_cycle_and_no_paper_imports_another() {
 /// The parts from the bottom up (`docs/architecture.md`): each imports only parts of lower
 /// layers. The papers share a layer (and import no other paper).
 const LAYERS: &[&[&str]] = &[
-    &["error", "workers"],
+    &["error", "workers", "dump"],
     &["image_io", "bvh"],
-    &["compare", "diff", "error_png", "settings"],
+    &["compare", "diff", "error_png", "flip", "settings"],
     &["scene"],
     &["animation", "reference", "gpu"],
     &["techniques::shared"],

@@ -18,6 +18,7 @@
 //! are followed through several refractors in light space, by deferred photons and adaptive
 //! caustic maps (`deferred_photon_layers.glsl`), not by these eye-view passes.
 
+use crate::dump::{self, Dump, Space};
 use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::mesh_pipeline::mesh_layout;
 use crate::gpu::{mesh_uses, GpuMesh, Stage};
@@ -27,6 +28,13 @@ use vkcore::{
     Access, Bind, Blend, Context, Cull, Format, Frame, GraphicsDesc, Image, ImageDesc, ImageView, Pipeline, Sampler,
     ShaderCompiler, Targets, Topology, Use, ViewKind,
 };
+
+/// Deferred refraction's geometry buffers, refractor by refractor (Sec. 3.1).
+pub static REFRACTOR_GEOMETRY: Dump = Dump::new("refractor_geometry", module_path!(), Space::Eye, dump::Format::Image);
+/// The image after each refractor's full-screen pass (Sec. 3.1).
+pub static REFRACTION_LAYERS: Dump = Dump::new("refraction_layers", module_path!(), Space::Eye, dump::Format::Image);
+/// The eye render's buffers only deferred refraction has (`refraction = "deferred"`).
+pub static DEFERRED_REFRACTION_DUMPS: &[&Dump] = &[&REFRACTOR_GEOMETRY, &REFRACTION_LAYERS];
 
 /// The window depth and thickness layers: two floats.
 pub const DEPTH_AND_THICKNESS: Format = Format::R32G32_SFLOAT;

@@ -67,13 +67,6 @@ pub static PHOTON_GEOMETRY_BUFFERS: Dump =
 /// The buffers only deferred photons have (`photon_refraction = "deferred"`).
 pub static DEFERRED_PHOTONS_DUMPS: &[&Dump] = &[&PHOTON_GEOMETRY_BUFFERS];
 
-/// Deferred refraction's geometry buffers, refractor by refractor (Sec. 3.1).
-pub static REFRACTOR_GEOMETRY: Dump = Dump::new("refractor_geometry", module_path!(), Space::Eye, Format::Image);
-/// The image after each refractor's full-screen pass (Sec. 3.1).
-pub static REFRACTION_LAYERS: Dump = Dump::new("refraction_layers", module_path!(), Space::Eye, Format::Image);
-/// The eye render's buffers only deferred refraction has (`refraction = "deferred"`).
-pub static DEFERRED_REFRACTION_DUMPS: &[&Dump] = &[&REFRACTOR_GEOMETRY, &REFRACTION_LAYERS];
-
 /// The most batches a traversal may be asked for (`photon_batches`); one frame records fewer
 /// (see `adaptive::batches::plan`).
 pub const MAX_BATCHES: u32 = 256;
