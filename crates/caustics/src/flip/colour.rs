@@ -19,15 +19,6 @@ pub const D65: Triple = [0.950_428_545, 1.0, 1.088_900_371];
 #[allow(clippy::excessive_precision)]
 pub const D65_INVERSE: Triple = [1.052_156_925, 1.0, 0.918_357_670];
 
-/// sRGB transfer function, encoded value in [0, 1] to linear (IEC 61966-2-1).
-pub fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
-
 /// Luminance of linear sRGB (Rec. 709 weights): the Y whose median and maximum set HDR-FLIP's
 /// exposure range.
 pub fn luminance(rgb: Triple) -> f32 {
@@ -153,10 +144,10 @@ mod tests {
 
     #[test]
     fn srgb_decoding_meets_its_segments() {
-        assert_eq!(srgb_to_linear(0.0), 0.0);
-        assert!((srgb_to_linear(1.0) - 1.0).abs() < 1e-6);
-        assert!((srgb_to_linear(0.5) - 0.214_041).abs() < 1e-5, "mid-grey 0.5 is 21.4% linear");
-        assert!((srgb_to_linear(0.04045) - 0.04045 / 12.92).abs() < 1e-9);
+        assert_eq!(crate::image_io::srgb_decode(0.0), 0.0);
+        assert!((crate::image_io::srgb_decode(1.0) - 1.0).abs() < 1e-6);
+        assert!((crate::image_io::srgb_decode(0.5) - 0.214_041).abs() < 1e-5, "mid-grey 0.5 is 21.4% linear");
+        assert!((crate::image_io::srgb_decode(0.04045) - 0.04045 / 12.92).abs() < 1e-9);
     }
 
     #[test]

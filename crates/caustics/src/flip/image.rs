@@ -1,9 +1,9 @@
 //! The images FLIP compares: linear RGB, every value finite and non-negative, checked once when
 //! the image is made so that the metric itself has nothing left to refuse.
 
-use super::colour::{srgb_to_linear, Triple};
+use super::colour::Triple;
 use crate::error::InputError;
-use crate::image_io::{read_exr, ImageF32};
+use crate::image_io::{read_exr, srgb_decode, ImageF32};
 use std::path::Path;
 
 /// A linear-RGB image (the EXRs the renderer writes): `width * height` pixels, row 0 at the top.
@@ -45,7 +45,7 @@ impl Rgb {
     /// decoded by the sRGB transfer function to linear, as the reference implementation reads an
     /// LDR image.
     pub fn from_srgb8(width: usize, height: usize, bytes: &[u8]) -> Result<Rgb, InputError> {
-        let linear: Vec<f32> = bytes.iter().map(|&b| srgb_to_linear(b as f32 / 255.0)).collect();
+        let linear: Vec<f32> = bytes.iter().map(|&b| srgb_decode(b as f32 / 255.0)).collect();
         Rgb::new(width, height, &linear)
     }
 

@@ -365,6 +365,16 @@ pub fn tonemap_aces(x: f32) -> f32 {
     ((x * (a * x + b)) / (x * (c * x + d) + e)).clamp(0.0, 1.0)
 }
 
+/// sRGB-encoded [0, 1] -> linear [0, 1] (IEC 61966-2-1): a PNG's codes as `k / 255`, and FLIP's
+/// LDR input.
+pub fn srgb_decode(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
 /// Linear [0, 1] -> sRGB-encoded [0, 1] (IEC 61966-2-1).
 pub fn srgb_encode(x: f32) -> f32 {
     if x <= 0.003_130_8 {
@@ -663,14 +673,7 @@ pub fn read_png_rgba(path: &Path) -> Result<(u32, u32, Vec<f32>)> {
         reader.next_frame(&mut buf).map_err(|e| crate::input_error!("{}: not a readable PNG: {e}", path.display()))?;
     let channels = info.color_type.samples();
     let (w, h) = (info.width, info.height);
-    let to_linear = |v: u8| {
-        let c = v as f32 / 255.0;
-        if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-    };
+    let to_linear = |v: u8| srgb_decode(v as f32 / 255.0);
     let mut out = Vec::with_capacity(w as usize * h as usize * 4);
     for px in buf[..info.buffer_size()].chunks(channels) {
         let (r, g, b, a) = match channels {
