@@ -5,6 +5,7 @@
 use crate::cli::{GlobalOpts, RenderArgs};
 use anyhow::{Context as _, Result};
 use bench::Timings;
+use caustics::dump::named_in;
 use caustics::image_io::{self, header, ImageF32, OutputDir};
 use caustics::input_error;
 use caustics::render::{self, RenderRequest};
@@ -34,8 +35,8 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         )
         .into());
     }
-    if let Some(n) = dumps.iter().find(|d| !named_in(&own, d) && !dump_all(args.dump.as_deref())) {
-        if let Some(r) = Refraction::ALL.iter().find(|r| named_in(render::dumps::refraction_dumps(**r), n)) {
+    if let Some(n) = dumps.iter().find(|d| named_in(&own, d).is_none() && !dump_all(args.dump.as_deref())) {
+        if let Some(r) = Refraction::ALL.iter().find(|r| named_in(render::dumps::refraction_dumps(**r), n).is_some()) {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of --refraction {r}, not of `{}`",
                 scene.caustics.refraction
@@ -51,7 +52,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             )
             .into());
         }
-        if named_in(&technique.dumps(), n) {
+        if named_in(&technique.dumps(), n).is_some() {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of `{technique}` with --space {}, not with --space {}",
                 if scene.caustics.eye_space() { "light" } else { "eye" },
@@ -59,7 +60,8 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             )
             .into());
         }
-        let owners: Vec<&str> = Technique::ALL.iter().filter(|t| named_in(&t.dumps(), n)).map(|t| t.name()).collect();
+        let owners: Vec<&str> =
+            Technique::ALL.iter().filter(|t| named_in(&t.dumps(), n).is_some()).map(|t| t.name()).collect();
         return Err(input_error!(
             "--dump: `{n}` is a buffer of technique {}, not of `{technique}`; add --technique {}",
             owners.join(", "),
@@ -67,7 +69,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         )
         .into());
     }
-    dumps.retain(|d| named_in(&own, d));
+    dumps.retain(|d| named_in(&own, d).is_some());
     // Before the device: an --out that cannot become a directory fails now, not after the render.
     let out = OutputDir::create(&args.out).context("--out")?;
     let ctx = Context::new(&opts).context("opening the Vulkan device")?;
@@ -212,11 +214,6 @@ const GRAPH_DOT: &str = "graph.dot";
 fn receiver_ratio(image: &ImageF32) -> Result<Vec<f32>> {
     let (_, _, rgb) = main_rgb(image)?;
     Ok(rgb.chunks_exact(3).map(|p| (p[0] + p[1] + p[2]) / 3.0).collect())
-}
-
-/// Whether one of `dumps` is called `name` (a `--dump` name read against the declarations).
-fn named_in(dumps: &[&'static caustics::dump::Dump], name: &str) -> bool {
-    dumps.iter().any(|d| d.name == name)
 }
 
 /// Whether `--dump` says `all`.

@@ -61,6 +61,11 @@ impl PartialEq for Dump {
 
 impl Eq for Dump {}
 
+/// The dump of `dumps` called `name` (a `--dump` name read against declarations).
+pub fn named_in(dumps: &[&'static Dump], name: &str) -> Option<&'static Dump> {
+    dumps.iter().copied().find(|d| d.name == name)
+}
+
 impl fmt::Display for Dump {
     fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
         f.write_str(self.name)

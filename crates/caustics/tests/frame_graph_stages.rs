@@ -31,15 +31,6 @@ const FRAME: &[Stage] = &[
     Stage::ReceiverMap,
 ];
 
-/// The stage a pass's name starts with (the longest: `splat.clear.light0` is `splat.clear`).
-fn stage_of(pass: &str) -> Option<Stage> {
-    Stage::ALL
-        .iter()
-        .copied()
-        .filter(|s| pass == s.name() || pass.starts_with(&format!("{}.", s.name())))
-        .max_by_key(|s| s.name().len())
-}
-
 /// The stages table's row for `technique` (the doc comment of `techniques/stages/mod.rs`).
 fn table_row(technique: Technique) -> String {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/techniques/stages/mod.rs");
@@ -78,7 +69,7 @@ fn every_variant_records_its_declared_stages_in_order() {
         let report = r.frame(FrameStep::default()).unwrap_or_else(|e| panic!("{}: {e:#}", v.name));
         let stages = r.caustic_stages().unwrap_or_else(|| panic!("{}: no caustic stages", v.name));
         let graph: Vec<(&str, Option<Stage>)> =
-            report.graph.iter().map(|p| (p.name.as_str(), stage_of(&p.name))).collect();
+            report.graph.iter().map(|p| (p.name.as_str(), Stage::of_pass(&p.name))).collect();
         let mut fail = |what: String| failures.push(format!("{}: {what}", v.name));
         for (pass, stage) in &graph {
             let declared = stage.is_some_and(|s| FRAME.contains(&s) || stages.iter().any(|(_, ss)| ss.contains(&s)));

@@ -300,18 +300,10 @@ fn diagram_follows(mesh: &[Frame], failures: &mut Vec<String>) {
             failures.push(format!("the README's diagram names `{d}`, which `--dump` does not have"));
         }
     }
-    // Where a pass of `stage` (the longest stage name its name starts with) is first recorded.
-    let stage_of = |pass: &str| {
-        Stage::ALL
-            .iter()
-            .copied()
-            .filter(|s| pass == s.name() || pass.starts_with(&format!("{}.", s.name())))
-            .max_by_key(|s| s.name().len())
-    };
     let mut seen = vec![false; stages.len()];
     for f in mesh.iter().filter(|f| !f.eye_space) {
         let firsts: Vec<Option<usize>> =
-            stages.iter().map(|s| f.passes.iter().position(|p| stage_of(p) == Some(*s))).collect();
+            stages.iter().map(|s| f.passes.iter().position(|p| Stage::of_pass(p) == Some(*s))).collect();
         let recorded: Vec<(usize, usize)> =
             firsts.iter().enumerate().filter_map(|(i, at)| at.map(|at| (i, at))).collect();
         for &(i, _) in &recorded {

@@ -8,6 +8,7 @@
 use super::settings;
 use anyhow::{Context as _, Result};
 use caustics::animation::{self, Animation};
+use caustics::dump::named_in;
 use caustics::image_io::{self, header, OutputDir};
 use caustics::render::display::Display;
 use caustics::render::{self, FrameMode, FrameStep, Renderer, RendererOptions};
@@ -378,7 +379,7 @@ impl<'c> Session<'c> {
             None if !self.dumps.is_empty() => self.dumps.clone(),
             None => own.iter().map(|d| d.name.to_string()).collect(),
         };
-        let wanted: Vec<String> = wanted.into_iter().filter(|n| own.iter().any(|d| d.name == n)).collect();
+        let wanted: Vec<String> = wanted.into_iter().filter(|n| named_in(&own, n).is_some()).collect();
         let out = OutputDir::create(dir)?;
         self.finish()?;
         let header = self.header(&settings);

@@ -134,6 +134,16 @@ pub enum BatchPart {
 pub struct PassName(String);
 
 impl Stage {
+    /// The stage a pass's name starts with, the longest (`splat.clear.light0` is
+    /// `splat.clear`, not `splat`); None for a name built elsewhere.
+    pub fn of_pass(pass: &str) -> Option<Stage> {
+        Stage::ALL
+            .iter()
+            .copied()
+            .filter(|s| pass == s.name() || pass.strip_prefix(s.name()).is_some_and(|rest| rest.starts_with('.')))
+            .max_by_key(|s| s.name().len())
+    }
+
     /// The stage alone, for a pass done once per frame.
     pub fn pass(self) -> PassName {
         PassName(self.name().to_string())
@@ -214,6 +224,16 @@ mod tests {
             "adaptive.geometry.refractor1.light0"
         );
         assert_eq!(Stage::DeferredRefraction.pass().layer(2).as_str(), "deferred_refraction.layer2");
+    }
+
+    #[test]
+    fn a_pass_name_belongs_to_the_longest_stage_it_starts_with() {
+        assert_eq!(Stage::of_pass("splat.clear.light0"), Some(Stage::SplatClear));
+        assert_eq!(Stage::of_pass("splat.light0"), Some(Stage::Splat));
+        assert_eq!(Stage::of_pass("background"), Some(Stage::Background));
+        assert_eq!(Stage::of_pass("adaptive.finalize.photons.batch1.light0"), Some(Stage::AdaptiveFinalizePhotons));
+        assert_eq!(Stage::of_pass("splats.light0"), None);
+        assert_eq!(Stage::of_pass("backgrounds"), None);
     }
 
     #[test]

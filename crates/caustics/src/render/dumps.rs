@@ -95,7 +95,7 @@ pub fn all_names() -> Vec<&'static str> {
 
 /// The dump called `name` that a render with `settings` has (None: it has none of that name).
 pub fn named(name: &str, settings: &crate::techniques::CausticSettings) -> Option<&'static Dump> {
-    super::dumps_for(settings).into_iter().find(|d| d.name == name)
+    crate::dump::named_in(&super::dumps_for(settings), name)
 }
 
 /// The eye render's buffer `d` (or the receiver positions or caustic map it holds); None if this

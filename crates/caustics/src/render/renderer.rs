@@ -393,8 +393,7 @@ impl<'c> MeshRenderer<'c> {
     /// light-space buffers that serve every light in turn (`dump::Space::LightInTurn`) are read
     /// light by light by the caustic stages (`CausticPipeline::light_space_dumps`): layers
     /// `light<l>.<layer>`; the eye-space ones the eye render does not own by the caustic
-    /// deposit; deferred refraction's
-    /// by it; the rest from the eye render's targets.
+    /// deposit; deferred refraction's by it; the rest from the eye render's targets.
     pub fn dumps(&mut self, wanted: &[&'static Dump]) -> Result<Vec<(&'static Dump, ImageF32)>> {
         let declared = super::dumps_for(&self.scene.caustics);
         let mut unique: Vec<&'static Dump> = vec![];
