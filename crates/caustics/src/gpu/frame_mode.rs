@@ -7,10 +7,7 @@
 //!   fields) copied from per-slot staging buffers inside the frame, one timestamp pair per
 //!   frame and no per-pass barrier: what a real-time application pays per frame.
 //!
-//! Both render the same images (tested).
-
-use anyhow::Result;
-use vkcore::{Buffer, Context, FrameRing, RingOptions, Timing};
+//! Both render the same images (tested); `super::frames` records and submits both.
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FrameMode {
@@ -64,21 +61,4 @@ pub struct FrameStep {
     /// Per-pass frames: submit and wait after every pass, timing each on the host
     /// (`vkcore::FrameOptions::host_pass_times`); ignored by throughput frames.
     pub host_pass_times: bool,
-}
-
-/// A renderer's throughput frames: the ring and, per slot, a staging buffer for what the host
-/// uploads per frame (made by the first frame that needs it).
-pub(crate) struct Slots {
-    pub ring: FrameRing,
-    pub staging: Vec<Option<Buffer>>,
-}
-
-impl Slots {
-    /// `pass_timestamps`: a timestamp pair around every pass (the viewer's per-pass graph),
-    /// else one around the frame.
-    pub fn new(ctx: &Context, slots: usize, pass_timestamps: bool) -> Result<Slots> {
-        let timing = if pass_timestamps { Timing::PerPass } else { Timing::PerFrame };
-        let ring = FrameRing::new(ctx, RingOptions { slots, timing, fence_timeout: None })?;
-        Ok(Slots { ring, staging: (0..slots).map(|_| None).collect() })
-    }
 }

@@ -5,6 +5,7 @@
 
 pub mod formats;
 pub mod frame_mode;
+pub mod frames;
 pub mod mesh_pipeline;
 pub mod pass_name;
 pub mod push;
@@ -12,6 +13,7 @@ pub mod setup;
 pub mod structs;
 pub mod target;
 
+pub use frame_mode::{FrameMode, FrameStep};
 pub use pass_name::{BatchPart, PassName, Stage};
 pub use push::*;
 pub use setup::{mesh_uses, GpuMesh};

@@ -1,16 +1,13 @@
 //! The eye render's intermediate buffers (`--dump`), declared here and read back as EXR layers;
 //! the light-space buffers of the photon techniques that the eye render holds too
-//! (`receiver_positions`, `caustic_map`) and deferred refraction's (declared by their owners).
+//! (`receiver_positions`, `caustic_map`; declared by their owner). Deferred refraction's are its
+//! stage's (`techniques::stages::EyeRefraction`).
 
 use super::targets::{EyeTargets, Target};
 use crate::dump::{Dump, Format, Space};
-use crate::gpu::target::read_image_layer;
 use crate::image_io::{ImageF32, Layer};
 use crate::techniques::shared::settings::{CAUSTIC_MAP, RECEIVER_POSITIONS};
-use crate::techniques::wyman_nichols2009::deferred_refraction::{
-    DEFERRED_REFRACTION_DUMPS, REFRACTION_LAYERS, REFRACTOR_GEOMETRY,
-};
-use crate::techniques::wyman_nichols2009::DeferredRefraction;
+use crate::techniques::stages::refraction::{DEFERRED_REFRACTION_DUMPS, REFRACTION_LAYERS, REFRACTOR_GEOMETRY};
 use crate::techniques::{CausticTargets, PhotonTargets, Refraction};
 use anyhow::Result;
 use vkcore::Context;
@@ -69,17 +66,7 @@ fn per_light(ctx: &Context, t: &Target, names: &[&str], pick: &[usize]) -> Resul
 /// Every declared dump, owner by owner: the order of `--dump all`, and of every render's dumps
 /// (`render::dumps_for` lists each render's in this order; the conformance suite checks it).
 pub fn all() -> Vec<&'static Dump> {
-    use crate::techniques::{shared, trendall_stewart2000, wyman2008, wyman_davis2006, wyman_nichols2009 as wn2009};
-    [
-        EYE_DUMPS,
-        shared::settings::DUMPS,
-        wn2009::settings::DEFERRED_PHOTONS_DUMPS,
-        wyman_davis2006::settings::DUMPS,
-        wyman2008::DUMPS,
-        wn2009::settings::ADAPTIVE_DUMPS,
-        trendall_stewart2000::DUMPS,
-    ]
-    .concat()
+    [EYE_DUMPS.to_vec(), crate::techniques::technique_dumps()].concat()
 }
 
 /// The distinct names of [`all`] (what `--dump` accepts besides `all`), in its order.
@@ -174,42 +161,6 @@ pub fn dump(
     }))
 }
 
-/// The deferred refraction's buffers (Wyman & Nichols 2009 Sec. 3.1), refractor k (0: the
-/// farthest) in layers `layer<k>.*`: `refractor_geometry`, its front and back faces (normal and
-/// distance, window depth and thickness); `refraction_layers`, the image after its pass.
-pub fn deferred(ctx: &Context, d: &DeferredRefraction, t: &EyeTargets, dump: &'static Dump) -> Result<ImageF32> {
-    let mut layers = vec![];
-    for k in 0..d.layers.len() as u32 {
-        match dump {
-            dump if dump == &REFRACTOR_GEOMETRY => {
-                for (face, l) in [("front", 2 * k), ("back", 2 * k + 1)] {
-                    let (surface, depth) = (format!("layer{k}.{face}"), format!("layer{k}.{face}_depth"));
-                    layers.push(read_image_layer(
-                        ctx,
-                        &d.surfaces,
-                        l,
-                        Some(&surface),
-                        &["NX", "NY", "NZ", "distance"],
-                        &[0, 1, 2, 3],
-                    )?);
-                    layers.push(read_image_layer(ctx, &d.depths, l, Some(&depth), &["depth", "thickness"], &[0, 1])?);
-                }
-            }
-            dump if dump == &REFRACTION_LAYERS => {
-                let n = Some(format!("layer{k}"));
-                layers.push(match &d.results {
-                    Some(r) if k + 1 < d.layers.len() as u32 => {
-                        read_image_layer(ctx, r, k, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?
-                    }
-                    _ => t.final_image.read_layer(ctx, 0, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?,
-                });
-            }
-            other => anyhow::bail!("deferred refraction has no buffer `{other}`"),
-        }
-    }
-    Ok(t.final_image.as_image(layers))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -242,14 +193,16 @@ mod tests {
 
     #[test]
     fn a_dump_is_its_declaration_not_its_name() {
-        use crate::techniques::trendall_stewart2000::settings::RECEIVER as POOL_RECEIVER;
+        let pool_technique = crate::techniques::Technique::PoolConvolution;
+        let pool_receiver = crate::dump::named_in(&pool_technique.dumps(), "receiver");
+        let pool_receiver_dump = pool_receiver.expect("the pool has a receiver map");
         let eye = &RECEIVER;
-        assert_eq!(eye.name, POOL_RECEIVER.name);
-        assert!(eye != &POOL_RECEIVER && eye == &RECEIVER);
-        assert!(eye.owner.ends_with("render::dumps") && POOL_RECEIVER.owner.contains("trendall_stewart2000"));
+        assert_eq!(eye.name, pool_receiver_dump.name);
+        assert!(eye != pool_receiver_dump && eye == &RECEIVER);
+        assert!(eye.owner.ends_with("render::dumps") && pool_receiver_dump.owner.contains("trendall_stewart2000"));
         // Each render reads a name as the one declaration it has.
-        let pool = CausticSettings { technique: crate::techniques::Technique::PoolConvolution, ..Default::default() };
-        assert!(named("receiver", &pool) == Some(&POOL_RECEIVER));
+        let pool = CausticSettings { technique: pool_technique, ..Default::default() };
+        assert!(named("receiver", &pool) == Some(pool_receiver_dump));
         assert!(named("receiver", &CausticSettings::default()) == Some(eye));
         assert!(named("hierarchy", &CausticSettings::default()).is_none());
     }

@@ -1,13 +1,13 @@
 //! Records one frame of the eye render: shadow maps, diffuse background with its geometry
 //! buffer, then the refractors and reflectors: forward (Wyman 2005: back faces, front faces,
-//! composite) or deferred (Wyman & Nichols 2009 Sec. 3.1, `techniques::wyman_nichols2009`),
+//! composite) or deferred (Wyman & Nichols 2009 Sec. 3.1, `techniques::stages::EyeRefraction`),
 //! then the receiver map.
 
 use super::pipelines::EyePipelines;
 use super::targets::EyeTargets;
 use crate::gpu::*;
 use crate::gpu::{mesh_uses, GpuMesh, Stage};
-use crate::techniques::wyman_nichols2009::{deferred_refraction, DeferredRefraction};
+use crate::techniques::stages::refraction::{EyeRefraction, RefractionInputs};
 use anyhow::Result;
 use vkcore::{Access, Bind, Buffer, Cmd, Frame, Sampler, Targets, Use};
 
@@ -21,8 +21,8 @@ pub struct EyeInputs<'a> {
     pub linear: &'a Sampler,
     /// Eye-space caustics: the receiver view's caustic irradiance, which the receiver map reads.
     pub receiver_view_caustic: Option<&'a vkcore::ImageView>,
-    /// `--refraction deferred`: its passes and the specular meshes, farthest first.
-    pub deferred: Option<(&'a DeferredRefraction, &'a [usize])>,
+    /// The eye's refraction: deferred refraction's passes, or forward (recorded here).
+    pub refraction: &'a EyeRefraction,
 }
 
 fn draw_meshes<'m>(
@@ -90,21 +90,17 @@ pub fn record_shadows_and_background(f: &mut Frame, p: &EyePipelines, t: &EyeTar
 /// 2009 deferred refraction), then the receiver map.
 pub fn record_after_background(f: &mut Frame, p: &EyePipelines, t: &EyeTargets, inp: &EyeInputs) -> Result<()> {
     let meshes = inp.meshes;
-    match inp.deferred {
-        Some((deferred, order)) => deferred.record(
-            f,
-            &deferred_refraction::Inputs {
-                uniforms: inp.uniforms,
-                meshes,
-                order,
-                background: &t.background.view,
-                position: &t.position.view,
-                normal: &t.normal.view,
-                final_image: &t.final_image.view,
-                nearest: inp.nearest,
-            },
-        )?,
-        None => record_forward(f, p, t, inp)?,
+    let deferred = RefractionInputs {
+        uniforms: inp.uniforms,
+        meshes,
+        background: &t.background.view,
+        position: &t.position.view,
+        normal: &t.normal.view,
+        final_image: &t.final_image.view,
+        nearest: inp.nearest,
+    };
+    if !inp.refraction.record_deferred(f, &deferred)? {
+        record_forward(f, p, t, inp)?;
     }
 
     if let Some((ratio, irradiance, caustic)) = &t.receiver {

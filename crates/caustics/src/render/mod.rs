@@ -4,12 +4,16 @@
 
 mod dispatch;
 pub mod display;
+mod dump_routing;
 pub mod dumps;
 mod eye;
 pub mod graph;
 pub mod memory;
+mod metrics;
 pub mod pipelines;
+mod record;
 mod renderer;
+mod slot_data;
 pub mod soak;
 pub mod targets;
 

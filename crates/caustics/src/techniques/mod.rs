@@ -44,3 +44,40 @@ pub use technique::Technique;
 pub use wyman2008::photon_copy::{CopyType, PhotonCopy};
 pub use wyman2008::Hierarchy;
 pub use wyman_nichols2009::{AdaptiveCaustics, Metric, PhotonRefraction, Refraction};
+
+use crate::dump::Dump;
+use crate::gpu::frames::FrameRenderer;
+use crate::gpu::FrameMode;
+use crate::scene::Scene;
+use vkcore::{Context, ShaderCompiler};
+
+/// Every dump the techniques declare, owner by owner (after the eye render's, the order of
+/// `--dump all`: `crate::render::dumps::all`).
+pub fn technique_dumps() -> Vec<&'static Dump> {
+    [
+        shared::settings::DUMPS,
+        wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMPS,
+        wyman_davis2006::settings::DUMPS,
+        wyman2008::DUMPS,
+        wyman_nichols2009::settings::ADAPTIVE_DUMPS,
+        trendall_stewart2000::DUMPS,
+    ]
+    .concat()
+}
+
+/// The renderer of a technique that renders its own frames rather than meshes through the eye
+/// render (`Technique::renders_meshes` false): Trendall & Stewart 2000's pool renderer.
+pub fn own_renderer<'c>(
+    ctx: &'c Context,
+    shaders: &'c ShaderCompiler,
+    scene: &Scene,
+    mode: FrameMode,
+    pass_timestamps: bool,
+) -> anyhow::Result<Box<dyn FrameRenderer + 'c>> {
+    match scene.caustics.technique {
+        Technique::PoolConvolution => {
+            Ok(Box::new(trendall_stewart2000::PoolRenderer::new(ctx, shaders, scene, mode, pass_timestamps)?))
+        }
+        other => anyhow::bail!("`{other}` is rendered by the mesh renderer, not a renderer of its own"),
+    }
+}

@@ -145,22 +145,23 @@ fn settings_importing_another_papers_settings_and_re_exports_are_reported() {
     assert!(!all.contains("shared/mod.rs:2"), "a visibility path read as a dependency: {all}");
 }
 
-/// `MeshRenderer` knows no paper (issue 26, item 1): the caustic techniques reach it as one
-/// `techniques::CausticPipeline` of stages. The one paper it names is Wyman & Nichols 2009's
-/// deferred refraction: the eye render's refraction (`--refraction`), not a caustic stage.
+/// `render/` knows no paper (issue 26, item 1; issue 50, item 7): the caustic techniques reach
+/// it as one `techniques::CausticPipeline` of stages, the eye's refraction as the stage
+/// `techniques::stages::EyeRefraction`, a technique with a renderer of its own (the pool) as a
+/// `gpu::frames::FrameRenderer` made by `techniques::own_renderer`.
 #[test]
-fn the_mesh_renderer_names_no_paper_but_the_eyes_deferred_refraction() {
+fn render_names_no_paper() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let deps = layers::dependencies(&layers::read_tree(&src));
-    let from_renderer: Vec<_> = deps.iter().filter(|d| d.file == "render/renderer.rs").collect();
-    assert!(from_renderer.iter().any(|d| d.to == "techniques"), "no dependency of renderer.rs read");
-    let eye_refraction = ["deferred_refraction", "DeferredRefraction", "Refraction"];
-    let papers: Vec<String> = from_renderer
+    let from_render: Vec<_> = deps.iter().filter(|d| d.file.starts_with("render/")).collect();
+    assert!(
+        from_render.iter().any(|d| d.file == "render/renderer.rs" && d.to == "techniques"),
+        "no dependency of render/renderer.rs read"
+    );
+    let papers: Vec<String> = from_render
         .iter()
-        .filter(|d| d.to.starts_with("techniques::") || d.to == "settings")
         .filter(|d| layers::PAPERS.iter().any(|p| d.path.iter().any(|s| s == p)))
-        .filter(|d| !d.path.iter().any(|s| eye_refraction.contains(&s.as_str())))
         .map(|d| format!("{}: {}", d.at, d.path.join("::")))
         .collect();
-    assert!(papers.is_empty(), "render/renderer.rs names papers:\n{}", papers.join("\n"));
+    assert!(papers.is_empty(), "render/ names papers:\n{}", papers.join("\n"));
 }

@@ -18,6 +18,7 @@
 //! (`Renderer::set_pose`). The hardware ray-tracing path (ray queries) would be another source
 //! beside this one; lavapipe has none.
 
+pub mod push;
 pub mod settings;
 
 use settings::RECEIVER_DEPOSIT_FEATURES;
@@ -25,10 +26,11 @@ use settings::RECEIVER_DEPOSIT_FEATURES;
 use super::shared::photon_buffer::record_receiver_positions;
 use super::shared::CausticPasses;
 use crate::bvh::{Bvh, Triangle};
-use crate::gpu::{GpuMesh, PhotonTraceConstants, Stage, MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
+use crate::gpu::{GpuMesh, Stage, MATERIAL_DIFFUSE, MATERIAL_REFRACTIVE};
 use crate::reference::emit::bounding_sphere;
 use crate::scene::Scene;
 use anyhow::Result;
+use push::PhotonTraceConstants;
 use vkcore::{Access, Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler, Use};
 
 /// `PHOTON_TRACE_OUTSIDE_REFLECTION` in trace.comp.

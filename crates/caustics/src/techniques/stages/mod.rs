@@ -2,7 +2,8 @@
 //! deposit, and a [`Deposit`] of them into the caustic map or the eye's view. Each stage is an
 //! enum whose variants own their GPU resources, record their passes and read back their dumps;
 //! a [`CausticPipeline`] is a technique's choice of the three, made from its settings, and all
-//! that `crate::render` knows of the papers' caustics.
+//! that `crate::render` knows of the papers' caustics. The eye's refraction, forward or
+//! deferred (Wyman & Nichols 2009 Sec. 3.1), reaches it the same way: [`EyeRefraction`].
 //!
 //! | technique | source | selection | deposit |
 //! |---|---|---|---|
@@ -19,10 +20,12 @@
 
 mod deposit;
 mod dumps;
+pub mod refraction;
 mod selection;
 mod source;
 
 pub use deposit::Deposit;
+pub use refraction::EyeRefraction;
 pub use selection::Selection;
 pub use source::Source;
 

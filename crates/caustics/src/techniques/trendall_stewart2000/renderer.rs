@@ -12,15 +12,13 @@ use super::targets::PoolTargets;
 use super::uniforms::{pool_uniforms, PoolUniforms};
 use super::{dumps, pool_of, water_surface, Init, Precision};
 use crate::dump::Dump;
-use crate::gpu::frame_mode::{FrameMode, FrameStep, Slots};
-use crate::gpu::Stage;
+use crate::gpu::frames::{FrameRenderer, Frames, RecordFrame, Slot};
+use crate::gpu::{FrameMode, FrameStep, Stage};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use anyhow::{Context as _, Result};
 use std::time::Instant;
-use vkcore::{
-    Access, Buffer, Context, Filter, Frame, FrameOptions, FrameReport, Memory, PassTiming, Sampler, ShaderCompiler, Use,
-};
+use vkcore::{Access, Buffer, Context, Filter, Frame, FrameOptions, Memory, PassTiming, Sampler, ShaderCompiler, Use};
 
 pub struct PoolRenderer<'c> {
     ctx: &'c Context,
@@ -35,9 +33,10 @@ pub struct PoolRenderer<'c> {
     linear: Sampler,
     /// `f64`: the last frame's passes and the flat surface's.
     cpu: Option<(CpuPasses, CpuPasses)>,
-    /// Throughput frames: the ring, and per slot the staging buffers of the CPU path's height
-    /// field, normals and convolutions (copied inside the frame).
-    slots: Option<Slots>,
+    /// One-shot frames or a ring (`crate::gpu::frames`).
+    frames: Frames,
+    /// Throughput frames: per slot the staging buffers of the CPU path's height field, normals
+    /// and convolutions (copied inside the frame).
     cpu_staging: Vec<Vec<Buffer>>,
 }
 
@@ -101,10 +100,7 @@ impl<'c> PoolRenderer<'c> {
             nearest,
             linear: Sampler::new(ctx, Filter::Linear)?,
             cpu,
-            slots: match mode {
-                FrameMode::PerPass => None,
-                FrameMode::Throughput { slots } => Some(Slots::new(ctx, slots, pass_timestamps)?),
-            },
+            frames: Frames::new(ctx, mode, pass_timestamps)?,
             cpu_staging: vec![],
         })
     }
@@ -130,7 +126,7 @@ impl<'c> PoolRenderer<'c> {
 
     /// The CPU path's height field and passes 1-6 (host times), uploaded now (per-pass frames)
     /// or into slot `slot`'s staging buffers for the frame to copy (throughput frames).
-    fn cpu_passes(&mut self, slot: Option<usize>) -> Result<Vec<PassTiming>> {
+    fn cpu_passes(&mut self, slot: Option<Slot>) -> Result<Vec<PassTiming>> {
         let n = self.init.n;
         let start = Instant::now();
         let height = water_surface::height_field(&self.init.pool, n);
@@ -151,10 +147,9 @@ impl<'c> PoolRenderer<'c> {
                 }
                 timings.push(("pool.upload", start.elapsed().as_secs_f64() * 1e3));
             }
-            Some(s) => {
+            Some(Slot { index: s, count }) => {
                 // Every slot's at once, so that only the first frame makes any.
-                let slots = self.slots.as_ref().map(|x| x.ring.slots()).unwrap_or(1);
-                while self.cpu_staging.len() < slots.max(s + 1) {
+                while self.cpu_staging.len() < count.max(s + 1) {
                     let k = self.cpu_staging.len();
                     let bytes = (fields[0].len() * 4) as u64;
                     let make =
@@ -176,69 +171,6 @@ impl<'c> PoolRenderer<'c> {
             .collect())
     }
 
-    /// Records, submits and waits for one frame; returns its per-pass timings (host times for
-    /// the CPU path's passes).
-    pub fn frame(&mut self, step: FrameStep) -> Result<FrameReport> {
-        if self.slots.is_some() {
-            self.submit()?;
-            return self.finish()?.pop().context("the ring returned no report for its frame");
-        }
-        let cpu_timings = if self.cpu.is_some() { self.cpu_passes(None)? } else { vec![] };
-        let mut f = self.ctx.frame(FrameOptions {
-            timestamps: true,
-            pipeline_statistics: step.pipeline_statistics,
-            ..Default::default()
-        })?;
-        self.record_frame(&mut f)?;
-        let mut report = f.submit()?;
-        report.passes.splice(0..0, cpu_timings);
-        Ok(report)
-    }
-
-    /// Throughput frames: records the next frame into its ring slot (the CPU path's fields
-    /// copied from the slot's staging buffers) and submits it without waiting; returns the
-    /// reports of frames that finished. The CPU path's host times are not in them.
-    pub fn submit(&mut self) -> Result<Vec<FrameReport>> {
-        self.submit_with(&mut |_, _| Ok(()))
-    }
-
-    /// [`PoolRenderer::submit`], with `after` recording more passes at the end of the frame.
-    pub fn submit_with(
-        &mut self,
-        after: &mut dyn FnMut(&mut Frame, &vkcore::ImageView) -> Result<()>,
-    ) -> Result<Vec<FrameReport>> {
-        let s = self.slots.as_ref().context("submit: this renderer draws one-shot frames")?.ring.slot();
-        // The slot's previous frame is waited for before its staging buffers are written.
-        let mut f = self.slots.as_mut().context("slots")?.ring.frame()?;
-        if self.cpu.is_some() {
-            self.cpu_passes(Some(s))?;
-            let t = &self.targets;
-            let staging = &self.cpu_staging[s];
-            let targets = [&t.height, &t.normals, &t.convolutions];
-            let mut uses: Vec<Use> = staging.iter().map(|b| Use::buffer(b, Access::TRANSFER_READ)).collect();
-            uses.extend(targets.iter().map(|t| Use::image(&t.image, 0..1, 0..1, Access::TRANSFER_WRITE)));
-            f.pass(&Stage::PoolUpload.pass()).uses(uses).record(|cmd| {
-                for (b, t) in staging.iter().zip(targets) {
-                    cmd.copy_buffer_to_image(b, &t.image, 0, 0);
-                }
-                Ok(())
-            })?;
-        }
-        self.record_frame(&mut f)?;
-        after(&mut f, &self.targets.final_image.view)?;
-        let slots = self.slots.as_mut().context("slots")?;
-        slots.ring.submit(f)?;
-        Ok(slots.ring.reports())
-    }
-
-    /// Waits for every throughput frame in flight; returns the reports not yet returned.
-    pub fn finish(&mut self) -> Result<Vec<FrameReport>> {
-        match self.slots.as_mut() {
-            Some(s) => Ok(s.ring.finish()?),
-            None => Ok(vec![]),
-        }
-    }
-
     /// The uniforms if the pool moved, passes 1-6 (GPU paths) and the view.
     fn record_frame(&mut self, f: &mut Frame) -> Result<()> {
         if let Some(u) = self.pending.take() {
@@ -257,13 +189,62 @@ impl<'c> PoolRenderer<'c> {
         Ok(())
     }
 
-    /// The final image on the GPU (linear radiance, RGBA 32-bit float, row 0 at the top).
-    pub fn final_view(&self) -> &vkcore::ImageView {
+    /// What Init computed (the pool at its current time, the kernels, the encodings).
+    pub fn init(&self) -> &Init {
+        &self.init
+    }
+}
+
+/// One frame of the loop: with the CPU path its passes run on the host first (timed, before a
+/// one-shot frame's passes; a throughput frame copies their fields from its slot's staging
+/// buffers, and its host times are not in the frame's report).
+impl RecordFrame for PoolRenderer<'_> {
+    fn ctx(&self) -> &Context {
+        self.ctx
+    }
+
+    fn frames(&mut self) -> &mut Frames {
+        &mut self.frames
+    }
+
+    fn host_passes(&mut self) -> Result<Vec<PassTiming>> {
+        if self.cpu.is_some() {
+            self.cpu_passes(None)
+        } else {
+            Ok(vec![])
+        }
+    }
+
+    fn record(&mut self, f: &mut Frame, slot: Option<Slot>, _step: FrameStep) -> Result<()> {
+        if let (Some(slot), true) = (slot, self.cpu.is_some()) {
+            self.cpu_passes(Some(slot))?;
+            let t = &self.targets;
+            let staging = &self.cpu_staging[slot.index];
+            let targets = [&t.height, &t.normals, &t.convolutions];
+            let mut uses: Vec<Use> = staging.iter().map(|b| Use::buffer(b, Access::TRANSFER_READ)).collect();
+            uses.extend(targets.iter().map(|t| Use::image(&t.image, 0..1, 0..1, Access::TRANSFER_WRITE)));
+            f.pass(&Stage::PoolUpload.pass()).uses(uses).record(|cmd| {
+                for (b, t) in staging.iter().zip(targets) {
+                    cmd.copy_buffer_to_image(b, &t.image, 0, 0);
+                }
+                Ok(())
+            })?;
+        }
+        self.record_frame(f)
+    }
+
+    fn final_view(&self) -> &vkcore::ImageView {
         &self.targets.final_image.view
+    }
+}
+
+impl FrameRenderer for PoolRenderer<'_> {
+    fn set_pose(&mut self, scene: &Scene) -> Result<()> {
+        PoolRenderer::set_pose(self, scene)
     }
 
     /// The last frame's linear radiance, row 0 at the top.
-    pub fn final_image(&self) -> Result<ImageF32> {
+    fn final_image(&self) -> Result<ImageF32> {
         let t = &self.targets.final_image;
         let texels = dumps::read(self.ctx, t)?;
         let data = texels.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
@@ -272,7 +253,7 @@ impl<'c> PoolRenderer<'c> {
     }
 
     /// The buffers `wanted` of the last frame (from `settings::DUMPS`; others are skipped).
-    pub fn dumps(&mut self, wanted: &[&'static Dump]) -> Result<Vec<(&'static Dump, ImageF32)>> {
+    fn dumps(&mut self, wanted: &[&'static Dump]) -> Result<Vec<(&'static Dump, ImageF32)>> {
         let n = self.init.n;
         let mut out: Vec<(&'static Dump, ImageF32)> = vec![];
         for &d in wanted {
@@ -294,13 +275,12 @@ impl<'c> PoolRenderer<'c> {
         Ok(out)
     }
 
-    /// The scene this renderer was made for.
-    pub fn scene(&self) -> &Scene {
+    fn scene(&self) -> &Scene {
         &self.scene
     }
 
-    /// What Init computed (the pool at its current time, the kernels, the encodings).
-    pub fn init(&self) -> &Init {
-        &self.init
+    /// The pool bottom's receiver map.
+    fn receiver(&self) -> &'static Dump {
+        &RECEIVER
     }
 }

@@ -13,6 +13,7 @@
 pub(crate) mod entry;
 pub mod interpolated;
 pub mod photon_copy;
+pub mod push;
 mod pyramid;
 pub mod settings;
 mod splat;

@@ -3,8 +3,8 @@
 //! caustic-map texels they land in (what the convergence test of Sec. 3.2 reads). Built by one
 //! compute pass per level (`shaders_glsl/wyman2008/build.comp`).
 
+use super::push::BuildConstants;
 use super::{Hierarchy, TOP_SIDE};
-use crate::gpu::BuildConstants;
 use crate::gpu::Stage;
 use crate::image_io::{ImageF32, Layer};
 use crate::techniques::shared::targets::PhotonTargets;

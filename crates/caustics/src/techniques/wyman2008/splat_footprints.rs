@@ -3,8 +3,8 @@
 //! `shared/splat_photon.glsl`): centre, radius and layer of the caustic map, power and photons.
 //! This is where varying splat sizes (Wyman 2008 Sec. 3.3) can be read, photon by photon.
 
+use super::push::FootprintConstants;
 use super::Hierarchy;
-use crate::gpu::FootprintConstants;
 use crate::gpu::Stage;
 use crate::techniques::shared::compute_splat::{groups, Photons};
 use crate::techniques::shared::targets::PhotonTargets;

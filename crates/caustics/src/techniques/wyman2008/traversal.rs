@@ -6,9 +6,9 @@
 //! counter and dispatching the next level indirectly. Nothing is read back between levels.
 
 use super::entry::unpack_entry;
+use super::push::TraverseConstants;
 use super::Hierarchy;
 use crate::gpu::Stage;
-use crate::gpu::TraverseConstants;
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::FrameInputs;
 use anyhow::Result;

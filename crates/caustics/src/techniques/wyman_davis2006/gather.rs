@@ -5,8 +5,8 @@
 //! discarding it resolves `wd-eye-points` (each pixel its own photons). Also the shading that
 //! adds the eye's caustics to its radiance (step 3), and the receiver view's geometry.
 
+use super::push::ImageSpaceConstants;
 use super::views::ViewBuffers;
-use crate::gpu::ImageSpaceConstants;
 use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use vkcore::{Bind, Context, Frame, ImageView, Pipeline, ShaderCompiler};

@@ -22,6 +22,7 @@
 
 mod gather;
 mod points;
+pub mod push;
 mod quads;
 pub mod reflection;
 pub mod settings;
@@ -30,7 +31,7 @@ pub mod views;
 
 pub use settings::PAPER;
 
-use crate::gpu::{ImageSpaceConstants, Stage, Target};
+use crate::gpu::{Stage, Target};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::settings::CausticSettings;
@@ -38,6 +39,7 @@ use crate::techniques::shared::{CausticPasses, EyeView};
 use crate::techniques::technique::Technique;
 use anyhow::{Context as _, Result};
 use glam::{Mat4, Vec3};
+use push::ImageSpaceConstants;
 use settings::{Space, TemporalFilter};
 use temporal::History;
 use views::ViewBuffers;

@@ -4,9 +4,9 @@
 //! In the eye's view this is the eye-space photon buffer of `wd-eye-points` and the eye-space
 //! gather; into light l's caustic map (LIGHT_SPACE), the light-space gather's.
 
+use super::push::ImageSpaceConstants;
 use super::views::ViewBuffers;
 use crate::gpu::formats::COLOR;
-use crate::gpu::ImageSpaceConstants;
 use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use vkcore::{

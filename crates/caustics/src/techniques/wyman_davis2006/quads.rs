@@ -8,9 +8,9 @@
 //! fragments (`QUAD_LINES`). With `quad_draw = "polygons"` every quad is its polygon whatever its
 //! size, as the paper draws them (`QUAD_POLYGONS`).
 
+use super::push::ImageSpaceConstants;
 use super::settings::QuadDraw;
 use crate::gpu::formats::COLOR;
-use crate::gpu::ImageSpaceConstants;
 use crate::techniques::shared::CausticPasses;
 use anyhow::Result;
 use vkcore::{

@@ -5,8 +5,9 @@
 //! per pixel, history layers for the temporal filter), the photons' directions, and the caustic
 //! irradiance it resolves to.
 
+use super::push::ImageSpaceConstants;
 use crate::gpu::formats::COLOR;
-use crate::gpu::{ImageSpaceConstants, Target};
+use crate::gpu::Target;
 use crate::scene::Scene;
 use crate::techniques::shared::CausticPasses;
 use anyhow::Result;

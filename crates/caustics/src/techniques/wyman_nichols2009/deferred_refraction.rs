@@ -21,7 +21,9 @@
 use crate::dump::{self, Dump, Space};
 use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::mesh_pipeline::mesh_layout;
-use crate::gpu::{mesh_uses, GpuMesh, Stage};
+use crate::gpu::target::read_image_layer;
+use crate::gpu::{mesh_uses, GpuMesh, Stage, Target};
+use crate::image_io::ImageF32;
 use crate::scene::{MaterialKind, Scene};
 use anyhow::Result;
 use vkcore::{
@@ -208,5 +210,51 @@ impl DeferredRefraction {
             )?;
         }
         Ok(())
+    }
+}
+
+impl DeferredRefraction {
+    /// The buffer `d` of the last frame, refractor k (0: the farthest) in layers `layer<k>.*`:
+    /// `refractor_geometry`, its front and back faces (normal and distance, window depth and
+    /// thickness); `refraction_layers`, the image after its pass (the last one's is the eye's
+    /// `final_image`). None for a buffer deferred refraction does not own.
+    pub fn dump(&self, ctx: &Context, final_image: &Target, d: &'static Dump) -> Result<Option<ImageF32>> {
+        if !DEFERRED_REFRACTION_DUMPS.contains(&d) {
+            return Ok(None);
+        }
+        let mut layers = vec![];
+        for k in 0..self.layers.len() as u32 {
+            if d == &REFRACTOR_GEOMETRY {
+                for (face, l) in [("front", 2 * k), ("back", 2 * k + 1)] {
+                    let (surface, depth) = (format!("layer{k}.{face}"), format!("layer{k}.{face}_depth"));
+                    let normal_distance = ["NX", "NY", "NZ", "distance"];
+                    layers.push(read_image_layer(
+                        ctx,
+                        &self.surfaces,
+                        l,
+                        Some(&surface),
+                        &normal_distance,
+                        &[0, 1, 2, 3],
+                    )?);
+                    layers.push(read_image_layer(
+                        ctx,
+                        &self.depths,
+                        l,
+                        Some(&depth),
+                        &["depth", "thickness"],
+                        &[0, 1],
+                    )?);
+                }
+            } else {
+                let n = Some(format!("layer{k}"));
+                layers.push(match &self.results {
+                    Some(r) if k + 1 < self.layers.len() as u32 => {
+                        read_image_layer(ctx, r, k, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?
+                    }
+                    _ => final_image.read_layer(ctx, 0, n.as_deref(), &["R", "G", "B"], &[0, 1, 2])?,
+                });
+            }
+        }
+        Ok(Some(final_image.as_image(layers)))
     }
 }

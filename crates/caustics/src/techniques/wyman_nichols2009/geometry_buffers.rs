@@ -22,9 +22,10 @@
 //! that texel's. At a texel centre this reads that texel alone: with buffers as fine as the
 //! photon grid, every photon is the dense photon buffer's photon of the same texel.
 
+use super::push::CoverageConstants;
 use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::mesh_pipeline::mesh_layout;
-use crate::gpu::{mesh_uses, CoverageConstants, GpuMesh, PassName, Stage};
+use crate::gpu::{mesh_uses, GpuMesh, PassName, Stage};
 use crate::image_io::{ImageF32, Layer};
 use anyhow::Result;
 use vkcore::{

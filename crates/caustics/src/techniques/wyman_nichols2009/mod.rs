@@ -10,6 +10,7 @@ pub mod adaptive;
 pub mod deferred_photons;
 pub mod deferred_refraction;
 pub mod geometry_buffers;
+pub mod push;
 pub mod refractor_layers;
 pub mod settings;
 

@@ -5,9 +5,9 @@
 //! memory limit, breadth-first to level B, then batch after batch below it, each splatted
 //! before the next (Sec. 4.3).
 
+use super::super::push::{AdaptiveConstants, BatchConstants, CountConstants};
 use super::photon::{unpack_cell, AdaptivePhoton};
 use super::{AdaptiveCaustics, Kernels};
-use crate::gpu::{AdaptiveConstants, BatchConstants, CountConstants};
 use crate::gpu::{BatchPart, PassName, Stage};
 use crate::techniques::shared::compute_splat::{groups, ComputeSplat};
 use crate::techniques::shared::targets::PhotonTargets;

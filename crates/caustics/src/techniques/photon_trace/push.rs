@@ -1,0 +1,36 @@
+//! Push constants of the GPU photon tracer's pass: the twin of a GLSL `layout(push_constant)`
+//! block of the same name and members (`crate::gpu::push`); the tests compare them through the
+//! SPIR-V of every shader that declares one.
+
+use vkcore::push_constants;
+
+push_constants! {
+    /// The GPU photon tracer (`photon_trace/trace.comp`).
+    pub struct PhotonTraceConstants {
+        /// xyz centre, w radius: the specular objects' bounding sphere.
+        pub sphere: [f32; 4],
+        pub light: u32,
+        pub seed: u32,
+        pub max_bounces: u32,
+        /// `PHOTON_TRACE_*`.
+        pub flags: u32,
+        /// Ray offset against self-intersection (world units).
+        pub eps: f32,
+        /// How far from the receiver plane a photon still lands on it (the reference's).
+        pub receiver_tolerance: f32,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu::push::check;
+
+    #[test]
+    fn photon_trace_constants() {
+        check::<PhotonTraceConstants>(&[
+            ("photon_trace/trace.comp", &[]),
+            ("photon_trace/trace.comp", &[("RECEIVER_DEPOSIT", "1")]),
+        ]);
+    }
+}
