@@ -10,14 +10,16 @@ use super::photon_trace::settings::Deposit as PhotonDeposit;
 use super::shah2007::settings::{Lookup, Refractions};
 use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath, TraversalPath};
 use super::technique::Technique;
-use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL, MAX_KERNEL};
+use super::trendall_stewart2000::settings::{Precision, DEFAULT_KERNEL};
 use super::wyman2008::settings::{Cluster, SplatMode, VaryingRadius};
 use super::wyman_davis2006::settings::{GatherLighting, QuadDraw, QuadLighting, Reflection, Space, TemporalFilter};
-use super::wyman_nichols2009::adaptive::batches as wn2009_batches;
 use super::wyman_nichols2009::settings::{self as wn2009, Metric, PhotonRefraction, Refraction};
-use super::{shared, wyman2008, wyman_davis2006};
+use super::{photon_trace, shared, trendall_stewart2000, wyman2008, wyman_davis2006};
 use crate::dump::Dump;
 use serde::{Deserialize, Serialize};
+
+/// How a range check reports a bad key: its name (without the `caustics.` prefix) and why.
+pub type Bad<'a> = &'a dyn Fn(&str, String) -> anyhow::Result<()>;
 
 macro_rules! caustic_settings {
     ($(
@@ -363,7 +365,8 @@ impl CausticSettings {
     }
 
     /// Checks ranges; `origin` says where the values came from (a file or the command line) and
-    /// `key` prefixes key names, e.g. `caustics.`. (Names are checked when they are read.)
+    /// `key` prefixes key names, e.g. `caustics.`. (Names are checked when they are read.) The
+    /// keys of one paper's technique only are checked in its `settings.rs` (`validate_ranges`).
     pub fn validate(&self, origin: &str, key: &str) -> anyhow::Result<()> {
         let bad = |k: &str, msg: String| -> anyhow::Result<()> {
             // On the command line the key is a flag: `--splat-radius`, not `--splat_radius`.
@@ -392,58 +395,10 @@ impl CausticSettings {
         if !(self.photon_fov >= 1.0 && self.photon_fov <= 160.0) {
             bad("photon_fov", format!("must be between 1 and 160 degrees, got {}", self.photon_fov))?;
         }
-        if !(3..=MAX_KERNEL).contains(&self.kernel) || self.kernel.is_multiple_of(2) {
-            bad(
-                "kernel",
-                format!("must be an odd number between 3 and {MAX_KERNEL} (taps per side), got {}", self.kernel),
-            )?;
-        }
-        if !(self.gbuffer_scale > 0.0 && self.gbuffer_scale <= 4.0) {
-            bad(
-                "gbuffer_scale",
-                format!(
-                    "must be a fraction of the caustic-map resolution in (0, 4] (the paper's 0.25), got {}",
-                    self.gbuffer_scale
-                ),
-            )?;
-        }
-        // Only adaptive caustic maps make geometry buffers at this side (`gbuffer_side`).
-        if self.technique == Technique::Adaptive && !(16..=8192).contains(&self.gbuffer_side()) {
-            bad(
-                "gbuffer_scale",
-                format!(
-                    "{} × caustic_map_resolution {} gives geometry buffers {} texels wide; they must be 16 to 8192",
-                    self.gbuffer_scale,
-                    self.caustic_map_resolution,
-                    self.gbuffer_side()
-                ),
-            )?;
-        }
-        if let Some(level) = self.max_level {
-            let deepest = wn2009::finest_level(most).unwrap_or(0);
-            if level > deepest {
-                bad("max_level", format!("must be between 0 and {deepest} (64² to {most}² photons), got {level}"))?;
-            }
-        }
-        if self.photon_memory_limit > 1 << 20 {
-            bad(
-                "photon_memory_limit",
-                format!("must be at most 1048576 MiB (0: no limit), got {}", self.photon_memory_limit),
-            )?;
-        }
-        if !(1..=wn2009::MAX_BATCHES).contains(&self.photon_batches) {
-            bad(
-                "photon_batches",
-                format!("must be between 1 and {} batches, got {}", wn2009::MAX_BATCHES, self.photon_batches),
-            )?;
-        }
-        if self.technique == Technique::Adaptive {
-            self.validate_adaptive(&bad)?;
-        }
-        if !(1..=super::photon_trace::settings::MAX_BOUNCES).contains(&self.max_bounces) {
-            let most = super::photon_trace::settings::MAX_BOUNCES;
-            bad("max_bounces", format!("must be between 1 and {most}, got {}", self.max_bounces))?;
-        }
+        // Each paper's own keys (`only ...` in the table), checked by their paper.
+        trendall_stewart2000::settings::validate_ranges(self, &bad)?;
+        wn2009::validate_ranges(self, &bad)?;
+        photon_trace::settings::validate_ranges(self, &bad)?;
         if !(1..=64).contains(&self.iterations) {
             bad("iterations", format!("must be between 1 and 64, got {}", self.iterations))?;
         }
@@ -452,40 +407,6 @@ impl CausticSettings {
 }
 
 impl CausticSettings {
-    /// Technique `adaptive`'s photon grid: 64 × 2^L per side (Wyman & Nichols 2009 Sec. 3.2),
-    /// agreeing with `max_level` when it is set.
-    fn validate_adaptive(&self, bad: &dyn Fn(&str, String) -> anyhow::Result<()>) -> anyhow::Result<()> {
-        let Some(level) = wn2009::finest_level(self.photons) else {
-            return bad(
-                "photons",
-                format!(
-                    "technique `adaptive` refines a 64² grid of photons by halving its cells, so photons must be \
-                     64 × 2^L (64, 128, 256, ..., 4096; up to 16384 with a photon_memory_limit), got {}",
-                    self.photons
-                ),
-            );
-        };
-        if self.photon_memory_limit > 0 || self.photon_batches > 1 {
-            let xfb = self.path == TraversalPath::Xfb;
-            let limit = (self.photon_memory_limit > 0).then(|| self.photon_memory_limit as u64 * 1024 * 1024);
-            if let Err(e) = wn2009_batches::plan(level, self.metric, xfb, limit, self.photon_batches, 1) {
-                let key = if self.photon_memory_limit > 0 { "photon_memory_limit" } else { "photon_batches" };
-                bad(key, e)?;
-            }
-        }
-        match self.max_level {
-            Some(max) if max != level => bad(
-                "max_level",
-                format!(
-                    "{max} means {}² photons, but photons is {} (level {level}); set one of them, or both to agree",
-                    wn2009::TOP_PHOTONS << max.min(wn2009::MAX_LEVEL),
-                    self.photons
-                ),
-            ),
-            _ => Ok(()),
-        }
-    }
-
     /// The most photons per side: 16384 for `adaptive` under a memory limit (its batches need no
     /// buffer of them all), else 4096.
     pub fn most_photons(&self) -> u32 {
@@ -517,5 +438,53 @@ mod tests {
         s.photons = 64;
         let err = s.validate("test", "--").expect_err("adaptive at a 32² caustic map").to_string();
         assert!(err.contains("--gbuffer-scale") && err.contains("8 texels wide"), "{err}");
+    }
+
+    /// The keys of one paper's technique are range-checked by that paper (`validate_ranges` in
+    /// its `settings.rs`), and `validate` reaches each, naming the key and the value.
+    #[test]
+    fn each_papers_own_keys_are_range_checked_through_validate() {
+        let cases: [(CausticSettings, &str, &str); 6] = [
+            (
+                CausticSettings { technique: Technique::PhotonTrace, max_bounces: 0, ..Default::default() },
+                "max_bounces",
+                "got 0",
+            ),
+            (
+                CausticSettings { technique: Technique::PhotonTrace, max_bounces: 65, ..Default::default() },
+                "max_bounces",
+                "got 65",
+            ),
+            (
+                CausticSettings { technique: Technique::PoolConvolution, kernel: 8, ..Default::default() },
+                "kernel",
+                "got 8",
+            ),
+            (
+                CausticSettings { technique: Technique::Adaptive, photon_batches: 0, ..Default::default() },
+                "photon_batches",
+                "got 0",
+            ),
+            (
+                CausticSettings { technique: Technique::Adaptive, photon_batches: 257, ..Default::default() },
+                "photon_batches",
+                "got 257",
+            ),
+            (
+                CausticSettings {
+                    technique: Technique::Adaptive,
+                    photon_memory_limit: (1 << 20) + 1,
+                    ..Default::default()
+                },
+                "photon_memory_limit",
+                "got 1048577",
+            ),
+        ];
+        for (s, key, says) in cases {
+            let err = s.validate("test.toml", "caustics.").expect_err(key).to_string();
+            assert!(err.contains(&format!("caustics.{key}")) && err.contains(says), "{key}: {err}");
+        }
+        let ok = CausticSettings { technique: Technique::PhotonTrace, max_bounces: 64, ..Default::default() };
+        ok.validate("test.toml", "caustics.").expect("64 bounces");
     }
 }

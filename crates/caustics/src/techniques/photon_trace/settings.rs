@@ -1,5 +1,6 @@
 //! What the GPU photon tracer declares (a leaf module: the technique enum reads it).
 
+use super::super::settings::{Bad, CausticSettings};
 use super::super::shared::settings as shared;
 use super::super::value_enum::value_enum;
 use crate::dump::Dump;
@@ -32,4 +33,12 @@ value_enum! {
         /// term is that power over the texel's area (the final image still reads the caustic map).
         ReceiverMap = "receiver-map",
     }
+}
+
+/// The range check of technique `photon-trace`'s own key (`CausticSettings::validate` calls it).
+pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
+    if !(1..=MAX_BOUNCES).contains(&s.max_bounces) {
+        bad("max_bounces", format!("must be between 1 and {MAX_BOUNCES}, got {}", s.max_bounces))?;
+    }
+    Ok(())
 }

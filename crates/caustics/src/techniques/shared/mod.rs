@@ -4,6 +4,7 @@
 //! `shaders_glsl/common/caustic_lookup.glsl`. Shaders: `shaders_glsl/shared/`.
 
 pub mod compute_splat;
+pub mod lists;
 pub mod photon_buffer;
 pub mod pipelines;
 pub mod settings;

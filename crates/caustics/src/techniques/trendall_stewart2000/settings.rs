@@ -2,6 +2,7 @@
 //! `[caustics]`, the bench configs and the command line name them, and the technique's dumps (a
 //! leaf module: the scene description reads it).
 
+use super::super::settings::{Bad, CausticSettings};
 use super::super::value_enum::value_enum;
 use crate::dump::{Dump, Format, Space};
 
@@ -46,4 +47,14 @@ value_enum! {
         /// The paper's software implementation: the same passes on the CPU in f64.
         F64 = "f64",
     }
+}
+
+/// The range check of technique `pool-convolution`'s own key (`CausticSettings::validate` calls
+/// it): the Pass 6 kernel's taps per side.
+pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
+    if !(3..=MAX_KERNEL).contains(&s.kernel) || s.kernel.is_multiple_of(2) {
+        let why = format!("must be an odd number between 3 and {MAX_KERNEL} (taps per side), got {}", s.kernel);
+        bad("kernel", why)?;
+    }
+    Ok(())
 }

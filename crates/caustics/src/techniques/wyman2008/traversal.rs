@@ -9,10 +9,11 @@ use super::entry::unpack_entry;
 use super::push::TraverseConstants;
 use super::Hierarchy;
 use crate::gpu::Stage;
+use crate::techniques::shared::lists;
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::FrameInputs;
 use anyhow::Result;
-use vkcore::{Access, Bind, CompactStream, CompactionPath, Context, Frame, StepInput, Targets, Use};
+use vkcore::{Access, Bind, CompactionPath, Context, Frame, StepInput, Targets, Use};
 
 impl Hierarchy {
     /// Builds the hierarchy over light `l`'s photon buffer and traverses it (Sec. 3.1-3.2).
@@ -84,15 +85,12 @@ impl Hierarchy {
     /// Per light: the size of each list from level L (the seed) down to 0 (the splatted
     /// photons and clusters) after the last traversal.
     pub fn list_sizes(&self, ctx: &Context) -> Result<Vec<Vec<u64>>> {
-        let raw: Vec<u32> = ctx.read_buffer_as(&self.counts)?;
-        let per = self.levels as usize;
-        Ok((0..self.lights.max(1) as usize)
-            .map(|l| {
+        let counters = lists::read_counters(ctx, &self.counts, self.lights, self.levels as usize)?;
+        Ok(counters
+            .into_iter()
+            .map(|c| {
                 let mut v = vec![self.seed.capacity() as u64];
-                for k in (0..per).rev() {
-                    let c = raw.get(l * per + k).copied().unwrap_or(0);
-                    v.push(self.lists[k].elements(c) as u64);
-                }
+                v.extend((0..c.len()).rev().map(|k| self.lists[k].elements(c[k] as u32) as u64));
                 v
             })
             .collect())
@@ -100,16 +98,13 @@ impl Hierarchy {
 
     /// The final list of the last traversal (photons at level 0, clusters flagged final).
     pub fn final_entries(&self, ctx: &Context) -> Result<Vec<[u32; 4]>> {
-        Ok(self.lists[0].read_as::<u32>(ctx)?.into_iter().map(unpack_entry).collect())
+        lists::read_packed(ctx, &self.lists[0], unpack_entry)
     }
 
     /// The traversal's lists of the light traversed last: `[k]` is the list the step at level
     /// k+1 wrote (level-k nodes and the clusters finished above), `[0]` what was splatted.
     pub fn read_lists(&self, ctx: &Context) -> Result<Vec<Vec<[u32; 4]>>> {
-        let read = |s: &CompactStream| -> vkcore::Result<Vec<[u32; 4]>> {
-            Ok(s.read_as::<u32>(ctx)?.into_iter().map(unpack_entry).collect())
-        };
-        Ok(self.lists.iter().map(read).collect::<vkcore::Result<_>>()?)
+        self.lists.iter().map(|list| lists::read_packed(ctx, list, unpack_entry)).collect()
     }
 }
 

@@ -3,7 +3,11 @@
 //! reads it): the eye's refraction (Sec. 3.1) and the adaptive caustic maps' metric and
 //! geometry-buffer resolution (Sec. 3.2).
 
+use super::super::settings::{Bad, CausticSettings};
+use super::super::shared::settings::TraversalPath;
+use super::super::technique::Technique;
 use super::super::value_enum::value_enum;
+use super::adaptive::batches;
 use crate::dump::{Dump, Format, Space};
 use vkcore::Feature;
 
@@ -118,6 +122,86 @@ pub fn finest_level(photons: u32) -> Option<u32> {
 /// under `metric`.
 pub fn tests_convergence(metric: Metric, level: u32) -> bool {
     metric == Metric::MaxError && (TOP_PHOTONS << level) >= CONVERGENCE_FROM_PHOTONS
+}
+
+/// The range checks of technique `adaptive`'s own keys (`CausticSettings::validate` calls it):
+/// the geometry buffers' scale, the photon grid, its memory limit and batches.
+pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
+    let most = s.most_photons();
+    if !(s.gbuffer_scale > 0.0 && s.gbuffer_scale <= 4.0) {
+        bad(
+            "gbuffer_scale",
+            format!(
+                "must be a fraction of the caustic-map resolution in (0, 4] (the paper's 0.25), got {}",
+                s.gbuffer_scale
+            ),
+        )?;
+    }
+    // Only adaptive caustic maps make geometry buffers at this side (`gbuffer_side`).
+    if s.technique == Technique::Adaptive && !(16..=8192).contains(&s.gbuffer_side()) {
+        bad(
+            "gbuffer_scale",
+            format!(
+                "{} × caustic_map_resolution {} gives geometry buffers {} texels wide; they must be 16 to 8192",
+                s.gbuffer_scale,
+                s.caustic_map_resolution,
+                s.gbuffer_side()
+            ),
+        )?;
+    }
+    if let Some(level) = s.max_level {
+        let deepest = finest_level(most).unwrap_or(0);
+        if level > deepest {
+            bad("max_level", format!("must be between 0 and {deepest} (64² to {most}² photons), got {level}"))?;
+        }
+    }
+    if s.photon_memory_limit > 1 << 20 {
+        bad(
+            "photon_memory_limit",
+            format!("must be at most 1048576 MiB (0: no limit), got {}", s.photon_memory_limit),
+        )?;
+    }
+    if !(1..=MAX_BATCHES).contains(&s.photon_batches) {
+        bad("photon_batches", format!("must be between 1 and {} batches, got {}", MAX_BATCHES, s.photon_batches))?;
+    }
+    if s.technique == Technique::Adaptive {
+        validate_adaptive(s, bad)?;
+    }
+    Ok(())
+}
+
+/// Technique `adaptive`'s photon grid: 64 × 2^L per side (Wyman & Nichols 2009 Sec. 3.2),
+/// agreeing with `max_level` when it is set.
+fn validate_adaptive(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
+    let Some(level) = finest_level(s.photons) else {
+        return bad(
+            "photons",
+            format!(
+                "technique `adaptive` refines a 64² grid of photons by halving its cells, so photons must be \
+                 64 × 2^L (64, 128, 256, ..., 4096; up to 16384 with a photon_memory_limit), got {}",
+                s.photons
+            ),
+        );
+    };
+    if s.photon_memory_limit > 0 || s.photon_batches > 1 {
+        let xfb = s.path == TraversalPath::Xfb;
+        let limit = (s.photon_memory_limit > 0).then(|| s.photon_memory_limit as u64 * 1024 * 1024);
+        if let Err(e) = batches::plan(level, s.metric, xfb, limit, s.photon_batches, 1) {
+            let key = if s.photon_memory_limit > 0 { "photon_memory_limit" } else { "photon_batches" };
+            bad(key, e)?;
+        }
+    }
+    match s.max_level {
+        Some(max) if max != level => bad(
+            "max_level",
+            format!(
+                "{max} means {}² photons, but photons is {} (level {level}); set one of them, or both to agree",
+                TOP_PHOTONS << max.min(MAX_LEVEL),
+                s.photons
+            ),
+        ),
+        _ => Ok(()),
+    }
 }
 
 #[cfg(test)]

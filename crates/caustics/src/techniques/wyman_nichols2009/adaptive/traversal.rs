@@ -10,6 +10,7 @@ use super::photon::{unpack_cell, AdaptivePhoton};
 use super::{AdaptiveCaustics, Kernels};
 use crate::gpu::{BatchPart, PassName, Stage};
 use crate::techniques::shared::compute_splat::{groups, ComputeSplat};
+use crate::techniques::shared::lists;
 use crate::techniques::shared::targets::PhotonTargets;
 use crate::techniques::shared::FrameInputs;
 use crate::techniques::wyman_nichols2009::geometry_buffers::Uniforms;
@@ -351,12 +352,12 @@ impl AdaptiveCaustics {
     /// Per light: each level's pending clusters (level 0 to L), then the photons output at each
     /// step (0 to L), summed over the batches, after the last traversal.
     pub fn level_counts(&self, ctx: &Context) -> Result<Vec<(Vec<u64>, Vec<u64>)>> {
-        let raw: Vec<u32> = ctx.read_buffer_as(&self.counts)?;
         let levels = (self.finest + 1) as usize;
         let b = self.plan.breadth as usize;
-        Ok((0..self.lights.max(1) as usize)
-            .map(|l| {
-                let at = |i: usize| raw.get(l * 2 * levels + i).copied().unwrap_or(0) as u64;
+        Ok(lists::read_counters(ctx, &self.counts, self.lights, 2 * levels)?
+            .into_iter()
+            .map(|counters| {
+                let at = |i: usize| counters[i];
                 let mut clusters = vec![self.clusters[0].capacity() as u64];
                 clusters.extend((1..levels).map(at));
                 // Photons so far after each step; each batch starts from none at level B.
@@ -384,9 +385,8 @@ impl AdaptiveCaustics {
     /// of clusters converged above B, `breadth.photons`. [`Part::Batch`]: the batch's slice of
     /// level B and its levels below, `batch<b>.clusters<k>`, its photons, `batch<b>.photons`.
     pub fn read_lists(&self, ctx: &Context, part: Option<Part>) -> Result<Vec<(String, Listed)>> {
-        let read = |s: &CompactStream| -> Result<Listed> {
-            Ok(Listed::Clusters(s.read_as::<u32>(ctx)?.into_iter().map(unpack_cell).collect()))
-        };
+        let read =
+            |s: &CompactStream| -> Result<Listed> { Ok(Listed::Clusters(lists::read_packed(ctx, s, unpack_cell)?)) };
         let b = self.plan.breadth as usize;
         let (prefix, levels, photons) = match part {
             None => (String::new(), 0..self.clusters.len(), "photons".to_string()),
