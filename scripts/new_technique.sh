@@ -17,6 +17,7 @@
 #     the accuracy it must state against the exact reference (the conformance suite holds it);
 #   - crates/caustics/tests/PAPER_NAME.rs: a test that its frame records a pass of its own and
 #     lights the receiver, which fails until it does.
+# A new PAPER's registry key is added to techniques/variants.rs's PAPERS.
 # (NAME in file names with underscores.) Then `cargo build` fails at every exhaustive `match`
 # over `Technique` that has no arm for it, and once it builds, the tests say what is left
 # (docs/adding_a_technique.md). Nothing is written when NAME or PAPER is not a valid name or
@@ -41,11 +42,29 @@ if ! [[ "$paper" =~ ^[a-z][a-z0-9_]*$ ]] || [ "$paper" = shared ] || [ "$paper" 
 fi
 
 src=crates/caustics/src/techniques
+# Rust's keywords cannot name a module.
+keywords=" as async await box break const continue crate dyn else enum extern false final fn for gen if impl in \
+let loop macro match mod move mut override priv pub ref return self static struct super trait true try type \
+typeof unsafe unsized use virtual where while yield "
+for word in "$paper" "${name//-/_}"; do
+    if [[ "$keywords" == *" $word "* ]]; then
+        echo "new_technique: \`$word\` is a Rust keyword and cannot name a module" >&2
+        exit 2
+    fi
+done
+if [ -e "$src/$paper.rs" ]; then
+    echo "new_technique: PAPER \`$paper\`: $src/$paper.rs is a module of the registry, not a paper's folder" >&2
+    exit 2
+fi
 technique_rs="$src/technique.rs"
 snake="${name//-/_}"
 camel="$(echo "$name" | awk -F- '{ for (i = 1; i <= NF; i++) printf "%s%s", toupper(substr($i, 1, 1)), substr($i, 2) }')"
 if grep -q "= \"$name\",\$" "$technique_rs" || grep -qE "^ +$camel = " "$technique_rs"; then
     echo "new_technique: \`$name\` is a technique already ($technique_rs)" >&2
+    exit 2
+fi
+if grep -q "^name = \"$name\"\$" "$src/variants.toml"; then
+    echo "new_technique: \`$name\` is a row of the registry already ($src/variants.toml)" >&2
     exit 2
 fi
 for f in "$src/$paper/$snake.rs" "shaders_glsl/$paper/$snake.comp" "crates/caustics/tests/${paper}_$snake.rs"; do
@@ -64,6 +83,20 @@ case "$paper" in
 esac
 
 written=()
+formatted=("$technique_rs" "$src/$paper/$snake.rs")
+
+# Adds "$2" to the `pub const PAPERS` list of file $1 (on one line or one item per line).
+add_to_papers() {
+    awk -v x="$2" '
+        /^pub const PAPERS/ { inside = 1 }
+        inside && /\];/ {
+            if ($0 ~ /^ *\];/) { print "    \"" x "\","; } else { sub(/\];/, ", \"" x "\"];") }
+            inside = 0
+        }
+        { print }
+    ' "$1" >"$1.new"
+    mv "$1.new" "$1"
+}
 
 # A new paper's folder: its module, its settings (what the technique enum reads) and its place
 # in the module layers.
@@ -85,14 +118,14 @@ pub const PAPER: &str = "TODO: authors, title, venue year";
 /// The buffers its stages own (\`--dump\`), each declared once in the module that writes it.
 pub static DUMPS: &[&Dump] = &[];
 EOF
-    # In order among the `pub mod` lines, as rustfmt keeps them.
+    # In order among the module lines, as rustfmt keeps them.
     awk -v p="$paper" '
-        !done && /^pub mod [a-z0-9_]+;$/ {
-            m = substr($3, 1, length($3) - 1)
+        !done && /^(pub )?mod [a-z0-9_]+;$/ {
+            m = $NF; m = substr(m, 1, length(m) - 1)
             if (m > p) { print "pub mod " p ";"; done = 1 }
         }
-        !done && seen && !/^pub mod / { print "pub mod " p ";"; done = 1 }
-        /^pub mod / { seen = 1 }
+        !done && seen && !/^(pub )?mod / { print "pub mod " p ";"; done = 1 }
+        /^(pub )?mod / { seen = 1 }
         { print }
     ' "$src/mod.rs" >"$src/mod.rs.new"
     mv "$src/mod.rs.new" "$src/mod.rs"
@@ -100,8 +133,13 @@ EOF
     awk -v p="$paper" '{ print } /^        "techniques::photon_trace",$/ { print "        \"techniques::" p "\"," }' \
         "$layers/main.rs" >"$layers/main.rs.new"
     mv "$layers/main.rs.new" "$layers/main.rs"
-    sed -i "s/\"wyman_nichols2009\", \"photon_trace\"\]/\"wyman_nichols2009\", \"photon_trace\", \"$paper\"]/" "$layers/layers.rs"
+    add_to_papers "$layers/layers.rs" "$paper"
+    # A new paper is a key the registry's rows may name (the claims check has its own list,
+    # crates/bench/src/claims/page.rs, which needs the paper's text in ../shared/papers).
+    add_to_papers "$src/variants.rs" "$key"
     written+=("$src/$paper/mod.rs" "$src/$paper/settings.rs" "$src/mod.rs" "$layers/main.rs" "$layers/layers.rs")
+    written+=("$src/variants.rs")
+    formatted+=("$layers/layers.rs" "$src/variants.rs" "$src/$paper/mod.rs")
 fi
 
 # The technique's own stage variant and its shader.
@@ -218,8 +256,11 @@ fn ${snake}_records_its_own_pass_and_lights_the_receiver() {
 EOF
 written+=("crates/caustics/tests/${paper}_$snake.rs")
 
-# rustfmt's layout for the lines edited (where this is a cargo workspace).
-cargo fmt --all >/dev/null 2>&1 || true
+# rustfmt's layout for the lists it lengthened and the files it wrote (a new paper's mod.rs
+# declares only the new files, so nothing else is formatted); where rustfmt is installed.
+if command -v rustfmt >/dev/null; then
+    rustfmt --edition 2021 "${formatted[@]}" || echo "new_technique: rustfmt could not format the stamped files (see above)" >&2
+fi
 
 echo "new_technique: \`$name\` (Technique::$camel) in $src/$paper/. Written:"
 printf '  %s\n' "${written[@]}" | sort -u

@@ -8,7 +8,10 @@ use std::process::Command;
 
 /// The files the script edits, copied from the repository into a fresh tree.
 const EDITED: &[&str] = &[
+    "rustfmt.toml",
     "scripts/new_technique.sh",
+    "crates/caustics/src/techniques/variants.rs",
+    "crates/caustics/tests/common/mod.rs",
     "crates/caustics/src/techniques/technique.rs",
     "crates/caustics/src/techniques/mod.rs",
     "crates/caustics/src/techniques/variants.toml",
@@ -84,15 +87,17 @@ fn a_new_paper_gets_its_folder_its_layer_its_variant_row_and_a_failing_test() {
 
     // The paper's folder, its module in order, its place in the layers.
     let module = read(&root, &format!("{src}/mod.rs"));
-    let mods: Vec<&str> = module.lines().filter(|l| l.starts_with("pub mod ")).collect();
-    let mut sorted = mods.clone();
-    sorted.sort();
-    assert!(mods.contains(&"pub mod smith2024;") && mods == sorted, "{mods:?}");
-    assert!(read(&root, &format!("{src}/smith2024/mod.rs")).contains("pub mod settings;\npub mod my_splat;\n"));
+    assert!(module.contains("\npub mod smith2024;\n"), "{module}");
+    assert_modules_in_order(&module);
+    let paper_mod = read(&root, &format!("{src}/smith2024/mod.rs"));
+    assert!(paper_mod.contains("pub mod my_splat;\npub mod settings;\n"), "{paper_mod}");
     let settings = read(&root, &format!("{src}/smith2024/settings.rs"));
     assert!(settings.contains("pub const PAPER: &str") && settings.contains("pub static DUMPS"));
     assert!(read(&root, "crates/caustics/tests/module_layers/main.rs").contains("\"techniques::smith2024\","));
-    assert!(read(&root, "crates/caustics/tests/module_layers/layers.rs").contains("\"photon_trace\", \"smith2024\"]"));
+    let layers = read(&root, "crates/caustics/tests/module_layers/layers.rs");
+    assert!(words(papers(&layers)).contains("\"photon_trace\",\"smith2024\""), "{}", papers(&layers));
+    let variants = read(&root, &format!("{src}/variants.rs"));
+    assert!(words(papers(&variants)).ends_with("\"wyman_nichols2009\",\"smith2024\"]"), "{}", papers(&variants));
 
     // Its stage variant, shader, registry row and test.
     let stage = read(&root, &format!("{src}/smith2024/my_splat.rs"));
@@ -105,10 +110,60 @@ fn a_new_paper_gets_its_folder_its_layer_its_variant_row_and_a_failing_test() {
     assert_eq!(row["settings"]["technique"].as_str(), Some("my-splat"));
     assert_eq!(row["default"].as_bool(), Some(true));
     assert!(row["stated"]["rel_rmse"].as_float().is_some(), "the row states no accuracy");
+    rustfmt_check(&root, &[&format!("{src}/technique.rs"), &format!("{src}/smith2024/mod.rs")]);
+    rustfmt_check(&root, &["crates/caustics/tests/smith2024_my_splat.rs"]);
+
+    // A second new paper, after the first (the lists now longer than one line allows).
+    let (code, out) = stamp(&root, &["veach-splat", "veach1997"]);
+    assert_eq!(code, 0, "{out}");
+    let layers = read(&root, "crates/caustics/tests/module_layers/layers.rs");
+    let list = papers(&layers);
+    assert!(words(list).contains("\"photon_trace\",\"smith2024\",\"veach1997\""), "{list}");
+    let variants = read(&root, &format!("{src}/variants.rs"));
+    assert!(words(papers(&variants)).contains("\"smith2024\",\"veach1997\""), "{}", papers(&variants));
+    assert!(read(&root, "crates/caustics/tests/module_layers/main.rs").contains("\"techniques::veach1997\","));
+    assert_modules_in_order(&read(&root, &format!("{src}/mod.rs")));
+    rustfmt_check(&root, &["crates/caustics/tests/module_layers/layers.rs", &format!("{src}/variants.rs")]);
     let test = read(&root, "crates/caustics/tests/smith2024_my_splat.rs");
     assert!(test.contains("\"my-splat\".parse()") && test.contains("assert!(power > 0.0"), "{test}");
     assert!(test.contains("p.starts_with(\"my_splat\")"), "the test does not ask for a pass of its own: {test}");
     let _ = std::fs::remove_dir_all(&root);
+}
+
+/// The `pub const PAPERS` list of a source file, from its `[` to its `]`.
+fn papers(text: &str) -> &str {
+    let at = text.find("pub const PAPERS").expect("a PAPERS list");
+    let open = at + text[at..].find('[').unwrap() + 1;
+    let open = open + text[open..].find('[').unwrap();
+    &text[open..=open + text[open..].find(']').unwrap()]
+}
+
+/// `text` without its white space.
+fn words(text: &str) -> String {
+    text.split_whitespace().collect()
+}
+
+/// The module lines of `techniques/mod.rs` sorted by name, as rustfmt keeps them.
+fn assert_modules_in_order(module: &str) {
+    let names: Vec<&str> = module
+        .lines()
+        .filter_map(|l| l.strip_prefix("pub mod ").or_else(|| l.strip_prefix("mod ")))
+        .map(|m| m.trim_end_matches(';'))
+        .collect();
+    let mut sorted = names.clone();
+    sorted.sort();
+    assert_eq!(names, sorted, "techniques/mod.rs's modules out of order");
+}
+
+/// rustfmt (the project's rustfmt.toml) would leave `files` as the script wrote them.
+fn rustfmt_check(root: &Path, files: &[&str]) {
+    let out = Command::new("rustfmt")
+        .current_dir(root)
+        .args(["--check", "--edition", "2021"])
+        .args(files)
+        .output()
+        .expect("rustfmt (rustup component add rustfmt)");
+    assert!(out.status.success(), "rustfmt would change {files:?}:\n{}", String::from_utf8_lossy(&out.stdout));
 }
 
 #[test]
@@ -132,8 +187,12 @@ fn an_existing_paper_keeps_its_folder_and_its_claims_key() {
 fn a_bad_name_or_a_technique_already_there_is_refused_and_nothing_written() {
     let root = tree("refused");
     let before = snapshot(&root);
-    let refused: [(&[&str], &str); 7] = [
+    let refused: [(&[&str], &str); 11] = [
         (&["hcm", "wyman2008"], "`hcm` is a technique already"),
+        (&["shah-box", "shah2007"], "`shah-box` is a row of the registry already"),
+        (&["my-splat", "technique"], "technique.rs is a module of the registry"),
+        (&["type", "smith2024"], "`type` is a Rust keyword"),
+        (&["my-splat", "crate"], "`crate` is a Rust keyword"),
         (&["photon-trace", "smith2024"], "`photon-trace` is a technique already"),
         (&["My-Splat", "smith2024"], "NAME `My-Splat`"),
         (&["my--splat", "smith2024"], "NAME `my--splat`"),

@@ -257,3 +257,22 @@ fn the_direct_deposit_bins_the_photons_as_the_reference_does() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The tracer's BVH is built once, when the renderer is made: a pose that moves an object is
+/// refused, naming it (an input error, not a stale trace); the same pose again is taken.
+#[test]
+fn a_pose_that_moves_an_object_is_refused_by_name() {
+    use caustics::render::{FrameStep, Renderer, RendererOptions};
+    let s = scene("sphere_on_plane.toml", 64, true);
+    let (ctx, sh) = common::context();
+    let mut r = Renderer::new(&ctx, &sh, &s, &RendererOptions::default()).expect("renderer");
+    r.frame(FrameStep::default()).expect("frame");
+    r.set_pose(&s).expect("the same pose");
+    let mut moved = s.clone();
+    let (i, name) = moved.objects.iter().enumerate().map(|(i, o)| (i, o.name.clone())).next().expect("an object");
+    for p in moved.objects[i].mesh.positions.iter_mut() {
+        p.y += 0.01;
+    }
+    let err = r.set_pose(&moved).expect_err("a moved object").to_string();
+    assert!(err.contains("photon-trace") && err.contains(&format!("`{name}` moves")), "{err}");
+}

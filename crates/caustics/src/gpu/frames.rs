@@ -52,7 +52,7 @@ impl Frames {
         let mut f = r.ctx().frame(FrameOptions {
             timestamps: true,
             pipeline_statistics: step.pipeline_statistics,
-            host_pass_times: step.host_pass_times,
+            host_pass_times: step.host_pass_times && r.host_pass_times(),
             ..Default::default()
         })?;
         r.record(&mut f, None, step)?;
@@ -98,6 +98,11 @@ pub trait RecordFrame {
     }
     /// Called once a frame is submitted.
     fn submitted(&mut self) {}
+    /// Whether its one-shot frames may submit every pass alone to time it on the host
+    /// (`FrameStep::host_pass_times`).
+    fn host_pass_times(&self) -> bool {
+        true
+    }
 }
 
 /// Records, submits and waits for one frame of `r`; returns its per-pass timings (one-shot

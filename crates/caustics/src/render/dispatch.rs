@@ -1,7 +1,7 @@
 //! `Renderer`: what `causticlab render`, the bench and the tests drive frame by frame. A scene of
 //! meshes and lights is rendered by the [`MeshRenderer`] (the eye render and the photon
-//! techniques); a technique with a renderer of its own by that one, made by the registry
-//! (`techniques::own_renderer`: Trendall & Stewart 2000's pool, which has no photons, meshes or
+//! techniques); a technique with a renderer of its own by that one, made by the techniques'
+//! module (`techniques::own_renderer`: Trendall & Stewart 2000's pool, which has no photons, meshes or
 //! shadow maps). Both are a `gpu::frames::FrameRenderer`, whose frames one path submits.
 
 use super::renderer::{MeshRenderer, RendererOptions};

@@ -150,13 +150,8 @@ impl FrameRenderer for MeshRenderer<'_> {
             if obj.mesh.positions == old.mesh.positions && obj.mesh.normals == old.mesh.normals {
                 continue;
             }
-            if self.scene.caustics.technique == techniques::Technique::PhotonTrace {
-                return Err(crate::input_error!(
-                    "technique photon-trace: object `{}` moves, and the tracer's BVH is built once, when the \
-                     renderer is made (moving objects are not supported yet)",
-                    obj.name
-                )
-                .into());
+            if let Some(c) = &self.caustic {
+                c.follows_moving_mesh(&obj.name)?;
             }
             self.photons_ready = false;
             if !self.slots.mesh_moved(i) {

@@ -185,6 +185,12 @@ impl CausticPipeline {
         ]
     }
 
+    /// Whether the stages follow the object `object` moving between frames (see
+    /// `Source::follows_moving_mesh`).
+    pub fn follows_moving_mesh(&self, object: &str) -> Result<()> {
+        self.source.follows_moving_mesh(object)
+    }
+
     pub fn eye_space(&self) -> bool {
         self.deposit.eye_space()
     }

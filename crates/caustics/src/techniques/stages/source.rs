@@ -109,6 +109,19 @@ impl Source {
 
     /// Whether this stage has the light-space buffer `d` (one it owns but does not have, it
     /// never dumps).
+    /// Whether this source follows meshes that move between frames: the tracer's BVH is built
+    /// once, when it is made (an input error naming the object otherwise).
+    pub fn follows_moving_mesh(&self, object: &str) -> anyhow::Result<()> {
+        match self {
+            Source::Traced(_) => Err(crate::input_error!(
+                "technique photon-trace: object `{object}` moves, and the tracer's BVH is built once, when the \
+                 renderer is made (moving objects are not supported yet)"
+            )
+            .into()),
+            _ => Ok(()),
+        }
+    }
+
     pub fn has_dump(&self, d: &'static Dump) -> bool {
         match self {
             Source::Deferred(_) => true,

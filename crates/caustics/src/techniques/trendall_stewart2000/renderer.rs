@@ -236,6 +236,12 @@ impl RecordFrame for PoolRenderer<'_> {
     fn final_view(&self) -> &vkcore::ImageView {
         &self.targets.final_image.view
     }
+
+    /// The CPU path's passes are timed on the host already (`host_passes`), and no pool bench
+    /// config asks for host pass times: its frames stay one submit.
+    fn host_pass_times(&self) -> bool {
+        false
+    }
 }
 
 impl FrameRenderer for PoolRenderer<'_> {
