@@ -16,7 +16,8 @@
 # dump, channel by channel (largest |now - recorded| over the channel's largest |recorded|),
 # and the pass names and photon counts of timings.json exactly (the counts the bench reports:
 # photons emitted, valid photons, splats drawn, the traversal's list sizes). The lists a compute path appends to with
-# an atomic counter (splats, hierarchy_lists, adaptive_lists) are compared unordered, and the
+# an atomic counter (the dumps declared as lists of records, `--unordered-records`: splats,
+# hierarchy_lists, adaptive_lists) are compared unordered, and the
 # additive splats they feed differ by float rounding (about 1e-6), hence the tolerance; batched,
 # which clusters fall into which batch follows that order too, so adaptive_lists is not compared.
 # BIN picks the binary (default target/release/causticlab, built if missing); CASES=REGEX runs
@@ -140,7 +141,7 @@ for c in "${all[@]}"; do
     if [ "$mode" = check ]; then
         unordered=()
         if [[ " ${flags[*]} " == *" compute "* ]]; then
-            unordered=(--unordered splats,hierarchy_lists,adaptive_lists)
+            unordered=(--unordered-records)
             # Batched, the compute traversal's split of the pending clusters into batches
             # follows its append order too: the lists of each batch change from run to run
             # (the maps and the counts do not).

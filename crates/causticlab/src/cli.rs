@@ -312,6 +312,11 @@ pub struct DiffArgs {
     /// counter, in an order that changes from run to run.
     #[arg(long, value_delimiter = ',')]
     pub unordered: Vec<String>,
+    /// Every list dump compared as an unordered list: the dumps declared as lists of records
+    /// (`dump::Format::Records`: `splats`, `hierarchy_lists`, `adaptive_lists`), as `--unordered`
+    /// would name them.
+    #[arg(long)]
+    pub unordered_records: bool,
     /// Files (comma-separated stems) not compared in folders, e.g. the batched compute
     /// traversal's `adaptive_lists`, whose split of the clusters into batches follows the
     /// append order.

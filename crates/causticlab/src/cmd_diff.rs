@@ -136,7 +136,7 @@ fn diff_file(a: &Path, b: &Path, args: &DiffArgs) -> Result<bool> {
     let read = |p: &Path| read_exr(p).map_err(|e| if e.is::<InputError>() { e } else { input_error!("{e:#}").into() });
     let (mut ia, mut ib) = (read(a)?, read(b)?);
     let stem = name.strip_suffix(".exr").unwrap_or(&name);
-    let unordered = args.unordered.iter().any(|u| u == stem);
+    let unordered = args.unordered.iter().any(|u| u == stem) || (args.unordered_records && is_records(stem));
     if unordered {
         sort_texels(&mut ia);
         sort_texels(&mut ib);
@@ -170,4 +170,10 @@ fn diff_file(a: &Path, b: &Path, args: &DiffArgs) -> Result<bool> {
         );
     }
     Ok(false)
+}
+
+/// Whether the dump of file stem `stem` is declared as a list of records (by any technique:
+/// one name is one format across the declarations).
+fn is_records(stem: &str) -> bool {
+    caustics::render::dumps::all().iter().any(|d| d.name == stem && d.format == caustics::dump::Format::Records)
 }

@@ -90,6 +90,25 @@ fn renders_that_differ_are_told_apart_by_file_channel_and_count() {
     assert_eq!(diff(&a, &reordered, &[]).code, Some(1));
     let unordered = diff(&a, &reordered, &["--unordered", "splats"]);
     assert_eq!(unordered.code, Some(0), "{}", unordered.describe());
+    // The same, with every dump declared a list of records unordered (splats is one).
+    let records = diff(&a, &reordered, &["--unordered-records"]);
+    assert_eq!(records.code, Some(0), "{}", records.describe());
+    assert!(records.stdout.contains("splats.exr (unordered)"), "{}", records.describe());
+    // An image is not a list: receiver texels swapped still differ under --unordered-records.
+    let swapped = dir.join("swapped");
+    copy_dir(&b, &swapped);
+    let mut receiver = read_exr(&swapped.join("receiver.exr")).unwrap();
+    for layer in &mut receiver.layers {
+        let n = layer.channels.len();
+        let texels = layer.data.len() / n;
+        let Some(i) = (0..texels).find(|&t| layer.data[t * n] != layer.data[0]) else { continue };
+        let (first, rest) = layer.data.split_at_mut(n);
+        first.swap_with_slice(&mut rest[(i - 1) * n..i * n]);
+    }
+    write_exr(&swapped.join("receiver.exr"), &receiver).unwrap();
+    let image = diff(&a, &swapped, &["--unordered-records"]);
+    assert_eq!(image.code, Some(1), "{}", image.describe());
+    assert!(!image.stdout.contains("receiver.exr (unordered)"), "{}", image.describe());
 
     // A photon count changed, and a dump missing on one side.
     let recounted = dir.join("recounted");
