@@ -52,7 +52,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         eprintln!("warning: no HDR-FLIP: {e}");
     }
     if args.json {
-        let mut v = match &r.figures {
+        let figures = match &r.figures {
             Figures::Receiver(c) => serde_json::json!({
                 "region": format!("{:?}", args.region).to_lowercase(),
                 "region_texels": c.region_texels,
@@ -70,9 +70,15 @@ pub fn run(args: &CompareArgs) -> Result<()> {
                 "non_finite_pixels": c.non_finite_pixels,
             }),
         };
-        v["a"] = args.a.display().to_string().into();
-        v["b"] = args.b.display().to_string().into();
-        v["kind"] = r.kind.name().into();
+        // A, B and the kind first, then the figures, then FLIP.
+        let mut v = serde_json::json!({
+            "a": args.a.display().to_string(),
+            "b": args.b.display().to_string(),
+            "kind": r.kind.name(),
+        });
+        if let (Some(v), serde_json::Value::Object(f)) = (v.as_object_mut(), figures) {
+            v.extend(f);
+        }
         v["flip"] = r.flip.as_ref().map_or(serde_json::Value::Null, |f| flip_json(r.kind, f));
         if let Err(e) = &r.flip {
             v["flip_error"] = e.to_string().into();
