@@ -10,8 +10,9 @@
 //! the bias of the splat's blur halves and the relative noise falls by √2 a level. More photons
 //! than one photon buffer holds (4096²) are traced as several frames, each with its own seed,
 //! and their final images averaged: the final image is linear in the caustic map (irradiance =
-//! power cos θ / (w d²), the eye's refraction a linear lookup of what it sees), so the mean of
-//! the frames is the image of the mean caustic map, the caustic map of all their photons.
+//! power cos θ / (w d²), Wyman & Davis 2006 Eq. 5-8 as `common/caustic_lookup.glsl` reads it; the
+//! eye's refraction a linear lookup of what it sees), so the mean of the frames is the image of
+//! the mean caustic map, the caustic map of all their photons.
 //!
 //! `causticlab reference --final` writes it; `scripts/final_reference.sh` shows the convergence
 //! (docs/flip.md, "The reference final image").

@@ -3,9 +3,10 @@
 //! validation layer on:
 //! - it converges: each level changes the image by less than the level before did (HDR-FLIP of
 //!   level L against L + 1), and the last change is smaller than shah's FLIP against it;
-//! - `compare`'s report on final images: an image against itself is 0, a caustic moved by two
-//!   pixels is further from the reference than the reference itself; the FLIP map is the
-//!   image's size, at the default pixels per degree.
+//! - `compare`'s report on final images: an image against itself is 0, the image moved by two
+//!   pixels (its caustic with it) is further from it; the FLIP map is the image's size, at the
+//!   default pixels per degree;
+//! - frames are traced with the seeds in turn and averaged.
 //!
 //! The full-size check (levels 0-3, 512², shah, wd-points and hcm) is
 //! `scripts/final_reference.sh` (docs/flip.md).
@@ -81,7 +82,7 @@ fn the_reference_final_image_converges_below_a_techniques_flip() {
     assert_eq!(f.mean(), 0.0);
     assert_eq!((f.map.width, f.map.height, f.ppd()), (96, 96, caustics::flip::default_ppd()));
     let moved = flip(&shifted(reference, 2), reference);
-    assert!(moved > 0.0, "the caustic moved by two pixels reads as the reference");
+    assert!(moved > 0.0, "the image moved by two pixels reads as the reference");
 }
 
 /// Frames are traced with seeds `seed`, `seed + 1`, ... and averaged: two frames give the mean of
