@@ -37,8 +37,8 @@ pub const MAX_PHOTON_SIDE: u32 = 4096;
 pub const MAX_LEVEL: u32 = 4;
 
 /// The level every table's final-image FLIP is against (`reference --final`'s default): on
-/// `sphere_on_plane` the next level changes the image by less than a third of any technique's
-/// FLIP against it, and no technique's FLIP by more than 2% (`scripts/final_reference.sh`,
+/// `sphere_on_plane` refining it to level 2 or 3 changes the image by less than a third of any
+/// technique's FLIP, and no technique's FLIP by more than 2% (`scripts/final_reference.sh`,
 /// docs/flip.md).
 pub const TABLE_LEVEL: u32 = 1;
 
