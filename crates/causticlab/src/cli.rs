@@ -41,9 +41,11 @@ pub enum Command {
     /// Render a scene and write final.exr, final.png, timings.json and the requested dumps.
     Render(RenderArgs),
     /// Trace the exact CPU photon reference of a scene's receiver map into DIR/receiver.exr; for
-    /// a pool scene, evaluate passes 1-6 in f64 (or Eq. 2 itself with --direct).
+    /// a pool scene, evaluate passes 1-6 in f64 (or Eq. 2 itself with --direct); with --final,
+    /// render the reference final image (the eye's frame, exact GPU photons) into DIR/final.exr.
     Reference(ReferenceArgs),
-    /// Compare two receiver maps (B is the reference): errors, peak, flux; writes an error image.
+    /// Compare two receiver maps or two final images (B is the reference): errors, peak, flux,
+    /// HDR-FLIP; writes an error image and the FLIP error image beside it.
     Compare(CompareArgs),
     /// Compare two renders texel by texel: two EXR files, or two `render --out` folders (every
     /// dump, final.exr, and the pass names and photon counts in timings.json). Exit 0 when
@@ -268,20 +270,34 @@ pub struct ReferenceArgs {
     /// Pool scenes: the Pass 6 kernel side, odd (default: the scene's `caustics.kernel`).
     #[arg(long)]
     pub kernel: Option<u32>,
-    /// Output directory (receiver.exr, reference.json).
+    /// Render the reference final image instead of the receiver map: the eye's frame as every
+    /// technique renders it, its caustic map filled by exact photons traced on the GPU
+    /// (photon-trace) at refinement --level; writes final.exr, final.png and reference.json
+    /// (docs/flip.md). Needs a Vulkan device; --seed, --fresnel, --max-bounces and
+    /// --outside-reflection apply.
+    #[arg(long = "final", conflicts_with_all = ["photons", "threads", "facet_normals", "direct", "grid", "kernel"])]
+    pub final_image: bool,
+    /// With --final: the refinement, 0 to 4: a 256·2^L caustic map, 1024²·8^L photons per light
+    /// (the default, 1, is the one every table's FLIP is against).
+    #[arg(long, requires = "final_image", default_value_t = caustics::final_reference::TABLE_LEVEL,
+          value_parser = clap::value_parser!(u32).range(0..=caustics::final_reference::MAX_LEVEL as i64))]
+    pub level: u32,
+    /// Output directory (receiver.exr, reference.json; with --final final.exr, final.png,
+    /// reference.json).
     #[arg(long)]
     pub out: PathBuf,
 }
 
 #[derive(Debug, Args)]
 pub struct CompareArgs {
-    /// The map to judge (e.g. a GPU technique's receiver.exr).
+    /// The map or image to judge (a technique's receiver.exr, or its final.exr).
     pub a: PathBuf,
-    /// The reference (e.g. `causticlab reference` output).
+    /// The reference (`causticlab reference`'s receiver.exr, or `reference --final`'s final.exr).
     pub b: PathBuf,
     /// Where to write the error image (default: no image): `.exr` for its layers (A, B,
     /// diff = A − B, in_region), `.png` for a picture of it (red: A too bright, blue: too dark,
-    /// saturated at --error-scale; outside the region the reference in dim grey).
+    /// saturated at --error-scale; outside the region the reference in dim grey). The HDR-FLIP
+    /// error image goes beside it: `x.png` gives `x.flip.png` (magma), `x.exr` `x.flip.exr`.
     #[arg(long)]
     pub error_image: Option<PathBuf>,
     /// The |A − B| (in E/E0) at which the PNG error image saturates (default: half the

@@ -1,9 +1,12 @@
-//! `causticlab compare A.exr B.exr`: how far a receiver map is from a reference.
+//! `causticlab compare A.exr B.exr`: how far a receiver map or a final image is from a reference,
+//! in its figures and HDR-FLIP (`caustics::compare::report`).
 
 use crate::cli::CompareArgs;
 use anyhow::{Context as _, Result};
-use caustics::compare::compare_files;
+use caustics::compare::perceptual::{FlipLine, ImageKind};
+use caustics::compare::{final_image, report_files, Figures};
 use caustics::error_png;
+use caustics::flip::{Exposures, HdrFlip};
 use caustics::image_io::{self, header};
 use caustics::input_error;
 use std::io::{ErrorKind, Read as _};
@@ -34,44 +37,118 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     for line in mismatches(&args.a, &args.b) {
         eprintln!("warning: {line}");
     }
-    let (c, error_image) = compare_files(&args.a, &args.b, args.region)?;
-    if c.non_finite_texels > 0 {
+    let r = report_files(&args.a, &args.b, args.region)?;
+    let non_finite = match &r.figures {
+        Figures::Receiver(c) => c.non_finite_texels,
+        Figures::Final(c) => c.non_finite_pixels,
+    };
+    if non_finite > 0 {
         eprintln!(
-            "warning: {} texel(s) NaN or infinite in A or B (mean RGB, E0 or caustic value): the errors over them are not to be trusted",
-            c.non_finite_texels
+            "warning: {non_finite} {} NaN or infinite in A or B: the errors over them are not to be trusted",
+            if r.kind == ImageKind::ReceiverMap { "texel(s) (mean RGB, E0 or caustic value)" } else { "pixel(s)" }
         );
     }
+    if let Err(e) = &r.flip {
+        eprintln!("warning: no HDR-FLIP: {e}");
+    }
     if args.json {
-        let v = serde_json::json!({
+        let figures = match &r.figures {
+            Figures::Receiver(c) => serde_json::json!({
+                "region": format!("{:?}", args.region).to_lowercase(),
+                "region_texels": c.region_texels,
+                "rel_rmse": c.rel_rmse,
+                "rel_rmse_scaled": c.rel_rmse_scaled,
+                "best_scale": c.best_scale,
+                "peak_ratio": c.peak_ratio,
+                "peak_offset_texels": c.peak_offset_texels,
+                "caustic_flux_ratio": c.caustic_flux_ratio,
+                "non_finite_texels": c.non_finite_texels,
+            }),
+            Figures::Final(c) => serde_json::json!({
+                "pixels": c.pixels,
+                "rel_rmse": c.rel_rmse,
+                "non_finite_pixels": c.non_finite_pixels,
+            }),
+        };
+        // A, B and the kind first, then the figures, then FLIP.
+        let mut v = serde_json::json!({
             "a": args.a.display().to_string(),
             "b": args.b.display().to_string(),
-            "region": format!("{:?}", args.region).to_lowercase(),
-            "region_texels": c.region_texels,
-            "rel_rmse": c.rel_rmse,
-            "rel_rmse_scaled": c.rel_rmse_scaled,
-            "best_scale": c.best_scale,
-            "peak_ratio": c.peak_ratio,
-            "peak_offset_texels": c.peak_offset_texels,
-            "caustic_flux_ratio": c.caustic_flux_ratio,
-            "non_finite_texels": c.non_finite_texels,
+            "kind": r.kind.name(),
         });
+        if let (Some(v), serde_json::Value::Object(f)) = (v.as_object_mut(), figures) {
+            v.extend(f);
+        }
+        v["flip"] = r.flip.as_ref().map_or(serde_json::Value::Null, |f| flip_json(r.kind, f));
+        if let Err(e) = &r.flip {
+            v["flip_error"] = e.to_string().into();
+        }
         println!("{}", serde_json::to_string_pretty(&v).context("serialising the comparison")?);
     } else {
-        println!("A: {}\nB (reference): {}\n{c}", args.a.display(), args.b.display());
+        println!("A: {}\nB (reference): {}", args.a.display(), args.b.display());
+        match &r.figures {
+            Figures::Receiver(c) => print!("{c}"),
+            Figures::Final(c) => print!("{c}"),
+        }
+        if let Ok(f) = &r.flip {
+            println!("{}", FlipLine { kind: r.kind, flip: f });
+        }
     }
     if let Some(p) = &args.error_image {
+        let flip_path = beside(p);
         if png {
-            let scale = args.error_scale.unwrap_or_else(|| error_png::default_scale(&error_image));
-            error_png::write_error_png(p, &error_image, scale)?;
+            let scale = args.error_scale.unwrap_or_else(|| match r.kind {
+                ImageKind::ReceiverMap => error_png::default_scale(&r.error_image),
+                ImageKind::FinalImage => final_image::default_error_scale(&r.error_image),
+            });
+            error_png::write_error_png(p, &r.error_image, scale)?;
             let said =
                 format!("wrote {} (red: A brighter, blue: A darker, saturated at |A - B| = {scale:.3})", p.display());
             say(args.json, &said);
+            if let Ok(f) = &r.flip {
+                f.map.write_magma_png(&flip_path)?;
+                say(
+                    args.json,
+                    &format!(
+                        "wrote {} (HDR-FLIP per pixel through magma: black none, pale yellow 1)",
+                        flip_path.display()
+                    ),
+                );
+            }
         } else {
-            image_io::write_exr(p, &error_image)?;
+            image_io::write_exr(p, &r.error_image)?;
             say(args.json, &format!("wrote {}", p.display()));
+            if let Ok(f) = &r.flip {
+                f.write_exr(&flip_path)?;
+                say(args.json, &format!("wrote {} (channels FLIP and exposure)", flip_path.display()));
+            }
         }
     }
     Ok(())
+}
+
+/// The JSON object `--json` writes under `flip`: the mean with the pixels per degree, the size
+/// and the exposures it was computed at.
+fn flip_json(kind: ImageKind, r: &HdrFlip) -> serde_json::Value {
+    serde_json::json!({
+        "kind": kind.name(),
+        "mean": r.mean(),
+        "ppd": r.ppd(),
+        "width": r.map.width,
+        "height": r.map.height,
+        "start_exposure": r.start_exposure,
+        "stop_exposure": r.stop_exposure,
+        "exposure_count": r.exposure_count,
+        "exposures": if r.exposures == Exposures::Auto { "found from the reference" } else { "given" },
+    })
+}
+
+/// Where the FLIP error image goes beside the error image `p`: `x.png` gives `x.flip.png`,
+/// `x.exr` gives `x.flip.exr`.
+pub fn beside(p: &Path) -> std::path::PathBuf {
+    let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let ext = p.extension().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    p.with_file_name(format!("{stem}.flip.{ext}"))
 }
 
 /// What the two maps' headers (`render` and `reference` write them) say differs: the scene or
@@ -118,8 +195,9 @@ const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 fn check_exr(path: &Path) -> Result<()> {
     let not_exr = |what: &str| -> Result<()> {
         Err(input_error!(
-            "{}: {what}; compare reads the receiver maps causticlab writes as OpenEXR (receiver.exr of a \
-             render with --dump receiver, or of a reference)",
+            "{}: {what}; compare reads the receiver maps and final images causticlab writes as OpenEXR \
+             (receiver.exr of a render with --dump receiver, or of a reference; final.exr of a render or of \
+             reference --final)",
             path.display()
         )
         .into())

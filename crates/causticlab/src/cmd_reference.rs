@@ -1,12 +1,14 @@
 //! `causticlab reference`: the exact CPU photon tracer's receiver map, written atomically with a
 //! JSON record of the fluxes it measured.
 
-use crate::cli::ReferenceArgs;
+use crate::cli::{GlobalOpts, ReferenceArgs};
 use anyhow::{Context as _, Result};
 use caustics::image_io::{self, header, OutputDir};
 use caustics::reference::{trace_reference, ReferenceOptions};
 use caustics::scene::Scene;
 use serde::Serialize;
+use std::sync::Arc;
+use vkcore::ValidationLog;
 
 #[derive(Serialize)]
 struct Record {
@@ -27,8 +29,11 @@ struct Record {
     lost_other_w: [f64; 3],
 }
 
-pub fn run(args: &ReferenceArgs) -> Result<()> {
+pub fn run(g: &GlobalOpts, args: &ReferenceArgs, validation: &mut Option<Arc<ValidationLog>>) -> Result<()> {
     let scene = Scene::load(&args.scene)?;
+    if args.final_image {
+        return crate::cmd_reference_final::run(g, args, scene, validation);
+    }
     if scene.pool.is_some() {
         return crate::cmd_pool_reference::run(args, &scene);
     }

@@ -13,6 +13,7 @@ mod cmd_devices;
 mod cmd_diff;
 mod cmd_pool_reference;
 mod cmd_reference;
+mod cmd_reference_final;
 mod cmd_render;
 mod cmd_soak;
 mod cmd_variants;
@@ -36,7 +37,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Devices => ok(cmd_devices::run(&cli.global, &mut validation)),
         Command::Render(args) => ok(cmd_render::run(&cli.global, args, &mut validation)),
-        Command::Reference(args) => ok(cmd_reference::run(args)),
+        Command::Reference(args) => ok(cmd_reference::run(&cli.global, args, &mut validation)),
         Command::Compare(args) => ok(cmd_compare::run(args)),
         Command::Diff(args) => cmd_diff::run(args),
         Command::Bench(args) => ok(cmd_bench::run(&cli.global, args, &mut validation)),

@@ -19,6 +19,12 @@
 //! [`Region::Lit`] compares every texel instead (where `E0 > 0`): the relative RMS error "between
 //! the two caustics" of Trendall & Stewart 2000 Sec. 5.2, over the whole image.
 
+pub mod final_image;
+pub mod perceptual;
+mod report;
+
+pub use report::{report, report_files, Figures, Report};
+
 use crate::error::InputError;
 use crate::image_io::{read_exr, ImageF32, Layer};
 use std::fmt;
@@ -140,6 +146,16 @@ pub fn compare_files(a: &Path, b: &Path, region: Region) -> anyhow::Result<(Comp
     compare_labelled(&ia, &a.display().to_string(), &ib, &b.display().to_string(), region)
 }
 
+fn same_size(a: &ImageF32, la: &str, b: &ImageF32, lb: &str) -> Result<(), InputError> {
+    if (a.width, a.height) != (b.width, b.height) {
+        return Err(InputError::new(format!(
+            "size mismatch: {la} is {}x{} but {lb} is {}x{}",
+            a.width, a.height, b.width, b.height
+        )));
+    }
+    Ok(())
+}
+
 fn compare_labelled(
     a: &ImageF32,
     la: &str,
@@ -147,13 +163,7 @@ fn compare_labelled(
     lb: &str,
     region_kind: Region,
 ) -> anyhow::Result<(Comparison, ImageF32)> {
-    if (a.width, a.height) != (b.width, b.height) {
-        return Err(InputError::new(format!(
-            "size mismatch: {la} is {}x{} but {lb} is {}x{}",
-            a.width, a.height, b.width, b.height
-        ))
-        .into());
-    }
+    same_size(a, la, b, lb)?;
     let (w, h) = (a.width as usize, a.height as usize);
     let va = values(a, la)?;
     let vb = values(b, lb)?;

@@ -10,6 +10,7 @@ pub mod diff;
 pub mod dump;
 pub mod error;
 pub mod error_png;
+pub mod final_reference;
 pub mod flip;
 pub mod gpu;
 pub mod image_io;
