@@ -20,7 +20,6 @@ pub struct SlotData {
     /// The uniforms of the current pose, and those one-shot frames have not written yet.
     current: (FrameUniforms, CausticUniforms),
     pending: Option<(FrameUniforms, CausticUniforms)>,
-    throughput: bool,
     /// Throughput frames: the meshes the last pose moved, and per slot one staging buffer for
     /// every mesh's vertices (made by the first frame that moves one).
     moved: Vec<usize>,
@@ -53,7 +52,6 @@ impl SlotData {
             slot: 0,
             current: uniforms,
             pending: None,
-            throughput: slots > 0,
             moved: vec![],
             staging: (0..slots).map(|_| None).collect(),
         })
@@ -87,10 +85,12 @@ impl SlotData {
     /// Mesh `i` moved: true if the next frame copies it (throughput frames), false if the
     /// caller uploads it now.
     pub fn mesh_moved(&mut self, i: usize) -> bool {
-        if self.throughput && !self.moved.contains(&i) {
+        // Throughput frames have a staging slot per ring slot; one-shot frames none.
+        let throughput = !self.staging.is_empty();
+        if throughput && !self.moved.contains(&i) {
             self.moved.push(i);
         }
-        self.throughput
+        throughput
     }
 
     /// The start of a frame: a one-shot frame writes pending uniforms by a pass; a throughput

@@ -4,16 +4,18 @@
 //! and buffers this stage owns. Not a caustic stage: what the eye sees through the refractors.
 
 use crate::dump::Dump;
-use crate::gpu::{GpuMesh, Target};
+use crate::gpu::Target;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
+/// What deferred refraction reads and writes of the eye render.
+pub use crate::techniques::wyman_nichols2009::deferred_refraction::Inputs as RefractionInputs;
 use crate::techniques::wyman_nichols2009::deferred_refraction::{self, DeferredRefraction};
 pub use crate::techniques::wyman_nichols2009::deferred_refraction::{
     DEFERRED_REFRACTION_DUMPS, REFRACTION_LAYERS, REFRACTOR_GEOMETRY,
 };
 use crate::techniques::Refraction;
 use anyhow::Result;
-use vkcore::{Buffer, Context, Frame, ImageView, Sampler, ShaderCompiler};
+use vkcore::{Context, Frame, ShaderCompiler};
 
 /// The eye's refraction: deferred refraction's passes and the specular objects' order, or
 /// nothing (forward refraction).
@@ -21,19 +23,6 @@ pub struct EyeRefraction {
     deferred: Option<DeferredRefraction>,
     /// The specular objects, farthest from the eye first (Sec. 3.1.1).
     order: Vec<usize>,
-}
-
-/// What deferred refraction reads and writes of the eye render.
-pub struct RefractionInputs<'a> {
-    pub uniforms: &'a Buffer,
-    pub meshes: &'a [GpuMesh],
-    /// The background's radiance and geometry buffer (step 1).
-    pub background: &'a ImageView,
-    pub position: &'a ImageView,
-    pub normal: &'a ImageView,
-    /// Where the last refractor's pass writes.
-    pub final_image: &'a ImageView,
-    pub nearest: &'a Sampler,
 }
 
 impl EyeRefraction {
@@ -58,17 +47,7 @@ impl EyeRefraction {
     /// which the eye render records itself.
     pub fn record_deferred(&self, f: &mut Frame, inp: &RefractionInputs) -> Result<bool> {
         let Some(deferred) = &self.deferred else { return Ok(false) };
-        let inputs = deferred_refraction::Inputs {
-            uniforms: inp.uniforms,
-            meshes: inp.meshes,
-            order: &self.order,
-            background: inp.background,
-            position: inp.position,
-            normal: inp.normal,
-            final_image: inp.final_image,
-            nearest: inp.nearest,
-        };
-        deferred.record(f, &inputs)?;
+        deferred.record(f, inp, &self.order)?;
         Ok(true)
     }
 

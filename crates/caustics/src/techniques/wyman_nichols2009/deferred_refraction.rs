@@ -69,9 +69,8 @@ pub struct DeferredRefraction {
 /// What the deferred passes read and write besides their own buffers.
 pub struct Inputs<'a> {
     pub uniforms: &'a vkcore::Buffer,
-    /// Every mesh of the scene, and the specular ones' indices farthest first ([`back_to_front`]).
+    /// Every mesh of the scene (the specular ones' order is [`DeferredRefraction::record`]'s).
     pub meshes: &'a [GpuMesh],
-    pub order: &'a [usize],
     pub background: &'a ImageView,
     pub position: &'a ImageView,
     pub normal: &'a ImageView,
@@ -151,15 +150,15 @@ impl DeferredRefraction {
     }
 
     /// Records both passes of every refractor, farthest first; the last writes `final_image`.
-    pub fn record(&self, f: &mut Frame, inp: &Inputs) -> Result<()> {
+    pub fn record(&self, f: &mut Frame, inp: &Inputs, order: &[usize]) -> Result<()> {
         anyhow::ensure!(
-            inp.order.len().max(1) == self.layers.len(),
+            order.len().max(1) == self.layers.len(),
             "deferred refraction: {} refractors for {} layers",
-            inp.order.len(),
+            order.len(),
             self.layers.len()
         );
         for (k, views) in self.layers.iter().enumerate() {
-            let mesh = inp.order.get(k).map(|&i| &inp.meshes[i]);
+            let mesh = order.get(k).map(|&i| &inp.meshes[i]);
             let attachments = [
                 Use::view(&views.surfaces, Access::COLOR_ATTACHMENT),
                 Use::view(&views.depths, Access::COLOR_ATTACHMENT),
