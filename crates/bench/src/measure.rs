@@ -326,10 +326,12 @@ impl<'a> Runner<'a> {
         } else {
             None
         };
-        let (photons_emitted, splats_drawn, hierarchy_sizes) =
-            (renderer.photons_emitted(), renderer.splats_drawn()?, renderer.list_sizes()?);
+        let caustics = renderer.caustics();
+        let hierarchy_sizes = caustics.map(|c| c.list_sizes(self.ctx)).transpose()?.flatten();
+        let adaptive = caustics.and_then(|c| c.adaptive());
         let (photon_storage, photon_batches) =
-            (renderer.adaptive().map(|a| a.photon_storage_bytes()), renderer.adaptive().map(|a| a.plan().batches));
+            (adaptive.map(|a| a.photon_storage_bytes()), adaptive.map(|a| a.plan().batches));
+        let (photons_emitted, splats_drawn) = (renderer.photons_emitted(), renderer.splats_drawn()?);
         let throughput = if throughput {
             // One renderer at a time: the per-pass one's buffers go before the ring's are made.
             drop(renderer);

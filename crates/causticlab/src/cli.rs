@@ -63,6 +63,10 @@ pub enum Command {
     /// The registry of variants: every technique variant the project stands behind, with its
     /// paper, section, stated accuracy and flags (crates/caustics/src/techniques/variants.toml).
     Variants(VariantsArgs),
+    /// Every intermediate buffer `--dump` can write, as its owner declares it: owner, space,
+    /// format, the techniques that have it, its layers and channels (a Markdown table; the same
+    /// as docs/dumps.md's "Every dump").
+    Dumps,
 }
 
 #[derive(Debug, Args)]

@@ -98,7 +98,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
     let mut written = write_final_images(&out, &rendered.final_image, &header, scene.render.exposure)?;
     for (dump, image) in &rendered.dumps {
         let file = format!("{}.exr", dump.name);
-        image_io::write_exr_with(&out.path(&file), image, &header)?;
+        image_io::write_exr_with(&out.path(&file), image, &dump.header(&header))?;
         written.push(file);
         if [&render::dumps::RECEIVER, &caustics::techniques::trendall_stewart2000::settings::RECEIVER].contains(dump) {
             // To look at without an EXR viewer: E/E0 from black (0) through grey (1) to white (2).

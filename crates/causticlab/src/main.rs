@@ -44,6 +44,10 @@ fn main() -> ExitCode {
         Command::Soak(args) => ok(cmd_soak::run(&cli.global, args, &mut validation)),
         Command::View(args) => ok(view::run(&cli.global, args, &mut validation)),
         Command::Variants(args) => ok(cmd_variants::run(args)),
+        Command::Dumps => {
+            print!("{}", caustics::render::dumps::markdown_table());
+            Ok(exit::OK)
+        }
     };
     let mut code = match result {
         Ok(code) => code,

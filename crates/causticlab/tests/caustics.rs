@@ -282,6 +282,14 @@ fn every_intermediate_buffer_is_dumped_with_named_channels() {
         assert_eq!(header.get("causticlab:photon_buffer").map(String::as_str), Some("128x128"), "{file}: {header:?}");
         assert_eq!(header.get("causticlab:photons").map(String::as_str), Some("16384"), "{file}: {header:?}");
         assert!(header.get("causticlab:commit").is_some_and(|c| !c.is_empty()), "{file}: {header:?}");
+        // A dump names its buffer and the module that declares it; the final image is none.
+        let dump = header.get("causticlab:dump").map(String::as_str);
+        match file.strip_suffix(".exr").filter(|&f| f != "final") {
+            Some(name) => {
+                assert!(dump.is_some_and(|d| d.starts_with(&format!("{name} (caustics::"))), "{file}: {dump:?}")
+            }
+            None => assert_eq!(dump, None, "{file}"),
+        }
     }
     let expect = [
         (

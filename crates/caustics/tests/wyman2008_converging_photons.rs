@@ -143,7 +143,7 @@ fn clusters_are_exactly_the_nodes_whose_photons_converge_on_both_paths() {
             s.receiver_map = None;
             let mut r = Renderer::new(&ctx, &sh, &s, &RendererOptions::default()).expect("renderer");
             r.frame(FrameStep::default()).expect("frame");
-            let entries = r.hierarchy().expect("hcm").final_entries(&ctx).expect("entries");
+            let entries = r.caustics().and_then(|c| c.hierarchy()).expect("hcm").final_entries(&ctx).expect("entries");
             let pb = r.dump("photon_buffer").expect("dump").expect("a photon buffer");
             let pos = pb.layer(Some("light0.position")).expect("position layer");
             let photons = photons(&s, &pos.data, n);

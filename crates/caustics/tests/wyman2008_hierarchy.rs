@@ -43,7 +43,7 @@ struct Run {
 fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
     let mut r = Renderer::new(ctx, sh, s, &RendererOptions::default()).expect("renderer");
     r.frame(FrameStep::default()).expect("frame");
-    let (entries, sizes) = match r.hierarchy() {
+    let (entries, sizes) = match r.caustics().and_then(|c| c.hierarchy()) {
         Some(h) => (h.final_entries(ctx).expect("entries"), h.list_sizes(ctx).expect("sizes")[0].clone()),
         None => (vec![], vec![]),
     };
@@ -229,7 +229,7 @@ fn every_light_traverses_its_own_photon_buffer() {
         s.camera.height = 48;
         let mut r = Renderer::new(&ctx, &sh, &s, &RendererOptions::default()).expect("renderer");
         r.frame(FrameStep::default()).expect("frame");
-        let sizes = r.hierarchy().expect("hcm").list_sizes(&ctx).expect("sizes");
+        let sizes = r.caustics().and_then(|c| c.hierarchy()).expect("hcm").list_sizes(&ctx).expect("sizes");
         let names = ["photon_buffer".to_string(), "hierarchy_lists".to_string()];
         let dumps = r.dumps(&names).expect("dumps");
         let (pb, lists) = (&dumps[0].1, &dumps[1].1);

@@ -60,7 +60,7 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene, dumps: &[&str]) -> Run {
     r.frame(FrameStep::default()).expect("frame");
     let names: Vec<String> = dumps.iter().map(|d| d.to_string()).collect();
     let dumps = r.dumps(&names).expect("dumps").into_iter().map(|(d, img)| (d.name.to_string(), img)).collect();
-    let (photons, counts) = match r.adaptive() {
+    let (photons, counts) = match r.caustics().and_then(|c| c.adaptive()) {
         Some(a) => (a.read_photons(ctx).expect("photons"), a.level_counts(ctx).expect("counts").remove(0)),
         None => (vec![], (vec![], vec![])),
     };
@@ -308,7 +308,7 @@ fn every_light_creates_its_own_photons() {
         let s = scene("two_lights", "adaptive", n, path);
         let mut r = Renderer::new(&ctx, &sh, &s, &RendererOptions::default()).expect("renderer");
         r.frame(FrameStep::default()).expect("frame");
-        let counts = r.adaptive().expect("adaptive").level_counts(&ctx).expect("counts");
+        let counts = r.caustics().and_then(|c| c.adaptive()).expect("adaptive").level_counts(&ctx).expect("counts");
         let lists = r.dump("adaptive_lists").expect("dump").expect("the lists");
         let pb = &dense.dumps["photon_buffer"];
         let mut per_light = vec![];

@@ -51,7 +51,7 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
     let l = img.layer(Some("light0")).expect("light0");
     let map = l.data.chunks_exact(l.channels.len()).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).collect();
     let splatted = r.splats_drawn().expect("splats");
-    let a = r.adaptive().expect("adaptive");
+    let a = r.caustics().and_then(|c| c.adaptive()).expect("adaptive");
     let storage = a.photon_storage_bytes();
     assert_eq!(storage, a.plan().storage_bytes(), "allocated storage vs the plan's");
     // The plan fits the frame's pass limit by counting its traversal's passes (Sec. 4.3's
@@ -189,7 +189,7 @@ fn every_batch_is_dumped_and_together_they_are_the_unbatched_traversal() {
     let lists = |s: &Scene| -> (ImageF32, (u32, u32)) {
         let mut r = Renderer::new(&ctx, &sh, s, &RendererOptions::default()).expect("renderer");
         r.frame(FrameStep::default()).expect("frame");
-        let a = r.adaptive().expect("adaptive");
+        let a = r.caustics().and_then(|c| c.adaptive()).expect("adaptive");
         let plan = (a.plan().breadth, a.plan().batches);
         (r.dump("adaptive_lists").expect("dump").expect("the lists"), plan)
     };

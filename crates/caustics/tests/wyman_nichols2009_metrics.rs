@@ -65,7 +65,7 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
     let img: ImageF32 = r.dump("caustic_map").expect("dump").expect("a caustic map");
     let l = img.layer(Some("light0")).expect("light0");
     let map = l.data.chunks_exact(l.channels.len()).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).collect();
-    let (photons, counts) = match r.adaptive() {
+    let (photons, counts) = match r.caustics().and_then(|c| c.adaptive()) {
         Some(a) => {
             let list = a.read_photons(ctx).expect("photons");
             let n = list.len();

@@ -50,7 +50,8 @@ fn run(
     r.frame(FrameStep::default()).expect("frame");
     let names: Vec<String> = dumps.iter().map(|d| d.to_string()).collect();
     let out = r.dumps(&names).expect("dumps").into_iter().map(|(d, img)| (d.name.to_string(), img)).collect();
-    let photons = r.adaptive().map(|a| a.read_photons(ctx).expect("photons")).unwrap_or_default();
+    let photons =
+        r.caustics().and_then(|c| c.adaptive()).map(|a| a.read_photons(ctx).expect("photons")).unwrap_or_default();
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
     (out, photons)

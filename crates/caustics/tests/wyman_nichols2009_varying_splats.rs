@@ -60,7 +60,7 @@ fn run(ctx: &Context, sh: &ShaderCompiler, s: &Scene) -> Run {
             l.data.chunks_exact(l.channels.len()).map(|p| (p[0] as f64 + p[1] as f64 + p[2] as f64) / 3.0).collect()
         })
         .collect();
-    let photons = match r.adaptive() {
+    let photons = match r.caustics().and_then(|c| c.adaptive()) {
         Some(a) => a.read_photons(ctx).expect("photons").into_iter().map(|p| (p.cell, p)).collect(),
         None => BTreeMap::new(),
     };

@@ -387,7 +387,7 @@ impl<'c> Session<'c> {
         let mut written = vec![];
         for (dump, image) in &images {
             let file = format!("{}.exr", dump.name);
-            image_io::write_exr_with(&out.path(&file), image, &header)?;
+            image_io::write_exr_with(&out.path(&file), image, &dump.header(&header))?;
             written.push(out.final_dir().join(file));
         }
         out.commit()?;

@@ -2,7 +2,7 @@
 //! the image (tev and `exrheader` show them; `compare` reads the scene and Fresnel ones).
 //! `render` writes all but [`WRITER`], `reference` [`TECHNIQUE`], [`PHOTONS`], [`FRESNEL`],
 //! [`COMMIT`] and [`SCENE`], the viewer's saved frames all but [`PHOTONS`] and [`FRESNEL`]
-//! with [`WRITER`]. (The channel-order attribute, `causticlab.channels`, is older and kept as
+//! with [`WRITER`]; a dump also [`DUMP`]. (The channel-order attribute, `causticlab.channels`, is older and kept as
 //! spelt so that the files already written read back in their order.)
 
 /// The technique, or `reference (exact CPU photon trace)`.
@@ -19,5 +19,8 @@ pub const COMMIT: &str = "causticlab:commit";
 pub const DEVICE: &str = "causticlab:device";
 /// The scene file as given on the command line.
 pub const SCENE: &str = "causticlab:scene";
+/// A `--dump` file's buffer and the module that declares it, `<name> (<owner>)`
+/// (`crate::dump::Dump`; its layers and channels were checked against that declaration).
+pub const DUMP: &str = "causticlab:dump";
 /// The program that wrote the file when it is not `render` or `reference`.
 pub const WRITER: &str = "causticlab:writer";

@@ -10,7 +10,7 @@ use crate::dump::Dump;
 use crate::gpu::frames::{self, After, FrameRenderer};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
-use crate::techniques::{AdaptiveCaustics, CausticPipeline, Hierarchy};
+use crate::techniques::CausticPipeline;
 use anyhow::Result;
 use vkcore::{Context, FrameReport, ShaderCompiler};
 
@@ -102,7 +102,17 @@ impl<'c> Renderer<'c> {
 
     /// The intermediate buffer `d` of the last frame (None where this render has none).
     pub fn read_dump(&mut self, d: &'static Dump) -> Result<Option<ImageF32>> {
-        Ok(self.any().dumps(&[d])?.pop().map(|(_, img)| img))
+        Ok(self.declared_dumps(&[d])?.pop().map(|(_, img)| img))
+    }
+
+    /// The buffers `wanted` of the last frame, each checked against its declaration's layers
+    /// and channels (`Dump::check`: a buffer read otherwise is a bug, reported, never written).
+    fn declared_dumps(&mut self, wanted: &[&'static Dump]) -> Result<Vec<(&'static Dump, ImageF32)>> {
+        let read = self.any().dumps(wanted)?;
+        for (d, img) in &read {
+            d.check(img)?;
+        }
+        Ok(read)
     }
 
     /// The last frame's receiver map (the eye render's `receiver`, or the pool bottom's).
@@ -116,7 +126,7 @@ impl<'c> Renderer<'c> {
     pub fn dumps(&mut self, names: &[String]) -> Result<Vec<(&'static Dump, ImageF32)>> {
         let settings = &self.any_ref().scene().caustics;
         let wanted: Vec<&'static Dump> = names.iter().filter_map(|n| super::dumps::named(n, settings)).collect();
-        self.any().dumps(&wanted)
+        self.declared_dumps(&wanted)
     }
 
     /// Photons emitted per frame over all lights (a pool has none).
@@ -146,26 +156,6 @@ impl<'c> Renderer<'c> {
         match self {
             Renderer::Mesh(r) => r.caustics(),
             Renderer::Own(_) => None,
-        }
-    }
-
-    /// The hierarchy of `hcm`, reached through its stages (None for the other techniques).
-    pub fn hierarchy(&self) -> Option<&Hierarchy> {
-        self.caustics().and_then(|c| c.hierarchy())
-    }
-
-    /// The adaptive caustic maps of `adaptive`, reached through its stages (None for the other
-    /// techniques).
-    pub fn adaptive(&self) -> Option<&AdaptiveCaustics> {
-        self.caustics().and_then(|c| c.adaptive())
-    }
-
-    /// Per light, the traversal's list sizes of `hcm` or `adaptive` (see
-    /// `MeshRenderer::list_sizes`; None for the other techniques).
-    pub fn list_sizes(&self) -> Result<Option<Vec<Vec<u64>>>> {
-        match self {
-            Renderer::Mesh(r) => r.list_sizes(),
-            Renderer::Own(_) => Ok(None),
         }
     }
 

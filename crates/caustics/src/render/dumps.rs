@@ -4,7 +4,7 @@
 //! stage's (`techniques::stages::EyeRefraction`).
 
 use super::targets::{EyeTargets, Target};
-use crate::dump::{Dump, Format, Space};
+use crate::dump::{layer, Dump, Format, Space, FACES};
 use crate::image_io::{ImageF32, Layer};
 use crate::techniques::shared::settings::{CAUSTIC_MAP, RECEIVER_POSITIONS};
 use crate::techniques::stages::refraction::{DEFERRED_REFRACTION_DUMPS, REFRACTION_LAYERS, REFRACTOR_GEOMETRY};
@@ -13,17 +13,44 @@ use anyhow::Result;
 use vkcore::Context;
 
 /// The distance to the nearest occluder, per light and cube face.
-pub static SHADOW_MAP: Dump = Dump::new("shadow_map", module_path!(), Space::LightLayers, Format::Image);
+pub static SHADOW_MAP: Dump = Dump::new(
+    "shadow_map",
+    module_path!(),
+    Space::LightLayers,
+    Format::Image,
+    &[layer("light<l>_<face>", &["distance"])],
+);
 /// The diffuse surfaces' radiance from the eye.
-pub static BACKGROUND: Dump = Dump::new("background", module_path!(), Space::Eye, Format::Image);
+pub static BACKGROUND: Dump = Dump::new("background", module_path!(), Space::Eye, Format::Image, &[layer("", RGB)]);
 /// Forward refraction's first pass (Wyman 2005): the refractors' nearest back faces.
-pub static REFRACTOR_BACK_FACES: Dump = Dump::new("refractor_back_faces", module_path!(), Space::Eye, Format::Image);
+pub static REFRACTOR_BACK_FACES: Dump = Dump::new(
+    "refractor_back_faces",
+    module_path!(),
+    Space::Eye,
+    Format::Image,
+    &[layer("", &["NX", "NY", "NZ", "distance"])],
+);
 /// Forward refraction's radiance of the refractive and reflective surfaces.
-pub static REFRACTOR_FRONT_FACES: Dump = Dump::new("refractor_front_faces", module_path!(), Space::Eye, Format::Image);
+pub static REFRACTOR_FRONT_FACES: Dump =
+    Dump::new("refractor_front_faces", module_path!(), Space::Eye, Format::Image, &[layer("", &["R", "G", "B", "A"])]);
 /// The diffuse surfaces' world position and normal per pixel.
-pub static EYE_GBUFFER: Dump = Dump::new("eye_gbuffer", module_path!(), Space::Eye, Format::Image);
+pub static EYE_GBUFFER: Dump = Dump::new(
+    "eye_gbuffer",
+    module_path!(),
+    Space::Eye,
+    Format::Image,
+    &[layer("position", &["X", "Y", "Z", "hit"]), layer("normal", &["X", "Y", "Z"])],
+);
 /// The receiver map: E/E0, E0, E and its caustic part on the scene's `[receiver_map]`.
-pub static RECEIVER: Dump = Dump::new("receiver", module_path!(), Space::Eye, Format::Image);
+pub static RECEIVER: Dump = Dump::new(
+    "receiver",
+    module_path!(),
+    Space::Eye,
+    Format::Image,
+    &[layer("", &["R", "G", "B", "E0"]), layer("irradiance", RGB), layer("caustic", RGB)],
+);
+
+const RGB: &[&str] = &["R", "G", "B"];
 
 /// The eye render's buffers, with both refractions' (the order of `--dump all`).
 pub static EYE_DUMPS: &[&Dump] = &[
@@ -47,8 +74,6 @@ pub fn refraction_dumps(refraction: Refraction) -> &'static [&'static Dump] {
         Refraction::Deferred => DEFERRED_REFRACTION_DUMPS,
     }
 }
-
-const FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
 /// The final linear radiance.
 pub fn final_image(ctx: &Context, t: &EyeTargets) -> Result<ImageF32> {
@@ -78,6 +103,34 @@ pub fn all_names() -> Vec<&'static str> {
         }
     }
     names
+}
+
+/// Every declaration as a Markdown table (`causticlab dumps`, docs/dumps.md's "Every dump"
+/// section, which a test keeps equal to it): name, owner, space, format, the techniques that
+/// have it under some settings, and its layers and channels.
+pub fn markdown_table() -> String {
+    use crate::techniques::Technique;
+    let mut out = String::from("| name | declared in | space | format | techniques | layers and channels |\n");
+    out.push_str("|---|---|---|---|---|---|\n");
+    let mesh: Vec<Technique> = Technique::ALL.iter().copied().filter(|t| t.renders_meshes()).collect();
+    for d in all() {
+        let having: Vec<Technique> =
+            Technique::ALL.iter().copied().filter(|&t| super::dumps_of(t).contains(&d)).collect();
+        let techniques = if having == mesh {
+            "every mesh technique".to_string()
+        } else {
+            having.iter().map(|t| format!("`{}`", t.name())).collect::<Vec<_>>().join(", ")
+        };
+        let owner = d.owner.strip_prefix("caustics::").unwrap_or(d.owner);
+        out.push_str(&format!(
+            "| `{}` | `{owner}` | {:?} | {:?} | {techniques} | {} |\n",
+            d.name,
+            d.space,
+            d.format,
+            d.layers_markdown()
+        ));
+    }
+    out
 }
 
 /// The dump called `name` that a render with `settings` has (None: it has none of that name).
@@ -178,6 +231,35 @@ mod tests {
             }
         }
         names
+    }
+
+    #[test]
+    fn docs_every_dump_table_is_the_declarations() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/dumps.md");
+        let text = std::fs::read_to_string(path).expect("docs/dumps.md");
+        let begin = "<!-- begin: `causticlab dumps`";
+        let start = text.find(begin).expect("docs/dumps.md has the generated table's begin marker");
+        let start = start + text[start..].find('\n').expect("a line after the marker") + 1;
+        let end = text.find("<!-- end: `causticlab dumps` -->").expect("and its end marker");
+        assert_eq!(
+            &text[start..end],
+            markdown_table(),
+            "docs/dumps.md's \"Every dump\" table differs from the declarations: paste `causticlab dumps` there"
+        );
+    }
+
+    #[test]
+    fn a_layer_declared_for_every_file_is_one_every_file_has() {
+        // A layer only some files have is conditional, or `Dump::check` refuses the others (the
+        // conformance suite reads every dump of every registry row through it).
+        let every = |d: &Dump| d.layers.iter().filter(|l| l.when.is_none()).map(|l| l.name).collect::<Vec<_>>();
+        assert_eq!(every(&CAUSTIC_MAP), Vec::<&str>::new(), "one level or several: neither is every file's");
+        for d in all() {
+            assert!(!d.layers.is_empty(), "`{d}` declares no layers");
+            for l in d.layers {
+                assert!(!l.channels.is_empty(), "`{d}`'s layer `{}` declares no channels", l.name);
+            }
+        }
     }
 
     #[test]

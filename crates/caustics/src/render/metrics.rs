@@ -32,15 +32,6 @@ impl MeshRenderer<'_> {
         Ok(Some(valid_photons_in(&img)?))
     }
 
-    /// Per light, the sizes of the traversal's lists of the last frame
-    /// (`CausticPipeline::list_sizes`); None for the other techniques.
-    pub fn list_sizes(&self) -> Result<Option<Vec<Vec<u64>>>> {
-        match &self.caustic {
-            Some(c) => c.list_sizes(self.ctx),
-            None => Ok(None),
-        }
-    }
-
     /// Points drawn (or compute-splat invocations) per frame over all lights
     /// (`CausticPipeline::splats_drawn`).
     pub fn splats_drawn(&self) -> Result<u64> {

@@ -169,7 +169,7 @@ pub fn render(ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, req: &Rend
         photons_emitted: renderer.photons_emitted(),
         valid_photons,
         splats_drawn: renderer.splats_drawn()?,
-        list_sizes: renderer.list_sizes()?,
+        list_sizes: renderer.caustics().map(|c| c.list_sizes(ctx)).transpose()?.flatten(),
     };
     Ok(Rendered { final_image, dumps, frames, host_ms, counts })
 }

@@ -2,18 +2,49 @@
 //! command line name them (a leaf module: the scene description reads it).
 
 use super::super::value_enum::value_enum;
-use crate::dump::{Dump, Format, Space};
+use crate::dump::{layer, layer_when, Dump, Format, Space};
 use vkcore::{CompactionPath, Feature};
 
 /// The receivers' world positions from the light (Shah's positions texture).
-pub static RECEIVER_POSITIONS: Dump =
-    Dump::new("receiver_positions", module_path!(), Space::LightLayers, Format::Image);
+pub static RECEIVER_POSITIONS: Dump = Dump::new(
+    "receiver_positions",
+    module_path!(),
+    Space::LightLayers,
+    Format::Image,
+    &[layer("light<l>", &["X", "Y", "Z", "hit"])],
+);
 /// The refractors' back faces from the light.
-pub static PHOTON_BACK_FACES: Dump = Dump::new("photon_back_faces", module_path!(), Space::LightInTurn, Format::Image);
+pub static PHOTON_BACK_FACES: Dump = Dump::new(
+    "photon_back_faces",
+    module_path!(),
+    Space::LightInTurn,
+    Format::Image,
+    &[layer("light<l>", &["NX", "NY", "NZ", "distance"])],
+);
 /// Where each photon lands, its direction and power.
-pub static PHOTON_BUFFER: Dump = Dump::new("photon_buffer", module_path!(), Space::LightInTurn, Format::Image);
+pub static PHOTON_BUFFER: Dump = Dump::new(
+    "photon_buffer",
+    module_path!(),
+    Space::LightInTurn,
+    Format::Image,
+    &[
+        layer("light<l>.position", &["X", "Y", "Z", "valid"]),
+        layer("light<l>.direction", &["X", "Y", "Z", "W"]),
+        layer("light<l>.power", &["R", "G", "B"]),
+    ],
+);
 /// The caustic map the photons are splatted into.
-pub static CAUSTIC_MAP: Dump = Dump::new("caustic_map", module_path!(), Space::LightLayers, Format::Image);
+pub static CAUSTIC_MAP: Dump = Dump::new(
+    "caustic_map",
+    module_path!(),
+    Space::LightLayers,
+    Format::Image,
+    &[
+        layer_when("light<l>", CAUSTIC_MAP_CHANNELS, "with one level"),
+        layer_when("light<l>_level<i>", CAUSTIC_MAP_CHANNELS, "with `--splat varying-multires` or `interpolated`"),
+    ],
+);
+const CAUSTIC_MAP_CHANNELS: &[&str] = &["R", "G", "B", "photons"];
 /// The buffers every light-space caustic technique has.
 pub static DUMPS: &[&Dump] = &[&RECEIVER_POSITIONS, &PHOTON_BACK_FACES, &PHOTON_BUFFER, &CAUSTIC_MAP];
 

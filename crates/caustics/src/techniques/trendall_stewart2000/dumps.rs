@@ -5,7 +5,8 @@
 use super::adjusted::{Adjustments, Encoding};
 use super::cpu::CpuPasses;
 use super::settings::{
-    HEIGHT_FIELD, PASS1_NORMALS, PASS2_GAMMA_N, PASS3_TRANSMITTED, PASS4_DIRECTION, PASS5_INTEGRAND, PASS6_CONVOLUTIONS,
+    CONVOLUTIONS, HEIGHT_FIELD, PASS1_NORMALS, PASS2_GAMMA_N, PASS3_TRANSMITTED, PASS4_DIRECTION, PASS5_INTEGRAND,
+    PASS6_CONVOLUTIONS, XYZ,
 };
 use super::targets::PoolTargets;
 use crate::dump::Dump;
@@ -15,8 +16,6 @@ use anyhow::{Context as _, Result};
 use vkcore::{Context, Format};
 
 const U: Encoding = Encoding::UNADJUSTED;
-const XYZ: &[&str] = &["X", "Y", "Z"];
-const CONVOLUTIONS: &[&str] = &["E_x", "E_y", "E_z", "E"];
 
 /// The channels each dump of a pass target holds, and the encodings of the faithful path.
 fn layout(d: &'static Dump, adj: &Adjustments) -> Option<(&'static [&'static str], [Encoding; 4])> {

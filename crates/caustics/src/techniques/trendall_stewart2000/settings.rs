@@ -4,7 +4,7 @@
 
 use super::super::settings::{Bad, CausticSettings};
 use super::super::value_enum::value_enum;
-use crate::dump::{Dump, Format, Space};
+use crate::dump::{layer, layer_when, Dump, Format, LayerDecl, Space};
 
 /// The paper, as tables and `--help` cite it.
 pub const PAPER: &str = "Trendall & Stewart 2000, pool caustics as convolutions";
@@ -21,15 +21,47 @@ pub static DUMPS: &[&Dump] = &[
     &PASS6_CONVOLUTIONS,
     &RECEIVER,
 ];
-pub static HEIGHT_FIELD: Dump = Dump::new("height_field", module_path!(), Space::Pool, Format::Image);
-pub static PASS1_NORMALS: Dump = Dump::new("pass1_normals", module_path!(), Space::Pool, Format::Image);
-pub static PASS2_GAMMA_N: Dump = Dump::new("pass2_gamma_n", module_path!(), Space::Pool, Format::Image);
-pub static PASS3_TRANSMITTED: Dump = Dump::new("pass3_transmitted", module_path!(), Space::Pool, Format::Image);
-pub static PASS4_DIRECTION: Dump = Dump::new("pass4_direction", module_path!(), Space::Pool, Format::Image);
-pub static PASS5_INTEGRAND: Dump = Dump::new("pass5_integrand", module_path!(), Space::Pool, Format::Image);
-pub static PASS6_CONVOLUTIONS: Dump = Dump::new("pass6_convolutions", module_path!(), Space::Pool, Format::Image);
+pub static HEIGHT_FIELD: Dump =
+    Dump::new("height_field", module_path!(), Space::Pool, Format::Image, &pass_layers(&["h"]));
+pub static PASS1_NORMALS: Dump =
+    Dump::new("pass1_normals", module_path!(), Space::Pool, Format::Image, &pass_layers(XYZ));
+pub static PASS2_GAMMA_N: Dump =
+    Dump::new("pass2_gamma_n", module_path!(), Space::Pool, Format::Image, &pass_layers(XYZ));
+pub static PASS3_TRANSMITTED: Dump =
+    Dump::new("pass3_transmitted", module_path!(), Space::Pool, Format::Image, &pass_layers(&["value"]));
+pub static PASS4_DIRECTION: Dump =
+    Dump::new("pass4_direction", module_path!(), Space::Pool, Format::Image, &pass_layers(XYZ));
+pub static PASS5_INTEGRAND: Dump =
+    Dump::new("pass5_integrand", module_path!(), Space::Pool, Format::Image, &pass_layers(XYZ));
+pub static PASS6_CONVOLUTIONS: Dump = Dump::new(
+    "pass6_convolutions",
+    module_path!(),
+    Space::Pool,
+    Format::Image,
+    &[
+        layer("", CONVOLUTIONS),
+        layer("flat", CONVOLUTIONS),
+        layer_when("adjusted", CONVOLUTIONS, "with `--precision unorm8`"),
+    ],
+);
 /// The pool bottom's receiver map (not the eye render's `receiver`: another declaration).
-pub static RECEIVER: Dump = Dump::new("receiver", module_path!(), Space::Pool, Format::Image);
+pub static RECEIVER: Dump = Dump::new(
+    "receiver",
+    module_path!(),
+    Space::Pool,
+    Format::Image,
+    &[layer("", &["R", "G", "B", "E0"]), layer("irradiance", &["R", "G", "B"])],
+);
+
+/// The channels of Pass 1, 2, 4 and 5's dumps: a vector in world axes or the expansion basis.
+pub const XYZ: &[&str] = &["X", "Y", "Z"];
+/// Pass 6's channels: the three convolutions and their sum (Eq. 2).
+pub const CONVOLUTIONS: &[&str] = &["E_x", "E_y", "E_z", "E"];
+
+/// A pass's layers: its physical values, and on the 8-bit path also the stored ones (Sec. 3.2).
+const fn pass_layers(channels: &'static [&'static str]) -> [LayerDecl; 2] {
+    [layer("", channels), layer_when("adjusted", channels, "with `--precision unorm8`")]
+}
 
 /// The default side of the Pass 6 kernels (the paper's 7 x 7).
 pub const DEFAULT_KERNEL: u32 = 7;

@@ -9,17 +9,40 @@ pub const MULTIRES_LEVELS: u32 = 4;
 
 use super::super::technique::Technique;
 use super::super::value_enum::value_enum;
-use crate::dump::{Dump, Format, Space};
+use crate::dump::{layer, Dump, Format, Space};
 
 /// The paper, as tables and `--help` cite it.
 pub const PAPER: &str = "Wyman 2008, hierarchical caustic maps";
 
 /// The photon hierarchy's levels (Sec. 3.1).
-pub static HIERARCHY: Dump = Dump::new("hierarchy", module_path!(), Space::LightInTurn, Format::Image);
+pub static HIERARCHY: Dump = Dump::new(
+    "hierarchy",
+    module_path!(),
+    Space::LightInTurn,
+    Format::Image,
+    &[
+        layer("light<l>.level<k>.power", &["R", "G", "B", "count"]),
+        layer("light<l>.level<k>.position", &["X", "Y", "Z"]),
+        layer("light<l>.level<k>.texels", &["min_x", "min_y", "max_x", "max_y"]),
+    ],
+);
 /// The traversal's lists, level by level.
-pub static HIERARCHY_LISTS: Dump = Dump::new("hierarchy_lists", module_path!(), Space::LightInTurn, Format::Records);
+pub static HIERARCHY_LISTS: Dump = Dump::new(
+    "hierarchy_lists",
+    module_path!(),
+    Space::LightInTurn,
+    Format::Records,
+    &[layer("light<l>.list<k>", &LIST_CHANNELS)],
+);
+/// A traversal list's entry in `hierarchy_lists`: a node's x, y and level, whether it is a
+/// finished cluster (`final`), and `valid` for an entry (the rest is padding).
+pub const LIST_CHANNELS: [&str; 5] = ["x", "y", "level", "final", "valid"];
 /// Each splat of the final list as drawn (Sec. 3.3).
-pub static SPLATS: Dump = Dump::new("splats", module_path!(), Space::LightInTurn, Format::Records);
+pub static SPLATS: Dump =
+    Dump::new("splats", module_path!(), Space::LightInTurn, Format::Records, &[layer("light<l>", &SPLAT_CHANNELS)]);
+/// A splat as drawn, in `splats`: centre and radius in base caustic-map texels, the layer, the
+/// power, the photon count, and whether it was drawn.
+pub const SPLAT_CHANNELS: [&str; 9] = ["x", "y", "radius", "layer", "R", "G", "B", "photons", "splatted"];
 /// The buffers only `hcm` has.
 pub static DUMPS: &[&Dump] = &[&HIERARCHY, &HIERARCHY_LISTS, &SPLATS];
 

@@ -18,7 +18,7 @@ use vkcore::{Bind, Buffer, Context, FrameOptions, Memory, Pipeline, ShaderCompil
 pub type Footprint = [f32; 12];
 
 /// Channels of a `splats` dump layer: the first nine of a [`Footprint`].
-pub const CHANNELS: [&str; 9] = ["x", "y", "radius", "layer", "R", "G", "B", "photons", "splatted"];
+pub use super::settings::SPLAT_CHANNELS as CHANNELS;
 
 pub struct SplatFootprints {
     pipeline: Pipeline,

@@ -108,8 +108,8 @@ impl Hierarchy {
     }
 }
 
-/// The channels of `hierarchy_lists.exr` ([`list_records`]).
-pub const LIST_CHANNELS: [&str; 5] = ["x", "y", "level", "final", "valid"];
+/// The channels of `hierarchy_lists.exr` ([`list_records`]), as its declaration lists them.
+pub use super::settings::LIST_CHANNELS;
 
 /// One light's part of `hierarchy_lists.exr`, from its [`Hierarchy::read_lists`]: list k as
 /// layer `list<k>` (under `light<l>.`), an entry per pixel in row-major order: x, y, level,

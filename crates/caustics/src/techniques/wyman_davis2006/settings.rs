@@ -3,13 +3,24 @@
 
 use super::super::shared::settings as shared;
 use super::super::value_enum::value_enum;
-use crate::dump::{self, Dump, Format};
+use crate::dump::{self, layer_when, Dump, Format};
 
 /// The paper, as tables and `--help` cite it.
 pub const PAPER: &str = "Wyman & Davis 2006, image-space caustics";
 
 /// The eye's caustic irradiance and the eye-space photon buffer it was gathered from.
-pub static EYE_CAUSTIC: Dump = Dump::new("eye_caustic", module_path!(), dump::Space::Eye, Format::Image);
+pub static EYE_CAUSTIC: Dump = Dump::new(
+    "eye_caustic",
+    module_path!(),
+    dump::Space::Eye,
+    Format::Image,
+    &[
+        layer_when("", &["R", "G", "B", "photons"], "with `wd-eye-points` and `wd-gather`"),
+        layer_when("", &["R", "G", "B", "quads"], "with `wd-quads`"),
+        layer_when("photons", &["R", "G", "B", "count"], "with `wd-eye-points` and `wd-gather`"),
+        layer_when("direction", &["X", "Y", "Z", "cos_direct"], "with `wd-eye-points` and `wd-gather`"),
+    ],
+);
 /// The buffers only the eye-space variants have.
 pub static DUMPS: &[&Dump] = &[&EYE_CAUSTIC];
 /// What the eye-space variants dump: the shared light-space buffers but the caustic map, and

@@ -18,7 +18,7 @@
 //! are followed through several refractors in light space, by deferred photons and adaptive
 //! caustic maps (`deferred_photon_layers.glsl`), not by these eye-view passes.
 
-use crate::dump::{self, Dump, Space};
+use crate::dump::{self, layer, Dump, Space};
 use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::mesh_pipeline::mesh_layout;
 use crate::gpu::target::read_image_layer;
@@ -32,9 +32,26 @@ use vkcore::{
 };
 
 /// Deferred refraction's geometry buffers, refractor by refractor (Sec. 3.1).
-pub static REFRACTOR_GEOMETRY: Dump = Dump::new("refractor_geometry", module_path!(), Space::Eye, dump::Format::Image);
+pub static REFRACTOR_GEOMETRY: Dump = Dump::new(
+    "refractor_geometry",
+    module_path!(),
+    Space::Eye,
+    dump::Format::Image,
+    &[
+        layer("layer<k>.front", &["NX", "NY", "NZ", "distance"]),
+        layer("layer<k>.back", &["NX", "NY", "NZ", "distance"]),
+        layer("layer<k>.front_depth", &["depth", "thickness"]),
+        layer("layer<k>.back_depth", &["depth", "thickness"]),
+    ],
+);
 /// The image after each refractor's full-screen pass (Sec. 3.1).
-pub static REFRACTION_LAYERS: Dump = Dump::new("refraction_layers", module_path!(), Space::Eye, dump::Format::Image);
+pub static REFRACTION_LAYERS: Dump = Dump::new(
+    "refraction_layers",
+    module_path!(),
+    Space::Eye,
+    dump::Format::Image,
+    &[layer("layer<k>", &["R", "G", "B"])],
+);
 /// The eye render's buffers only deferred refraction has (`refraction = "deferred"`).
 pub static DEFERRED_REFRACTION_DUMPS: &[&Dump] = &[&REFRACTOR_GEOMETRY, &REFRACTION_LAYERS];
 

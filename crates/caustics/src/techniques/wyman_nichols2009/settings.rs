@@ -8,7 +8,7 @@ use super::super::shared::settings::TraversalPath;
 use super::super::technique::Technique;
 use super::super::value_enum::value_enum;
 use super::adaptive::batches;
-use crate::dump::{Dump, Format, Space};
+use crate::dump::{layer, layer_when, Dump, Format, Space};
 use vkcore::Feature;
 
 /// The paper, as tables and `--help` cite it.
@@ -66,8 +66,34 @@ impl PhotonRefraction {
 }
 
 /// The light-space geometry buffers deferred photons (Sec. 3.1.1, Fig. 10) are created from.
-pub static PHOTON_GEOMETRY_BUFFERS: Dump =
-    Dump::new("photon_geometry_buffers", module_path!(), Space::LightInTurn, Format::Image);
+pub static PHOTON_GEOMETRY_BUFFERS: Dump = Dump::new(
+    "photon_geometry_buffers",
+    module_path!(),
+    Space::LightInTurn,
+    Format::Image,
+    &[
+        layer("light<l>.front.position", FRONT_POSITION),
+        layer("light<l>.front.normal", FRONT_NORMAL),
+        layer("light<l>.front.material", MATERIAL),
+        layer("light<l>.back.position", BACK_POSITION),
+        layer("light<l>.back.normal", BACK_NORMAL),
+        layer_when("light<l>.refractor<k>.front.position", FRONT_POSITION, SEVERAL),
+        layer_when("light<l>.refractor<k>.front.normal", FRONT_NORMAL, SEVERAL),
+        layer_when("light<l>.refractor<k>.front.material", MATERIAL, SEVERAL),
+        layer_when("light<l>.refractor<k>.back.position", BACK_POSITION, SEVERAL),
+        layer_when("light<l>.refractor<k>.back.normal", BACK_NORMAL, SEVERAL),
+    ],
+);
+
+/// The channels of the light-space geometry buffers' layers (Sec. 3.2, 3.1.1): the front
+/// surface's position and Wyman 2005 thickness, normal and object index + 1, transmission or
+/// mirror colour and mean index of refraction; the back surface's position, normal and distance.
+pub const FRONT_POSITION: &[&str] = &["X", "Y", "Z", "thickness"];
+pub const FRONT_NORMAL: &[&str] = &["NX", "NY", "NZ", "object"];
+pub const MATERIAL: &[&str] = &["R", "G", "B", "ior"];
+pub const BACK_POSITION: &[&str] = &["X", "Y", "Z", "distance"];
+pub const BACK_NORMAL: &[&str] = &["NX", "NY", "NZ", "distance"];
+const SEVERAL: &str = "with several specular objects";
 /// The buffers only deferred photons have (`photon_refraction = "deferred"`).
 pub static DEFERRED_PHOTONS_DUMPS: &[&Dump] = &[&PHOTON_GEOMETRY_BUFFERS];
 
@@ -76,9 +102,43 @@ pub static DEFERRED_PHOTONS_DUMPS: &[&Dump] = &[&PHOTON_GEOMETRY_BUFFERS];
 pub const MAX_BATCHES: u32 = 256;
 
 /// The light-space geometry buffers and their coverage pyramid (Sec. 3.2).
-pub static ADAPTIVE_GEOMETRY: Dump = Dump::new("adaptive_geometry", module_path!(), Space::LightInTurn, Format::Image);
+pub static ADAPTIVE_GEOMETRY: Dump = Dump::new(
+    "adaptive_geometry",
+    module_path!(),
+    Space::LightInTurn,
+    Format::Image,
+    &[
+        layer("light<l>.front.position", FRONT_POSITION),
+        layer("light<l>.front.normal", FRONT_NORMAL),
+        layer("light<l>.front.material", MATERIAL),
+        layer("light<l>.back.position", BACK_POSITION),
+        layer("light<l>.back.normal", BACK_NORMAL),
+        layer("light<l>.coverage.level<m>", &["any", "all"]),
+        layer_when("light<l>.refractor<k>.front.position", FRONT_POSITION, SEVERAL),
+        layer_when("light<l>.refractor<k>.front.normal", FRONT_NORMAL, SEVERAL),
+        layer_when("light<l>.refractor<k>.front.material", MATERIAL, SEVERAL),
+        layer_when("light<l>.refractor<k>.back.position", BACK_POSITION, SEVERAL),
+        layer_when("light<l>.refractor<k>.back.normal", BACK_NORMAL, SEVERAL),
+    ],
+);
 /// The traversal's lists and its photons.
-pub static ADAPTIVE_LISTS: Dump = Dump::new("adaptive_lists", module_path!(), Space::LightInTurn, Format::Records);
+pub static ADAPTIVE_LISTS: Dump = Dump::new(
+    "adaptive_lists",
+    module_path!(),
+    Space::LightInTurn,
+    Format::Records,
+    &[
+        layer("light<l>.clusters<k>", &LIST_CHANNELS),
+        layer_when("light<l>.photons", &LIST_CHANNELS, "unbatched"),
+        layer_when("light<l>.breadth.photons", &LIST_CHANNELS, BATCHED),
+        layer_when("light<l>.batch<b>.clusters<k>", &LIST_CHANNELS, BATCHED),
+        layer_when("light<l>.batch<b>.photons", &LIST_CHANNELS, BATCHED),
+    ],
+);
+const BATCHED: &str = "batched (`photon_memory_limit` or `photon_batches`)";
+/// A record of the traversal's lists in `adaptive_lists`: a cell's x, y and level, where its
+/// photon lands, its power, its splat footprint, and `valid` for a record (the rest is padding).
+pub const LIST_CHANNELS: [&str; 11] = ["x", "y", "level", "X", "Y", "Z", "R", "G", "B", "footprint", "valid"];
 /// The buffers only technique `adaptive` has.
 pub static ADAPTIVE_DUMPS: &[&Dump] = &[&ADAPTIVE_GEOMETRY, &ADAPTIVE_LISTS];
 

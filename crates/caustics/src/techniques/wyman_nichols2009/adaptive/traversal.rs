@@ -425,8 +425,8 @@ pub enum Listed {
 /// One light's lists, named as their layers under `light<l>.`.
 pub type LightLists = Vec<(String, Listed)>;
 
-/// The channels of `adaptive_lists.exr` ([`list_records`]).
-pub const LIST_CHANNELS: [&str; 11] = ["x", "y", "level", "X", "Y", "Z", "R", "G", "B", "footprint", "valid"];
+/// The channels of `adaptive_lists.exr` ([`list_records`]), as its declaration lists them.
+pub use super::super::settings::LIST_CHANNELS;
 
 /// One light's part of `adaptive_lists.exr`, from its lists ([`AdaptiveCaustics::read_lists`]):
 /// a layer per list under `light<l>.`. Clusters: x, y, level of a pending cluster (the cluster
