@@ -5,6 +5,8 @@
 #   - `causticlab devices` lists both lavapipes and --device tells them apart;
 #   - vkcore's GPU tests (statistics after pushed constants, layered rendering and multiview,
 #     compaction, passes) on Mesa 25;
+#   - photon-trace's ray-query path (acceleration structures, rayQueryEXT) against its compute
+#     path on five scenes (crates/caustics/tests/photon_trace_ray_query.rs), which must not skip;
 #   - every shipped scene rendered with shah, hcm, adaptive and photon-trace (the pool scenes
 #     with their pool-convolution), 64² photons, statistics queries on (render always asks);
 #   - a --quick run of Wyman 2008 Table 1 (its statistics frame included).
@@ -47,6 +49,9 @@ fi
 echo "mesa25_check: vkcore's GPU tests on $device"
 CAUSTICLAB_TEST_DEVICE="$device" cargo test -q -p vkcore --test statistics --test rendering --test compaction \
     --test passes --test ring
+
+echo "mesa25_check: photon-trace's ray queries against its compute traversal on $device"
+CAUSTICLAB_TEST_DEVICE="$device" CAUSTICLAB_REQUIRE_RAY_QUERY=1 cargo test -q -p caustics --test photon_trace_ray_query
 
 failed=()
 skipped=()

@@ -3,23 +3,19 @@
 // children at `first` and `first + 1`), leaves of up to 4 triangles, contiguous. Ordered
 // traversal (the nearer child first) with a fixed stack, slab tests, and Moller-Trumbore on both
 // faces in f32: the same arithmetic as `Bvh::intersect`, so both tracers see the same hits up to
-// the order of float operations. Needs NODES_BINDING and TRIANGLES_BINDING.
+// the order of float operations. Needs NODES_BINDING and TRIANGLES_BINDING (the triangles in the
+// BVH's order).
 #ifndef PHOTON_TRACE_BVH_GLSL
 #define PHOTON_TRACE_BVH_GLSL
 
-// Read as uvec4, the floats by uintBitsToFloat: a small integer read as float bits is a denormal,
-// which drivers that flush denormals (llvmpipe) read as zero.
+#include "photon_trace/triangles.glsl"
+
+// Read as uvec4, the floats by uintBitsToFloat (see triangles.glsl).
 struct StoredNode {
     uvec4 lo;   // xyz: box minimum (float bits); w: first triangle, or the left child
     uvec4 hi;   // xyz: box maximum (float bits); w: triangles (0: interior node)
 };
-struct StoredTriangle {
-    uvec4 v0;   // xyz: first vertex (float bits); w: the scene's object index
-    vec4 e1;    // xyz: v1 - v0
-    vec4 e2;    // xyz: v2 - v0
-};
 layout(std430, binding = NODES_BINDING) readonly buffer Nodes { StoredNode nodes[]; };
-layout(std430, binding = TRIANGLES_BINDING) readonly buffer Triangles { StoredTriangle triangles[]; };
 
 struct BvhNode {
     vec3 lo;
@@ -27,31 +23,12 @@ struct BvhNode {
     vec3 hi;
     uint count;
 };
-struct BvhTriangle {
-    vec3 v0;
-    uint object;
-    vec3 e1;
-    vec3 e2;
-};
-
 BvhNode bvh_node(uint i) {
     StoredNode n = nodes[i];
     return BvhNode(uintBitsToFloat(n.lo.xyz), n.lo.w, uintBitsToFloat(n.hi.xyz), n.hi.w);
 }
 
-BvhTriangle bvh_triangle(uint i) {
-    StoredTriangle t = triangles[i];
-    return BvhTriangle(uintBitsToFloat(t.v0.xyz), t.v0.w, t.e1.xyz, t.e2.xyz);
-}
-
 #define BVH_STACK 64
-
-struct RayHit {
-    float t;
-    float u;        // barycentric weight of v1
-    float v;        // barycentric weight of v2
-    uint triangle;  // index into `triangles`
-};
 
 // Entry distance of the ray into box [lo, hi] within [t_min, t_max], or -1 where it misses. A
 // zero direction component is inside the slab or not at all; the far bound is widened against

@@ -1,6 +1,8 @@
 // `photon-trace`, beyond the papers: photons traced exactly through every triangle of the scene
 // on the GPU, with the physics of the CPU reference (`crates/caustics/src/reference`), into the
-// photon buffer that the caustic map's deposit stages splat like every other technique's.
+// photon buffer that the caustic map's deposit stages splat like every other technique's. The
+// surface a photon meets next is found by the BVH's traversal in this shader, or with RAY_QUERY by
+// a ray query against the Vulkan acceleration structures (`trace`).
 //
 // Emission: light l sends side² photons uniformly in solid angle over the cone from it that
 // subtends the specular objects' bounding sphere (the reference's cone per object, made one);
@@ -22,24 +24,37 @@
 // surface it meets after at least one specular interaction; one whose first hit is diffuse (or
 // nothing) is direct light, not a caustic photon, and carries nothing.
 //
+// GLSL 4.60: GL_EXT_ray_query needs it.
+//
 // RECEIVER_DEPOSIT (`deposit = "receiver-map"`): a photon that lands on the receiver rectangle
 // (within `receiver_tolerance` of its plane) also adds its power to its receiver-map texel, as
 // the reference bins it (`reference::receiver::Receiver::texel_of`).
-#version 450
+#version 460
 #ifdef RECEIVER_DEPOSIT
 #extension GL_EXT_shader_atomic_float : require
 #endif
+#ifdef RAY_QUERY
+#extension GL_EXT_ray_query : require
+#endif
 #define CAUSTICS_BINDING 1
 #define SPOT_BINDING 2
-#define NODES_BINDING 3
 #define TRIANGLES_BINDING 4
 #include "common/caustics.glsl"
 #include "common/spot_texture.glsl"
 #include "common/fresnel.glsl"
 #include "common/materials.glsl"
+// RAY_QUERY (`trace = "ray-query"`): the driver's acceleration structures; else the BVH.
+#ifdef RAY_QUERY
+#define SCENE_BINDING 3
+#include "photon_trace/ray_query.glsl"
+#define scene_intersect ray_query_intersect
+#else
+#define NODES_BINDING 3
 #include "photon_trace/bvh.glsl"
+#define scene_intersect bvh_intersect
+#endif
 layout(local_size_x = 8, local_size_y = 8) in;
-// Per BVH triangle, the mesh's vertex normals at its three corners.
+// Per triangle of `triangles`, the mesh's vertex normals at its three corners.
 layout(std430, binding = 5) readonly buffer ShadingNormals { vec4 shading_normals[]; };
 // Per object: its MATERIAL_*, IOR and colour (the transmission colour of a refractive object,
 // the specular colour of a mirror).
@@ -168,7 +183,7 @@ void main() {
     uint draw = 3u;
     for (uint step = 0u; step < constants.max_bounces + MAX_SKIPS + 1u; ++step) {
         RayHit h;
-        if (!bvh_intersect(o, d, constants.eps, 3.4e38, h)) break;
+        if (!scene_intersect(o, d, constants.eps, 3.4e38, h)) break;
         vec3 p = o + d * h.t;
         BvhTriangle tri = bvh_triangle(h.triangle);
         uint material = objects[tri.object].material.x;

@@ -149,6 +149,15 @@ fn compute_splat_without_float_atomics() {
 }
 
 #[test]
+fn ray_queries_without_acceleration_structures() {
+    let s = scene("sphere_on_plane");
+    let trace = ["render", "--scene", &s, "--technique", "photon-trace", "--photons", "64", "--trace", "ray-query"];
+    let hidden = ["--without-feature", "acceleration_structure"];
+    expect_input_error(&[&hidden[..], &trace[..]].concat(), &["acceleration_structure", "ray-query"]);
+    expect_input_error(&["render", "--scene", &s, "--trace", "rtx"], &["--trace", "rtx", "ray-query"]);
+}
+
+#[test]
 fn unknown_technique() {
     let s = scene("sphere_on_plane");
     expect_input_error(&["render", "--scene", &s, "--technique", "photon_magic"], &["photon_magic", "none"]);

@@ -29,6 +29,8 @@ pub enum Bind<'a> {
     BufferRead(&'a Buffer),
     /// A uniform buffer.
     Uniform(&'a Buffer),
+    /// A top-level acceleration structure, read by ray queries (`accelerationStructureEXT`).
+    AccelerationStructure(&'a crate::AccelerationStructure),
 }
 
 /// A descriptor under the name its shader gives the binding.
@@ -42,6 +44,7 @@ impl<'a> Bind<'a> {
             Bind::Storage(_) => BindingKind::StorageImage,
             Bind::Buffer(_) | Bind::BufferRange(..) | Bind::BufferRead(_) => BindingKind::StorageBuffer,
             Bind::Uniform(_) => BindingKind::UniformBuffer,
+            Bind::AccelerationStructure(_) => BindingKind::AccelerationStructure,
         }
     }
 
@@ -58,6 +61,7 @@ impl<'a> Bind<'a> {
             Bind::Sampled(..) => Access::SHADER_READ,
             Bind::Uniform(_) => Access::UNIFORM_READ,
             Bind::BufferRead(_) => Access::STORAGE_READ,
+            Bind::AccelerationStructure(_) => Access::ACCELERATION_STRUCTURE_READ,
             Bind::Storage(_) | Bind::Buffer(_) | Bind::BufferRange(..) => read_write,
         }
     }
@@ -70,6 +74,8 @@ impl<'a> Bind<'a> {
             Bind::Buffer(b) | Bind::BufferRange(b, ..) | Bind::BufferRead(b) | Bind::Uniform(b) => {
                 Use::buffer(b, access)
             }
+            // Built by its own submission, which ended in a barrier to every later command.
+            Bind::AccelerationStructure(a) => Use::buffer(a.buffer(), access),
         }
     }
 }

@@ -45,6 +45,11 @@ impl Buffer {
     pub fn new(ctx: &Context, name: &str, size: u64, memory: Memory) -> Result<Buffer> {
         let size = size.max(16).div_ceil(16) * 16;
         let mut usage = all_usages();
+        if ctx.shared.device.accel.is_some() {
+            usage |= vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS
+                | vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
+                | vk::BufferUsageFlags::ACCELERATION_STRUCTURE_STORAGE_KHR;
+        }
         if ctx.shared.device.xfb.is_some() {
             usage |= vk::BufferUsageFlags::TRANSFORM_FEEDBACK_BUFFER_EXT
                 | vk::BufferUsageFlags::TRANSFORM_FEEDBACK_COUNTER_BUFFER_EXT;

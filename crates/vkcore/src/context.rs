@@ -130,7 +130,8 @@ impl Context {
             device: device.raw.clone(),
             physical_device: device.physical,
             debug_settings: Default::default(),
-            buffer_device_address: false,
+            // Acceleration-structure builds read their inputs by device address.
+            buffer_device_address: device.accel.is_some(),
             allocation_sizes: Default::default(),
         })
         .map_err(|e| VkError::Alloc { name: "allocator".into(), bytes: 0, message: e.to_string() })?;

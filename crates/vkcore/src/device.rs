@@ -15,6 +15,10 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
         let has_ext = |name: &CStr| ext_props.iter().any(|e| e.extension_name_as_c_str().ok() == Some(name));
         let has_xfb = has_ext(ext::transform_feedback::NAME);
         let has_atomic_float = has_ext(ext::shader_atomic_float::NAME);
+        // Acceleration structures need deferred host operations enabled beside them.
+        let has_accel = has_ext(khr::acceleration_structure::NAME) && has_ext(khr::deferred_host_operations::NAME);
+        let has_ray_query = has_ext(khr::ray_query::NAME);
+        let has_rt_pipeline = has_ext(khr::ray_tracing_pipeline::NAME);
 
         // The Vulkan 1.1-1.3 feature and driver structs may only be chained on 1.3 devices here
         // (older ones are listed, never used).
@@ -24,6 +28,9 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
         let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
         let mut xfb = vk::PhysicalDeviceTransformFeedbackFeaturesEXT::default();
         let mut af = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default();
+        let mut accel = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default();
+        let mut rq = vk::PhysicalDeviceRayQueryFeaturesKHR::default();
+        let mut rtp = vk::PhysicalDeviceRayTracingPipelineFeaturesKHR::default();
         let mut f2 = vk::PhysicalDeviceFeatures2::default();
         if modern {
             f2 = f2.push_next(&mut f11).push_next(&mut f12).push_next(&mut f13);
@@ -33,6 +40,15 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
         }
         if has_atomic_float {
             f2 = f2.push_next(&mut af);
+        }
+        if modern && has_accel {
+            f2 = f2.push_next(&mut accel);
+        }
+        if modern && has_ray_query {
+            f2 = f2.push_next(&mut rq);
+        }
+        if modern && has_rt_pipeline {
+            f2 = f2.push_next(&mut rtp);
         }
         instance.get_physical_device_features2(pd, &mut f2);
         let f = f2.features;
@@ -88,6 +104,10 @@ pub(crate) fn query_device(instance: &ash::Instance, pd: vk::PhysicalDevice, ind
         add(has_ext(khr::push_descriptor::NAME), Feature::PushDescriptor);
         add(yes(f.fragment_stores_and_atomics), Feature::FragmentStoresAndAtomics);
         add(yes(f.vertex_pipeline_stores_and_atomics), Feature::VertexPipelineStoresAndAtomics);
+        let accel_ok = has_accel && yes(accel.acceleration_structure) && yes(f12.buffer_device_address);
+        add(accel_ok, Feature::AccelerationStructure);
+        add(accel_ok && has_ray_query && yes(rq.ray_query), Feature::RayQuery);
+        add(accel_ok && has_rt_pipeline && yes(rtp.ray_tracing_pipeline), Feature::RayTracingPipeline);
 
         // What every technique relies on; vkCreateDevice would fail without them.
         let baseline = [
@@ -276,6 +296,8 @@ pub(crate) struct DeviceShared {
     pub queue_family: u32,
     pub push_descriptor: khr::push_descriptor::Device,
     pub xfb: Option<ext::transform_feedback::Device>,
+    /// VK_KHR_acceleration_structure, where the device has it and ray queries (`crate::accel`).
+    pub accel: Option<khr::acceleration_structure::Device>,
     pub debug_utils: Option<ext::debug_utils::Device>,
     pub info: DeviceInfo,
 }
@@ -306,6 +328,9 @@ pub(crate) fn create_device(
     info.supported.retain(|f| !without.contains(f));
     if without.contains(&Feature::Multiview) {
         info.supported.retain(|f| *f != Feature::MultiviewGeometryShader);
+    }
+    if without.contains(&Feature::AccelerationStructure) {
+        info.supported.retain(|f| ![Feature::RayQuery, Feature::RayTracingPipeline].contains(f));
     }
     if let Some(missing) = info.baseline_missing.first() {
         return Err(VkError::Invalid(format!(
@@ -361,7 +386,8 @@ pub(crate) fn create_device(
         .shader_output_layer(has(Feature::ShaderOutputLayer))
         .host_query_reset(true)
         .scalar_block_layout(true)
-        .draw_indirect_count(true);
+        .draw_indirect_count(true)
+        .buffer_device_address(has(Feature::AccelerationStructure));
     let mut f13 =
         vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true).synchronization2(true).maintenance4(true);
     let mut xfb =
@@ -372,7 +398,19 @@ pub(crate) fn create_device(
         .shader_image_float32_atomics(has(Feature::ImageFloat32AtomicAdd))
         .shader_image_float32_atomic_add(has(Feature::ImageFloat32AtomicAdd));
 
+    let mut accel = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default().acceleration_structure(true);
+    let mut rq = vk::PhysicalDeviceRayQueryFeaturesKHR::default().ray_query(true);
+    // Ray queries are what this project traces with; acceleration structures alone serve nothing.
+    let ray_query = has(Feature::AccelerationStructure) && has(Feature::RayQuery);
+
     let mut exts = vec![khr::push_descriptor::NAME.as_ptr()];
+    if ray_query {
+        exts.extend([
+            khr::acceleration_structure::NAME.as_ptr(),
+            khr::deferred_host_operations::NAME.as_ptr(),
+            khr::ray_query::NAME.as_ptr(),
+        ]);
+    }
     if has(Feature::TransformFeedback) {
         exts.push(ext::transform_feedback::NAME.as_ptr());
     }
@@ -398,10 +436,14 @@ pub(crate) fn create_device(
     if want_af {
         create = create.push_next(&mut af);
     }
+    if ray_query {
+        create = create.push_next(&mut accel).push_next(&mut rq);
+    }
     let raw = unsafe { raw_inst.create_device(pd, &create, None) }.call("vkCreateDevice")?;
     let queue = unsafe { raw.get_device_queue(queue_family, 0) };
     let push_descriptor = khr::push_descriptor::Device::new(raw_inst, &raw);
     let xfb = has(Feature::TransformFeedback).then(|| ext::transform_feedback::Device::new(raw_inst, &raw));
+    let accel = ray_query.then(|| khr::acceleration_structure::Device::new(raw_inst, &raw));
     let debug_utils = instance.shared.debug_utils.as_ref().map(|_| ext::debug_utils::Device::new(raw_inst, &raw));
     Ok(DeviceShared {
         instance: instance.shared.clone(),
@@ -411,6 +453,7 @@ pub(crate) fn create_device(
         queue_family,
         push_descriptor,
         xfb,
+        accel,
         debug_utils,
         info,
     })

@@ -22,10 +22,16 @@ pub enum Feature {
     PushDescriptor,
     FragmentStoresAndAtomics,
     VertexPipelineStoresAndAtomics,
+    /// Acceleration structures (with the buffer device addresses their builds read).
+    AccelerationStructure,
+    /// `rayQueryEXT` in any shader stage.
+    RayQuery,
+    /// Ray-generation, hit and miss shaders (listed; no pipeline of this project uses them yet).
+    RayTracingPipeline,
 }
 
 impl Feature {
-    pub const ALL: [Feature; 15] = [
+    pub const ALL: [Feature; 18] = [
         Feature::GeometryShader,
         Feature::TransformFeedback,
         Feature::TransformFeedbackDraw,
@@ -41,6 +47,9 @@ impl Feature {
         Feature::PushDescriptor,
         Feature::FragmentStoresAndAtomics,
         Feature::VertexPipelineStoresAndAtomics,
+        Feature::AccelerationStructure,
+        Feature::RayQuery,
+        Feature::RayTracingPipeline,
     ];
 
     /// The name used on the command line (`--without-feature`) and in `causticlab devices`.
@@ -61,6 +70,9 @@ impl Feature {
             Feature::PushDescriptor => "push_descriptor",
             Feature::FragmentStoresAndAtomics => "fragment_stores_and_atomics",
             Feature::VertexPipelineStoresAndAtomics => "vertex_pipeline_stores_and_atomics",
+            Feature::AccelerationStructure => "acceleration_structure",
+            Feature::RayQuery => "ray_query",
+            Feature::RayTracingPipeline => "ray_tracing_pipeline",
         }
     }
 
@@ -84,6 +96,11 @@ impl Feature {
             Feature::PushDescriptor => "VK_KHR_push_descriptor",
             Feature::FragmentStoresAndAtomics => "VkPhysicalDeviceFeatures::fragmentStoresAndAtomics",
             Feature::VertexPipelineStoresAndAtomics => "VkPhysicalDeviceFeatures::vertexPipelineStoresAndAtomics",
+            Feature::AccelerationStructure => {
+                "VK_KHR_acceleration_structure: accelerationStructure (with VkPhysicalDeviceVulkan12Features::bufferDeviceAddress)"
+            }
+            Feature::RayQuery => "VK_KHR_ray_query: rayQuery",
+            Feature::RayTracingPipeline => "VK_KHR_ray_tracing_pipeline: rayTracingPipeline",
         }
     }
 

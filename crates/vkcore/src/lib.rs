@@ -4,6 +4,7 @@
 //! automatic barriers and timestamps, transform feedback and compute stream compaction, and a
 //! window's swapchain with an egui panel (`window`, the viewer's).
 
+mod accel;
 mod bind;
 mod buffer;
 pub mod compaction;
@@ -32,6 +33,7 @@ mod tracker;
 mod transfer;
 pub mod window;
 
+pub use accel::{AccelerationStructure, TlasInstance};
 pub use ash::vk::Format;
 pub use bind::{Bind, Named};
 pub use buffer::{Buffer, Memory};

@@ -25,6 +25,8 @@ pub enum BindingKind {
     StorageBuffer,
     /// `uniform { ... }`.
     UniformBuffer,
+    /// `accelerationStructureEXT` (GL_EXT_ray_query).
+    AccelerationStructure,
 }
 
 /// One descriptor binding of a pipeline, as its shaders declare it.
@@ -44,6 +46,7 @@ impl BindingKind {
             BindingKind::StorageImage => vk::DescriptorType::STORAGE_IMAGE,
             BindingKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
             BindingKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
+            BindingKind::AccelerationStructure => vk::DescriptorType::ACCELERATION_STRUCTURE_KHR,
         }
     }
 }

@@ -86,6 +86,12 @@ impl<'f> Cmd<'f> {
         self.ctx.shared.raw()
     }
 
+    /// The command buffer, for vkcore's own commands that no `Cmd` method records
+    /// (`crate::accel`'s builds).
+    pub(crate) fn raw_command_buffer(&self) -> vk::CommandBuffer {
+        self.cb
+    }
+
     pub(crate) fn begin_label(&mut self, name: &str) {
         if let (Some(du), Ok(c)) = (&self.ctx.shared.device.debug_utils, std::ffi::CString::new(name)) {
             let label = vk::DebugUtilsLabelEXT::default().label_name(&c);
@@ -222,6 +228,7 @@ impl<'f> Cmd<'f> {
         }
         let mut image_infos = Vec::with_capacity(binds.len());
         let mut buffer_infos = Vec::with_capacity(binds.len());
+        let mut structures = vec![];
         for (_, b) in binds {
             match b {
                 Bind::Sampled(v, s) => image_infos.push(
@@ -237,8 +244,17 @@ impl<'f> Cmd<'f> {
                 Bind::BufferRange(buf, o, s) => {
                     buffer_infos.push(vk::DescriptorBufferInfo::default().buffer(buf.raw).offset(*o).range(*s))
                 }
+                Bind::AccelerationStructure(a) => structures.push(a.raw),
             }
         }
+        let mut structure_writes: Vec<vk::WriteDescriptorSetAccelerationStructureKHR> = structures
+            .iter()
+            .map(|s| {
+                vk::WriteDescriptorSetAccelerationStructureKHR::default()
+                    .acceleration_structures(std::slice::from_ref(s))
+            })
+            .collect();
+        let mut structure_writes = structure_writes.iter_mut();
         let (mut ii, mut bi) = (0, 0);
         let mut writes = vec![];
         // check_binds matched binds[i] to bindings[i] (here or in Pass::bind).
@@ -248,6 +264,11 @@ impl<'f> Cmd<'f> {
                 Bind::Sampled(..) | Bind::Storage(..) => {
                     writes.push(w.image_info(std::slice::from_ref(&image_infos[ii])));
                     ii += 1;
+                }
+                Bind::AccelerationStructure(_) => {
+                    let next =
+                        structure_writes.next().ok_or_else(|| VkError::Invalid("acceleration structures".into()))?;
+                    writes.push(w.descriptor_count(1).push_next(next));
                 }
                 _ => {
                     writes.push(w.buffer_info(std::slice::from_ref(&buffer_infos[bi])));

@@ -18,6 +18,7 @@ const OP_MEMBER_DECORATE: u32 = 72;
 const OP_TYPE_IMAGE: u32 = 25;
 const OP_TYPE_SAMPLED_IMAGE: u32 = 27;
 const OP_TYPE_ARRAY: u32 = 28;
+const OP_TYPE_ACCELERATION_STRUCTURE: u32 = 5341;
 const OP_TYPE_STRUCT: u32 = 30;
 const STORAGE_UNIFORM_CONSTANT: u32 = 0;
 const STORAGE_UNIFORM: u32 = 2;
@@ -183,6 +184,7 @@ impl Spirv {
         let mut images: HashMap<u32, u32> = HashMap::new();
         let mut sampled_images: HashMap<u32, u32> = HashMap::new();
         let mut arrays: HashMap<u32, u32> = HashMap::new();
+        let mut structures: Vec<u32> = vec![];
         let mut variables = vec![];
         for (op, o) in instructions(&self.words) {
             match op {
@@ -201,6 +203,7 @@ impl Spirv {
                 OP_TYPE_SAMPLED_IMAGE if o.len() >= 2 => {
                     sampled_images.insert(o[0], o[1]);
                 }
+                OP_TYPE_ACCELERATION_STRUCTURE if !o.is_empty() => structures.push(o[0]),
                 OP_TYPE_ARRAY if o.len() >= 2 => {
                     arrays.insert(o[0], o[1]);
                 }
@@ -230,6 +233,7 @@ impl Spirv {
                 STORAGE_UNIFORM if decoration(pointee, DECORATION_BLOCK).is_some() => BindingKind::UniformBuffer,
                 _ if sampled_images.contains_key(&pointee) => BindingKind::SampledImage,
                 _ if images.get(&pointee) == Some(&2) => BindingKind::StorageImage,
+                _ if structures.contains(&pointee) => BindingKind::AccelerationStructure,
                 _ => return Err(format!("`{var_name}` (binding {binding}): a descriptor kind vkcore does not use")),
             };
             let name = if var_name.is_empty() { names.get(&pointee).cloned().unwrap_or_default() } else { var_name };

@@ -41,6 +41,8 @@ impl Access {
         acc(GFX_SHADERS, A::from_raw(A::SHADER_STORAGE_READ.as_raw() | A::SHADER_STORAGE_WRITE.as_raw()), L::GENERAL);
     /// Storage buffer read by any shader.
     pub const STORAGE_READ: Access = acc(ALL_SHADERS, A::SHADER_STORAGE_READ, L::GENERAL);
+    /// An acceleration structure read by ray queries.
+    pub const ACCELERATION_STRUCTURE_READ: Access = acc(ALL_SHADERS, A::ACCELERATION_STRUCTURE_READ_KHR, L::UNDEFINED);
     pub const COLOR_ATTACHMENT: Access = acc(
         S::COLOR_ATTACHMENT_OUTPUT,
         A::from_raw(A::COLOR_ATTACHMENT_READ.as_raw() | A::COLOR_ATTACHMENT_WRITE.as_raw()),

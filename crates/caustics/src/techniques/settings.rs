@@ -6,7 +6,7 @@
 //! - [`CausticSettings::validate_combination`]: a setting that belongs to some techniques only
 //!   (`only Hcm`) is refused, with its key, for the others.
 
-use super::photon_trace::settings::Deposit as PhotonDeposit;
+use super::photon_trace::settings::{Deposit as PhotonDeposit, Trace};
 use super::shah2007::settings::{Lookup, Refractions};
 use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath, TraversalPath};
 use super::technique::Technique;
@@ -202,6 +202,10 @@ caustic_settings! {
     /// (caustic-map, default) or also binned straight into the receiver map's texels
     /// (receiver-map, as the CPU reference bins them; float atomics).
     deposit: PhotonDeposit = PhotonDeposit::CausticMap, only PhotonTrace;
+    /// photon-trace: how photons find the surface they meet next, compute (its own BVH
+    /// traversal in a compute shader, default) or ray-query (rayQueryEXT against Vulkan
+    /// acceleration structures: VK_KHR_acceleration_structure and VK_KHR_ray_query).
+    trace: Trace = Trace::Compute, only PhotonTrace;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.
     precision: Precision = Precision::Float, only PoolConvolution;

@@ -14,14 +14,21 @@
 //! it, and the receiver map's caustic term is read from there
 //! (`shaders_glsl/receiver/receiver_map.comp`); the final image still reads the caustic map.
 //!
-//! The BVH is built once, when the renderer is made: a pose that moves a mesh is refused
-//! (`Renderer::set_pose`). The hardware ray-tracing path (ray queries) would be another source
-//! beside this one; lavapipe has none.
+//! With `trace = "ray-query"` the same shader finds each photon's next surface by `rayQueryEXT`
+//! against Vulkan acceleration structures instead of its own BVH traversal ([`RayQueryScene`]:
+//! a bottom level per object, built once and compacted, one top level over them), the
+//! driver's traversal, on ray-tracing hardware where the device has it. Everything else (the
+//! emission, the physics, the seeds, the deposit) is the same code. It needs
+//! VK_KHR_acceleration_structure and VK_KHR_ray_query: Mesa 25's lavapipe has them, Mesa 22.3's
+//! does not (the option is refused there by name).
+//!
+//! The BVH and the acceleration structures are built once, when the renderer is made: a pose
+//! that moves a mesh is refused (`Renderer::set_pose`).
 
 pub mod push;
 pub mod settings;
 
-use settings::RECEIVER_DEPOSIT_FEATURES;
+use settings::{Trace, RAY_QUERY_FEATURES, RECEIVER_DEPOSIT_FEATURES};
 
 use super::shared::photon_buffer::record_receiver_positions;
 use super::shared::CausticPasses;
@@ -31,19 +38,64 @@ use crate::reference::emit::bounding_sphere;
 use crate::scene::Scene;
 use anyhow::Result;
 use push::PhotonTraceConstants;
-use vkcore::{Access, Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler, Use};
+use vkcore::{
+    AccelerationStructure, Access, Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler, TlasInstance, Use,
+};
 
 /// `PHOTON_TRACE_OUTSIDE_REFLECTION` in trace.comp.
 const FLAG_OUTSIDE_REFLECTION: u32 = 1;
 /// `PHOTON_TRACE_DISPERSIVE`: a material's IORs differ between channels.
 const FLAG_DISPERSIVE: u32 = 2;
 
+/// How the tracer finds the surface a photon meets next (`trace`).
+enum Intersection {
+    /// The CPU reference's BVH, its nodes in a buffer the shader walks (`photon_trace/bvh.glsl`).
+    Bvh { nodes: Buffer },
+    /// Ray queries against the Vulkan acceleration structures (`photon_trace/ray_query.glsl`).
+    RayQuery(RayQueryScene),
+}
+
+/// The scene as ray queries see it: a bottom-level structure per object with triangles, over
+/// its triangles in the scene's order, and a top-level one with an instance of each (the
+/// identity transform: the scene's meshes are in world space), whose custom index is the
+/// object's first triangle in the tracer's triangle buffer.
+pub struct RayQueryScene {
+    pub top: AccelerationStructure,
+    pub bottom: Vec<AccelerationStructure>,
+}
+
+impl RayQueryScene {
+    /// Builds the structures of `scene`'s objects; `first[o]` is object o's first triangle.
+    pub fn new(ctx: &Context, scene: &Scene, first: &[u32]) -> Result<RayQueryScene> {
+        let mut bottom = vec![];
+        let mut custom = vec![];
+        for (o, obj) in scene.objects.iter().enumerate() {
+            if obj.mesh.indices.is_empty() {
+                continue;
+            }
+            let positions: Vec<[f32; 3]> = obj.mesh.positions.iter().map(|p| p.to_array()).collect();
+            let name = format!("photon_trace object {o}");
+            bottom.push(AccelerationStructure::triangles(ctx, &name, &positions, &obj.mesh.indices)?);
+            custom.push(first[o]);
+        }
+        const IDENTITY: [[f32; 4]; 3] = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]];
+        let instances: Vec<TlasInstance> = bottom
+            .iter()
+            .zip(&custom)
+            .map(|(blas, &custom_index)| TlasInstance { blas, transform: IDENTITY, custom_index })
+            .collect();
+        let top = AccelerationStructure::instances(ctx, "photon_trace scene", &instances)?;
+        Ok(RayQueryScene { top, bottom })
+    }
+}
+
 /// The tracer's pipeline and the scene as it reads it.
 pub struct PhotonTracer {
     pipeline: Pipeline,
-    nodes: Buffer,
+    intersection: Intersection,
+    /// The triangles it hits: in the BVH's order, or the scene's for ray queries.
     triangles: Buffer,
-    /// Per BVH triangle, its mesh's vertex normals at the three corners.
+    /// Per triangle of `triangles`, its mesh's vertex normals at the three corners.
     normals: Buffer,
     /// Per object: material, IOR, colour (trace.comp's `Objects`).
     objects: Buffer,
@@ -72,27 +124,39 @@ impl PhotonTracer {
                 RECEIVER_DEPOSIT_FEATURES,
             )?;
         }
+        let ray_query = s.trace == Trace::RayQuery;
+        if ray_query {
+            ctx.require("trace `ray-query` (technique photon-trace)", RAY_QUERY_FEATURES)?;
+        }
         let mut tris = Vec::with_capacity(scene.triangle_count());
+        let mut first = Vec::with_capacity(scene.objects.len());
         for (oi, obj) in scene.objects.iter().enumerate() {
+            first.push(tris.len() as u32);
             let p = &obj.mesh.positions;
             for (pi, [a, b, c]) in obj.mesh.triangles().enumerate() {
                 tris.push(Triangle { v: [p[a], p[b], p[c]], object: oi as u32, prim: pi as u32 });
             }
         }
-        let bvh = Bvh::build(tris);
-        if bvh.depth() > settings::MAX_BVH_DEPTH {
-            return Err(crate::input_error!(
-                "{}: technique photon-trace: the scene's BVH is {} levels deep, more than the shader's traversal \
-                 stack holds ({}); degenerate or duplicated triangles make it so",
-                scene.path.display(),
-                bvh.depth(),
-                settings::MAX_BVH_DEPTH
-            )
-            .into());
-        }
-        let (nodes, triangles) = bvh.flattened();
-        let normals: Vec<[f32; 4]> = bvh
-            .triangles()
+        let (intersection, ordered, triangles) = if ray_query {
+            let records = tris.iter().map(triangle_record).collect();
+            (Intersection::RayQuery(RayQueryScene::new(ctx, scene, &first)?), tris, records)
+        } else {
+            let bvh = Bvh::build(tris);
+            if bvh.depth() > settings::MAX_BVH_DEPTH {
+                return Err(crate::input_error!(
+                    "{}: technique photon-trace: the scene's BVH is {} levels deep, more than the shader's \
+                     traversal stack holds ({}); degenerate or duplicated triangles make it so",
+                    scene.path.display(),
+                    bvh.depth(),
+                    settings::MAX_BVH_DEPTH
+                )
+                .into());
+            }
+            let (nodes, triangles) = bvh.flattened();
+            let nodes = upload_or_one(ctx, "photon_trace BVH nodes", bytemuck::cast_slice(&nodes), 32)?;
+            (Intersection::Bvh { nodes }, bvh.triangles().to_vec(), triangles)
+        };
+        let normals: Vec<[f32; 4]> = ordered
             .iter()
             .flat_map(|t| {
                 let m = &scene.objects[t.object as usize].mesh;
@@ -111,11 +175,7 @@ impl PhotonTracer {
             let ior = m.constants.ior;
             m.constants.material == MATERIAL_REFRACTIVE && (ior[0] != ior[1] || ior[1] != ior[2])
         });
-        // Buffers may not be empty: a scene without triangles gets one unused element each.
-        let upload = |name: &str, bytes: &[u8], element: usize| -> Result<Buffer> {
-            let data = if bytes.is_empty() { vec![0u8; element] } else { bytes.to_vec() };
-            Ok(ctx.buffer_with_data(name, &data)?)
-        };
+        let upload = |name: &str, bytes: &[u8], element: usize| upload_or_one(ctx, name, bytes, element);
         // The reference's ray offset against self-intersection (`reference::trace_reference`).
         let (lo, hi) = scene.bounds();
         let max_abs = if lo.is_finite() && hi.is_finite() { lo.abs().max(hi.abs()).max_element() } else { 1.0 };
@@ -129,10 +189,16 @@ impl PhotonTracer {
             .collect();
         let (centre, radius) = bounding_sphere(&specular);
         let diag = if lo.is_finite() && hi.is_finite() { (hi - lo).length() } else { 1.0 };
-        let defines: &[(&str, &str)] = if receiver_deposit { &[("RECEIVER_DEPOSIT", "1")] } else { &[] };
+        let mut defines: Vec<(&str, &str)> = vec![];
+        if receiver_deposit {
+            defines.push(("RECEIVER_DEPOSIT", "1"));
+        }
+        if ray_query {
+            defines.push(("RAY_QUERY", "1"));
+        }
         Ok(PhotonTracer {
-            pipeline: Pipeline::compute(ctx, "photon_trace", &sh.compile("photon_trace/trace.comp", defines)?)?,
-            nodes: upload("photon_trace BVH nodes", bytemuck::cast_slice(&nodes), 32)?,
+            pipeline: Pipeline::compute(ctx, "photon_trace", &sh.compile("photon_trace/trace.comp", &defines)?)?,
+            intersection,
             triangles: upload("photon_trace BVH triangles", bytemuck::cast_slice(&triangles), 48)?,
             normals: upload("photon_trace shading normals", bytemuck::cast_slice(&normals), 16)?,
             objects: upload("photon_trace objects", bytemuck::cast_slice(&objects), 48)?,
@@ -169,7 +235,10 @@ impl PhotonTracer {
             ("frame", Bind::Uniform(inp.frame_uniforms)),
             ("caustics", Bind::Uniform(inp.caustic_uniforms)),
             ("spot_textures", Bind::Sampled(inp.spot_textures, inp.linear)),
-            ("Nodes", Bind::BufferRead(&self.nodes)),
+            match &self.intersection {
+                Intersection::Bvh { nodes } => ("Nodes", Bind::BufferRead(nodes)),
+                Intersection::RayQuery(rq) => ("scene", Bind::AccelerationStructure(&rq.top)),
+            },
             ("Triangles", Bind::BufferRead(&self.triangles)),
             ("ShadingNormals", Bind::BufferRead(&self.normals)),
             ("Objects", Bind::BufferRead(&self.objects)),
@@ -188,4 +257,19 @@ impl PhotonTracer {
         })?;
         Ok(())
     }
+}
+
+/// A triangle as `photon_trace/triangles.glsl` stores it: `[v0 xyz, object, e1 xyz, 0, e2 xyz,
+/// 0]`, the object's bits in its `f32` slot (as `Bvh::flattened` writes the BVH's).
+fn triangle_record(t: &Triangle) -> [f32; 12] {
+    let [v0, v1, v2] = t.v;
+    let (e1, e2) = (v1 - v0, v2 - v0);
+    [v0.x, v0.y, v0.z, f32::from_bits(t.object), e1.x, e1.y, e1.z, 0.0, e2.x, e2.y, e2.z, 0.0]
+}
+
+/// A device buffer holding `bytes`; buffers may not be empty, so a scene without triangles gets
+/// one unused element of `element` bytes.
+fn upload_or_one(ctx: &Context, name: &str, bytes: &[u8], element: usize) -> Result<Buffer> {
+    let data = if bytes.is_empty() { vec![0u8; element] } else { bytes.to_vec() };
+    Ok(ctx.buffer_with_data(name, &data)?)
 }

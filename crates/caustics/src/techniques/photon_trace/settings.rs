@@ -35,6 +35,22 @@ value_enum! {
     }
 }
 
+/// What `trace = "ray-query"` needs: acceleration structures and ray queries.
+pub const RAY_QUERY_FEATURES: &[Feature] = &[Feature::AccelerationStructure, Feature::RayQuery];
+
+value_enum! {
+    /// How the tracer finds the surface a photon meets next (`caustics.trace`, `--trace`).
+    pub enum Trace {
+        /// Its own traversal of the CPU reference's BVH in the compute shader
+        /// (`photon_trace/bvh.glsl`): every Vulkan device.
+        Compute = "compute",
+        /// `rayQueryEXT` against the Vulkan acceleration structures (GL_EXT_ray_query: a BLAS
+        /// per object, one TLAS), the driver's traversal (ray-tracing hardware where the device
+        /// has it); needs VK_KHR_acceleration_structure and VK_KHR_ray_query.
+        RayQuery = "ray-query",
+    }
+}
+
 /// The range check of technique `photon-trace`'s own key (`CausticSettings::validate` calls it).
 pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
     if !(1..=MAX_BOUNCES).contains(&s.max_bounces) {
