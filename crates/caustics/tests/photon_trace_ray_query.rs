@@ -15,6 +15,11 @@
 //!     one by one: at most 0.5% land on one path only, the caustic flux agrees within 0.1%, and
 //!     the receiver maps differ by less than half of what two seeds of the compute path differ
 //!     by (its noise);
+//! - an object that moves (the compute path refuses it: its BVH is built once): with ray
+//!   queries the acceleration structures are built again for each pose, and in each pose of
+//!   `sphere_on_plane`'s animated sphere the receiver map matches the CPU reference of that pose
+//!   (caustic flux within 1%, relative RMSE under half of its RMSE against the other pose's
+//!   reference, which a stale structure would match instead);
 //! - a device without acceleration structures or ray queries refuses `trace = "ray-query"`
 //!   naming the feature (Mesa 22.3's lavapipe has neither; here they are also hidden).
 //!
@@ -138,6 +143,59 @@ fn ray_queries_trace_the_compute_paths_photons_on_five_scenes() {
             if one_side * 200 > b.len() || !(c.rel_rmse <= 0.5 * noise.rel_rmse) {
                 failures.push(format!("{name}: {one_side} on one path only; {c:?} against the noise {noise:?}"));
             }
+        }
+    }
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn ray_queries_follow_a_moving_object_pose_by_pose() {
+    use caustics::animation::{scene_at, Animation};
+    use caustics::reference::{trace_reference, ReferenceOptions};
+    let (ctx, sh) = context();
+    if !ctx.info().has(Feature::RayQuery) {
+        let line = format!(
+            "`{}` has no ray queries (scripts/mesa25_check.sh runs this on Mesa 25's lavapipe)",
+            ctx.info().name
+        );
+        assert!(std::env::var_os("CAUSTICLAB_REQUIRE_RAY_QUERY").is_none(), "{line}");
+        println!("skipped: {line}");
+        return;
+    }
+    let mut base = scene("sphere_on_plane.toml", Trace::RayQuery);
+    base.caustics.fresnel = false;
+    base.receiver_map.as_mut().expect("a receiver map").resolution = 32;
+    let anim = Animation { light: false, camera: false, object: true, period_frames: 4 };
+    let poses: Vec<Scene> = [0, 1].iter().map(|&f| scene_at(&base, &anim, f)).collect();
+    let references: Vec<ImageF32> = poses
+        .iter()
+        .map(|p| {
+            let opts = ReferenceOptions { photons: 1_000_000, fresnel: false, ..Default::default() };
+            trace_reference(p, &opts).expect("reference").image
+        })
+        .collect();
+    let mut r = Renderer::new(&ctx, &sh, &poses[0], &RendererOptions::default()).expect("renderer");
+    let mut failures = vec![];
+    for (i, pose) in poses.iter().enumerate().chain([(0, &poses[0])]) {
+        let start = std::time::Instant::now();
+        r.set_pose(pose).expect("ray queries follow a moving object");
+        let rebuilt = start.elapsed();
+        r.frame(FrameStep::default()).expect("frame");
+        let receiver = r.receiver_map().expect("read").expect("a receiver map");
+        let (own, _) = compare(&receiver, &references[i]).expect("compare");
+        let (other, _) = compare(&receiver, &references[1 - i]).expect("compare");
+        println!(
+            "pose {i}: set_pose {:.1} ms (the structures rebuilt where the sphere moved); against its reference rel. RMSE {:.4}, flux ratio {:.4}; \
+             against the other pose's rel. RMSE {:.4}",
+            rebuilt.as_secs_f64() * 1e3,
+            own.rel_rmse,
+            own.caustic_flux_ratio,
+            other.rel_rmse
+        );
+        if !own.within(0.5 * other.rel_rmse, 0.01) {
+            failures.push(format!("pose {i}: {own:?} against its reference, {other:?} against the other"));
         }
     }
     let log = ctx.validation_log();

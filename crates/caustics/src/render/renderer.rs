@@ -146,12 +146,19 @@ impl FrameRenderer for MeshRenderer<'_> {
         if scene.lights != self.scene.lights {
             self.photons_ready = false;
         }
+        let moved: Vec<&str> = scene
+            .objects
+            .iter()
+            .zip(&self.scene.objects)
+            .filter(|(obj, old)| obj.mesh.positions != old.mesh.positions || obj.mesh.normals != old.mesh.normals)
+            .map(|(obj, _)| obj.name.as_str())
+            .collect();
+        if let (Some(c), false) = (self.caustic.as_mut(), moved.is_empty()) {
+            c.follow_moved_meshes(self.ctx, scene, &moved)?;
+        }
         for (i, ((obj, old), mesh)) in scene.objects.iter().zip(&self.scene.objects).zip(&self.meshes).enumerate() {
             if obj.mesh.positions == old.mesh.positions && obj.mesh.normals == old.mesh.normals {
                 continue;
-            }
-            if let Some(c) = &self.caustic {
-                c.follows_moving_mesh(&obj.name)?;
             }
             self.photons_ready = false;
             if !self.slots.mesh_moved(i) {

@@ -22,8 +22,10 @@
 //! VK_KHR_acceleration_structure and VK_KHR_ray_query: Mesa 25's lavapipe has them, Mesa 22.3's
 //! does not (the option is refused there by name).
 //!
-//! The BVH and the acceleration structures are built once, when the renderer is made: a pose
-//! that moves a mesh is refused (`Renderer::set_pose`).
+//! The BVH is built once, when the renderer is made: with it a pose that moves a mesh is
+//! refused (`Renderer::set_pose`). The acceleration structures follow a pose that moves meshes:
+//! the device is waited for, and the structures and the triangles the shader reads are built
+//! again from the moved vertices (rebuilt, not refitted: a pose may move a mesh anywhere).
 
 pub mod push;
 pub mod settings;
@@ -102,6 +104,8 @@ pub struct PhotonTracer {
     constants: PhotonTraceConstants,
     /// `deposit = "receiver-map"`: photons are binned into the receiver map too.
     receiver_deposit: bool,
+    /// Per object, whether it is specular (the emission cone subtends these).
+    specular: Vec<bool>,
 }
 
 impl PhotonTracer {
@@ -128,15 +132,7 @@ impl PhotonTracer {
         if ray_query {
             ctx.require("trace `ray-query` (technique photon-trace)", RAY_QUERY_FEATURES)?;
         }
-        let mut tris = Vec::with_capacity(scene.triangle_count());
-        let mut first = Vec::with_capacity(scene.objects.len());
-        for (oi, obj) in scene.objects.iter().enumerate() {
-            first.push(tris.len() as u32);
-            let p = &obj.mesh.positions;
-            for (pi, [a, b, c]) in obj.mesh.triangles().enumerate() {
-                tris.push(Triangle { v: [p[a], p[b], p[c]], object: oi as u32, prim: pi as u32 });
-            }
-        }
+        let (tris, first) = scene_triangles(scene);
         let (intersection, ordered, triangles) = if ray_query {
             let records = tris.iter().map(triangle_record).collect();
             (Intersection::RayQuery(RayQueryScene::new(ctx, scene, &first)?), tris, records)
@@ -156,14 +152,7 @@ impl PhotonTracer {
             let nodes = upload_or_one(ctx, "photon_trace BVH nodes", bytemuck::cast_slice(&nodes), 32)?;
             (Intersection::Bvh { nodes }, bvh.triangles().to_vec(), triangles)
         };
-        let normals: Vec<[f32; 4]> = ordered
-            .iter()
-            .flat_map(|t| {
-                let m = &scene.objects[t.object as usize].mesh;
-                let i = 3 * t.prim as usize;
-                [0, 1, 2].map(|k| m.normals[m.indices[i + k] as usize].extend(0.0).to_array())
-            })
-            .collect();
+        let normals = shading_normals(scene, &ordered);
         let objects: Vec<[f32; 4]> = meshes
             .iter()
             .flat_map(|m| {
@@ -176,19 +165,8 @@ impl PhotonTracer {
             m.constants.material == MATERIAL_REFRACTIVE && (ior[0] != ior[1] || ior[1] != ior[2])
         });
         let upload = |name: &str, bytes: &[u8], element: usize| upload_or_one(ctx, name, bytes, element);
-        // The reference's ray offset against self-intersection (`reference::trace_reference`).
-        let (lo, hi) = scene.bounds();
-        let max_abs = if lo.is_finite() && hi.is_finite() { lo.abs().max(hi.abs()).max_element() } else { 1.0 };
-        // The specular objects' bounding sphere (the emission cone subtends it), as the
-        // reference's per object (`reference::emit::bounding_sphere`), here of them all.
-        let specular: Vec<glam::Vec3> = meshes
-            .iter()
-            .zip(&scene.objects)
-            .filter(|(m, _)| m.kind() != MATERIAL_DIFFUSE)
-            .flat_map(|(_, o)| o.mesh.positions.iter().copied())
-            .collect();
-        let (centre, radius) = bounding_sphere(&specular);
-        let diag = if lo.is_finite() && hi.is_finite() { (hi - lo).length() } else { 1.0 };
+        let specular: Vec<bool> = meshes.iter().map(|m| m.kind() != MATERIAL_DIFFUSE).collect();
+        let (sphere, eps, receiver_tolerance) = placement(scene, &specular);
         let mut defines: Vec<(&str, &str)> = vec![];
         if receiver_deposit {
             defines.push(("RECEIVER_DEPOSIT", "1"));
@@ -203,18 +181,41 @@ impl PhotonTracer {
             normals: upload("photon_trace shading normals", bytemuck::cast_slice(&normals), 16)?,
             objects: upload("photon_trace objects", bytemuck::cast_slice(&objects), 48)?,
             constants: PhotonTraceConstants {
-                sphere: [centre.x as f32, centre.y as f32, centre.z as f32, radius as f32],
+                sphere,
                 light: 0,
                 seed: s.seed,
                 max_bounces: s.max_bounces,
                 flags: if s.outside_reflection { FLAG_OUTSIDE_REFLECTION } else { 0 }
                     | if dispersive { FLAG_DISPERSIVE } else { 0 },
-                eps: (1e-5 * max_abs).max(1e-6),
-                // The reference's (`reference::trace_reference`): 1e-4 of the scene's diagonal.
-                receiver_tolerance: 1e-4 * diag.max(1e-6),
+                eps,
+                receiver_tolerance,
             },
             receiver_deposit,
+            specular,
         })
+    }
+
+    /// Follows `scene`, a pose in which the objects `moved` moved: with ray queries, waits for
+    /// the device and builds the acceleration structures and the triangle records again from
+    /// the moved vertices; the BVH is built once (an input error naming the object).
+    pub fn follow(&mut self, ctx: &Context, scene: &Scene, moved: &[&str]) -> Result<()> {
+        let Intersection::RayQuery(rq) = &mut self.intersection else {
+            return Err(crate::input_error!(
+                "technique photon-trace: object `{}` moves, and the tracer's BVH is built once, when the renderer \
+                 is made (trace `ray-query` follows moving objects)",
+                moved.first().copied().unwrap_or("?")
+            )
+            .into());
+        };
+        ctx.wait_idle()?;
+        (self.constants.sphere, self.constants.eps, self.constants.receiver_tolerance) =
+            placement(scene, &self.specular);
+        let (tris, first) = scene_triangles(scene);
+        *rq = RayQueryScene::new(ctx, scene, &first)?;
+        let records: Vec<[f32; 12]> = tris.iter().map(triangle_record).collect();
+        ctx.upload_buffer(&self.triangles, bytemuck::cast_slice(&records))?;
+        ctx.upload_buffer(&self.normals, bytemuck::cast_slice(&shading_normals(scene, &tris)))?;
+        Ok(())
     }
 
     /// Light `l`'s receiver positions (for the caustic map's lookup), then its photons traced
@@ -272,4 +273,52 @@ fn triangle_record(t: &Triangle) -> [f32; 12] {
 fn upload_or_one(ctx: &Context, name: &str, bytes: &[u8], element: usize) -> Result<Buffer> {
     let data = if bytes.is_empty() { vec![0u8; element] } else { bytes.to_vec() };
     Ok(ctx.buffer_with_data(name, &data)?)
+}
+
+/// Every triangle of `scene` in its order (object by object), and each object's first.
+fn scene_triangles(scene: &Scene) -> (Vec<Triangle>, Vec<u32>) {
+    let mut tris = Vec::with_capacity(scene.triangle_count());
+    let mut first = Vec::with_capacity(scene.objects.len());
+    for (oi, obj) in scene.objects.iter().enumerate() {
+        first.push(tris.len() as u32);
+        let p = &obj.mesh.positions;
+        for (pi, [a, b, c]) in obj.mesh.triangles().enumerate() {
+            tris.push(Triangle { v: [p[a], p[b], p[c]], object: oi as u32, prim: pi as u32 });
+        }
+    }
+    (tris, first)
+}
+
+/// Per triangle of `ordered`, its mesh's vertex normals at the three corners.
+fn shading_normals(scene: &Scene, ordered: &[Triangle]) -> Vec<[f32; 4]> {
+    ordered
+        .iter()
+        .flat_map(|t| {
+            let m = &scene.objects[t.object as usize].mesh;
+            let i = 3 * t.prim as usize;
+            [0, 1, 2].map(|k| m.normals[m.indices[i + k] as usize].extend(0.0).to_array())
+        })
+        .collect()
+}
+
+/// What the tracer's constants take from where the objects are: the specular objects' bounding
+/// sphere (`specular[o]`: object o is one), which the emission cone subtends, as the reference's
+/// per object (`reference::emit::bounding_sphere`), here of them all; the reference's ray offset
+/// against self-intersection (`reference::trace_reference`); and how far from the receiver's
+/// plane a photon lands on it (the reference's: 1e-4 of the scene's diagonal).
+fn placement(scene: &Scene, specular: &[bool]) -> ([f32; 4], f32, f32) {
+    let (lo, hi) = scene.bounds();
+    let finite = lo.is_finite() && hi.is_finite();
+    let max_abs = if finite { lo.abs().max(hi.abs()).max_element() } else { 1.0 };
+    let diag = if finite { (hi - lo).length() } else { 1.0 };
+    let points: Vec<glam::Vec3> = scene
+        .objects
+        .iter()
+        .zip(specular)
+        .filter(|(_, &s)| s)
+        .flat_map(|(o, _)| o.mesh.positions.iter().copied())
+        .collect();
+    let (centre, radius) = bounding_sphere(&points);
+    let sphere = [centre.x as f32, centre.y as f32, centre.z as f32, radius as f32];
+    (sphere, (1e-5 * max_abs).max(1e-6), 1e-4 * diag.max(1e-6))
 }

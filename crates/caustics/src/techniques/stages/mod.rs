@@ -185,10 +185,10 @@ impl CausticPipeline {
         ]
     }
 
-    /// Whether the stages follow the object `object` moving between frames (see
-    /// `Source::follows_moving_mesh`).
-    pub fn follows_moving_mesh(&self, object: &str) -> Result<()> {
-        self.source.follows_moving_mesh(object)
+    /// Follows `scene`, a pose in which the objects `moved` moved (see
+    /// `Source::follow_moved_meshes`).
+    pub fn follow_moved_meshes(&mut self, ctx: &Context, scene: &Scene, moved: &[&str]) -> Result<()> {
+        self.source.follow_moved_meshes(ctx, scene, moved)
     }
 
     pub fn eye_space(&self) -> bool {

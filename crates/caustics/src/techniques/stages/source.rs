@@ -109,15 +109,13 @@ impl Source {
 
     /// Whether this stage has the light-space buffer `d` (one it owns but does not have, it
     /// never dumps).
-    /// Whether this source follows meshes that move between frames: the tracer's BVH is built
-    /// once, when it is made (an input error naming the object otherwise).
-    pub fn follows_moving_mesh(&self, object: &str) -> anyhow::Result<()> {
+    /// Follows `scene`, a pose in which the objects `moved` moved: the tracer's acceleration
+    /// structures are rebuilt (`trace = "ray-query"`); its BVH is built once, when it is made
+    /// (an input error naming the object otherwise). The other sources read the meshes as they
+    /// are drawn.
+    pub fn follow_moved_meshes(&mut self, ctx: &Context, scene: &Scene, moved: &[&str]) -> anyhow::Result<()> {
         match self {
-            Source::Traced(_) => Err(crate::input_error!(
-                "technique photon-trace: object `{object}` moves, and the tracer's BVH is built once, when the \
-                 renderer is made (moving objects are not supported yet)"
-            )
-            .into()),
+            Source::Traced(tracer) => tracer.follow(ctx, scene, moved),
             _ => Ok(()),
         }
     }
