@@ -9,7 +9,8 @@
 #     path on five scenes (crates/caustics/tests/photon_trace_ray_query.rs), which must not skip;
 #   - every shipped scene rendered with shah, hcm, adaptive and photon-trace (the pool scenes
 #     with their pool-convolution), 64² photons, statistics queries on (render always asks);
-#   - a --quick run of Wyman 2008 Table 1 (its statistics frame included).
+#   - a --quick run of Wyman 2008 Table 1 (its statistics frame included), and one of
+#     photon_trace_paths (the tracer's compute traversal against ray queries).
 # Scenes whose models are missing are skipped with one line, as in scripts/demo.sh. Where Mesa
 # 25 cannot be had (scripts/mesa25.sh fails: no network, not Debian 12), the check says so and
 # is skipped, except in CI ($CI set), where that fails.
@@ -89,6 +90,9 @@ echo "mesa25_check: bench --quick wyman2008_table1 on $device"
 "$bin" --device "$device" --validate bench bench_configs/wyman2008_table1.toml --quick --results "$out/results" \
     >"$out/bench.log" 2>&1 || { cat "$out/bench.log" >&2; failed+=("bench wyman2008_table1"); }
 grep -rq "$device" "$out/results" || { echo "mesa25_check: the quick table does not name Mesa 25" >&2; failed+=("bench device"); }
+echo "mesa25_check: bench --quick photon_trace_paths (compute against ray queries) on $device"
+"$bin" --device "$device" --validate bench bench_configs/photon_trace_paths.toml --quick --results "$out/results" \
+    >"$out/bench.log" 2>&1 || { cat "$out/bench.log" >&2; failed+=("bench photon_trace_paths"); }
 
 if [ "${#skipped[@]}" -ne 0 ]; then
     echo "mesa25_check: skipped ${#skipped[@]} scene(s) whose models are missing: ${skipped[*]}"

@@ -336,6 +336,47 @@ fn quick_splat_paths_splat_the_same_photons_and_time_every_splat() {
 }
 
 #[test]
+fn photon_trace_paths_without_ray_queries_is_refused_before_its_first_cell() {
+    // T2 compares the tracer's compute traversal with ray queries: a device without them (here
+    // hidden; Mesa 22.3's lavapipe has none) refuses it by name before any cell is measured,
+    // and no table is written. scripts/mesa25_check.sh runs it --quick on Mesa 25's lavapipe.
+    let root = common::scratch("bench-ray-query");
+    let cfg = workspace().join("bench_configs").join("photon_trace_paths.toml");
+    let r = common::causticlab(&[
+        "--without-feature".as_ref(),
+        "acceleration_structure".as_ref(),
+        "bench".as_ref(),
+        cfg.as_os_str(),
+        "--quick".as_ref(),
+        "--results".as_ref(),
+        root.as_os_str(),
+    ]);
+    assert_eq!(r.code, Some(2), "{}", r.describe());
+    assert!(r.stderr.contains("trace `ray-query`") && r.stderr.contains("acceleration_structure"), "{}", r.describe());
+    assert!(
+        r.stderr.contains("technique[1]") && !r.stderr.contains("cells,"),
+        "refused before a cell: {}",
+        r.describe()
+    );
+    let tables: Vec<_> = walk(&root).into_iter().filter(|p| p.extension().is_some_and(|e| e == "json")).collect();
+    assert!(tables.is_empty(), "{tables:?}");
+}
+
+/// Every file under `dir`.
+fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut out = vec![];
+    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            out.extend(walk(&p));
+        } else {
+            out.push(p);
+        }
+    }
+    out
+}
+
+#[test]
 fn quick_photon_trace_rate_times_the_trace_and_counts_every_emitted_photon() {
     // T1: the tracer's pass (on the device's clock and, submitted alone, on the host's) and the
     // whole frame are timed in every cell, and each rate is, frame for frame, the photons emitted

@@ -120,6 +120,9 @@ pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
     if matches!(c.technique, Technique::Hcm | Technique::Adaptive) {
         ctx.require(&format!("technique `{}` with --path {}", c.technique, c.path), c.path.features())?;
     }
+    for (who, features) in c.settings_features() {
+        ctx.require(who, features)?;
+    }
     if c.technique.has_caustics() && c.splat_path == SplatPath::Compute {
         ctx.require(
             "splat_path `compute` (float atomics in shared/splat.comp)",

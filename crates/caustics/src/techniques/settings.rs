@@ -305,6 +305,15 @@ impl CausticSettings {
         self.technique == Technique::PhotonTrace && self.deposit == PhotonDeposit::ReceiverMap
     }
 
+    /// What this technique's own settings need of the device, each with what needs it (the
+    /// technique's own needs are `Technique::required_features`).
+    pub fn settings_features(&self) -> Vec<(&'static str, &'static [vkcore::Feature])> {
+        match self.technique {
+            Technique::PhotonTrace => photon_trace::settings::required_features(self),
+            _ => vec![],
+        }
+    }
+
     /// The ray/receiver intersection in effect: the one asked for, else the technique's own.
     pub fn intersect(&self) -> Intersect {
         self.intersect.unwrap_or(self.technique.default_intersect())

@@ -30,7 +30,7 @@
 pub mod push;
 pub mod settings;
 
-use settings::{Trace, RAY_QUERY_FEATURES, RECEIVER_DEPOSIT_FEATURES};
+use settings::Trace;
 
 use super::shared::photon_buffer::record_receiver_positions;
 use super::shared::CausticPasses;
@@ -114,24 +114,18 @@ impl PhotonTracer {
     pub fn new(ctx: &Context, sh: &ShaderCompiler, scene: &Scene, meshes: &[GpuMesh]) -> Result<PhotonTracer> {
         let s = &scene.caustics;
         let receiver_deposit = s.receiver_deposit();
-        if receiver_deposit {
-            if scene.receiver_map.is_none() {
-                return Err(crate::input_error!(
-                    "{}: deposit = \"receiver-map\" (technique photon-trace) bins photons into the receiver map, \
-                     and the scene has no [receiver_map]",
-                    scene.path.display()
-                )
-                .into());
-            }
-            ctx.require(
-                "deposit `receiver-map` (float atomics in photon_trace/trace.comp)",
-                RECEIVER_DEPOSIT_FEATURES,
-            )?;
+        if receiver_deposit && scene.receiver_map.is_none() {
+            return Err(crate::input_error!(
+                "{}: deposit = \"receiver-map\" (technique photon-trace) bins photons into the receiver map, and the \
+                 scene has no [receiver_map]",
+                scene.path.display()
+            )
+            .into());
+        }
+        for (who, features) in settings::required_features(s) {
+            ctx.require(who, features)?;
         }
         let ray_query = s.trace == Trace::RayQuery;
-        if ray_query {
-            ctx.require("trace `ray-query` (technique photon-trace)", RAY_QUERY_FEATURES)?;
-        }
         let (tris, first) = scene_triangles(scene);
         let (intersection, ordered, triangles) = if ray_query {
             let records = tris.iter().map(triangle_record).collect();

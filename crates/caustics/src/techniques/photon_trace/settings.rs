@@ -51,6 +51,18 @@ value_enum! {
     }
 }
 
+/// What `s`'s `trace` and `deposit` need of the device, each with what needs it.
+pub fn required_features(s: &CausticSettings) -> Vec<(&'static str, &'static [Feature])> {
+    let mut needs = vec![];
+    if s.trace == Trace::RayQuery {
+        needs.push(("trace `ray-query` (technique photon-trace)", RAY_QUERY_FEATURES));
+    }
+    if s.deposit == Deposit::ReceiverMap {
+        needs.push(("deposit `receiver-map` (float atomics in photon_trace/trace.comp)", RECEIVER_DEPOSIT_FEATURES));
+    }
+    needs
+}
+
 /// The range check of technique `photon-trace`'s own key (`CausticSettings::validate` calls it).
 pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
     if !(1..=MAX_BOUNCES).contains(&s.max_bounces) {
