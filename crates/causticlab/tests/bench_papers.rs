@@ -358,22 +358,9 @@ fn photon_trace_paths_without_ray_queries_is_refused_before_its_first_cell() {
         "refused before a cell: {}",
         r.describe()
     );
-    let tables: Vec<_> = walk(&root).into_iter().filter(|p| p.extension().is_some_and(|e| e == "json")).collect();
+    let tables: Vec<_> =
+        files_under(&root).into_iter().filter(|p| p.extension().is_some_and(|e| e == "json")).collect();
     assert!(tables.is_empty(), "{tables:?}");
-}
-
-/// Every file under `dir`.
-fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
-    let mut out = vec![];
-    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
-        let p = e.path();
-        if p.is_dir() {
-            out.extend(walk(&p));
-        } else {
-            out.push(p);
-        }
-    }
-    out
 }
 
 #[test]

@@ -81,18 +81,23 @@ fn photons(buffer: &ImageF32) -> Vec<([f32; 4], [f32; 3])> {
         .collect()
 }
 
+/// The test context where it has ray queries; elsewhere None, after saying the test is
+/// skipped (a failure with `CAUSTICLAB_REQUIRE_RAY_QUERY` set, as scripts/mesa25_check.sh sets it).
+fn ray_query_context() -> Option<(Context, ShaderCompiler)> {
+    let (ctx, sh) = context();
+    if ctx.info().has(Feature::RayQuery) {
+        return Some((ctx, sh));
+    }
+    let line =
+        format!("`{}` has no ray queries (scripts/mesa25_check.sh runs this on Mesa 25's lavapipe)", ctx.info().name);
+    assert!(std::env::var_os("CAUSTICLAB_REQUIRE_RAY_QUERY").is_none(), "{line}");
+    println!("skipped: {line}");
+    None
+}
+
 #[test]
 fn ray_queries_trace_the_compute_paths_photons_on_five_scenes() {
-    let (ctx, sh) = context();
-    if !ctx.info().has(Feature::RayQuery) {
-        let line = format!(
-            "`{}` has no ray queries (scripts/mesa25_check.sh runs this on Mesa 25's lavapipe)",
-            ctx.info().name
-        );
-        assert!(std::env::var_os("CAUSTICLAB_REQUIRE_RAY_QUERY").is_none(), "{line}");
-        println!("skipped: {line}");
-        return;
-    }
+    let Some((ctx, sh)) = ray_query_context() else { return };
     let mut failures = vec![];
     for (name, one_by_one) in SCENES {
         let (bvh, bvh_receiver) = trace(&ctx, &sh, &scene(name, Trace::Compute));
@@ -154,16 +159,7 @@ fn ray_queries_trace_the_compute_paths_photons_on_five_scenes() {
 fn ray_queries_follow_a_moving_object_pose_by_pose() {
     use caustics::animation::{scene_at, Animation};
     use caustics::reference::{trace_reference, ReferenceOptions};
-    let (ctx, sh) = context();
-    if !ctx.info().has(Feature::RayQuery) {
-        let line = format!(
-            "`{}` has no ray queries (scripts/mesa25_check.sh runs this on Mesa 25's lavapipe)",
-            ctx.info().name
-        );
-        assert!(std::env::var_os("CAUSTICLAB_REQUIRE_RAY_QUERY").is_none(), "{line}");
-        println!("skipped: {line}");
-        return;
-    }
+    let Some((ctx, sh)) = ray_query_context() else { return };
     let mut base = scene("sphere_on_plane.toml", Trace::RayQuery);
     base.caustics.fresnel = false;
     base.receiver_map.as_mut().expect("a receiver map").resolution = 32;
