@@ -48,16 +48,18 @@ pub struct Outcome {
 
 /// Measures a cell with `measure`, again after `pause` (given the attempt and the other
 /// processes' cores) while other processes kept the machine busy, up to `busy_retries` times;
-/// whether the run kept was still busy.
+/// whether the run kept was still busy. Only a config that times something (`timed`) can be
+/// busy: its errors and counts are the same on a busy machine.
 fn measure_quiet(
     mut measure: impl FnMut() -> Result<crate::measure::CellRun>,
     mut pause: impl FnMut(u32, f64),
     opts: &BenchOptions,
+    timed: bool,
 ) -> Result<(crate::measure::CellRun, bool)> {
     let mut attempt = 0;
     loop {
         let run = measure()?;
-        let busy = !opts.quick && run.other_cores.is_some_and(|c| c > opts.busy_cores);
+        let busy = timed && !opts.quick && run.other_cores.is_some_and(|c| c > opts.busy_cores);
         if !busy || attempt >= opts.busy_retries {
             return Ok((run, busy));
         }
@@ -169,6 +171,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         }
     }
     let mut done = vec![];
+    let timed = c.metrics.iter().any(|m| crate::results::is_timing(&m.kind));
     for cell in &cells {
         progress.start_cell(&cell.describe());
         // Measured again while its spread is over NOISY_SPREAD (`!`), keeping the quiet attempt
@@ -189,6 +192,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
                     std::thread::sleep(std::time::Duration::from_secs(BUSY_PAUSE_S));
                 },
                 opts,
+                timed,
             )?;
             check_patterns(lc, cell, &run)?;
             let metrics = crate::metrics::evaluate(&c.metrics, &run);
@@ -437,6 +441,14 @@ mod tests {
     /// Runs `measure_quiet` over runs whose other processes used `cores`, in turn: the attempts
     /// it made, the pauses it took, and whether the kept run is busy.
     fn quiet(cores: &[Option<f64>], opts: &BenchOptions) -> (usize, Vec<(u32, f64)>, bool, Option<f64>) {
+        quiet_timed(cores, opts, true)
+    }
+
+    fn quiet_timed(
+        cores: &[Option<f64>],
+        opts: &BenchOptions,
+        timed: bool,
+    ) -> (usize, Vec<(u32, f64)>, bool, Option<f64>) {
         let mut made = 0;
         let mut pauses = vec![];
         let (run, busy) = measure_quiet(
@@ -446,6 +458,7 @@ mod tests {
             },
             |attempt, c| pauses.push((attempt, c)),
             opts,
+            timed,
         )
         .unwrap();
         (made, pauses, busy, run.other_cores)
@@ -467,8 +480,10 @@ mod tests {
         let none = BenchOptions { busy_retries: 0, ..opts.clone() };
         assert_eq!(quiet(&[Some(0.5)], &none), (1, vec![], true, Some(0.5)));
         // A quick run (a smoke test) never waits and marks nothing.
-        let quick = BenchOptions { quick: true, ..opts };
+        let quick = BenchOptions { quick: true, ..opts.clone() };
         assert_eq!(quiet(&[Some(0.5)], &quick), (1, vec![], false, Some(0.5)));
+        // Nor does a config that times nothing (errors and counts): a busy machine computes them alike.
+        assert_eq!(quiet_timed(&[Some(1.5)], &opts, false), (1, vec![], false, Some(1.5)));
     }
 
     fn cell(index: usize, photons: u32, lights: u32, resolution: [u32; 2]) -> crate::plan::Cell {
