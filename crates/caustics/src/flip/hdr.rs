@@ -87,11 +87,28 @@ pub fn flip_hdr(
     let mut error = vec![0.0f32; width * height];
     let mut exposure_map = vec![0.0f32; width * height];
     let step = (stop - start) / (count - 1) as f32;
-    for i in 0..count {
+    let ldr_at = |i: usize| -> Vec<f32> {
         let scale = 2.0f32.powf(start + i as f32 * step);
         let exposed =
             |img: &[Triple]| -> Vec<Triple> { img.iter().map(|c| c.map(|v| tone_map_clamped(v * scale))).collect() };
-        let e = flip_ldr(width, height, &exposed(reference), &exposed(test), ppd);
+        flip_ldr(width, height, &exposed(reference), &exposed(test), ppd)
+    };
+    // The exposures are independent: each on a thread of its own (at most one per core), their
+    // maps then kept in order, so that the result is the same as one after the other.
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, count);
+    let mut maps: Vec<Vec<f32>> = Vec::with_capacity(count);
+    for first in (0..count).step_by(threads) {
+        let batch = first..(first + threads).min(count);
+        if batch.len() == 1 {
+            maps.push(ldr_at(first));
+            continue;
+        }
+        std::thread::scope(|s| {
+            let handles: Vec<_> = batch.map(|i| s.spawn(move || ldr_at(i))).collect();
+            maps.extend(handles.into_iter().map(|h| h.join().expect("an exposure's LDR-FLIP panicked")));
+        });
+    }
+    for (i, e) in maps.into_iter().enumerate() {
         let which = i as f32 / (count - 1) as f32;
         for ((best, at), v) in error.iter_mut().zip(exposure_map.iter_mut()).zip(e) {
             if v > *best {
