@@ -57,10 +57,31 @@ pub struct FrontSpec {
     /// front of its own (e.g. the caustic stages' time and the whole frame's).
     #[serde(deserialize_with = "one_or_many")]
     pub x: Vec<String>,
-    /// The label of the error metric on the y axis (lower is better).
-    pub y: String,
-    /// The error levels of the table of the cheapest cells, each above 0.
-    pub levels: Vec<f64>,
+    /// The labels of the error metrics on the y axis (lower is better): one, or a list, each a
+    /// panel beside the others (e.g. the receiver map's relative RMSE and the final image's FLIP).
+    #[serde(deserialize_with = "one_or_many")]
+    pub y: Vec<String>,
+    /// The error levels of the table of the cheapest cells, each above 0: a list for one y
+    /// metric, or a table of lists keyed by the y metrics' labels.
+    pub levels: FrontLevels,
+}
+
+/// `[front] levels`: one list, or one per y metric.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum FrontLevels {
+    All(Vec<f64>),
+    ByMetric(BTreeMap<String, Vec<f64>>),
+}
+
+impl FrontSpec {
+    /// The error levels of y metric `y` (none where a table of levels leaves it out).
+    pub fn levels_of(&self, y: &str) -> &[f64] {
+        match &self.levels {
+            FrontLevels::All(v) => v,
+            FrontLevels::ByMetric(m) => m.get(y).map_or(&[], Vec::as_slice),
+        }
+    }
 }
 
 /// A string, or a list of strings.
@@ -312,6 +333,7 @@ pub const METRIC_KINDS: &[&str] = &[
     "depth_complexity_max",
     "quad_coverage",
     "temporal_change",
+    "flip",
 ];
 
 /// Whether metric `kind` reads the caustic quads' depth complexity (`wd-quads` only).
@@ -323,6 +345,12 @@ pub fn is_depth_complexity_metric(kind: &str) -> bool {
 /// (`temporal_change`: how steady the caustic is along an animation).
 pub fn is_temporal_metric(kind: &str) -> bool {
     kind == "temporal_change"
+}
+
+/// Whether metric `kind` compares the final image with the reference final image
+/// (`crate::final_flip`).
+pub fn is_flip_metric(kind: &str) -> bool {
+    kind == "flip"
 }
 
 /// Whether metric `kind` compares the receiver map with the CPU reference (`[quality]`).
@@ -562,6 +590,14 @@ pub struct QualitySpec {
     pub reference_photons: u64,
     #[serde(default = "one")]
     pub seed: u64,
+    /// The refinement level of the reference final image that `flip` compares against
+    /// (`causticlab reference --final --level`), 0..=4.
+    #[serde(default = "final_level")]
+    pub final_level: u32,
+}
+
+fn final_level() -> u32 {
+    caustics::final_reference::TABLE_LEVEL
 }
 
 fn reference_photons() -> u64 {
@@ -573,7 +609,7 @@ fn one() -> u64 {
 
 impl Default for QualitySpec {
     fn default() -> Self {
-        QualitySpec { reference_photons: reference_photons(), seed: one() }
+        QualitySpec { reference_photons: reference_photons(), seed: one(), final_level: final_level() }
     }
 }
 

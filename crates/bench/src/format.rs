@@ -28,6 +28,8 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         "valid_fraction" => format!("{}%", significant(100.0 * v)),
         "rel_rmse" | "flux_ratio" | "peak_ratio" | "temporal_change" => format!("{v:.4}"),
         "peak_offset" => format!("{v:.1}"),
+        // HDR-FLIP's mean, three significant digits (0.00947, 0.0304).
+        "flip" => significant(v),
         "photon_storage" => significant(v),
         "depth_complexity_mean" => format!("{v:.2}"),
         "depth_complexity_p50" | "depth_complexity_p90" | "depth_complexity_p99" | "depth_complexity_max" => {
@@ -142,6 +144,8 @@ mod tests {
         assert_eq!(format_value("valid_fraction", Some(0.5928440093994141)), "59.3%");
         assert_eq!(format_value("valid_fraction", Some(0.0062103271484375)), "0.621%");
         assert_eq!(format_value("valid_photons", Some(8216.0)), "8,216");
+        assert_eq!(format_value("flip", Some(0.009472)), "0.00947");
+        assert_eq!(format_value("flip", Some(0.03041)), "0.0304");
         assert_eq!(display("photons", "256"), "256²");
         assert_eq!(display("photons", "512²"), "512²");
         assert_eq!(display("lights", "2"), "2 lights");

@@ -3,11 +3,48 @@
 //! other point beats on both, and for each error level the table names the cheapest cell that
 //! reaches it. Drawn by `crate::front_plot`; written into the table by [`markdown`].
 
-use crate::config::{Config, FrontSpec};
+use crate::config::{Config, FrontLevels, FrontSpec};
 use crate::format::significant;
 use crate::plan::scene_label;
 use crate::results::Results;
 use std::fmt::Write as _;
+
+/// Checks `[front]`: every x and y a metric's label, and error levels above 0 for each y (a
+/// list for one y, a table keyed by the y labels for several).
+pub(crate) fn validate(c: &Config, f: &FrontSpec, bad: &dyn Fn(&str, String) -> anyhow::Error) -> anyhow::Result<()> {
+    if f.x.is_empty() {
+        return Err(bad("front.x", "needs the label of at least one time metric".into()));
+    }
+    if f.y.is_empty() {
+        return Err(bad("front.y", "needs the label of at least one error metric".into()));
+    }
+    for (key, label) in f.x.iter().map(|x| ("front.x", x)).chain(f.y.iter().map(|y| ("front.y", y))) {
+        if !c.metrics.iter().any(|m| &m.label == label) {
+            return Err(bad(key, format!("`{label}` is the label of no [[metric]]")));
+        }
+    }
+    match &f.levels {
+        FrontLevels::All(_) if f.y.len() > 1 => {
+            return Err(bad(
+                "front.levels",
+                format!("{} y metrics: give their levels as a table, e.g. {{ \"{}\" = [0.1] }}", f.y.len(), f.y[0]),
+            ))
+        }
+        FrontLevels::ByMetric(m) => {
+            if let Some(k) = m.keys().find(|k| !f.y.contains(k)) {
+                return Err(bad("front.levels", format!("`{k}` is not one of front.y")));
+            }
+        }
+        FrontLevels::All(_) => {}
+    }
+    for y in &f.y {
+        let levels = f.levels_of(y);
+        if levels.is_empty() || levels.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
+            return Err(bad("front.levels", format!("needs error levels above 0 for `{y}`, got {levels:?}")));
+        }
+    }
+    Ok(())
+}
 
 /// One cell as a point of the front.
 #[derive(Debug, Clone, PartialEq)]
@@ -26,6 +63,8 @@ pub struct SceneFront {
     pub scene: String,
     /// The x metric's label.
     pub x: String,
+    /// The y metric's label.
+    pub y: String,
     pub points: Vec<Point>,
     /// Indices into `points` of the front, by increasing x (and decreasing y).
     pub front: Vec<usize>,
@@ -52,13 +91,13 @@ pub fn cheapest(points: &[Point], level: f64) -> Option<usize> {
     (0..points.len()).filter(|&i| points[i].y <= level).min_by(|&a, &b| points[a].x.total_cmp(&points[b].x))
 }
 
-/// Every scene's points (cells with both metrics, finite and positive) along x metric `x`, in
-/// the matrix's order.
-pub fn fronts(config: &Config, results: &Results, spec: &FrontSpec, x_label: &str) -> Vec<SceneFront> {
+/// Every scene's points (cells with both metrics, finite and positive) of y metric `y_label`
+/// along x metric `x_label`, in the matrix's order.
+pub fn fronts(config: &Config, results: &Results, x_label: &str, y_label: &str) -> Vec<SceneFront> {
     let mut out: Vec<SceneFront> = vec![];
     for c in &results.cells {
         let get = |label: &str| c.metrics.get(label).and_then(|v| v.value).filter(|v| v.is_finite() && *v > 0.0);
-        let (Some(x), Some(y)) = (get(x_label), get(&spec.y)) else { continue };
+        let (Some(x), Some(y)) = (get(x_label), get(y_label)) else { continue };
         let paper = config
             .techniques
             .get(c.cell.technique)
@@ -68,7 +107,13 @@ pub fn fronts(config: &Config, results: &Results, spec: &FrontSpec, x_label: &st
         let scene = scene_label(&c.cell.scene);
         match out.iter_mut().find(|f| f.scene == scene) {
             Some(f) => f.points.push(point),
-            None => out.push(SceneFront { scene, x: x_label.to_string(), points: vec![point], front: vec![] }),
+            None => out.push(SceneFront {
+                scene,
+                x: x_label.to_string(),
+                y: y_label.to_string(),
+                points: vec![point],
+                front: vec![],
+            }),
         }
     }
     for f in &mut out {
@@ -77,37 +122,39 @@ pub fn fronts(config: &Config, results: &Results, spec: &FrontSpec, x_label: &st
     out
 }
 
-/// The fronts as the table's sections, one per x metric: per scene the cheapest cell at each
-/// error level, and the front itself.
+/// The fronts as the table's sections, one per y and x metric (the y metrics outermost): per
+/// scene the cheapest cell at each error level, and the front itself.
 pub fn markdown(config: &Config, results: &Results) -> String {
     let Some(spec) = &config.front else { return String::new() };
-    spec.x.iter().map(|x| section(config, results, spec, x)).collect()
+    spec.y.iter().flat_map(|y| spec.x.iter().map(move |x| section(config, results, spec, x, y))).collect()
 }
 
-fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str) -> String {
+fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str, y: &str) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "## {} against {}\n", spec.y, x);
+    let _ = writeln!(s, "## {y} against {x}\n");
     let _ = writeln!(
         s,
-        "Per scene, the cheapest cell (least `{}`) whose `{}` is at most each level; then the Pareto front, \
-         the cells no other cell beats on both.\n",
-        x, spec.y
+        "Per scene, the cheapest cell (least `{x}`) whose `{y}` is at most each level; then the Pareto front, \
+         the cells no other cell beats on both.\n"
     );
-    for f in fronts(config, results, spec, x) {
+    // The error as the table prints its metric.
+    let kind = config.metrics.iter().find(|m| m.label == y).map_or("rel_rmse", |m| m.kind.as_str());
+    let err = |v: f64| crate::format::format_value(kind, Some(v));
+    for f in fronts(config, results, x, y) {
         let _ = writeln!(s, "**{}**\n", f.scene);
-        let _ = writeln!(s, "| {} at most | cheapest | photons | {} | {} |", spec.y, x, spec.y);
+        let _ = writeln!(s, "| {y} at most | cheapest | photons | {x} | {y} |");
         let _ = writeln!(s, "|---|---|---|---|---|");
-        for &level in &spec.levels {
+        for &level in spec.levels_of(y) {
             match cheapest(&f.points, level) {
                 Some(i) => {
                     let p = &f.points[i];
                     let _ = writeln!(
                         s,
-                        "| {level} | {} | {}² | {} | {:.4} |",
+                        "| {level} | {} | {}² | {} | {} |",
                         p.technique,
                         p.photons,
                         significant(p.x),
-                        p.y
+                        err(p.y)
                     );
                 }
                 None => {
@@ -120,7 +167,7 @@ fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str) -> Str
             .iter()
             .map(|&i| {
                 let p = &f.points[i];
-                format!("{} {}² ({}, {:.4})", p.technique, p.photons, significant(p.x), p.y)
+                format!("{} {}² ({}, {})", p.technique, p.photons, significant(p.x), err(p.y))
             })
             .collect();
         let _ = writeln!(s, "\nFront: {}.\n", front.join(" → "));

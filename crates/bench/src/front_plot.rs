@@ -1,36 +1,74 @@
-//! Draws the error-against-time front (`crate::front`): one log-log panel per scene, every cell
-//! a marker (its colour the technique, its shape the technique's paper), the Pareto front a grey
-//! line through its points, and a legend of the techniques' colours and the papers' shapes.
+//! Draws the error-against-time front (`crate::front`): one row per time metric and scene, in it
+//! one log-log panel per error metric side by side (the receiver map's relative RMSE beside the
+//! final image's FLIP), every cell a marker (its colour the technique, its shape the technique's
+//! paper), the Pareto front a grey line through its points, and a legend of the techniques'
+//! colours and the papers' shapes.
 
 use crate::config::{Config, FrontSpec};
 use crate::font::FAMILY;
 use crate::front::{fronts, SceneFront};
 use crate::plot::{
-    draw_title, ellipsize, encode, err, log_light_lines, log_ticks, text_width, tick, DrawResult, Drawing, Plot, GREY,
-    PALETTE, PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
+    draw_title, ellipsize, encode_sized, err, log_light_lines, log_ticks, text_width, tick, DrawResult, Drawing, Plot,
+    GREY, PALETTE, PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
 };
+
+/// The width a panel of each error metric past the first adds.
+const PANEL_WIDTH: u32 = 700;
 use crate::results::Results;
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// What the panels share: the title, the techniques' colours and the papers' shapes.
-struct Frame<'a> {
+struct Frame {
     title: String,
     subtitle: String,
-    spec: &'a FrontSpec,
     techniques: Vec<String>,
     papers: Vec<String>,
-    scenes: Vec<SceneFront>,
+    /// Per row (x metric and scene), a front per y metric.
+    rows: Vec<Vec<SceneFront>>,
+    width: u32,
+}
+
+/// The rows of the plot: per x metric and scene (the x metrics' rows one after the other), the
+/// scene's front of each y metric.
+fn rows(config: &Config, results: &Results, spec: &FrontSpec) -> Vec<Vec<SceneFront>> {
+    let mut rows: Vec<Vec<SceneFront>> = vec![];
+    for x in &spec.x {
+        let per_y: Vec<Vec<SceneFront>> = spec.y.iter().map(|y| fronts(config, results, x, y)).collect();
+        let mut scenes: Vec<String> = vec![];
+        for f in per_y.iter().flatten() {
+            if !scenes.contains(&f.scene) {
+                scenes.push(f.scene.clone());
+            }
+        }
+        for scene in scenes {
+            // A y metric no cell of the scene has keeps its panel, empty.
+            let row = per_y
+                .iter()
+                .zip(&spec.y)
+                .map(|(fs, y)| {
+                    fs.iter().find(|f| f.scene == scene).cloned().unwrap_or_else(|| SceneFront {
+                        scene: scene.clone(),
+                        x: x.clone(),
+                        y: y.clone(),
+                        points: vec![],
+                        front: vec![],
+                    })
+                })
+                .collect();
+            rows.push(row);
+        }
+    }
+    rows
 }
 
 /// The front as SVG and PNG.
 pub fn render(config: &Config, results: &Results, spec: &FrontSpec) -> Result<Plot> {
     crate::font::load()?;
-    // One panel per x metric and scene, the x metrics' panels one after the other.
-    let scenes: Vec<SceneFront> = spec.x.iter().flat_map(|x| fronts(config, results, spec, x)).collect();
+    let rows = rows(config, results, spec);
     let mut papers: Vec<String> = vec![];
-    for p in scenes.iter().flat_map(|f| &f.points) {
+    for p in rows.iter().flatten().flat_map(|f| &f.points) {
         if !papers.contains(&p.paper) {
             papers.push(p.paper.clone());
         }
@@ -39,23 +77,27 @@ pub fn render(config: &Config, results: &Results, spec: &FrontSpec) -> Result<Pl
     let frame = Frame {
         title: config.table.title(),
         subtitle: format!("{} · {} {} · {}", m.device, m.driver_name, m.driver_info, m.date),
-        spec,
         techniques: config.techniques.iter().map(|t| t.label.clone()).collect(),
         papers,
-        scenes,
+        width: WIDTH + PANEL_WIDTH * (spec.y.len().max(1) as u32 - 1),
+        rows,
     };
-    let height = TITLE_HEIGHT + PANEL_HEIGHT * frame.scenes.len().max(1) as u32;
-    encode(&frame, height, "front")
+    let height = TITLE_HEIGHT + PANEL_HEIGHT * frame.rows.len().max(1) as u32;
+    encode_sized(&frame, frame.width, height, "front")
 }
 
-impl Drawing for Frame<'_> {
+impl Drawing for Frame {
     fn draw_on<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult {
         let rest = draw_title(root, &self.title, &self.subtitle)?;
-        if self.scenes.is_empty() {
+        if self.rows.is_empty() {
             return rest.draw(&Text::new("no data", (20, 20), (FAMILY, 16.0).into_font())).map_err(err);
         }
-        for (area, scene) in rest.split_evenly((self.scenes.len(), 1)).iter().zip(&self.scenes) {
-            panel(area, self, scene)?;
+        for (area, row) in rest.split_evenly((self.rows.len(), 1)).iter().zip(&self.rows) {
+            let legend_w = legend(area, self)?;
+            let (charts, _) = area.split_horizontally(self.width - legend_w);
+            for (a, f) in charts.split_evenly((1, row.len().max(1))).iter().zip(row) {
+                panel(a, self, f)?;
+            }
         }
         Ok(())
     }
@@ -80,13 +122,15 @@ fn marker<DB: DrawingBackend>(
     .map_err(err)
 }
 
-fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame, scene: &SceneFront) -> DrawResult {
+/// The legend at the right of a row: the techniques' colours in their papers' shapes, then the
+/// papers' shapes; returns its width.
+fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame) -> Result<u32, String> {
     let rows = f.techniques.len() + f.papers.len() + 1;
     let row = ((PANEL_HEIGHT as i32 - 40) / rows.max(1) as i32).clamp(12, 22);
     let font = (row as f64 - 6.0).clamp(10.0, 14.0);
     let widest = f.techniques.iter().chain(&f.papers).map(|s| text_width(s, font)).max().unwrap_or(0);
     let legend_w = (widest + 60).clamp(140, WIDTH * 42 / 100);
-    let (chart_area, legend) = area.split_horizontally(WIDTH - legend_w);
+    let (_, legend) = area.split_horizontally(f.width - legend_w);
     let text = |label: &str| {
         Text::new(
             ellipsize(label, legend_w - 56, font),
@@ -101,7 +145,7 @@ fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame, scene: &S
         let y = 40 + i as i32 * row;
         // The technique's colour in its paper's shape, as on the chart: colours repeat past
         // the palette's ten, the pair does not.
-        let paper = f.scenes.iter().flat_map(|sc| &sc.points).find(|p| p.technique == *t).map(|p| &p.paper);
+        let paper = f.rows.iter().flatten().flat_map(|sc| &sc.points).find(|p| p.technique == *t).map(|p| &p.paper);
         let shape = paper.and_then(|p| f.papers.iter().position(|q| q == p)).unwrap_or(0);
         marker(&legend, shape, (20, y), PALETTE[i % PALETTE.len()])?;
         legend.draw(&(EmptyElement::at((44, y)) + text(t))).map_err(err)?;
@@ -111,11 +155,20 @@ fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame, scene: &S
         marker(&legend, k, (20, y), GREY)?;
         legend.draw(&(EmptyElement::at((44, y)) + text(p))).map_err(err)?;
     }
+    Ok(legend_w)
+}
+
+/// One scene's front of one error metric against one time metric.
+fn panel<DB: DrawingBackend>(chart_area: &DrawingArea<DB, Shift>, f: &Frame, scene: &SceneFront) -> DrawResult {
+    if scene.points.is_empty() {
+        let caption = format!("{}: {} against {}: no cell has both", scene.scene, scene.y, scene.x);
+        return chart_area.draw(&Text::new(caption, (20, 20), (FAMILY, 16.0).into_font())).map_err(err);
+    }
     let (xs, ys): (Vec<f64>, Vec<f64>) = scene.points.iter().map(|p| (p.x, p.y)).unzip();
     let span = |v: &[f64]| v.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
     let ((x0, x1), (y0, y1)) = (span(&xs), span(&ys));
-    let caption = format!("{}: {} against {}", scene.scene, f.spec.y, scene.x);
-    let mut chart = ChartBuilder::on(&chart_area)
+    let caption = format!("{}: {} against {}", scene.scene, scene.y, scene.x);
+    let mut chart = ChartBuilder::on(chart_area)
         .caption(caption, (FAMILY, 18.0))
         .margin(12)
         .margin_right(24)
@@ -137,7 +190,7 @@ fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame, scene: &S
         .x_label_formatter(&tick)
         .y_label_formatter(&tick)
         .x_desc(scene.x.as_str())
-        .y_desc(f.spec.y.as_str())
+        .y_desc(scene.y.as_str())
         .x_label_style((FAMILY, 13.0))
         .y_label_style((FAMILY, 13.0))
         .axis_desc_style((FAMILY, 14.0))

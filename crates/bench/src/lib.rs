@@ -10,6 +10,7 @@ pub mod claims;
 pub mod config;
 pub mod explain;
 pub mod figure;
+pub mod final_flip;
 pub mod font;
 pub mod format;
 pub mod front;

@@ -76,6 +76,8 @@ pub struct CellRun {
     /// `temporal_change`: the relative RMS change of the receiver map from one measured frame to
     /// the next (`compare(frame t, frame t - 1).rel_rmse`), one per pair of measured frames.
     pub temporal_changes: Vec<f64>,
+    /// `flip`: HDR-FLIP of the last frame's final image against the reference final image.
+    pub final_flip: Option<crate::final_flip::FinalFlip>,
 }
 
 impl CellRun {
@@ -137,6 +139,7 @@ pub struct Runner<'a> {
     pub config: &'a LoadedConfig,
     pub quick: Option<&'a QuickSpec>,
     references: HashMap<String, ImageF32>,
+    final_references: crate::final_flip::References,
 }
 
 impl<'a> Runner<'a> {
@@ -146,7 +149,16 @@ impl<'a> Runner<'a> {
         config: &'a LoadedConfig,
         quick: Option<&'a QuickSpec>,
     ) -> Self {
-        Runner { ctx, shaders, config, quick, references: HashMap::new() }
+        Runner { ctx, shaders, config, quick, references: HashMap::new(), final_references: Default::default() }
+    }
+
+    pub fn needs_flip(&self) -> bool {
+        self.config.config.metrics.iter().any(|m| crate::config::is_flip_metric(&m.kind))
+    }
+
+    /// The reference final image's refinement (`[quality] final_level`; a quick run's small one).
+    pub fn final_refinement(&self) -> Result<caustics::final_reference::Refinement> {
+        crate::final_flip::refinement(self.config.config.quality.final_level, self.quick.is_some())
     }
 
     fn needs_quality(&self) -> bool {
@@ -173,11 +185,18 @@ impl<'a> Runner<'a> {
 
     /// The scene of `cell`: technique settings, photons, lights and output size applied.
     pub fn cell_scene(&self, cell: &Cell) -> Result<Scene> {
+        Ok(self.cell_scene_and_shared(cell)?.0)
+    }
+
+    /// The scene of `cell`, and the caustic settings every technique of the config shares on it:
+    /// the scene file's with the config's `[caustics]` (the reference final image's).
+    pub fn cell_scene_and_shared(&self, cell: &Cell) -> Result<(Scene, CausticSettings)> {
         let path = self.config.scene_path(&cell.scene);
         let mut scene = Scene::load(&path)
             .with_context(|| format!("{}: key `matrix.scenes`: loading {}", self.config.path.display(), cell.scene))?;
         let t = &self.config.config.techniques[cell.technique];
         self.config.config.caustics.apply(&mut scene.caustics);
+        let shared = scene.caustics.clone();
         t.settings.apply(&mut scene.caustics);
         scene.caustics.photons = cell.photons;
         if let Some(q) = self.quick {
@@ -218,12 +237,12 @@ impl<'a> Runner<'a> {
                 scene.lights.len()
             ));
         }
-        Ok(scene)
+        Ok((scene, shared))
     }
 
     pub fn run(&mut self, cell: &Cell) -> Result<CellRun> {
         let c = &self.config.config;
-        let scene = self.cell_scene(cell)?;
+        let (scene, shared) = self.cell_scene_and_shared(cell)?;
         let t = &c.techniques[cell.technique];
         let copy = CopyType::parse(&t.photon_copy).flatten();
         let per_pass_timing = c.metrics.iter().any(|m| !m.throughput() && crate::results::is_timing(&m.kind));
@@ -309,6 +328,16 @@ impl<'a> Runner<'a> {
         // filter's history too).
         let quality =
             if self.needs_quality() { Some(self.quality(&mut renderer, &scene, &anim, last_pose)?) } else { None };
+        // The last frame's final image (paths are static with a flip metric: validated).
+        let final_flip = if self.needs_flip() {
+            let ours = renderer.final_image()?;
+            let r = self.final_refinement()?;
+            let reference_scene = crate::final_flip::reference_scene(&scene, &shared)?;
+            let reference = self.final_references.get(self.ctx, self.shaders, &reference_scene, &r)?;
+            Some(crate::final_flip::flip_of(&ours, reference, crate::final_flip::ReferenceFinal::of(&r))?)
+        } else {
+            None
+        };
         let stats_frame = if per_pass_timing && self.ctx.info().has(vkcore::Feature::PipelineStatisticsQuery) {
             Some(renderer.frame(FrameStep { pipeline_statistics: true, ..step })?)
         } else {
@@ -371,6 +400,7 @@ impl<'a> Runner<'a> {
             host_probe_ms,
             depth_complexity,
             temporal_changes,
+            final_flip,
         })
     }
 

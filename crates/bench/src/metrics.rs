@@ -11,7 +11,8 @@
 //! mean `frame_ms` (the papers' average over an animation), its samples and quartiles the
 //! per-frame rates. Counts are exact
 //! per frame. `rel_rmse` and `flux_ratio` are `causticlab compare`'s relative RMSE and caustic
-//! flux ratio of the receiver map against the CPU reference.
+//! flux ratio of the receiver map against the CPU reference; `flip` the mean HDR-FLIP of the
+//! final image against the reference final image (`crate::final_flip`).
 
 use crate::config::MetricSpec;
 use crate::measure::CellRun;
@@ -174,6 +175,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
             "flux_ratio" => exact(k, run.quality.as_ref().map(|q| q.caustic_flux_ratio)),
             "peak_ratio" => exact(k, run.quality.as_ref().map(|q| q.peak_ratio)),
             "peak_offset" => exact(k, run.quality.as_ref().map(|q| q.peak_offset_texels)),
+            "flip" => exact(k, run.final_flip.as_ref().map(|f| f.mean)),
             _ => exact(k, None),
         };
         out.insert(m.label.clone(), v);

@@ -53,21 +53,26 @@ impl Drawing for Figure {
 
 /// `d` drawn `WIDTH` by `height` pixels as SVG and as PNG; `what` names it in errors.
 pub(crate) fn encode(d: &impl Drawing, height: u32, what: &str) -> Result<Plot> {
+    encode_sized(d, WIDTH, height, what)
+}
+
+/// `d` drawn `width` by `height` pixels as SVG and as PNG; `what` names it in errors.
+pub(crate) fn encode_sized(d: &impl Drawing, width: u32, height: u32, what: &str) -> Result<Plot> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
         d.draw_on(&root).map_err(anyhow::Error::msg).with_context(|| format!("drawing the SVG {what}"))?;
         root.present().map_err(|e| anyhow::anyhow!("writing the SVG {what}: {e}"))?;
     }
-    let mut rgb = vec![0u8; (WIDTH * height * 3) as usize];
+    let mut rgb = vec![0u8; (width * height * 3) as usize];
     {
-        let root = BitMapBackend::with_buffer(&mut rgb, (WIDTH, height)).into_drawing_area();
+        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
         d.draw_on(&root).map_err(anyhow::Error::msg).with_context(|| format!("drawing the PNG {what}"))?;
         root.present().map_err(|e| anyhow::anyhow!("drawing the PNG {what}: {e}"))?;
     }
     let mut png = vec![];
     {
-        let mut enc = png::Encoder::new(&mut png, WIDTH, height);
+        let mut enc = png::Encoder::new(&mut png, width, height);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         enc.set_compression(png::Compression::Best);

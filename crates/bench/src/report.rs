@@ -66,6 +66,9 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     if let Some(gbs) = r.copy_bandwidth_gbs {
         let _ = writeln!(s, "- **Device copy bandwidth:** {gbs:.1} GB/s (bytes read plus written by a buffer copy, measured at the start of the run)");
     }
+    if let Some(line) = crate::final_flip::header_line(results) {
+        let _ = writeln!(s, "{line}");
+    }
     if let Some(line) = models_line(results) {
         let _ = writeln!(s, "{line}");
     }

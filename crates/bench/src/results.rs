@@ -149,6 +149,10 @@ pub struct CellResult {
     /// metrics at each attempt, in order (the attempt with the smallest is the one kept).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub spread_attempts: Vec<f64>,
+    /// `flip`: the final image's HDR-FLIP against the reference final image, with the size,
+    /// pixels per degree, exposures and reference it was computed at (`crate::final_flip`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub final_flip: Option<crate::final_flip::FinalFlip>,
 }
 
 /// What the measured frames of one mode asked of the driver, per frame (medians, and the most
@@ -257,6 +261,7 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         block_ms: run.throughput.as_ref().map(|t| t.block_ms.clone()).unwrap_or_default(),
         temporal_changes: run.temporal_changes.clone(),
         spread_attempts: vec![],
+        final_flip: run.final_flip.clone(),
     }
 }
 

@@ -154,9 +154,16 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         let same =
             |c: &crate::plan::Cell| c.scene == cell.scene && c.technique == cell.technique && c.lights == cell.lights;
         if !cells[..i].iter().any(same) {
-            let mut scene = runner.cell_scene(cell)?;
+            let (mut scene, shared) = runner.cell_scene_and_shared(cell)?;
             caustics::render::check_device(ctx, &scene)
                 .with_context(|| format!("{}: technique[{}]", lc.path.display(), cell.technique))?;
+            if runner.needs_flip() {
+                // The reference final image's photon tracer, on the same device.
+                let reference = crate::final_flip::reference_scene(&scene, &shared)?;
+                let traced = runner.final_refinement()?.scene(&reference, crate::final_flip::SEED, 0)?;
+                caustics::render::check_device(ctx, &traced)
+                    .with_context(|| format!("{}: the reference final image of `flip`", lc.path.display()))?;
+            }
             // The images grow with the photons and the resolution: every size this scene and
             // technique run at must fit the device's memory.
             for c in cells[i + 1..].iter().filter(|c| same(c)) {

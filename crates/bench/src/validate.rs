@@ -50,18 +50,9 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
         }
     }
     if let Some(f) = &c.front {
-        if f.x.is_empty() {
-            return Err(bad("front.x", "needs the label of at least one time metric".into()));
-        }
-        for (key, label) in f.x.iter().map(|x| ("front.x", x)).chain([("front.y", &f.y)]) {
-            if !c.metrics.iter().any(|m| &m.label == label) {
-                return Err(bad(key, format!("`{label}` is the label of no [[metric]]")));
-            }
-        }
-        if f.levels.is_empty() || f.levels.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
-            return Err(bad("front.levels", format!("needs error levels above 0, got {:?}", f.levels)));
-        }
+        crate::front::validate(c, f, &bad)?;
     }
+    crate::final_flip::validate(c, &bad)?;
     let r = &c.run;
     if r.warmup_frames > MAX_FRAMES {
         return Err(bad("run.warmup_frames", format!("{} is more than {MAX_FRAMES}", r.warmup_frames)));

@@ -49,6 +49,21 @@ fn config_errors_name_the_file_and_key() {
             "front.x",
         ),
         (
+            "flip_orbit.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"flip\"").replace("[run]", "[run]\ncamera_path = \"orbit\""),
+            "run.camera_path",
+        ),
+        (
+            "flip_level.toml",
+            format!("{}\n[quality]\nfinal_level = 9\n", SMALL.replace("kind = \"splats_drawn\"", "kind = \"flip\"")),
+            "quality.final_level",
+        ),
+        (
+            "front_two_errors_one_list.toml",
+            format!("{SMALL}\n[front]\nx = \"splat ms\"\ny = [\"splats\", \"photons\"]\nlevels = [0.1]\n"),
+            "front.levels",
+        ),
+        (
             "host_ms_without_passes.toml",
             SMALL.replace("kind = \"splats_drawn\"", "kind = \"pass_host_ms\""),
             "metric[1].passes",

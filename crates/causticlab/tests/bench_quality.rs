@@ -13,6 +13,20 @@ fn quick_quality_compares_with_the_reference() {
         let flux = metric(cell, "flux ratio").unwrap_or(f64::NAN);
         assert!(rmse.is_finite() && rmse > 0.0 && rmse < 1.0, "{}: rel. RMSE {rmse}", cell["cell"]);
         assert!((0.7..1.3).contains(&flux), "{}: flux ratio {flux}", cell["cell"]);
+        // FLIP of the final image (the quick run's 128² output) against the quick reference
+        // final image (level 0 of a 128² map, 256² photons), at the default pixels per degree.
+        let flip = metric(cell, "FLIP").unwrap_or(f64::NAN);
+        assert!(flip > 0.0 && flip < 0.2, "{}: FLIP {flip}", cell["cell"]);
+        let f = &cell["final_flip"];
+        assert_eq!(f["mean"].as_f64(), Some(flip), "{}", cell["cell"]);
+        assert_eq!((f["width"].as_u64(), f["height"].as_u64()), (Some(128), Some(128)), "{f}");
+        assert!((f["ppd"].as_f64().unwrap_or(0.0) - 67.02).abs() < 0.01, "{f}");
+        let r = &f["reference"];
+        assert_eq!(
+            (r["level"].as_u64(), r["caustic_map_resolution"].as_u64(), r["photons"].as_u64()),
+            (Some(0), Some(128), Some(256)),
+            "{f}"
+        );
     }
 }
 
@@ -129,6 +143,11 @@ fn quick_front_places_every_cell_and_names_the_cheapest_per_error_level() {
         );
     }
     let md = std::fs::read_to_string(dir.join("front.md")).expect("front.md");
+    // Beside the receiver map's error, the final image's FLIP: a section per time metric.
+    for x in ["Caustic map", "Frame"] {
+        assert!(md.contains(&format!("## FLIP against {x}\n")), "no FLIP front against {x}");
+    }
+    assert!(md.contains("- **FLIP:** the mean HDR-FLIP"), "no FLIP line in the header");
     for x in ["Caustic map", "Frame"] {
         let section = md.split(&format!("## rel. RMSE against {x}\n")).nth(1).unwrap_or_else(|| panic!("no {x} front"));
         let section = section.split("\n## ").next().unwrap_or_default();
