@@ -131,7 +131,10 @@ pub fn refinement(level: u32, quick: bool) -> Result<Refinement> {
 
 /// The scene whose reference final image a cell is measured against: the cell's scene with
 /// `shared` (its scene file's caustic settings and the config's `[caustics]`) and the cell's
-/// `fresnel`; no receiver map (the reference renders only the eye's frame).
+/// `fresnel`. It keeps the cell's receiver map, whose rectangle frames the caustic map
+/// (`caustics::techniques::uniforms`): the reference's caustic map covers what the cell's does,
+/// and, the cell keeping its scene's (`Runner::cell_scene`), the image is the one `causticlab
+/// reference --final` makes of the scene.
 pub fn reference_scene(cell: &Scene, shared: &CausticSettings) -> Result<Scene> {
     if cell.pool.is_some() {
         return Err(input_error!(
@@ -143,7 +146,6 @@ pub fn reference_scene(cell: &Scene, shared: &CausticSettings) -> Result<Scene> 
     let mut s = cell.clone();
     s.caustics = shared.clone();
     s.caustics.fresnel = cell.caustics.fresnel;
-    s.receiver_map = None;
     Ok(s)
 }
 
@@ -158,8 +160,8 @@ impl References {
     /// first time a scene with these settings asks.
     pub fn get(&mut self, ctx: &Context, shaders: &ShaderCompiler, scene: &Scene, r: &Refinement) -> Result<&ImageF32> {
         let key = format!(
-            "{:?}|{:?}|{:?}|{:?}|{:?}|{:?}",
-            scene.path, scene.lights, scene.camera, scene.render, scene.caustics, r
+            "{:?}|{:?}|{:?}|{:?}|{:?}|{:?}|{:?}",
+            scene.path, scene.lights, scene.camera, scene.render, scene.receiver_map, scene.caustics, r
         );
         if !self.images.contains_key(&key) {
             eprintln!(
@@ -315,7 +317,10 @@ mod tests {
         cell.camera.width = 64;
         let r = reference_scene(&cell, &shared).expect("a mesh scene");
         assert_eq!(r.caustics, CausticSettings { fresnel: !shared.fresnel, ..shared });
-        assert!(r.receiver_map.is_none());
+        // The receiver map frames the caustic map: the reference keeps the cell's.
+        assert!(r.receiver_map.is_some() && r.receiver_map == cell.receiver_map);
+        cell.receiver_map = None;
+        assert!(reference_scene(&cell, &shared).expect("a mesh scene").receiver_map.is_none());
         assert_eq!(r.camera.width, 64);
         let level = refinement(TABLE_LEVEL, false).expect("a level");
         assert_eq!((level.caustic_map_resolution, level.photons, level.frames), (512, 2048, 2));

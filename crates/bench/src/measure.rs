@@ -215,8 +215,13 @@ impl<'a> Runner<'a> {
             scene.camera.height = cell.resolution[1];
         }
         if !self.needs_receiver_map() {
-            // The receiver map is a validation instrument, not part of any technique.
-            scene.receiver_map = None;
+            // The receiver map is a validation instrument, not part of any technique. But its
+            // rectangle frames the light-space caustic map (`techniques::uniforms`): a `flip`
+            // cell keeps the scene's, so that its final image and the reference's are those
+            // `causticlab render` and `reference --final` make of the scene.
+            if !self.needs_flip() {
+                scene.receiver_map = None;
+            }
         } else if scene.receiver_map.is_none() {
             anyhow::bail!(caustics::input_error!(
                 "{}: a quality or temporal_change metric needs a [receiver_map] in scene {}",
