@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# How far the quality tables' FLIP column (the final image against `reference --final` at level 1,
+# Fresnel off) depends on the reference's level, on the scenes and cells where FLIP and the
+# relative RMSE rank techniques differently (results/quality/README.md, "FLIP against the
+# relative RMSE"): level 1 against level 2 of each scene, and each cell's render against both.
+# Writes results/quality/flip_levels.csv (one row per pair: scene, a, photons, the reference's
+# level, the FLIP mean) and leaves the images, and FLIP error images beside each compared render, in WORK.
+#   bash scripts/flip_levels.sh          # WORK defaults to out/flip_levels
+# Needs a release build. On lavapipe each level-2 reference (2^26 photons) takes minutes.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${CAUSTICLAB:-target/release/causticlab}
+work=${WORK:-out/flip_levels}
+csv=results/quality/flip_levels.csv
+mkdir -p "$work"
+rows=()
+flip() { "$bin" compare "$1" "$2" --json --error-image "$3" 2>/dev/null | python3 -c "import json, sys; print(f\"{json.load(sys.stdin)['flip']['mean']:.6f}\")"; }
+for s in sphere_on_plane ring_cardioid underwater; do
+  for level in 1 2; do
+    [ -f "$work/$s/L$level/final.exr" ] || \
+      "$bin" reference --final --scene "scenes/$s.toml" --level "$level" --fresnel false --out "$work/$s/L$level" > /dev/null
+  done
+  rows+=("$s,L1,-,L2,$(flip "$work/$s/L1/final.exr" "$work/$s/L2/final.exr" "$work/$s/L1.vsL2.png")")
+done
+# scene|name|photons|render flags: the cells of Q1, Q2 and Q4 the page's paragraph compares.
+cells="sphere_on_plane|wd-points|256|--technique wd-points
+sphere_on_plane|gather eye Eq. 11|256|--technique wd-gather --space eye --gather-lighting eq11
+sphere_on_plane|wd-points|512|--technique wd-points
+sphere_on_plane|wd-points thin-lens|512|--technique wd-points --splat thin-lens
+sphere_on_plane|shah|2048|--technique shah
+sphere_on_plane|wd-points|2048|--technique wd-points
+ring_cardioid|wd-points|256|--technique wd-points
+ring_cardioid|wd-points|1024|--technique wd-points
+ring_cardioid|quads eye Eq. 3 polygons|256|--technique wd-quads --space eye --quad-draw polygons
+ring_cardioid|quads eye Eq. 4|256|--technique wd-quads --space eye --quad-lighting eq4
+ring_cardioid|gather eye Eq. 10|256|--technique wd-gather --space eye
+underwater|shah-vertex|256|--technique shah-vertex
+underwater|wd-points|256|--technique wd-points
+underwater|wd-points|1024|--technique wd-points
+underwater|quads eye Eq. 3|256|--technique wd-quads --space eye"
+while IFS='|' read -r s name n flags; do
+  out=$work/$s/$(tr -cs 'A-Za-z0-9' '-' <<< "$name")$n
+  # shellcheck disable=SC2086 # the flags are words
+  [ -f "$out/final.exr" ] || "$bin" render --scene "scenes/$s.toml" $flags --photons "$n" --fresnel false --out "$out" > /dev/null
+  for level in 1 2; do
+    rows+=("$s,$name,$n^2,L$level,$(flip "$out/final.exr" "$work/$s/L$level/final.exr" "$out.vsL$level.png")")
+  done
+done <<< "$cells"
+{
+  echo "scene,a,photons,reference_level,flip"
+  printf '%s\n' "${rows[@]}"
+} > "$csv"
+cat "$csv"
+echo "wrote $csv"
