@@ -18,7 +18,7 @@ time: compare techniques within one device, never lavapipe against a GPU.
 
 /// What else the repository's results folder holds, each named only where it is there (a
 /// `--results` folder elsewhere has none of them).
-const OTHERS: [(&str, &str); 4] = [
+const OTHERS: [(&str, &str); 5] = [
     ("quality", "`quality/` (caustic error against the CPU reference, `scripts/quality_table.sh`)"),
     ("criterion", "`criterion/` (CPU benchmarks, `scripts/criterion.sh`)"),
     (
@@ -28,6 +28,10 @@ const OTHERS: [(&str, &str); 4] = [
     (
         "trendall_stewart2000",
         "[`trendall_stewart2000/`](trendall_stewart2000/README.md) (Trendall & Stewart 2000's Sec. 5.2 errors, `scripts/pool_rms.sh`)",
+    ),
+    (
+        "final_reference.csv",
+        "`final_reference.csv`: the reference final image's convergence on `sphere_on_plane` (HDR-FLIP of levels 0-3 against every finer level and of every technique against levels 1-3, `scripts/final_reference.sh sphere_on_plane 3`; read in [docs/flip.md](../docs/flip.md#the-reference-final-image))",
     ),
 ];
 
@@ -100,6 +104,11 @@ mod tests {
         std::fs::create_dir_all(root.join("quality")).expect("quality/");
         let text = std::fs::read_to_string(write_index(&root).expect("the index")).expect("README.md");
         assert!(text.contains("Also here: `quality/`") && !text.contains("criterion/"), "{text}");
+        // A file the index names (the reference final image's convergence) only where it is.
+        assert!(!text.contains("final_reference.csv"), "{text}");
+        std::fs::write(root.join("final_reference.csv"), "a,reference\n").expect("a csv");
+        let text = std::fs::read_to_string(write_index(&root).expect("the index")).expect("README.md");
+        assert!(text.contains("`final_reference.csv`: the reference final image's convergence"), "{text}");
         let _ = std::fs::remove_dir_all(&root);
     }
 }
