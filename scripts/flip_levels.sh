@@ -6,7 +6,8 @@
 # Writes results/quality/flip_levels.csv (one row per pair: scene, a, photons, the reference's
 # level, the FLIP mean) and leaves the images, and FLIP error images beside each compared render, in WORK.
 #   bash scripts/flip_levels.sh          # WORK defaults to out/flip_levels
-# Needs a release build. On lavapipe each level-2 reference (2^26 photons) takes minutes.
+# Needs a release build. On lavapipe each level-2 reference (2^26 photons) takes minutes. Images
+# already in WORK are reused (each reuse is printed): delete WORK after a change that alters them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${CAUSTICLAB:-target/release/causticlab}
@@ -14,9 +15,20 @@ work=${WORK:-out/flip_levels}
 csv=results/quality/flip_levels.csv
 mkdir -p "$work"
 rows=()
-flip() { "$bin" compare "$1" "$2" --json --error-image "$3" 2>/dev/null | python3 -c "import json, sys; print(f\"{json.load(sys.stdin)['flip']['mean']:.6f}\")"; }
+# The FLIP mean of $1 against $2; compare's own error (a missing or mismatched image) stops the
+# script, and so does a comparison without a FLIP (compare's warning says why).
+flip() {
+  local json
+  json=$("$bin" compare "$1" "$2" --json --error-image "$3")
+  python3 -c 'import json, sys
+f = json.loads(sys.argv[1]).get("flip")
+if f is None:
+    sys.exit(f"flip_levels.sh: compare {sys.argv[2]} {sys.argv[3]} gave no FLIP")
+print("%.6f" % f["mean"])' "$json" "$1" "$2"
+}
 for s in sphere_on_plane ring_cardioid underwater; do
   for level in 1 2; do
+    [ -f "$work/$s/L$level/final.exr" ] && echo "flip_levels.sh: reusing $work/$s/L$level/final.exr" >&2
     [ -f "$work/$s/L$level/final.exr" ] || \
       "$bin" reference --final --scene "scenes/$s.toml" --level "$level" --fresnel false --out "$work/$s/L$level" > /dev/null
   done
@@ -41,6 +53,7 @@ underwater|quads eye Eq. 3|256|--technique wd-quads --space eye"
 while IFS='|' read -r s name n flags; do
   out=$work/$s/$(tr -cs 'A-Za-z0-9' '-' <<< "$name")$n
   # shellcheck disable=SC2086 # the flags are words
+  [ -f "$out/final.exr" ] && echo "flip_levels.sh: reusing $out/final.exr" >&2
   [ -f "$out/final.exr" ] || "$bin" render --scene "scenes/$s.toml" $flags --photons "$n" --fresnel false --out "$out" > /dev/null
   for level in 1 2; do
     rows+=("$s,$name,$n^2,L$level,$(flip "$out/final.exr" "$work/$s/L$level/final.exr" "$out.vsL$level.png")")

@@ -31,13 +31,16 @@ for s in "${scenes[@]}"; do
     [ -f "$work/$s/ref$seed/receiver.exr" ] || \
       $bin reference --scene "$scene" --photons "$ref_photons" --seed $seed --fresnel false --out "$work/$s/ref$seed"
   done
-  # The reference final images: frames seeded from 1 (the one compared with), and from 3 (their
-  # own noise: level 1 traces two frames, seeds 1-2 and 3-4).
-  for seed in 1 3; do
-    [ -f "$work/$s/final$seed/final.exr" ] || \
-      $bin reference --final --scene "$scene" --level "$final_level" --seed $seed --fresnel false --out "$work/$s/final$seed" > /dev/null
-  done
-  final_ref=$work/$s/final1/final.exr
+  # The reference final images at the level, named by it: frames seeded from 1 (the one compared
+  # with), and, for their own noise, from the first seed the first one did not use (level 1
+  # traces two frames, seeds 1-2: the second starts at 3).
+  finals=$work/$s/final$final_level
+  [ -f "$finals/s1/final.exr" ] || \
+    $bin reference --final --scene "$scene" --level "$final_level" --seed 1 --fresnel false --out "$finals/s1" > /dev/null
+  seed2=$(python3 -c 'import json, sys; print(1 + json.load(open(sys.argv[1]))["refinement"]["frames"])' "$finals/s1/reference.json")
+  [ -f "$finals/s$seed2/final.exr" ] || \
+    $bin reference --final --scene "$scene" --level "$final_level" --seed "$seed2" --fresnel false --out "$finals/s$seed2" > /dev/null
+  final_ref=$finals/s1/final.exr
   # One row: label|photons|compare of the receiver maps|compare of the final images. Each
   # compare in its own command, so that a failure (a missing image: compare names it) stops here.
   row() {
@@ -46,7 +49,7 @@ for s in "${scenes[@]}"; do
     final=$($bin compare "$4" "$final_ref" --json | tr -d '\n')
     echo "$1|$2|$receiver|$final" >> "$rows"
   }
-  row reference-noise "$ref_photons" "$work/$s/ref2/receiver.exr" "$work/$s/final3/final.exr"
+  row reference-noise "$ref_photons" "$work/$s/ref2/receiver.exr" "$finals/s$seed2/final.exr"
   # The registry's rows marked `quality` (crates/caustics/src/techniques/variants.toml):
   # name|label|scenes|render flags.
   registry=$($bin variants --lines --quality)   # fails here with a binary that has no registry
@@ -63,9 +66,9 @@ for s in "${scenes[@]}"; do
   done
   device=$($bin devices | sed -n 's/^\[\([0-9]*\)\] \(.*\) \[default\].*/\2/p' | head -1)
   python3 - "$s" "$rows" "$ref_photons" "$device" "$(git rev-parse --short HEAD)" "$results/$s.csv" "$results/$s.md" \
-    "$work/$s/final1/reference.json" <<'PY'
+    "$finals/s1/reference.json" "$seed2" <<'PY'
 import csv, json, sys, datetime
-scene, rows, ref_photons, device, commit, csv_out, md_out, final_json = sys.argv[1:9]
+scene, rows, ref_photons, device, commit, csv_out, md_out, final_json, seed2 = sys.argv[1:10]
 final = json.load(open(final_json))
 level = final["refinement"]
 device = device.strip()
@@ -111,7 +114,7 @@ with open(md_out, "w") as f:
         f"(`causticlab reference --final --level {level['level']} --fresnel false`: a {level['caustic_map_resolution']}^2 "
         f"caustic map of {level['frames']} x {level['photons']}^2 exact photons, seeds from 1), {size}, the exposures "
         "found from the reference (docs/flip.md); its first row compares the reference final image traced from "
-        "seed 3 with it.\n")
+        f"seed {seed2} with it.\n")
     out(f"The script writes the same rows to [`{scene}.csv`]({scene}.csv) (the values as printed here; "
         "a `nan` here is an empty cell there), which the results pages quote.\n")
     out("| technique | photons | region texels | rel. RMSE | rel. RMSE after best scale | best scale | peak ratio | peak offset (texels) | caustic flux ratio | FLIP (final image) |")

@@ -8,12 +8,12 @@
 //! settings of its scene file and the config's `[caustics]` (not the technique entry's: a
 //! technique's own lookup or refraction is part of what is measured), and the technique's
 //! `fresnel`, as the receiver map's CPU reference takes it; its caustic map is filled by exact
-//! photons at refinement [`TABLE_LEVEL`] (`[quality] final_level`). It is rendered once per
+//! photons at refinement [`caustics::final_reference::TABLE_LEVEL`] (`[quality] final_level`). It is rendered once per
 //! scene and settings within a run ([`References`]), as the receiver maps' references are
 //! traced once. A quick run renders a small one ([`QUICK_BASE`], level 0): a smoke test.
 
 use anyhow::{Context as _, Result};
-use caustics::compare::perceptual::hdr_flip;
+use caustics::compare::perceptual::final_image_flip;
 use caustics::final_reference::{render_final, Base, Refinement, BASE};
 use caustics::flip::{self, HdrFlip};
 use caustics::image_io::ImageF32;
@@ -22,8 +22,6 @@ use caustics::scene::{CausticSettings, Scene};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use vkcore::{Context, ShaderCompiler};
-
-pub use caustics::final_reference::TABLE_LEVEL;
 
 /// Level 0 of a quick run's reference final image: a 128² caustic map and 256² photons
 /// (`[quick]`'s 128² output; the receiver map's quick reference traces as many).
@@ -99,22 +97,8 @@ impl FinalFlip {
 /// HDR-FLIP of the cell's final image `ours` against the reference final image, the exposures
 /// found from the reference. Both must be final images (`R, G, B` radiance) of one size.
 pub fn flip_of(ours: &ImageF32, reference: &ImageF32, about: ReferenceFinal) -> Result<FinalFlip> {
-    let (la, lb) = ("the cell's final image", "the reference final image");
-    let kind = caustics::compare::perceptual::ImageKind::of_pair(ours, la, reference, lb)?;
-    if kind != caustics::compare::perceptual::ImageKind::FinalImage {
-        return Err(input_error!("flip: {la} and {lb} are receiver maps, not final images").into());
-    }
-    if (ours.width, ours.height) != (reference.width, reference.height) {
-        return Err(input_error!(
-            "flip: {la} is {}x{} but {lb} is {}x{}",
-            ours.width,
-            ours.height,
-            reference.width,
-            reference.height
-        )
-        .into());
-    }
-    let f = hdr_flip(ours, la, reference, lb)?;
+    let f = final_image_flip(ours, "the cell's final image", reference, "the reference final image")
+        .map_err(|e| input_error!("flip: {e}"))?;
     debug_assert_eq!(f.ppd(), flip::default_ppd());
     Ok(FinalFlip::of(&f, about))
 }
@@ -178,9 +162,20 @@ impl References {
     }
 }
 
-/// Checks a config's `flip` metrics: the reference final image is of the scene as loaded, so
-/// every path in `[run]` stays still, and `[quality] final_level` is a level it renders.
+/// Checks `[quality] final_level` (a level the reference final image renders, whether or not a
+/// metric reads it) and a config's `flip` metrics: the reference final image is of the scene as
+/// loaded, so every path in `[run]` stays still.
 pub(crate) fn validate(c: &crate::config::Config, bad: &dyn Fn(&str, String) -> anyhow::Error) -> Result<()> {
+    let level = c.quality.final_level;
+    if level > caustics::final_reference::MAX_LEVEL {
+        return Err(bad(
+            "quality.final_level",
+            format!(
+                "{level}: the reference final image's levels go from 0 to {}",
+                caustics::final_reference::MAX_LEVEL
+            ),
+        ));
+    }
     let Some(i) = c.metrics.iter().position(|m| crate::config::is_flip_metric(&m.kind)) else { return Ok(()) };
     let r = &c.run;
     for (key, path) in
@@ -195,16 +190,6 @@ pub(crate) fn validate(c: &crate::config::Config, bad: &dyn Fn(&str, String) -> 
                 ),
             ));
         }
-    }
-    let level = c.quality.final_level;
-    if level > caustics::final_reference::MAX_LEVEL {
-        return Err(bad(
-            "quality.final_level",
-            format!(
-                "{level}: the reference final image's levels go from 0 to {}",
-                caustics::final_reference::MAX_LEVEL
-            ),
-        ));
     }
     Ok(())
 }
@@ -253,6 +238,7 @@ pub fn header_line(results: &crate::results::Results) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use caustics::final_reference::TABLE_LEVEL;
     use caustics::flip::{Exposures, Rgb};
     use caustics::image_io::Layer;
 
@@ -303,7 +289,10 @@ mod tests {
         assert!(e.contains("the cell's final image is 12x32 but the reference final image is 24x16"), "{e}");
         let black = ImageF32 { layers: vec![Layer::new(None, &["R", "G", "B"], vec![0.0; 24 * 16 * 3])], ..reference };
         let e = flip_of(&final_image(8, 3.0), &black, about()).unwrap_err().to_string();
-        assert!(e.starts_with("the reference final image (reference): "), "{e}");
+        assert!(e.starts_with("flip: the reference final image (reference): "), "{e}");
+        // Two receiver maps are of one kind, but not what `flip` measures.
+        let e = flip_of(&receiver, &receiver.clone(), about()).unwrap_err().to_string();
+        assert!(e.contains("are receiver maps, not final images"), "{e}");
     }
 
     #[test]
@@ -319,8 +308,6 @@ mod tests {
         assert_eq!(r.caustics, CausticSettings { fresnel: !shared.fresnel, ..shared });
         // The receiver map frames the caustic map: the reference keeps the cell's.
         assert!(r.receiver_map.is_some() && r.receiver_map == cell.receiver_map);
-        cell.receiver_map = None;
-        assert!(reference_scene(&cell, &shared).expect("a mesh scene").receiver_map.is_none());
         assert_eq!(r.camera.width, 64);
         let level = refinement(TABLE_LEVEL, false).expect("a level");
         assert_eq!((level.caustic_map_resolution, level.photons, level.frames), (512, 2048, 2));

@@ -12,12 +12,13 @@ use crate::plot::{
     GREY, PALETTE, PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
 };
 
-/// The width a panel of each error metric past the first adds.
-const PANEL_WIDTH: u32 = 700;
 use crate::results::Results;
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+
+/// The width a panel of each error metric past the first adds.
+const PANEL_WIDTH: u32 = 700;
 
 /// What the panels share: the title, the techniques' colours and the papers' shapes.
 struct Frame {

@@ -159,7 +159,8 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
                 .with_context(|| format!("{}: technique[{}]", lc.path.display(), cell.technique))?;
             if runner.needs_flip() {
                 // The reference final image's photon tracer, on the same device.
-                let reference = crate::final_flip::reference_scene(&scene, &shared)?;
+                let reference = crate::final_flip::reference_scene(&scene, &shared)
+                    .with_context(|| format!("{}: key `matrix.scenes`: scene `{}`", lc.path.display(), cell.scene))?;
                 let traced = runner.final_refinement()?.scene(&reference, crate::final_flip::SEED, 0)?;
                 caustics::render::check_device(ctx, &traced)
                     .with_context(|| format!("{}: the reference final image of `flip`", lc.path.display()))?;

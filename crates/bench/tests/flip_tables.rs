@@ -62,7 +62,7 @@ fn synthetic() -> (Config, Results) {
         ReferenceFinal { level: 1, caustic_map_resolution: 512, photons: 2048, frames: 2, splat_radius: 1.5, seed: 1 };
     let rows = [
         ("cheap", 0, 256, 2.0, 0.30, 0.040),
-        ("cheap", 0, 512, 3.0, 0.15, 0.015),
+        ("cheap", 0, 512, 3.0, 0.15, 0.00947),
         ("sharp", 1, 256, 5.0, 0.12, 0.030),
         ("sharp", 1, 512, 8.0, 0.10, 0.025),
     ];
@@ -102,8 +102,8 @@ fn the_header_states_the_reference_the_size_and_the_pixels_per_degree() {
     ] {
         assert!(line.contains(needle), "`{needle}` not in {line}");
     }
-    // The column prints three significant digits.
-    assert!(md.contains("0.0150") && md.contains("0.0250"), "{md}");
+    // The column prints three significant digits (`{:.4}` would print 0.0095).
+    assert!(md.contains(" 0.00947 |") && md.contains(" 0.0250 |"), "{md}");
     // Without a FLIP, no line.
     let mut none = r.clone();
     none.cells.iter_mut().for_each(|c| c.final_flip = None);
@@ -125,8 +125,8 @@ fn the_front_has_a_section_and_a_panel_per_error_metric() {
     // front skips sharp 512², which cheap 512² beats on both.
     let flip = section("FLIP");
     assert!(flip.contains("| 0.05 | cheap | 256² | 2.00 | 0.0400 |"), "{flip}");
-    assert!(flip.contains("| 0.02 | cheap | 512² | 3.00 | 0.0150 |"), "{flip}");
-    assert!(flip.contains("Front: cheap 256² (2.00, 0.0400) → cheap 512² (3.00, 0.0150)."), "{flip}");
+    assert!(flip.contains("| 0.02 | cheap | 512² | 3.00 | 0.00947 |"), "{flip}");
+    assert!(flip.contains("Front: cheap 256² (2.00, 0.0400) → cheap 512² (3.00, 0.00947)."), "{flip}");
     assert!(!flip.contains("| 0.2 |"), "the RMSE's levels in the FLIP section:\n{flip}");
     // The plot: both panels in the row, the wider drawing.
     let spec = config.front.as_ref().expect("a front");

@@ -59,6 +59,11 @@ fn config_errors_name_the_file_and_key() {
             "quality.final_level",
         ),
         (
+            "flip_pool.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"flip\"").replace("sphere_oblique.toml", "pool.toml"),
+            "key `matrix.scenes`: scene `",
+        ),
+        (
             "front_two_errors_one_list.toml",
             format!("{SMALL}\n[front]\nx = \"splat ms\"\ny = [\"splats\", \"photons\"]\nlevels = [0.1]\n"),
             "front.levels",

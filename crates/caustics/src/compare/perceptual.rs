@@ -76,6 +76,17 @@ pub fn hdr_flip(a: &ImageF32, la: &str, b: &ImageF32, lb: &str) -> Result<HdrFli
     flip::hdr(&rb, &ra, flip::default_ppd(), Exposures::Auto).map_err(|e| crate::input_error!("{lb} (reference): {e}"))
 }
 
+/// HDR-FLIP of the final image `a` against the reference final image `b`, as [`hdr_flip`],
+/// after the checks `compare` makes of the pair (both final images, one size): the bench's
+/// `flip` metric, which must not measure a receiver map or a resized image.
+pub fn final_image_flip(a: &ImageF32, la: &str, b: &ImageF32, lb: &str) -> Result<HdrFlip, InputError> {
+    if ImageKind::of_pair(a, la, b, lb)? != ImageKind::FinalImage {
+        return Err(crate::input_error!("{la} and {lb} are receiver maps, not final images"));
+    }
+    super::same_size(a, la, b, lb)?;
+    hdr_flip(a, la, b, lb)
+}
+
 /// FLIP's figures as `compare` prints them: the kind and size compared with every mean.
 pub struct FlipLine<'a> {
     pub kind: ImageKind,
