@@ -2,7 +2,8 @@
 # How far the quality tables' FLIP column (the final image against `reference --final` at level 1,
 # Fresnel off) depends on the reference's level, on the scenes and cells where FLIP and the
 # relative RMSE rank techniques differently (results/quality/README.md, "FLIP against the
-# relative RMSE"): level 1 against level 2 of each scene, and each cell's render against both.
+# relative RMSE"), and of the other tables with a FLIP column: level 1 against level 2 of each
+# scene, and each of those cells' render against both.
 # Writes results/quality/flip_levels.csv (one row per pair: scene, a, photons, the reference's
 # level, the FLIP mean) and leaves the images, and FLIP error images beside each compared render, in WORK.
 #   bash scripts/flip_levels.sh          # WORK defaults to out/flip_levels
@@ -26,7 +27,9 @@ if f is None:
     sys.exit(f"flip_levels.sh: compare {sys.argv[2]} {sys.argv[3]} gave no FLIP")
 print("%.6f" % f["mean"])' "$json" "$1" "$2"
 }
-for s in sphere_on_plane ring_cardioid underwater; do
+# The scenes of the quality tables' paragraph, then those of W&D 2006 Fig. 10 (both octahedra),
+# and the bunny of Wyman 2008 Fig. 7 and the front: each level 1 against level 2.
+for s in sphere_on_plane ring_cardioid underwater octahedron octahedron_metal bunny_in_room; do
   for level in 1 2; do
     [ -f "$work/$s/L$level/final.exr" ] && echo "flip_levels.sh: reusing $work/$s/L$level/final.exr" >&2
     [ -f "$work/$s/L$level/final.exr" ] || \
