@@ -507,6 +507,11 @@ impl Config {
         photons <= self.technique_settings(t).most_photons()
     }
 
+    /// The kind of the `[[metric]]` labelled `label`.
+    pub fn metric_kind(&self, label: &str) -> Option<&str> {
+        self.metrics.iter().find(|m| m.label == label).map(|m| m.kind.as_str())
+    }
+
     /// Whether the per-pass frames submit every pass alone to time it on the host: a
     /// `pass_host_ms` or `pass_host_mphotons` metric asks for it.
     pub fn host_pass_times(&self) -> bool {

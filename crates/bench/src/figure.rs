@@ -113,17 +113,9 @@ pub fn figure(config: &Config, results: &Results, g: &Grid) -> Figure {
     let mut palette = Palette::default();
     let mut panels = vec![];
     let cols = panel_columns(g);
-    let kind_of = |m: &Option<String>| {
-        config.metrics.iter().find(|x| Some(&x.label) == m.as_ref()).map(|x| x.kind.clone()).unwrap_or_default()
-    };
+    let kind_of = |m: &Option<String>| m.as_deref().and_then(|l| config.metric_kind(l)).unwrap_or_default().to_string();
     // Row groups (the rows' labels other than photons), in first-seen order.
-    let mut groups: Vec<String> = vec![];
-    for ri in 0..g.rows.len() {
-        let grp = group_of(ri);
-        if !groups.contains(&grp) {
-            groups.push(grp);
-        }
-    }
+    let groups = crate::format::first_seen((0..g.rows.len()).map(group_of));
     // Series: one per column and row group of the rows in `group` (None: all rows); `value`
     // picks what each entry contributes. Within one group's panel a series is its column.
     let mut series_of =

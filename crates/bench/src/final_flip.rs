@@ -214,16 +214,8 @@ pub fn header_line(results: &crate::results::Results) -> Option<String> {
     }
     let sizes: Vec<String> =
         sizes.iter().map(|(size, scenes)| format!("{size} pixels ({})", scenes.join(", "))).collect();
-    let distinct = |v: Vec<String>| {
-        v.into_iter().fold(vec![], |mut out: Vec<String>, s| {
-            if !out.contains(&s) {
-                out.push(s);
-            }
-            out
-        })
-    };
-    let ppds = distinct(flips.iter().map(|(_, f)| format!("{:.2}", f.ppd)).collect());
-    let references = distinct(flips.iter().map(|(_, f)| f.reference.described()).collect());
+    let ppds = crate::format::first_seen(flips.iter().map(|(_, f)| format!("{:.2}", f.ppd)));
+    let references = crate::format::first_seen(flips.iter().map(|(_, f)| f.reference.described()));
     Some(format!(
         "- **FLIP:** the mean HDR-FLIP of each cell's final image against the reference final image of its scene \
          (`causticlab reference --final`, {}; the scene file's caustic settings and the config's `[caustics]`, \

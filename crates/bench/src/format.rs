@@ -1,6 +1,18 @@
 //! How values and labels print: photon counts as N², times with three significant digits,
 //! counts with thousands separators, the paper's values as the paper prints them.
 
+/// `items` without repeats, each where it first appears (the order a table or a legend lists
+/// scenes, papers, row groups in).
+pub fn first_seen<T: PartialEq>(items: impl IntoIterator<Item = T>) -> Vec<T> {
+    let mut out = vec![];
+    for x in items {
+        if !out.contains(&x) {
+            out.push(x);
+        }
+    }
+    out
+}
+
 /// A label as the papers print it: photon counts as N².
 pub fn display(axis: &str, key: &str) -> String {
     match axis {
@@ -145,6 +157,7 @@ mod tests {
         assert_eq!(format_value("valid_fraction", Some(0.0062103271484375)), "0.621%");
         assert_eq!(format_value("valid_photons", Some(8216.0)), "8,216");
         assert_eq!(format_value("flip", Some(0.009472)), "0.00947");
+        assert_eq!(first_seen(["b", "a", "b", "c", "a"]), ["b", "a", "c"]);
         assert_eq!(format_value("flip", Some(0.03041)), "0.0304");
         assert_eq!(display("photons", "256"), "256²");
         assert_eq!(display("photons", "512²"), "512²");

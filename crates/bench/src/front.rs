@@ -138,7 +138,7 @@ fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str, y: &st
          the cells no other cell beats on both.\n"
     );
     // The error as the table prints its metric.
-    let kind = config.metrics.iter().find(|m| m.label == y).map_or("rel_rmse", |m| m.kind.as_str());
+    let kind = config.metric_kind(y).unwrap_or("rel_rmse");
     let err = |v: f64| crate::format::format_value(kind, Some(v));
     for f in fronts(config, results, x, y) {
         let _ = writeln!(s, "**{}**\n", f.scene);

@@ -37,12 +37,7 @@ fn rows(config: &Config, results: &Results, spec: &FrontSpec) -> Vec<Vec<SceneFr
     let mut rows: Vec<Vec<SceneFront>> = vec![];
     for x in &spec.x {
         let per_y: Vec<Vec<SceneFront>> = spec.y.iter().map(|y| fronts(config, results, x, y)).collect();
-        let mut scenes: Vec<String> = vec![];
-        for f in per_y.iter().flatten() {
-            if !scenes.contains(&f.scene) {
-                scenes.push(f.scene.clone());
-            }
-        }
+        let scenes = crate::format::first_seen(per_y.iter().flatten().map(|f| f.scene.clone()));
         for scene in scenes {
             // A y metric no cell of the scene has keeps its panel, empty.
             let row = per_y
@@ -68,12 +63,7 @@ fn rows(config: &Config, results: &Results, spec: &FrontSpec) -> Vec<Vec<SceneFr
 pub fn render(config: &Config, results: &Results, spec: &FrontSpec) -> Result<Plot> {
     crate::font::load()?;
     let rows = rows(config, results, spec);
-    let mut papers: Vec<String> = vec![];
-    for p in rows.iter().flatten().flat_map(|f| &f.points) {
-        if !papers.contains(&p.paper) {
-            papers.push(p.paper.clone());
-        }
-    }
+    let papers = crate::format::first_seen(rows.iter().flatten().flat_map(|f| &f.points).map(|p| p.paper.clone()));
     let m = &results.meta;
     let frame = Frame {
         title: config.table.title(),

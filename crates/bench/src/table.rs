@@ -162,7 +162,7 @@ pub fn grid(config: &Config, results: &Results) -> Grid {
 
 fn entry(config: &Config, results: &Results, keys: BTreeMap<String, String>) -> Entry {
     let metric = keys.get("metric").cloned().unwrap_or_default();
-    let kind = config.metrics.iter().find(|m| m.label == metric).map(|m| m.kind.clone()).unwrap_or_default();
+    let kind = config.metric_kind(&metric).unwrap_or_default().to_string();
     let found = find(results, &keys);
     let value = found.and_then(|cell| cell.metrics.get(&metric));
     let ours = value.and_then(|v| v.value);
