@@ -93,22 +93,23 @@ pub fn flip_hdr(
             |img: &[Triple]| -> Vec<Triple> { img.iter().map(|c| c.map(|v| tone_map_clamped(v * scale))).collect() };
         flip_ldr(width, height, &exposed(reference), &exposed(test), ppd)
     };
-    // The exposures are independent: each on a thread of its own (at most one per core), their
-    // maps then kept in order, so that the result is the same as one after the other.
+    // The exposures are independent: threads take them in turn (crate::workers, at most one per
+    // core), each map kept in its exposure's slot, so that the result is the same as one after
+    // the other.
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, count);
-    let mut maps: Vec<Vec<f32>> = Vec::with_capacity(count);
-    for first in (0..count).step_by(threads) {
-        let batch = first..(first + threads).min(count);
-        if batch.len() == 1 {
-            maps.push(ldr_at(first));
-            continue;
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let slots = std::sync::Mutex::new(vec![None; count]);
+    crate::workers::run(threads, "hdr-flip", || loop {
+        let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        if i >= count {
+            break;
         }
-        std::thread::scope(|s| {
-            let handles: Vec<_> = batch.map(|i| s.spawn(move || ldr_at(i))).collect();
-            maps.extend(handles.into_iter().map(|h| h.join().expect("an exposure's LDR-FLIP panicked")));
-        });
-    }
+        let map = ldr_at(i);
+        slots.lock().expect("no exposure panicked holding the slots")[i] = Some(map);
+    });
+    let maps = slots.into_inner().expect("no exposure panicked holding the slots");
     for (i, e) in maps.into_iter().enumerate() {
+        let e = e.expect("every exposure was taken by a worker");
         let which = i as f32 / (count - 1) as f32;
         for ((best, at), v) in error.iter_mut().zip(exposure_map.iter_mut()).zip(e) {
             if v > *best {
