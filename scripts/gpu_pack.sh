@@ -10,6 +10,7 @@
 #   bash scripts/gpu_pack.sh --binary PATH       # pack this binary instead of building one
 #   bash scripts/gpu_pack.sh --dry-run --binary target/debug/causticlab   # CI: size check only
 #   bash scripts/gpu_pack.sh --binary B --out DIR --no-loader   # a pack for a lavapipe dry run
+#   bash scripts/gpu_pack.sh --binary B --out DIR --cluster     # a pack for scripts/cluster/ (below)
 #
 # It needs this machine's apt sources and network (it downloads the loader's .debs), and the
 # models in ../shared/models (--models DIR, or $CAUSTICLAB_MODELS_DIR); the font is
@@ -17,7 +18,10 @@
 # It prints the pack's size and what would travel in all (the working tree that git does not
 # ignore, plus the pack), and fails if that exceeds the 64 MiB a device call may carry.
 # --dry-run packs into a temporary folder and leaves .gpu/ alone; --no-loader leaves the Vulkan
-# loader out (for a machine that has one: the suite then uses it).
+# loader out (for a machine that has one: the suite then uses it). --cluster adds what the
+# working tree gives a device call (tree.tar.xz: bench_configs/, scenes/, shaders_glsl/, as
+# tracked) for the nodes of a cluster, which get the pack alone (scripts/cluster/, docs/bench.md
+# "On a cluster"); it leaves out the 64 MiB check, which is a device call's.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -25,6 +29,7 @@ limit_mib=64
 binary=""
 dry_run=0
 loader=1
+cluster=0
 pack=.gpu
 models_dir=${CAUSTICLAB_MODELS_DIR:-../shared/models}
 while [ $# -gt 0 ]; do
@@ -34,6 +39,7 @@ while [ $# -gt 0 ]; do
         --dry-run) dry_run=1; shift ;;
         --out) pack=$2; shift 2 ;;
         --no-loader) loader=0; shift ;;
+        --cluster) cluster=1; shift ;;
         --models) models_dir=$2; shift 2 ;;
         -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
         *) echo "gpu_pack: unknown argument '$1' (see --help)" >&2; exit 2 ;;
@@ -113,6 +119,11 @@ if [ "${#missing[@]}" -gt 0 ]; then
 fi
 tar -C "$models_dir" -cJf "$pack/models.tar.xz" "${present[@]}"
 
+# 4b. For a cluster: the tracked files a run reads from the working tree.
+if [ "$cluster" -eq 1 ]; then
+    git ls-files -z -- bench_configs scenes shaders_glsl | tar --null -T - -cJf "$pack/tree.tar.xz"
+fi
+
 # 5. The manifest: the commit the binary was built from (dirty if tracked code differs).
 source scripts/commit.sh
 commit=$(code_commit 2>/dev/null) || commit=unknown
@@ -135,6 +146,10 @@ tree_bytes=$(git ls-files -z --cached --others --exclude-standard | xargs -0 sta
 pack_bytes=$(du -sb "$pack" | cut -f1)
 total=$((tree_bytes + pack_bytes))
 mib() { awk -v b="$1" 'BEGIN {printf "%.1f MiB", b / 1048576}'; }
+if [ "$cluster" -eq 1 ]; then
+    echo "gpu_pack: wrote $pack/ for a cluster ($(mib "$pack_bytes"), commit $commit)"
+    exit 0
+fi
 echo "gpu_pack: pack $(mib "$pack_bytes") (binary $(mib "$(stat -c %s "$pack/causticlab.xz")") xz, models $(mib "$(stat -c %s "$pack/models.tar.xz")")); working tree $(mib "$tree_bytes"); transfer $(mib "$total") of $limit_mib MiB"
 if [ "$total" -gt $((limit_mib * 1048576)) ]; then
     echo "gpu_pack: the transfer would exceed $limit_mib MiB; the largest folders under results/:" >&2

@@ -6,6 +6,7 @@
 #   bash scripts/gpu_suite.sh [--quick] [--more | --only A,B] [--pack DIR] [--device NAME] BUDGET_SECONDS OUT_DIR
 #   bash scripts/gpu_suite.sh --list-configs      # the configs, in priority order
 #   bash scripts/gpu_suite.sh --list-not-run      # the bench configs it leaves out (reasons in this file)
+#   bash scripts/gpu_suite.sh --list-shards first|more   # "config shards" of each list (scripts/cluster/)
 #
 # BUDGET_SECONDS is a whole number of seconds, at least 10. --more runs the second list of
 # configs (every config not in the first), --only A,B the named ones.
@@ -85,6 +86,14 @@ not_in_suite=(
 
 if [ "${1:-}" = "--list-configs" ]; then
     for entry in "${suite[@]}" "${suite_more[@]}"; do echo "${entry%% *}"; done
+    exit 0
+fi
+if [ "${1:-}" = "--list-shards" ]; then
+    case "${2:-}" in
+        first) for entry in "${suite[@]}"; do read -r c n _ <<<"$entry"; echo "$c $n"; done ;;
+        more) for entry in "${suite_more[@]}"; do read -r c n _ <<<"$entry"; echo "$c $n"; done ;;
+        *) echo "gpu_suite: --list-shards takes first or more" >&2; exit 2 ;;
+    esac
     exit 0
 fi
 if [ "${1:-}" = "--list-not-run" ]; then

@@ -6,7 +6,9 @@
 # every test binary and still exits non-zero if any test failed. A full run (no arguments) then
 # rehearses the GPU run's scripts on lavapipe with the test build (scripts/gpu_dry_run.sh), and
 # runs the tests and renders of scripts/mesa25_check.sh on Mesa 25's lavapipe, unpacked beside
-# the system's Mesa 22.3 by scripts/mesa25.sh (docs/testing.md), and mutation-tests the last
+# the system's Mesa 22.3 by scripts/mesa25.sh (docs/testing.md), runs the cluster scripts on a
+# one-node Slurm of its own and validates their Kubernetes manifests (scripts/cluster/*_check.sh,
+# docs/bench.md "On a cluster"), and mutation-tests the last
 # commit's changes to the code that judges the numbers (scripts/mutants_diff.sh; nothing to do
 # when the commit leaves that code alone).
 set -euo pipefail
@@ -18,5 +20,7 @@ cargo test --workspace --no-fail-fast "$@"
 if [ $# -eq 0 ]; then
     bash scripts/gpu_dry_run.sh target/debug/causticlab
     bash scripts/mesa25_check.sh target/debug/causticlab
+    bash scripts/cluster/slurm_check.sh target/debug/causticlab
+    bash scripts/cluster/k8s_check.sh
     bash scripts/mutants_diff.sh
 fi

@@ -29,6 +29,7 @@ pub mod record;
 pub mod report;
 pub mod results;
 pub mod run;
+pub mod same;
 pub mod sections;
 pub mod stats;
 pub mod steal;

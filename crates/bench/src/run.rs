@@ -419,13 +419,18 @@ pub fn merge(parts: &[PathBuf], root: &Path, partial: bool) -> Result<Outcome> {
     let all = Matrix::new(&config, first.run.quick.then_some(&config.quick)).cells(&config);
     let missing: Vec<&crate::plan::Cell> =
         all.iter().filter(|a| !cells.iter().any(|c| c.cell.index == a.index)).collect();
+    let shards: Vec<Option<Shard>> = loaded.iter().map(|(_, r)| r.run.shard).collect();
+    let whose = missing_shards(&shards, &missing).map(|s| format!(" ({s})")).unwrap_or_default();
     if !missing.is_empty() && !partial {
         return Err(input_error!(
-            "bench merge: {} cell(s) missing, e.g. {} (--partial marks them `not run`)",
+            "bench merge: {} cell(s) missing{whose}, e.g. {} (--partial marks them `not run`)",
             missing.len(),
             missing[0].describe()
         )
         .into());
+    }
+    if !missing.is_empty() {
+        eprintln!("bench merge: {} cell(s) not run{whose}", missing.len());
     }
     let mut results = first.clone();
     results.run.not_run = missing.iter().map(|c| c.index).collect();
@@ -436,6 +441,27 @@ pub fn merge(parts: &[PathBuf], root: &Path, partial: bool) -> Result<Outcome> {
     write_table(&config, &results, &dir, root)
 }
 
+/// Which shards the missing cells belong to, when every part is a shard of the same count
+/// (a sweep split with `--shard i/n`, as the GPU suite and the cluster scripts split it):
+/// "shard 2 of 4 missing", "shards 2 and 3 of 4 missing". None for filtered parts, mixed
+/// counts, or nothing missing.
+fn missing_shards(parts: &[Option<Shard>], missing: &[&crate::plan::Cell]) -> Option<String> {
+    let count = parts.first()?.as_ref()?.count;
+    if missing.is_empty() || parts.iter().any(|p| p.as_ref().is_none_or(|s| s.count != count)) {
+        return None;
+    }
+    let absent: Vec<u32> =
+        (1..=count).filter(|&i| missing.iter().any(|c| Shard { index: i, count }.takes(c))).collect();
+    let list = match absent.as_slice() {
+        [] => return None,
+        [one] => format!("shard {one}"),
+        [init @ .., last] => {
+            format!("shards {} and {last}", init.iter().map(u32::to_string).collect::<Vec<_>>().join(", "))
+        }
+    };
+    Some(format!("{list} of {count} missing"))
+}
+
 fn make_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir)
         .map_err(|e| input_error!("cannot create the results folder {}: {e}", dir.display()).into())
@@ -443,8 +469,9 @@ fn make_dir(dir: &Path) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::{cost, measure_quiet, selected, worst_spread, Attempts, BenchOptions};
+    use super::{cost, measure_quiet, missing_shards, selected, worst_spread, Attempts, BenchOptions};
     use crate::measure::CellRun;
+    use crate::plan::Shard;
 
     /// Runs `measure_quiet` over runs whose other processes used `cores`, in turn: the attempts
     /// it made, the pauses it took, and whether the kept run is busy.
@@ -500,6 +527,33 @@ mod tests {
             "lights": lights, "resolution": resolution, "lighting": "dynamic"
         }))
         .unwrap()
+    }
+
+    #[test]
+    fn merge_names_the_shards_whose_cells_are_missing() {
+        let of = |count, present: &[u32]| -> Vec<Option<Shard>> {
+            present.iter().map(|&index| Some(Shard { index, count })).collect()
+        };
+        let cells: Vec<crate::plan::Cell> = (0..10).map(|i| cell(i, 64, 1, [8, 8])).collect();
+        // Cells 1, 5, 9 are shard 2 of 4; cells 3 and 7, shard 4 of 4.
+        let missing = |idx: &[usize]| -> Vec<&crate::plan::Cell> { idx.iter().map(|&i| &cells[i]).collect() };
+        assert_eq!(missing_shards(&of(4, &[1, 3, 4]), &missing(&[1, 5, 9])).as_deref(), Some("shard 2 of 4 missing"));
+        assert_eq!(
+            missing_shards(&of(4, &[1, 3]), &missing(&[1, 3, 5, 7, 9])).as_deref(),
+            Some("shards 2 and 4 of 4 missing")
+        );
+        assert_eq!(
+            missing_shards(&of(5, &[2]), &missing(&[0, 2, 3, 4, 5, 7, 8, 9])).as_deref(),
+            Some("shards 1, 3, 4 and 5 of 5 missing")
+        );
+        // Nothing missing; a filtered part among the shards; shards of two counts: no claim.
+        assert_eq!(missing_shards(&of(4, &[1, 2, 3, 4]), &[]), None);
+        let mut mixed = of(4, &[1, 3]);
+        mixed.push(None);
+        assert_eq!(missing_shards(&mixed, &missing(&[1])), None);
+        let mut counts = of(4, &[1, 3]);
+        counts.push(Some(Shard { index: 1, count: 2 }));
+        assert_eq!(missing_shards(&counts, &missing(&[1])), None);
     }
 
     #[test]

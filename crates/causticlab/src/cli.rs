@@ -188,6 +188,29 @@ pub enum BenchCommand {
     /// (docs/claims.md). Fails naming the page, the line, the number written and the number
     /// computed.
     Claims(ClaimsArgs),
+    /// Compare two results of one config (results/<device>/<config>.json) cell by cell in
+    /// everything but the timings: the same cells, the same counts, and the same errors and FLIP
+    /// values within --tolerance. Names every difference and exits 1 if there is one (a sharded
+    /// and merged sweep against an unsharded run: scripts/cluster/slurm_check.sh).
+    Same(SameArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct SameArgs {
+    /// The first result's JSON.
+    pub first: PathBuf,
+    /// The second result's JSON.
+    pub second: PathBuf,
+    /// Relative tolerance for errors, ratios and FLIP (counts are compared exactly).
+    #[arg(long, default_value_t = 1e-5, value_parser = parse_tolerance)]
+    pub tolerance: f64,
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && (0.0..1.0).contains(&v) => Ok(v),
+        _ => Err(format!("`{s}`: a relative tolerance from 0 to below 1")),
+    }
 }
 
 #[derive(Debug, Args)]

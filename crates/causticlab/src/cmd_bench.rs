@@ -27,6 +27,9 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     if let Some(BenchCommand::Claims(c)) = &args.merge {
         return claims(c);
     }
+    if let Some(BenchCommand::Same(s)) = &args.merge {
+        return same(s);
+    }
     let Some(path) = &args.config else {
         return Err(caustics::input_error!("bench: give a config file (bench_configs/*.toml) or `merge`").into());
     };
@@ -63,6 +66,27 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     let out = bench::run(&ctx, &shaders, &config, &bench_opts)?;
     report(&out);
     Ok(())
+}
+
+/// `bench same A B`: every difference outside the timings, or a line saying there is none.
+fn same(s: &crate::cli::SameArgs) -> Result<()> {
+    let a = bench::results::read(&s.first, "result")?;
+    let b = bench::results::read(&s.second, "result")?;
+    let d = bench::same::differences(&a, &b, s.tolerance);
+    let (na, nb) = (s.first.display(), s.second.display());
+    if d.is_empty() {
+        println!(
+            "bench same: {na} and {nb} agree in all {} cells outside the timings (tolerance {})",
+            a.cells.len(),
+            s.tolerance
+        );
+        return Ok(());
+    }
+    for line in &d {
+        println!("{line}");
+    }
+    // Not an input error: exit 1 (`exit::DIFFERENT`), as `diff` when the two sides differ.
+    anyhow::bail!("bench same: {} difference(s) between {na} and {nb}", d.len())
 }
 
 /// The commit the tables will name. Committed tables come from committed code: from a work tree
