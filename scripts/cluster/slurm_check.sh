@@ -8,7 +8,9 @@
 #    `causticlab bench same` that the merged table equals the unsharded --quick run of the same
 #    config cell for cell in everything but the timings;
 # 2. submits it again, kills task 2 while it runs (scancel), and checks that the merge job names
-#    shard 2 of 4 as missing, writes no table for the config, and exits non-zero;
+#    shard 2 of 4 as missing, writes no table for the config, and exits non-zero; and submits it
+#    for a device that does not exist: each task's bench fails, is run once more, fails again,
+#    and the merge names the shard as failed twice with both exit codes;
 # 3. where Mesa 25's lavapipe is unpacked (scripts/mesa25.sh), a two-device run: one array per
 #    lavapipe (--target "Mesa 22.3" --target "Mesa 25"), giving two device folders.
 # It stops the daemons it started, whatever happens.
@@ -138,6 +140,13 @@ ok_parts=$(find "$tmp/killed/results" -name "$config.shard-*-of-4.json" | wc -l)
 "$bin" bench merge --results "$tmp/killed/try" "$(dirname "$(find "$tmp/killed/results" -name "$config.shard-1-of-4.json")")"/*.json \
     >"$tmp/merge3.txt" 2>&1 && fail "bench merge of 3 of 4 shards succeeded"
 grep -q "(shard 2 of 4 missing)" "$tmp/merge3.txt" || { cat "$tmp/merge3.txt"; fail "bench merge did not name shard 2 of 4"; }
+echo "== 2b. a task whose bench fails: run twice, then named"
+bash scripts/cluster/submit.sh --shared "$tmp/failing" --pack "$tmp/pack" --quick --shards 2 --throttle 1 \
+    --name failing --target no-such-device --wait "$config" >"$tmp/failing.txt" 2>&1 && fail "a sweep on a device that does not exist succeeded"
+cat "$tmp"/failing/runs/failing.1/logs/merge-*.out
+grep -q "$config: shard 1 of 2 missing: task 1 failed twice on $(hostname) (exits 2 2;" "$tmp"/failing/runs/failing.1/logs/merge-*.out \
+    || fail "the merge did not name shard 1 of 2 as failed twice with exit 2"
+ls "$tmp"/failing/runs/failing.1/logs/"$config".shard-1-of-2.attempt-2.log >/dev/null || fail "no second attempt's log"
 echo "slurm_check: 2 ok ($(($(date +%s) - t0)) s so far)"
 
 echo "== 3. two devices: one array per lavapipe"
