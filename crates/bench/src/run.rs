@@ -429,9 +429,6 @@ pub fn merge(parts: &[PathBuf], root: &Path, partial: bool) -> Result<Outcome> {
         )
         .into());
     }
-    if !missing.is_empty() {
-        eprintln!("bench merge: {} cell(s) not run{whose}", missing.len());
-    }
     let mut results = first.clone();
     results.run.not_run = missing.iter().map(|c| c.index).collect();
     results.cells = cells;

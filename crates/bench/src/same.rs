@@ -148,6 +148,32 @@ mod tests {
     }
 
     #[test]
+    fn counts_are_exact_and_unmeasured_and_nan_values_compare_as_such() {
+        // A count off by one in ten million, well inside the tolerance: still a difference.
+        let a = results(10.0, 1e7, 0.25);
+        let d = differences(&a, &results(10.0, 1e7 + 1.0, 0.25), 1e-5);
+        assert_eq!(d.len(), 2, "{d:?}");
+        assert!(d[0].contains("`photons` (valid_photons) 10000000 against 10000001"), "{d:?}");
+        // An entry neither run measured agrees; one measured on one side only does not.
+        let none = |r: &Results| {
+            let mut r = r.clone();
+            for c in &mut r.cells {
+                c.metrics.get_mut("rel. RMSE").unwrap().value = None;
+            }
+            r
+        };
+        assert!(differences(&none(&a), &none(&a), 1e-5).is_empty());
+        let d = differences(&a, &none(&a), 1e-5);
+        assert_eq!(d.len(), 2, "{d:?}");
+        assert!(d[0].contains("0.25 against none"), "{d:?}");
+        // NaN agrees with NaN only.
+        let nan = results(10.0, 4096.0, f64::NAN);
+        assert!(differences(&nan, &nan.clone(), 1e-5).is_empty());
+        assert_eq!(differences(&nan, &results(10.0, 4096.0, 0.25), 1e-5).len(), 2);
+        assert_eq!(differences(&results(10.0, 4096.0, 0.25), &nan, 1e-5).len(), 2);
+    }
+
+    #[test]
     fn missing_cells_metrics_and_other_configs_are_named() {
         let a = results(10.0, 4096.0, 0.25);
         let mut b = a.clone();
