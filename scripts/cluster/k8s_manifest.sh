@@ -5,7 +5,7 @@
 # the run's tasks.txt; --job merge, a Job running scripts/cluster/merge.sh, to apply once the
 # array has ended (Kubernetes has no job dependencies: docs/bench.md gives the kubectl wait).
 #
-#   bash scripts/cluster/k8s_manifest.sh --job array|merge --run NAME --tasks N --image IMG --pvc CLAIM
+#   bash scripts/cluster/k8s_manifest.sh --job array|merge --run NAME --pack packs/NAME --tasks N --image IMG --pvc CLAIM
 #       [--mount PATH] [--parallelism P] [--constraint GPU_PRODUCT]
 #
 # The shared folder is the PersistentVolumeClaim CLAIM mounted at PATH (default /causticlab) in
@@ -13,17 +13,19 @@
 # GPU (nvidia.com/gpu, from NVIDIA's device plugin) and sets NVIDIA_DRIVER_CAPABILITIES to
 # graphics,compute,utility: without `graphics` the NVIDIA container toolkit mounts no Vulkan ICD
 # (nvidia_icd.json) and the driver's Vulkan library, and causticlab finds no device. A pod that
-# fails is retried once (backoffLimitPerIndex: 1, Kubernetes 1.29 and later); task.sh itself runs a
+# fails is retried once (backoffLimitPerIndex: 1, Kubernetes 1.29 and later), its replacement
+# started only once it has ended (podReplacementPolicy: Failed); task.sh itself runs a
 # failed bench once more. --constraint selects nodes by the GPU feature discovery label
 # nvidia.com/gpu.product (one array per GPU model, as Slurm's --constraint).
 set -euo pipefail
 
-job="" run="" tasks="" image="" pvc="" mount=/causticlab parallelism="" constraint=""
+job="" run="" pack_rel="" tasks="" image="" pvc="" mount=/causticlab parallelism="" constraint=""
 while [ $# -gt 0 ]; do
     [ $# -ge 2 ] || { echo "k8s_manifest: $1 needs a value" >&2; exit 2; }
     case "$1" in
         --job) job=$2 ;;
         --run) run=$2 ;;
+        --pack) pack_rel=$2 ;;
         --tasks) tasks=$2 ;;
         --image) image=$2 ;;
         --pvc) pvc=$2 ;;
@@ -35,7 +37,7 @@ while [ $# -gt 0 ]; do
     shift 2
 done
 case "$job" in array|merge) ;; *) echo "k8s_manifest: --job array or --job merge" >&2; exit 2 ;; esac
-[ -n "$run" ] && [ -n "$image" ] && [ -n "$pvc" ] || { echo "k8s_manifest: --run, --image and --pvc are required" >&2; exit 2; }
+[ -n "$run" ] && [ -n "$pack_rel" ] && [ -n "$image" ] && [ -n "$pvc" ] || { echo "k8s_manifest: --run, --pack, --image and --pvc are required" >&2; exit 2; }
 [[ "$tasks" =~ ^[1-9][0-9]*$ ]] || { echo "k8s_manifest: --tasks: '$tasks' is not a whole number above 0" >&2; exit 2; }
 [ -z "$parallelism" ] || [[ "$parallelism" =~ ^[1-9][0-9]*$ ]] || { echo "k8s_manifest: --parallelism: '$parallelism' is not a whole number above 0" >&2; exit 2; }
 # A Job's name is a DNS label (63 characters at most: lowercase letters, digits, '-').
@@ -64,6 +66,7 @@ if [ "$job" = array ]; then
   completions: $tasks
   parallelism: ${parallelism:-$tasks}
   backoffLimitPerIndex: 1
+  podReplacementPolicy: Failed
 YAML
 else
     echo "  backoffLimit: 0"
@@ -84,7 +87,7 @@ cat <<YAML
       containers:
         - name: $job
           image: $(q "$image")
-          command: ["bash", $(q "$mount/bin/$( [ "$job" = array ] && echo task.sh || echo merge.sh )")]
+          command: ["bash", $(q "$mount/$pack_rel/$( [ "$job" = array ] && echo task.sh || echo merge.sh )")]
           env:
             - name: CAUSTICLAB_SHARED
               value: $(q "$mount")

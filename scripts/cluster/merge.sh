@@ -9,7 +9,8 @@
 # cells read `not run`), and the job exits 1. A config the device cannot run (a feature it lacks)
 # is named and is not a failure. The outcome is also written to runs/<name>/MERGED.
 #
-# Environment: CAUSTICLAB_SHARED and CAUSTICLAB_RUN, as for scripts/cluster/task.sh.
+# Environment: CAUSTICLAB_SHARED and CAUSTICLAB_RUN, as for scripts/cluster/task.sh. "Task i"
+# is line i of tasks.txt: Slurm's array index i, a Kubernetes pod's completion index i - 1.
 set -uo pipefail
 
 shared=${CAUSTICLAB_SHARED:?CAUSTICLAB_SHARED is not set (scripts/cluster/submit.sh sets it)}
@@ -18,12 +19,13 @@ run=$shared/runs/$run_name
 [ -f "$run/tasks.txt" ] || { echo "merge: no $run/tasks.txt" >&2; exit 2; }
 source "$run/target.env"
 
+pack=$shared/${PACK:?target.env names no PACK}
 local_dir=$(mktemp -d "${SLURM_TMPDIR:-${TMPDIR:-/tmp}}/causticlab-merge.XXXXXX") || exit 1
 trap 'rm -rf "$local_dir"' EXIT
 bin=$local_dir/causticlab
-xz -dc "$shared/pack/causticlab.xz" >"$bin" && chmod +x "$bin" || { echo "merge: cannot unpack $shared/pack/causticlab.xz" >&2; exit 1; }
-export CAUSTICLAB_FONT=$shared/pack/DejaVuSans.ttf
-CAUSTICLAB_COMMIT=$(cat "$shared/pack/COMMIT" 2>/dev/null || echo unknown)
+xz -dc "$pack/causticlab.xz" >"$bin" && chmod +x "$bin" || { echo "merge: cannot unpack $pack/causticlab.xz" >&2; exit 1; }
+export CAUSTICLAB_FONT=$pack/DejaVuSans.ttf
+CAUSTICLAB_COMMIT=$(cat "$pack/COMMIT" 2>/dev/null || echo unknown)
 export CAUSTICLAB_COMMIT
 
 field() { sed -n "s/^$1=//p" "$2"; }
@@ -61,6 +63,12 @@ for entry in "${configs[@]}"; do
         continue
     fi
     merge_args=()
+    if [ -n "$lacking" ] && [ "${#problems[@]}" -eq 0 ]; then
+        # Some shards held cells the device cannot run (a feature only some techniques need):
+        # those read `not run`, and the device's lack is no failure.
+        echo "merge: $config: the shards with cells needing $lacking were not run (the device lacks it); their cells read \`not run\`"
+        merge_args=(--partial)
+    fi
     if [ "${#problems[@]}" -gt 0 ]; then
         for p in "${problems[@]}"; do echo "merge: $config: $p" >&2; done
         fail=1

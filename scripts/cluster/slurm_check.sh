@@ -108,7 +108,7 @@ bash scripts/cluster/submit.sh --shared "$tmp/shared" --pack "$tmp/pack" --quick
     --name whole --wait "$config" || { tail -n 20 "$tmp"/shared/runs/whole.1/logs/*; fail "the sweep's merge failed"; }
 merged=$(find "$tmp/shared/results" -path "*/quick/$config.json")
 [ -n "$merged" ] || fail "the merge wrote no $config.json"
-[ "$(ls "$(dirname "$merged")"/parts/ | grep -c "^$config\.shard-[1-4]-of-4\.json$")" -eq 4 ] || fail "not 4 parts beside $merged"
+[ "$(find "$tmp/shared/runs/whole.1/results" -name "$config.shard-[1-4]-of-4.json" | wc -l)" -eq 4 ] || fail "not 4 parts in the run's folder"
 CAUSTICLAB_COMMIT=$(cat "$tmp/pack/COMMIT") "$bin" bench "bench_configs/$config.toml" --quick --results "$tmp/direct" >"$tmp/direct.log" 2>&1 \
     || { tail -n 20 "$tmp/direct.log"; fail "the unsharded run failed"; }
 direct=$(find "$tmp/direct" -path "*/quick/$config.json")
@@ -135,9 +135,9 @@ echo "$merged_out"
 grep -q "^exit=1$" "$tmp/killed/runs/killed.1/MERGED" || fail "the merge did not record a failure"
 grep -q "$config: shard 2 of 4 missing: task 2 was killed" <<<"$merged_out" || fail "the merge did not name shard 2 of 4 as killed"
 [ -z "$(find "$tmp/killed/results" -name "$config.md")" ] || fail "the merge wrote a table with a shard missing"
-ok_parts=$(find "$tmp/killed/results" -name "$config.shard-*-of-4.json" | wc -l)
+ok_parts=$(find "$tmp/killed/runs" -name "$config.shard-*-of-4.json" | wc -l)
 [ "$ok_parts" -eq 3 ] || fail "$ok_parts parts, not the 3 of the tasks that ran"
-"$bin" bench merge --results "$tmp/killed/try" "$(dirname "$(find "$tmp/killed/results" -name "$config.shard-1-of-4.json")")"/*.json \
+"$bin" bench merge --results "$tmp/killed/try" "$(dirname "$(find "$tmp/killed/runs" -name "$config.shard-1-of-4.json")")"/*.json \
     >"$tmp/merge3.txt" 2>&1 && fail "bench merge of 3 of 4 shards succeeded"
 grep -q "(shard 2 of 4 missing)" "$tmp/merge3.txt" || { cat "$tmp/merge3.txt"; fail "bench merge did not name shard 2 of 4"; }
 echo "== 2b. a task whose bench fails: run twice, then named"

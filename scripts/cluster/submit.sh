@@ -6,7 +6,8 @@
 #   bash scripts/cluster/submit.sh --shared DIR [options] CONFIG...       # names or bench_configs/*.toml
 #   bash scripts/cluster/submit.sh --shared DIR [options] --suite first|more|all
 #
-# --shared DIR     a folder every node sees (created): pack/, bin/, runs/<name>/, results/
+# --shared DIR     a folder every node sees (created): packs/<name>/ (the pack and the two job
+#                  scripts of one submission), runs/<name>.<k>/, results/
 # --target DEV[=CONSTRAINT]   one array per target (repeatable; default one, the default device):
 #                  DEV is passed to `causticlab --device` (a name substring or an index),
 #                  CONSTRAINT to sbatch --constraint (Kubernetes: the node label
@@ -21,8 +22,8 @@
 # --partial        the merge writes a table with `not run` cells when shards are missing (it
 #                  still names them and exits 1)
 # --binary B       the binary to pack (default target/release/causticlab, built if missing);
-#                  --pack DIR uses a pack gpu_pack.sh --cluster already wrote
-# --loader         put the Vulkan loader's .debs in the pack (nodes without libvulkan1)
+#                  --pack DIR uses a pack gpu_pack.sh --cluster already wrote. The nodes need
+#                  a Vulkan loader (libvulkan1) and their GPU's driver.
 # --name NAME      the run's name (default: the date and time); runs/<NAME>.<k>/ per target
 # --wait           wait for the merge jobs, print their summaries, exit 1 if any failed
 # --k8s            write Indexed Job manifests into runs/<NAME>.<k>/k8s-{array,merge}.yaml instead of
@@ -30,20 +31,21 @@
 #                  PersistentVolumeClaim, mounted at --mount PATH, default /causticlab)
 #
 # Each task unpacks the pack into node-local storage ($SLURM_TMPDIR, $TMPDIR or /tmp), runs
-# `causticlab bench CONFIG --shard i/n`, and copies its part into
-# results/<device-slug>[/quick]/parts/ of the shared folder; a failed bench is run once more
+# `causticlab bench CONFIG --shard i/n`, and copies its part into its run's
+# runs/<name>.<k>/results/<device-slug>[/quick]/parts/; a failed bench is run once more
 # (scripts/cluster/task.sh). The merge job (scripts/cluster/merge.sh, `afterany` the array, and
 # after the previous target's merge so that two merges never rebuild results/README.md at once)
 # writes the tables into results/<device-slug>/ and names every missing shard.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
+start_dir=$(pwd)
 cd "$repo"
 
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
 die() { echo "submit: $*" >&2; exit 2; }
 
 shared="" targets=() shards="" throttle="" partition="" gres="" time_limit="" account=""
-quick=0 cell_budget="" partial=0 binary="" pack_in="" loader=0 name="" wait=0
+quick=0 cell_budget="" partial=0 binary="" pack_in="" name="" wait=0
 k8s=0 image="" pvc="" mount=/causticlab suite="" configs=()
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -67,7 +69,6 @@ while [ $# -gt 0 ]; do
         --suite) suite=$2; shift 2 ;;
         --quick) quick=1; shift ;;
         --partial) partial=1; shift ;;
-        --loader) loader=1; shift ;;
         --wait) wait=1; shift ;;
         --k8s) k8s=1; shift ;;
         -h|--help) usage; exit 0 ;;
@@ -76,6 +77,12 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ -n "$shared" ] || die "--shared DIR is required (a folder every node sees; see --help)"
+# Paths the user gave are relative to where they ran this, not to the repository.
+absolute() { case "$1" in /*) echo "$1" ;; *) echo "$start_dir/$1" ;; esac; }
+shared=$(absolute "$shared")
+[ -z "$pack_in" ] || pack_in=$(absolute "$pack_in")
+[ -z "$binary" ] || binary=$(absolute "$binary")
+case "$shared" in *,*|*%*) die "--shared: '$shared' has a ',' or '%' (sbatch's --export and --output would split or expand it)" ;; esac
 [ -z "$shards" ] || [[ "$shards" =~ ^[1-9][0-9]*$ ]] || die "--shards: '$shards' is not a whole number above 0"
 [ -z "$throttle" ] || [[ "$throttle" =~ ^[1-9][0-9]*$ ]] || die "--throttle: '$throttle' is not a whole number above 0"
 [ -z "$name" ] || [[ "$name" =~ ^[A-Za-z0-9._-]+$ ]] || die "--name: '$name' may hold letters, digits, '.', '_' and '-' only"
@@ -109,26 +116,30 @@ if [ -n "$shards" ]; then
 fi
 [ "${#targets[@]}" -gt 0 ] || targets=("")
 
-# 1. The pack (binary, tree, models, font, commit) and the two job scripts, in the shared folder.
-mkdir -p "$shared/runs" "$shared/results" "$shared/bin"
+# 1. The submission's own pack (binary, tree, models, font, commit) and the two job scripts, in
+#    packs/<name>/ of the shared folder: a later submission never replaces what a queued one runs.
+mkdir -p "$shared/runs" "$shared/results" "$shared/packs"
 shared=$(cd "$shared" && pwd)
+[ -n "$name" ] || name=$(date -u +%Y%m%d-%H%M%S)
+[ ! -e "$shared/packs/$name" ] || die "$shared/packs/$name exists: give another --name"
+for k in $(seq 1 "${#targets[@]}"); do
+    [ ! -e "$shared/runs/$name.$k" ] || die "$shared/runs/$name.$k exists: give another --name"
+done
+pack=$shared/packs/$name
 if [ -n "$pack_in" ]; then
     [ -f "$pack_in/causticlab.xz" ] && [ -f "$pack_in/tree.tar.xz" ] || die "$pack_in is not a cluster pack (gpu_pack.sh --cluster writes one)"
-    if [ "$(cd "$pack_in" && pwd)" != "$shared/pack" ]; then rm -rf "$shared/pack"; cp -r "$pack_in" "$shared/pack"; fi
+    mkdir -p "$pack"
+    cp -r "$pack_in"/. "$pack/"
 else
     if [ -z "$binary" ]; then
         [ -x target/release/causticlab ] || cargo build --release -p causticlab
         binary=target/release/causticlab
     fi
-    pack_args=(--binary "$binary" --out "$shared/pack" --cluster)
-    [ "$loader" -eq 1 ] || pack_args+=(--no-loader)
-    rm -rf "$shared/pack"
-    bash scripts/gpu_pack.sh "${pack_args[@]}"
+    bash scripts/gpu_pack.sh --binary "$binary" --out "$pack" --cluster --no-loader
 fi
-cp scripts/cluster/task.sh scripts/cluster/merge.sh "$shared/bin/"
+cp scripts/cluster/task.sh scripts/cluster/merge.sh "$pack/"
 
 # 2. One run folder per target: its task list and settings.
-[ -n "$name" ] || name=$(date -u +%Y%m%d-%H%M%S)
 ntasks=0
 for e in "${entries[@]}"; do ntasks=$((ntasks + ${e##* })); done
 runs=()
@@ -137,13 +148,13 @@ for target in "${targets[@]}"; do
     k=$((k + 1))
     run_name=$name.$k
     run=$shared/runs/$run_name
-    [ ! -e "$run" ] || die "$run exists: give another --name"
     mkdir -p "$run/status" "$run/logs"
     for e in "${entries[@]}"; do
         read -r c n <<<"$e"
         for s in $(seq 1 "$n"); do echo "$c $s $n"; done
     done >"$run/tasks.txt"
     {
+        printf 'PACK=%q\n' "packs/$name"
         printf 'DEVICE=%q\n' "${target%%=*}"
         printf 'CONSTRAINT=%q\n' "$( [[ "$target" == *=* ]] && echo "${target#*=}" )"
         printf 'QUICK=%q\nPARTIAL=%q\nCELL_BUDGET=%q\n' "$quick" "$partial" "$cell_budget"
@@ -156,7 +167,7 @@ if [ "$k8s" -eq 1 ]; then
     for run_name in "${runs[@]}"; do
         constraint=$(source "$shared/runs/$run_name/target.env"; echo "$CONSTRAINT")
         for job in array merge; do
-            bash scripts/cluster/k8s_manifest.sh --job "$job" --run "$run_name" --tasks "$ntasks" --image "$image" \
+            bash scripts/cluster/k8s_manifest.sh --job "$job" --run "$run_name" --pack "packs/$name" --tasks "$ntasks" --image "$image" \
                 --pvc "$pvc" --mount "$mount" ${throttle:+--parallelism "$throttle"} ${constraint:+--constraint "$constraint"} \
                 >"$shared/runs/$run_name/k8s-$job.yaml"
         done
@@ -180,10 +191,10 @@ for run_name in "${runs[@]}"; do
         --output "$run/logs/slurm-%A_%a.out")
     [ -n "$gres" ] && task_args+=(--gres "$gres")
     [ -n "$constraint" ] && task_args+=(--constraint "$constraint")
-    array=$(sbatch --parsable "${common[@]}" "${task_args[@]}" "$shared/bin/task.sh")
+    array=$(sbatch --parsable "${common[@]}" "${task_args[@]}" "$pack/task.sh")
     array=${array%%;*}
     merge=$(sbatch --parsable "${common[@]}" --job-name "causticlab-$run_name-merge" \
-        --dependency "afterany:$array${previous:+:$previous}" --output "$run/logs/merge-%j.out" "$shared/bin/merge.sh")
+        --dependency "afterany:$array${previous:+:$previous}" --output "$run/logs/merge-%j.out" "$pack/merge.sh")
     merge=${merge%%;*}
     echo "$array" >"$run/ARRAY_JOB"
     echo "$merge" >"$run/MERGE_JOB"
@@ -194,8 +205,19 @@ done
 echo "submit: tables will be in $shared/results/<device-slug>/; each run's outcome in $shared/runs/<name>/MERGED"
 [ "$wait" -eq 1 ] || exit 0
 
-# --wait: until every merge job has left the queue.
-while [ -n "$(squeue -h -j "$(IFS=,; echo "${merges[*]}")" 2>/dev/null)" ]; do sleep 2; done
+# --wait: until every merge job has left the queue (a failing squeue, say the controller busy for
+# a moment, is asked again, not read as an empty queue).
+while true; do
+    if queued=$(squeue -h -j "$(IFS=,; echo "${merges[*]}")" 2>/dev/null); then
+        [ -n "$queued" ] || break
+    elif ! squeue -h -u "$(id -un)" >/dev/null 2>&1; then
+        sleep 5
+        continue
+    else
+        break   # the jobs are gone from the controller's memory: ended
+    fi
+    sleep 2
+done
 status=0
 for run_name in "${runs[@]}"; do
     m=$shared/runs/$run_name/MERGED

@@ -6,7 +6,9 @@
 # Environment: CAUSTICLAB_SHARED (the shared folder, as this node mounts it), CAUSTICLAB_RUN (the
 # run's name: $CAUSTICLAB_SHARED/runs/<name>/ holds tasks.txt and target.env), and the task's
 # index: SLURM_ARRAY_TASK_ID (1-based) or JOB_COMPLETION_INDEX (a Kubernetes Indexed Job's,
-# 0-based). Line <index> of tasks.txt is "config shard shards".
+# 0-based: task i is its pod index i - 1). Line <index> of tasks.txt is "config shard shards".
+# The part goes to runs/<name>/results/<device-slug>[/quick]/parts/, the run's own: two runs
+# never share a part.
 #
 # A bench that fails is run once more (a second attempt, same node); a device that lacks a
 # feature the config needs (exit 2, "needs the device feature") is recorded, not retried. The
@@ -29,7 +31,7 @@ fi
 [ -f "$run/tasks.txt" ] || { echo "cluster task: no $run/tasks.txt" >&2; exit 2; }
 read -r config shard shards < <(sed -n "${index}p" "$run/tasks.txt")
 [ -n "${shards:-}" ] || { echo "cluster task: $run/tasks.txt has no line $index" >&2; exit 2; }
-# DEVICE, QUICK, CELL_BUDGET (written by submit.sh with printf %q).
+# PACK, DEVICE, QUICK, CELL_BUDGET (written by submit.sh with printf %q).
 source "$run/target.env"
 tag=$config.shard-$shard-of-$shards
 status=$run/status/$tag
@@ -38,7 +40,7 @@ host=$(hostname)
 exits=()
 write_status() {   # state [part] [feature]
     { echo "state=$1"; echo "part=${2:-}"; echo "feature=${3:-}"; echo "exits=${exits[*]}"; echo "host=$host"
-      echo "task=$index"; echo "job=${SLURM_ARRAY_JOB_ID:-${HOSTNAME:-?}}"; } >"$status.tmp" && mv "$status.tmp" "$status"
+      echo "task=$index"; echo "job=${SLURM_ARRAY_JOB_ID:-${HOSTNAME:-?}}"; } >"$status.tmp.$host.$$" && mv "$status.tmp.$host.$$" "$status"
 }
 
 # The node-local copy of the pack: binary, tree (bench_configs, scenes, shaders_glsl), models, font.
@@ -52,7 +54,7 @@ on_signal() {
 }
 trap on_signal TERM INT
 trap 'rm -rf "$local_dir"' EXIT
-pack=$shared/pack
+pack=$shared/${PACK:?target.env names no PACK}
 bin=$local_dir/causticlab
 mkdir -p "$local_dir/tree" "$local_dir/models" "$local_dir/results"
 xz -dc "$pack/causticlab.xz" >"$bin" && chmod +x "$bin" \
@@ -82,17 +84,18 @@ for attempt in 1 2; do
     tail -n 2 "$log"
     part=$(find "$local_dir/results" -name "$tag.json" | head -n 1)
     if [ "$rc" -eq 0 ] && [ -n "$part" ]; then
-        rel=${part#"$local_dir/results/"}   # <slug>[/quick]/parts/<tag>.json
-        mkdir -p "$shared/results/$(dirname "$rel")"
-        cp "$part" "$shared/results/$rel.tmp.$$" && mv "$shared/results/$rel.tmp.$$" "$shared/results/$rel" \
+        rel=runs/$run_name/results/${part#"$local_dir/results/"}   # ...<slug>[/quick]/parts/<tag>.json
+        mkdir -p "$shared/$(dirname "$rel")"
+        cp "$part" "$shared/$rel.tmp.$host.$$" && mv "$shared/$rel.tmp.$host.$$" "$shared/$rel" \
             || { write_status failed; exit 1; }
-        write_status ok "results/$rel"
-        echo "cluster task $index: wrote results/$rel"
+        write_status ok "$rel"
+        echo "cluster task $index: wrote $rel"
         exit 0
     fi
     if [ "$rc" -eq 2 ] && lacks=$(grep -o 'needs the device feature `[a-z_0-9]*`' "$log" | head -n 1); then
-        write_status lacks "" "${lacks#needs the device feature }"
-        echo "cluster task $index: $config not run: the device lacks ${lacks#needs the device feature }"
+        feature=$(tr -d '`' <<<"${lacks#needs the device feature }")
+        write_status lacks "" "$feature"
+        echo "cluster task $index: $config shard $shard/$shards not run: the device lacks $feature"
         exit 0
     fi
     [ "$attempt" -eq 1 ] && echo "cluster task $index: attempt 1 failed (exit $rc, $log); running it once more"
