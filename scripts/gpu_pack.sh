@@ -141,15 +141,16 @@ echo "$commit" >"$pack/COMMIT"
     done)
 } >"$pack/MANIFEST"
 
-# 6. What would travel: the files git does not ignore (tracked and untracked), plus the pack.
-tree_bytes=$(git ls-files -z --cached --others --exclude-standard | xargs -0 stat -c %s 2>/dev/null | awk '{s+=$1} END {print s+0}')
 pack_bytes=$(du -sb "$pack" | cut -f1)
-total=$((tree_bytes + pack_bytes))
 mib() { awk -v b="$1" 'BEGIN {printf "%.1f MiB", b / 1048576}'; }
 if [ "$cluster" -eq 1 ]; then
     echo "gpu_pack: wrote $pack/ for a cluster ($(mib "$pack_bytes"), commit $commit)"
     exit 0
 fi
+# 6. What would travel to a lent machine: the files git does not ignore (tracked and
+# untracked), plus the pack.
+tree_bytes=$(git ls-files -z --cached --others --exclude-standard | xargs -0 stat -c %s 2>/dev/null | awk '{s+=$1} END {print s+0}')
+total=$((tree_bytes + pack_bytes))
 echo "gpu_pack: pack $(mib "$pack_bytes") (binary $(mib "$(stat -c %s "$pack/causticlab.xz")") xz, models $(mib "$(stat -c %s "$pack/models.tar.xz")")); working tree $(mib "$tree_bytes"); transfer $(mib "$total") of $limit_mib MiB"
 if [ "$total" -gt $((limit_mib * 1048576)) ]; then
     echo "gpu_pack: the transfer would exceed $limit_mib MiB; the largest folders under results/:" >&2

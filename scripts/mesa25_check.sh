@@ -7,6 +7,9 @@
 #     compaction, passes) on Mesa 25;
 #   - photon-trace's ray-query path (acceleration structures, rayQueryEXT) against its compute
 #     path on five scenes (crates/caustics/tests/photon_trace_ray_query.rs), which must not skip;
+#   - the conformance suite's rows beyond the papers (photon-trace-ray-query among them) and
+#     the frame-graph stages of every registry row, where no row may be skipped for a missing
+#     feature (CAUSTICLAB_REQUIRE_FEATURES);
 #   - every shipped scene rendered with shah, hcm, adaptive and photon-trace (the pool scenes
 #     with their pool-convolution), 64² photons, statistics queries on (render always asks);
 #   - a --quick run of Wyman 2008 Table 1 (its statistics frame included), and one of
@@ -53,6 +56,11 @@ CAUSTICLAB_TEST_DEVICE="$device" cargo test -q -p vkcore --test statistics --tes
 
 echo "mesa25_check: photon-trace's ray queries against its compute traversal on $device"
 CAUSTICLAB_TEST_DEVICE="$device" CAUSTICLAB_REQUIRE_RAY_QUERY=1 cargo test -q -p caustics --test photon_trace_ray_query
+
+echo "mesa25_check: the registry rows needing features Mesa 22.3 lacks (photon-trace-ray-query) on $device"
+CAUSTICLAB_TEST_DEVICE="$device" CAUSTICLAB_REQUIRE_FEATURES=1 cargo test -q -p caustics --test conformance \
+    conformance_beyond_the_papers
+CAUSTICLAB_TEST_DEVICE="$device" CAUSTICLAB_REQUIRE_FEATURES=1 cargo test -q -p caustics --test frame_graph_stages
 
 failed=()
 skipped=()

@@ -51,11 +51,11 @@ for s in "${scenes[@]}"; do
   }
   row reference-noise "$ref_photons" "$work/$s/ref2/receiver.exr" "$finals/s$seed2/final.exr"
   # The registry's rows marked `quality` (crates/caustics/src/techniques/variants.toml):
-  # name|label|scenes|render flags.
+  # name|label|scenes|render flags|needs (quality rows need no feature beyond their technique).
   registry=$($bin variants --lines --quality)   # fails here with a binary that has no registry
   mapfile -t variants <<< "$registry"
   for v in "${variants[@]}"; do
-    IFS='|' read -r folder label _ flags <<< "$v"
+    IFS='|' read -r folder label _ flags _ <<< "$v"
     for n in 256 512 1024 2048; do
       [ "$folder" = shah-vertex ] && [ "$n" != 256 ] && continue   # photons follow the tessellation
       out=$work/$s/$folder-$n

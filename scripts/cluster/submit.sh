@@ -181,8 +181,7 @@ merges=()
 previous=""
 for run_name in "${runs[@]}"; do
     run=$shared/runs/$run_name
-    constraint=$(source "$run/target.env"; echo "$CONSTRAINT")
-    device=$(source "$run/target.env"; echo "$DEVICE")
+    { IFS= read -r device; IFS= read -r constraint; } < <(source "$run/target.env"; printf '%s\n%s\n' "$DEVICE" "$CONSTRAINT")
     common=(--export="ALL,CAUSTICLAB_SHARED=$shared,CAUSTICLAB_RUN=$run_name")
     [ -n "$partition" ] && common+=(--partition "$partition")
     [ -n "$account" ] && common+=(--account "$account")

@@ -19,7 +19,11 @@ struct Record {
     max_bounces: u32,
     outside_reflection: bool,
     smooth_normals: bool,
+    /// End to end: the BVH build, the tracing, the direct light, the image.
     seconds: f64,
+    /// The photons' tracing and binning alone (`ReferenceResult::trace_seconds`): what
+    /// `photon-trace`'s trace pass does, its BVH built beforehand.
+    trace_seconds: f64,
     /// Worker threads that traced (its photons per second depend on them).
     threads: usize,
     photons_traced: u64,
@@ -88,6 +92,7 @@ pub fn run(g: &GlobalOpts, args: &ReferenceArgs, validation: &mut Option<Arc<Val
         outside_reflection: opts.outside_reflection,
         smooth_normals: opts.smooth_normals,
         seconds,
+        trace_seconds: r.trace_seconds,
         threads: r.threads,
         photons_traced: r.photons_traced,
         emitted_flux_w: r.emitted_flux,

@@ -210,6 +210,14 @@ fn caustics_match_the_exact_reference_within_regression_thresholds() {
         &reference.display().to_string(),
     ]);
     assert_eq!(run.code, Some(0), "{}", run.describe());
+    // Its record: the tracing alone (`trace_seconds`) is a part of the whole run (`seconds`,
+    // which adds the BVH build and the direct light).
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(reference.join("reference.json")).expect("reference.json"))
+            .expect("json");
+    let secs = |k: &str| record[k].as_f64().unwrap_or_else(|| panic!("no {k} in {record}"));
+    assert!(secs("trace_seconds") > 0.0 && secs("trace_seconds") < secs("seconds"), "{record}");
+    assert_eq!(record["photons_traced"].as_u64(), Some(2_000_000), "{record}");
     for technique in ["shah", "wd-points"] {
         let out = render(
             &format!("regression-{technique}"),

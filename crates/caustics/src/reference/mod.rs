@@ -123,6 +123,10 @@ pub struct ReferenceResult {
     pub threads_asked: usize,
     /// Why the system refused the first thread it did not start, where it refused one.
     pub thread_refused: Option<String>,
+    /// Seconds of the photons' tracing and binning alone, by every worker, from the first task
+    /// taken to the last merged: without the BVH build before it and the direct light after it,
+    /// as `photon-trace`'s trace pass has its BVH (or acceleration structures) built beforehand.
+    pub trace_seconds: f64,
 }
 
 /// One unit of work: `count` photons from `light` sampled in `cone` of object `object`.
@@ -296,7 +300,9 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
         }
     };
     // Workers take tasks from one counter (crate::workers).
+    let trace_start = std::time::Instant::now();
     let started = crate::workers::run(threads, "reference", worker);
+    let trace_seconds = trace_start.elapsed().as_secs_f64();
     let merger = merger.into_inner().unwrap();
     debug_assert_eq!(merger.next, tasks.len());
 
@@ -317,6 +323,7 @@ pub fn trace_reference(scene: &Scene, opts: &ReferenceOptions) -> anyhow::Result
         threads_asked: threads,
         thread_refused: started.refused,
         photons_traced: t.photons,
+        trace_seconds,
     })
 }
 

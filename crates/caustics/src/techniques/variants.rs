@@ -7,6 +7,7 @@
 
 use super::{CausticOverrides, CausticSettings, Technique};
 use serde::Deserialize;
+use vkcore::Feature;
 
 /// The registry, compiled into the binary.
 const REGISTRY: &str = include_str!("variants.toml");
@@ -91,6 +92,33 @@ impl Variant {
         let mut s = CausticSettings::default();
         self.settings.apply(&mut s);
         s
+    }
+
+    /// The device features the row's settings need beyond its technique's own
+    /// (`Technique::required_features`, checked when a renderer is made):
+    /// `photon-trace --trace ray-query` needs acceleration structures and ray queries. A device
+    /// without them refuses the row by name; the conformance suite and `scripts/same_maps.sh`
+    /// skip it there with a line saying so (`scripts/mesa25_check.sh` runs it on Mesa 25).
+    pub fn needs(&self) -> Vec<Feature> {
+        let mut out: Vec<Feature> = vec![];
+        for (_, features) in self.settings_in_effect().settings_features() {
+            for f in features {
+                if !out.contains(f) {
+                    out.push(*f);
+                }
+            }
+        }
+        out
+    }
+
+    /// [`Self::needs`] by name, `-` for none: `acceleration_structure,ray_query`.
+    pub fn needs_names(&self) -> String {
+        let names: Vec<&str> = self.needs().iter().map(|f| f.name()).collect();
+        if names.is_empty() {
+            "-".to_string()
+        } else {
+            names.join(",")
+        }
     }
 }
 
@@ -187,6 +215,20 @@ mod tests {
         assert_eq!(one.flags(), ["--technique", "shah", "--iterations", "1", "--fresnel", "false"]);
         let pool = rows.iter().find(|v| v.name == "pool-float").expect("a row");
         assert_eq!(pool.scenes(), ["pool", "pool_oblique"]);
+    }
+
+    /// What a row needs of the device follows from its settings: nothing beyond the technique
+    /// for the compute traversal, acceleration structures and ray queries for ray queries.
+    #[test]
+    fn a_rows_needs_follow_from_its_settings() {
+        let rows = registry().expect("the registry");
+        let get = |name: &str| rows.iter().find(|v| v.name == name).unwrap_or_else(|| panic!("row {name}"));
+        assert_eq!(get("photon-trace").needs(), []);
+        assert_eq!(get("photon-trace").needs_names(), "-");
+        assert_eq!(get("photon-trace-ray-query").needs(), [Feature::AccelerationStructure, Feature::RayQuery]);
+        assert_eq!(get("photon-trace-ray-query").needs_names(), "acceleration_structure,ray_query");
+        assert_eq!(get("photon-trace-receiver-map").needs(), [Feature::BufferFloat32AtomicAdd]);
+        assert!(rows.iter().filter(|v| v.technique() != Technique::PhotonTrace).all(|v| v.needs().is_empty()));
     }
 
     /// Each rule of [`parse`], broken by one row of an otherwise valid registry.
