@@ -126,7 +126,15 @@ for _ in $(seq 1 600); do
     sleep 0.2
 done
 [ "$(squeue -h -j "${array}_2" -o %T)" = RUNNING ] || fail "task 2 never ran"
-sleep 1
+# Killed while its bench runs: after task.sh has said so (its signal trap is set by then), not a
+# fixed wait, which a loaded machine can outlast before the trap.
+task_log=$tmp/killed/runs/killed.1/logs/slurm-${array}_2.out
+for _ in $(seq 1 600); do
+    grep -q '^cluster task 2: ' "$task_log" 2>/dev/null && break
+    sleep 0.2
+done
+grep -q '^cluster task 2: ' "$task_log" || fail "task 2 never started its bench ($task_log)"
+sleep 0.5
 scancel "${array}_2"
 echo "slurm_check: cancelled task ${array}_2 while it ran"
 wait_for "$merge"

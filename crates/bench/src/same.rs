@@ -2,7 +2,10 @@
 //! but the timings. The check that a sweep split into shards (the GPU suite, a cluster's job
 //! array) and merged gives the table one unsharded run gives: the same cells, and in each the
 //! same counts, errors and FLIP values. Times (`results::is_timing`) differ from run to run and
-//! are not compared.
+//! are not compared, nor what each frame asked of the driver (`frame_counters`: submits,
+//! barriers and objects made, which depend on the frame mode's bookkeeping, not on the cell's
+//! answer). The cell itself, the caustic settings in effect, the photon copy, the triangles, the
+//! models (by checksum) and the traversal's list sizes must be equal.
 //!
 //! Counts are compared exactly. Errors and ratios (the receiver map against its CPU reference,
 //! FLIP, depth complexity) within a relative tolerance: a GPU's additive splats and atomic adds
@@ -37,6 +40,15 @@ pub fn differences(a: &Results, b: &Results, tolerance: f64) -> Vec<String> {
     if a.run.quick != b.run.quick {
         out.push(format!("run: quick {} against {}", a.run.quick, b.run.quick));
     }
+    // A cell index twice in one result (a merge gone wrong) would hide one of the two.
+    for (r, which) in [(a, "first"), (b, "second")] {
+        let mut seen = std::collections::BTreeSet::new();
+        for c in &r.cells {
+            if !seen.insert(c.cell.index) {
+                out.push(format!("{}: cell index {} twice in the {which}", c.cell.describe(), c.cell.index));
+            }
+        }
+    }
     let by_index =
         |r: &Results| -> BTreeMap<usize, CellResult> { r.cells.iter().map(|c| (c.cell.index, c.clone())).collect() };
     let (ca, cb) = (by_index(a), by_index(b));
@@ -61,8 +73,20 @@ fn cell(x: &CellResult, y: &CellResult, tolerance: f64, out: &mut Vec<String>) {
         out.push(format!("{name}: the cell differs ({} in the second)", y.cell.describe()));
         return;
     }
+    if x.caustics != y.caustics {
+        out.push(format!("{name}: the caustic settings in effect differ ({} against {})", x.caustics, y.caustics));
+    }
+    if x.photon_copy != y.photon_copy {
+        out.push(format!("{name}: photon copy `{}` against `{}`", x.photon_copy, y.photon_copy));
+    }
     if x.triangles != y.triangles {
         out.push(format!("{name}: triangles {} against {}", x.triangles, y.triangles));
+    }
+    if x.models != y.models {
+        let files = |m: &[caustics::scene::models::ModelFile]| -> Vec<String> {
+            m.iter().map(|f| format!("{} {}", f.file, &f.sha256[..f.sha256.len().min(12)])).collect()
+        };
+        out.push(format!("{name}: models {:?} against {:?}", files(&x.models), files(&y.models)));
     }
     if x.list_sizes != y.list_sizes {
         out.push(format!("{name}: the traversal's list sizes {:?} against {:?}", x.list_sizes, y.list_sizes));
@@ -191,5 +215,28 @@ mod tests {
         let mut f = a.clone();
         f.config.hash = "0".into();
         assert!(differences(&a, &f, 1e-5)[0].starts_with("config: hash"));
+    }
+
+    #[test]
+    fn settings_models_photon_copy_and_a_duplicated_cell_are_named() {
+        let a = results(10.0, 4096.0, 0.25);
+        let mut b = a.clone();
+        b.cells[0].caustics["photons"] = serde_json::json!(12345);
+        let d = differences(&a, &b, 1e-5);
+        assert!(d.len() == 1 && d[0].contains("caustic settings in effect differ"), "{d:?}");
+        let mut c = a.clone();
+        c.cells[1].photon_copy += "-other";
+        let d = differences(&a, &c, 1e-5);
+        assert!(d.len() == 1 && d[0].contains("photon copy"), "{d:?}");
+        let mut m = a.clone();
+        m.cells[0].models =
+            vec![caustics::scene::models::ModelFile { file: "x.obj".into(), sha256: "ab".repeat(32), expected: None }];
+        let d = differences(&a, &m, 1e-5);
+        assert!(d.len() == 1 && d[0].contains("models [] against [\"x.obj abababababab\"]"), "{d:?}");
+        // The second cell given the first's index: named, though the map by index keeps one.
+        let mut t = a.clone();
+        t.cells[1] = t.cells[0].clone();
+        let d = differences(&a, &t, 1e-5);
+        assert!(d.iter().any(|l| l.contains("twice in the second")), "{d:?}");
     }
 }
