@@ -7,9 +7,9 @@
 #     compaction, passes) on Mesa 25;
 #   - photon-trace's ray-query path (acceleration structures, rayQueryEXT) against its compute
 #     path on five scenes (crates/caustics/tests/photon_trace_ray_query.rs), which must not skip;
-#   - the conformance suite's rows beyond the papers (photon-trace-ray-query among them) and
-#     the frame-graph stages of every registry row, where no row may be skipped for a missing
-#     feature (CAUSTICLAB_REQUIRE_FEATURES);
+#   - the conformance suite's rows beyond the papers (photon-trace-ray-query among them), the
+#     frame-graph stages and the pass-name table of every registry row, where no row may be
+#     skipped for a missing feature (CAUSTICLAB_REQUIRE_FEATURES=1);
 #   - every shipped scene rendered with shah, hcm, adaptive and photon-trace (the pool scenes
 #     with their pool-convolution), 64² photons, statistics queries on (render always asks);
 #   - a --quick run of Wyman 2008 Table 1 (its statistics frame included), and one of
@@ -50,17 +50,36 @@ if "$bin" --device llvmpipe devices >/dev/null 2>&1; then
     exit 1
 fi
 
+# Runs `cargo test ARGS` on Mesa 25. A test process that dies by a signal inside the driver
+# (seen 2 times in about 110 test processes on Mesa 25.0.7's lavapipe here: heap corruption
+# reported by malloc, and a SIGSEGV, each while recording a small upload or readback, never
+# on Mesa 22.3, and valgrind's memcheck finds no invalid access of ours in a whole run) is run
+# once more, after printing its crash report; a second death, or any failing test, fails.
+mesa25_test() {
+    local log=$out/cargo-test.log
+    for attempt in 1 2; do
+        if CAUSTICLAB_TEST_DEVICE="$device" cargo test -q "$@" >"$log" 2>&1; then
+            cat "$log"
+            return 0
+        fi
+        cat "$log"
+        if [ "$attempt" -eq 1 ] && grep -q 'process didn.t exit successfully: .*(signal: ' "$log"; then
+            echo "mesa25_check: cargo test $* died by a signal on $device (above); running it once more"
+            continue
+        fi
+        return 1
+    done
+}
+
 echo "mesa25_check: vkcore's GPU tests on $device"
-CAUSTICLAB_TEST_DEVICE="$device" cargo test -q -p vkcore --test statistics --test rendering --test compaction \
-    --test passes --test ring
+mesa25_test -p vkcore --test statistics --test rendering --test compaction --test passes --test ring
 
 echo "mesa25_check: photon-trace's ray queries against its compute traversal on $device"
-CAUSTICLAB_TEST_DEVICE="$device" CAUSTICLAB_REQUIRE_RAY_QUERY=1 cargo test -q -p caustics --test photon_trace_ray_query
+CAUSTICLAB_REQUIRE_RAY_QUERY=1 mesa25_test -p caustics --test photon_trace_ray_query
 
 echo "mesa25_check: the registry rows needing features Mesa 22.3 lacks (photon-trace-ray-query) on $device"
-CAUSTICLAB_TEST_DEVICE="$device" CAUSTICLAB_REQUIRE_FEATURES=1 cargo test -q -p caustics --test conformance \
-    conformance_beyond_the_papers
-CAUSTICLAB_TEST_DEVICE="$device" CAUSTICLAB_REQUIRE_FEATURES=1 cargo test -q -p caustics --test frame_graph_stages
+CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test -p caustics --test conformance conformance_beyond_the_papers
+CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test -p caustics --test frame_graph_stages --test pass_table
 
 failed=()
 skipped=()

@@ -2,16 +2,17 @@
 # T2 beside the CPU reference: the GPU photon tracer's two traversals (its own BVH in a compute
 # shader, `--trace compute`, and ray queries against Vulkan acceleration structures,
 # `--trace ray-query`; bench_configs/photon_trace_paths.toml) on a device with ray queries, and
-# the exact CPU reference (`causticlab reference`, three runs per cell, the median) tracing as
-# many photons on the same machine, on the glass sphere and the glass bunny, Fresnel on and off.
+# the exact CPU reference (`causticlab reference`, three runs per cell, the median) on the same
+# machine, on the glass sphere and the glass bunny, Fresnel on and off.
 # Writes results/photon_trace_paths.csv (one row per scene and Fresnel setting) and
 # results/photon_trace_paths.md, the page, from that file's rows.
 #
 #   bash scripts/photon_rate_paths.sh            # on Mesa 25's lavapipe (scripts/mesa25.sh)
 #   bash scripts/photon_rate_paths.sh DEVICE     # on another device with ray queries
 #
-# The three are compared at the table's largest photon count (512²: four of the reference's
-# tasks of 65,536 photons, so that it uses both cores) by their tracing alone: the GPU tracer's
+# The three are compared by their rates at the table's largest photon count, 512², the
+# reference tracing at least as many photons and at least one of its tasks of 65,536 photons
+# per core (so that every core traces: 512² is four tasks), by their tracing alone: the GPU tracer's
 # trace pass submitted alone and timed on the host (`host rate`: its BVH and acceleration
 # structures are built when the renderer is made), the reference's `trace_seconds` (its BVH
 # built before, the direct light after). A timing run: build first, run it alone on a quiet
@@ -29,6 +30,9 @@ else
     device=$(bash scripts/mesa25.sh --driver)
 fi
 photons=512
+# The reference's photons: 512², or one task of 65,536 per core where that is more.
+cores=$(nproc)
+ref_photons=$((photons * photons > 65536 * cores ? photons * photons : 65536 * cores))
 runs=3
 csv=results/photon_trace_paths.csv
 out=results/photon_trace_paths.md
@@ -48,7 +52,7 @@ table=$(grep -o 'results/[^ ]*/photon_trace_paths.json' "$tmp/bench.log" | tail 
 for scene in sphere_on_plane bunny_in_room; do
     for fresnel in true false; do
         for run in $(seq "$runs"); do
-            "$bin" reference --scene "scenes/$scene.toml" --photons $((photons * photons)) --fresnel "$fresnel" \
+            "$bin" reference --scene "scenes/$scene.toml" --photons "$ref_photons" --fresnel "$fresnel" \
                 --out "$tmp/$scene-$fresnel-$run" > /dev/null
         done
     done
@@ -77,6 +81,9 @@ for scene in ["sphere_on_plane", "bunny_in_room"]:
             threads.add(r["threads"])
         if len(threads) != 1:
             raise SystemExit(f"{scene} Fresnel {on}: the reference's runs used {sorted(threads)} threads")
+        if min(threads) < len(os.sched_getaffinity(0)):
+            print(f"photon_rate_paths.sh: warning: {scene} Fresnel {on}: the reference traced with "
+                  f"{min(threads)} threads on {len(os.sched_getaffinity(0))} cores (the system refused some)")
         cpu = statistics.median(rates)
         compute = host_rate(scene, f"compute, Fresnel {on}")
         rq = host_rate(scene, f"ray-query, Fresnel {on}")
@@ -86,7 +93,7 @@ with open(os.environ["CSV"], "w", newline="") as f:
     csv.writer(f, lineterminator="\n").writerows(rows)
 MEASURED
 
-CSV="$csv" OUT="$out" PHOTONS="$photons" RUNS="$runs" COMMIT="$commit" DATE="$(date -u +%Y-%m-%dT%H:%M:%SZ)" \
+CSV="$csv" OUT="$out" PHOTONS="$photons" REF_PHOTONS="$ref_photons" RUNS="$runs" COMMIT="$commit" DATE="$(date -u +%Y-%m-%dT%H:%M:%SZ)" \
 TABLE_MD="$(python3 -c 'import os, sys; print(os.path.relpath(sys.argv[1].removesuffix(".json") + ".md", "results"))' "$table")" \
 DEVICE="$(python3 -c 'import json, sys; m = json.load(open(sys.argv[1]))["meta"]; print(m["device"] + ", " + m["driver_name"] + " " + m["driver_info"])' "$table")" \
 CPU="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')" CORES="$(nproc)" \
@@ -112,7 +119,8 @@ out = f"""# T2 beside the CPU reference: compute BVH, ray queries and the CPU, t
 Written by `bash scripts/photon_rate_paths.sh` (commit {env['COMMIT']}, {env['DATE']}), on
 {env['CPU']} ({env['CORES']} cores); the GPU tracer on {env['DEVICE']}.
 
-- **CPU reference, tracing**: `causticlab reference --photons {n * n}` (every core), its
+- **CPU reference, tracing**: `causticlab reference --photons {env['REF_PHOTONS']}` (its threads
+  in the table, one per core, each taking tasks of 65,536 photons), its
   `trace_seconds`: the photons' tracing and binning into the receiver map, without the BVH
   build before them and the direct light after them; median of {runs} runs (the range in
   brackets).

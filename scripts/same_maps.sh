@@ -150,6 +150,7 @@ for c in "${all[@]}"; do
         echo "same_maps: $scene/$name failed (exit $status)" >&2
         exit 1
     fi
+    cat "$out/render.err" >&2   # a render's warnings, as before its stderr was kept
     ran=$((ran + 1))
     if [ "$mode" = check ] && [ ! -d "$dir/$scene/$name" ]; then
         # A case added since the recording (a new registry row) has nothing to compare with.

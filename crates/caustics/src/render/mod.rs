@@ -25,7 +25,7 @@ use crate::dump::Dump;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::shared::settings::PHOTON_BUFFER;
-use crate::techniques::{Refraction, SplatPath, Technique};
+use crate::techniques::{Refraction, Technique};
 use anyhow::Result;
 use vkcore::{Context, FrameReport, ShaderCompiler};
 
@@ -101,33 +101,9 @@ pub struct Counts {
 /// traversal path; for the compute splat, float atomics) needs, and the memory its images need
 /// (`memory.rs`); the error names the feature, or the keys and the memory.
 pub fn check_device(ctx: &Context, scene: &Scene) -> Result<()> {
-    let c = &scene.caustics;
     check_memory(ctx, scene)?;
-    ctx.require(&format!("technique `{}`", c.technique), c.technique.required_features())?;
-    ctx.require(
-        &format!("refraction `{}` (a geometry shader routes each face to the front or back layer)", c.refraction),
-        c.refraction.required_features(),
-    )?;
-    if c.technique.has_photon_buffer() {
-        ctx.require(
-            &format!(
-                "photon_refraction `{}` (a geometry shader routes each face to the front or back layer)",
-                c.photon_refraction
-            ),
-            c.photon_refraction.required_features(),
-        )?;
-    }
-    if matches!(c.technique, Technique::Hcm | Technique::Adaptive) {
-        ctx.require(&format!("technique `{}` with --path {}", c.technique, c.path), c.path.features())?;
-    }
-    for (who, features) in c.settings_features() {
-        ctx.require(who, features)?;
-    }
-    if c.technique.has_caustics() && c.splat_path == SplatPath::Compute {
-        ctx.require(
-            "splat_path `compute` (float atomics in shared/splat.comp)",
-            crate::techniques::shared::compute_splat::FEATURES,
-        )?;
+    for (who, features) in scene.caustics.device_needs() {
+        ctx.require(&who, features)?;
     }
     Ok(())
 }

@@ -314,6 +314,38 @@ impl CausticSettings {
         }
     }
 
+    /// Everything these settings need of the device, each with what needs it: the technique's
+    /// own features first, then those of its refraction, photon refraction, traversal path,
+    /// own settings and splat path. `render::check_device` requires each (with the memory), and
+    /// the registry's `Variant::needs` lists those beyond the technique's.
+    pub fn device_needs(&self) -> Vec<(String, &'static [vkcore::Feature])> {
+        let mut needs = vec![(format!("technique `{}`", self.technique), self.technique.required_features())];
+        needs.push((
+            format!("refraction `{}` (a geometry shader routes each face to the front or back layer)", self.refraction),
+            self.refraction.required_features(),
+        ));
+        if self.technique.has_photon_buffer() {
+            needs.push((
+                format!(
+                    "photon_refraction `{}` (a geometry shader routes each face to the front or back layer)",
+                    self.photon_refraction
+                ),
+                self.photon_refraction.required_features(),
+            ));
+        }
+        if matches!(self.technique, Technique::Hcm | Technique::Adaptive) {
+            needs.push((format!("technique `{}` with --path {}", self.technique, self.path), self.path.features()));
+        }
+        needs.extend(self.settings_features().into_iter().map(|(who, f)| (who.to_string(), f)));
+        if self.technique.has_caustics() && self.splat_path == SplatPath::Compute {
+            needs.push((
+                "splat_path `compute` (float atomics in shared/splat.comp)".to_string(),
+                shared::compute_splat::FEATURES,
+            ));
+        }
+        needs
+    }
+
     /// The ray/receiver intersection in effect: the one asked for, else the technique's own.
     pub fn intersect(&self) -> Intersect {
         self.intersect.unwrap_or(self.technique.default_intersect())

@@ -95,15 +95,19 @@ impl Variant {
     }
 
     /// The device features the row's settings need beyond its technique's own
-    /// (`Technique::required_features`, checked when a renderer is made):
-    /// `photon-trace --trace ray-query` needs acceleration structures and ray queries. A device
-    /// without them refuses the row by name; the conformance suite and `scripts/same_maps.sh`
-    /// skip it there with a line saying so (`scripts/mesa25_check.sh` runs it on Mesa 25).
+    /// (`Technique::required_features`): those of its refraction, photon refraction, traversal
+    /// path, splat path and own settings (`CausticSettings::device_needs`, what
+    /// `render::check_device` requires). `photon-trace --trace ray-query` needs acceleration
+    /// structures and ray queries, `--path xfb` transform feedback, the compute splat float
+    /// atomics. A device without them refuses the row by name; the conformance suite and
+    /// `scripts/same_maps.sh` skip it there with a line saying so (`scripts/mesa25_check.sh`
+    /// runs every row on Mesa 25).
     pub fn needs(&self) -> Vec<Feature> {
+        let own = self.technique().required_features();
         let mut out: Vec<Feature> = vec![];
-        for (_, features) in self.settings_in_effect().settings_features() {
+        for (_, features) in self.settings_in_effect().device_needs() {
             for f in features {
-                if !out.contains(f) {
+                if !own.contains(f) && !out.contains(f) {
                     out.push(*f);
                 }
             }
@@ -228,7 +232,12 @@ mod tests {
         assert_eq!(get("photon-trace-ray-query").needs(), [Feature::AccelerationStructure, Feature::RayQuery]);
         assert_eq!(get("photon-trace-ray-query").needs_names(), "acceleration_structure,ray_query");
         assert_eq!(get("photon-trace-receiver-map").needs(), [Feature::BufferFloat32AtomicAdd]);
-        assert!(rows.iter().filter(|v| v.technique() != Technique::PhotonTrace).all(|v| v.needs().is_empty()));
+        // Beyond photon-trace: the compute splat's float atomics, the xfb path's transform
+        // feedback (its geometry shader is adaptive's own), nothing for the paper's defaults.
+        assert_eq!(get("wd-points-compute-splat").needs(), [Feature::BufferFloat32AtomicAdd]);
+        let xfb = get("adaptive").needs();
+        assert!(xfb.contains(&Feature::TransformFeedback) && !xfb.contains(&Feature::GeometryShader), "{xfb:?}");
+        assert_eq!(get("shah").needs(), []);
     }
 
     /// Each rule of [`parse`], broken by one row of an otherwise valid registry.

@@ -37,13 +37,19 @@ pub fn render_dumps(scene: &Scene, frames: u32, names: &[&str]) -> Vec<(String, 
 
 /// Whether `ctx`'s device has what registry row `v` needs beyond its technique
 /// (`Variant::needs`: `trace = "ray-query"` needs acceleration structures and ray queries).
-/// Where it has not, the row is skipped with a line naming the feature and the device, and
-/// with `CAUSTICLAB_REQUIRE_FEATURES` set (scripts/mesa25_check.sh sets it on Mesa 25's
-/// lavapipe, which has every feature a row needs) the skip is a failure instead.
+/// Where it has not, the row is skipped with a line naming the feature and the device (printed
+/// to the test's output: `--nocapture` shows it), and with `CAUSTICLAB_REQUIRE_FEATURES=1`
+/// (scripts/mesa25_check.sh sets it on Mesa 25's lavapipe, which has every feature a row
+/// needs) the skip is a failure instead.
 #[allow(dead_code)] // not every test crate that shares this module reads the registry
 pub fn runs_here(ctx: &vkcore::Context, v: &caustics::techniques::variants::Variant) -> bool {
-    let Err(e) = ctx.require(&format!("registry row `{}`", v.name), &v.needs()) else { return true };
-    assert!(std::env::var_os("CAUSTICLAB_REQUIRE_FEATURES").is_none(), "CAUSTICLAB_REQUIRE_FEATURES is set: {e}");
+    let who = format!("registry row `{}`", v.name);
+    let Err(e) = ctx.require(&who, v.technique().required_features()).and_then(|_| ctx.require(&who, &v.needs()))
+    else {
+        return true;
+    };
+    let required = std::env::var("CAUSTICLAB_REQUIRE_FEATURES").is_ok_and(|v| v == "1");
+    assert!(!required, "CAUSTICLAB_REQUIRE_FEATURES=1: {e}");
     println!("skipped: {e} (scripts/mesa25_check.sh runs it on Mesa 25's lavapipe)");
     false
 }
