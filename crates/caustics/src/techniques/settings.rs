@@ -340,7 +340,7 @@ impl CausticSettings {
         if self.technique.has_caustics() && self.splat_path == SplatPath::Compute {
             needs.push((
                 "splat_path `compute` (float atomics in shared/splat.comp)".to_string(),
-                shared::compute_splat::FEATURES,
+                shared::settings::COMPUTE_SPLAT_FEATURES,
             ));
         }
         needs

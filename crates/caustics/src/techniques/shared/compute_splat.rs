@@ -19,8 +19,9 @@ use vkcore::{
     ShaderCompiler, Use,
 };
 
-/// Features the compute splat needs.
-pub const FEATURES: &[Feature] = &[Feature::BufferFloat32AtomicAdd];
+/// Features the compute splat needs (`SplatPath::Compute`'s, in the settings layer, where
+/// `CausticSettings::device_needs` lists them).
+pub const FEATURES: &[Feature] = super::settings::COMPUTE_SPLAT_FEATURES;
 
 /// Invocations per work group of splat.comp.
 const GROUP: u32 = 64;

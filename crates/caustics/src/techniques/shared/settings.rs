@@ -58,6 +58,10 @@ value_enum! {
     }
 }
 
+/// Features the compute splat (`splat_path = "compute"`) needs: float atomics in
+/// shared/splat.comp.
+pub const COMPUTE_SPLAT_FEATURES: &[Feature] = &[Feature::BufferFloat32AtomicAdd];
+
 value_enum! {
     /// How photons are splatted into the caustic map (`caustics.splat_path`, `--splat-path`).
     pub enum SplatPath {
