@@ -35,19 +35,21 @@ pub fn render_dumps(scene: &Scene, frames: u32, names: &[&str]) -> Vec<(String, 
     dumps.into_iter().map(|(d, img)| (d.name.to_string(), img)).collect()
 }
 
-/// Whether `ctx`'s device has what registry row `v` needs beyond its technique
-/// (`Variant::needs`: `trace = "ray-query"` needs acceleration structures and ray queries).
+/// Whether `ctx`'s device has everything registry row `v` needs (its settings'
+/// `CausticSettings::device_needs`, what `render::check_device` requires: beyond the
+/// technique's own, `trace = "ray-query"` needs acceleration structures and ray queries).
 /// Where it has not, the row is skipped with a line naming the feature and the device (printed
 /// to the test's output: `--nocapture` shows it), and with `CAUSTICLAB_REQUIRE_FEATURES=1`
 /// (scripts/mesa25_check.sh sets it on Mesa 25's lavapipe, which has every feature a row
 /// needs) the skip is a failure instead.
 #[allow(dead_code)] // not every test crate that shares this module reads the registry
 pub fn runs_here(ctx: &vkcore::Context, v: &caustics::techniques::variants::Variant) -> bool {
-    let who = format!("registry row `{}`", v.name);
-    let Err(e) = ctx.require(&who, v.technique().required_features()).and_then(|_| ctx.require(&who, &v.needs()))
-    else {
-        return true;
-    };
+    let missing = v
+        .settings_in_effect()
+        .device_needs()
+        .into_iter()
+        .find_map(|(who, features)| ctx.require(&format!("registry row `{}`: {who}", v.name), features).err());
+    let Some(e) = missing else { return true };
     let required = std::env::var("CAUSTICLAB_REQUIRE_FEATURES").is_ok_and(|v| v == "1");
     assert!(!required, "CAUSTICLAB_REQUIRE_FEATURES=1: {e}");
     println!("skipped: {e} (scripts/mesa25_check.sh runs it on Mesa 25's lavapipe)");
