@@ -43,6 +43,7 @@ cd "$(dirname "$0")/.."
 # machine's 15 minutes. --more runs the second list.
 suite=(
     "photon_trace_paths 1 6"               # est.: 32 cells; only where the device has ray_query
+    "photon_trace_moving 1 5"              # est.: 6 cells; only where the device has ray_query
     "wyman_davis2006_fig6 2 15"            # est.: 18 cells, per-pass quads and overdraw counts
     "wyman_davis2006_fig10 2 15"           # est.: 16 cells and two 4M-photon references
     "wyman_nichols2009_fig13 2 10"         # est.: 6 cells

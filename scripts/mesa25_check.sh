@@ -13,7 +13,8 @@
 #   - every shipped scene rendered with shah, hcm, adaptive and photon-trace (the pool scenes
 #     with their pool-convolution), 64² photons, statistics queries on (render always asks);
 #   - a --quick run of Wyman 2008 Table 1 (its statistics frame included), and one of
-#     photon_trace_paths (the tracer's compute traversal against ray queries).
+#     photon_trace_paths (the tracer's compute traversal against ray queries) and
+#     photon_trace_moving (a moving object's acceleration structures).
 # Scenes whose models are missing are skipped with one line, as in scripts/demo.sh. Where Mesa
 # 25 cannot be had (scripts/mesa25.sh fails: no network, not Debian 12), the check says so and
 # is skipped, except in CI ($CI set), where that fails.
@@ -120,6 +121,9 @@ grep -rq "$device" "$out/results" || { echo "mesa25_check: the quick table does 
 echo "mesa25_check: bench --quick photon_trace_paths (compute against ray queries) on $device"
 "$bin" --device "$device" --validate bench bench_configs/photon_trace_paths.toml --quick --results "$out/results" \
     >"$out/bench.log" 2>&1 || { cat "$out/bench.log" >&2; failed+=("bench photon_trace_paths"); }
+echo "mesa25_check: bench --quick photon_trace_moving (a moving object's acceleration structures) on $device"
+"$bin" --device "$device" --validate bench bench_configs/photon_trace_moving.toml --quick --results "$out/results" \
+    >"$out/bench.log" 2>&1 || { cat "$out/bench.log" >&2; failed+=("bench photon_trace_moving"); }
 
 if [ "${#skipped[@]}" -ne 0 ]; then
     echo "mesa25_check: skipped ${#skipped[@]} scene(s) whose models are missing: ${skipped[*]}"

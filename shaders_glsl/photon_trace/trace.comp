@@ -115,8 +115,8 @@ void basis(vec3 n, out vec3 t, out vec3 b) {
 // The normal photons scatter about at a hit: the interpolated vertex normal on the side of the
 // geometric normal `ng` (the geometric one where they cancel).
 vec3 scatter_normal(RayHit h, vec3 ng) {
-    vec3 n = shading_normals[3u * h.triangle].xyz * (1.0 - h.u - h.v) + shading_normals[3u * h.triangle + 1u].xyz * h.u
-        + shading_normals[3u * h.triangle + 2u].xyz * h.v;
+    vec3 n = hit_to_world(h, shading_normals[3u * h.triangle].xyz * (1.0 - h.u - h.v)
+        + shading_normals[3u * h.triangle + 1u].xyz * h.u + shading_normals[3u * h.triangle + 2u].xyz * h.v);
     float len = length(n);
     if (len == 0.0) return ng;
     n /= len;
@@ -200,7 +200,7 @@ void main() {
             return;
         }
         if (interactions >= constants.max_bounces) break;
-        vec3 ng = normalize(cross(tri.e1, tri.e2));
+        vec3 ng = normalize(hit_to_world(h, cross(tri.e1, tri.e2)));
         vec3 colour = objects[tri.object].colour.rgb;
         if (material == MATERIAL_REFLECTIVE) {
             d = normalize(reflect(d, scatter_normal(h, ng)));

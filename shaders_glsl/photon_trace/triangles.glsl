@@ -1,6 +1,7 @@
 // The triangles the photon tracer hits, as both intersection paths read them: the compute path's
 // in its BVH's order (`bvh.glsl`), the ray-query path's in the scene's order, object by object
-// (`ray_query.glsl`). A hit names its triangle by its index here. Needs TRIANGLES_BINDING.
+// (`ray_query.glsl`), there as each object's bottom level was built (its instance's transform
+// moves it). A hit names its triangle by its index here. Needs TRIANGLES_BINDING.
 #ifndef PHOTON_TRACE_TRIANGLES_GLSL
 #define PHOTON_TRACE_TRIANGLES_GLSL
 
@@ -30,5 +31,19 @@ struct RayHit {
     float u;        // barycentric weight of v1
     float v;        // barycentric weight of v2
     uint triangle;  // index into `triangles`
+#ifdef RAY_QUERY
+    // The hit instance's object-to-world rotation: `triangles` and the shading normals hold an
+    // object as its bottom level was built, and a rigidly moved object's instance turns them.
+    mat3 to_world;
+#endif
 };
+
+// A direction or normal of the hit triangle's object (as `triangles` stores it) in the world.
+vec3 hit_to_world(RayHit h, vec3 n) {
+#ifdef RAY_QUERY
+    return h.to_world * n;
+#else
+    return n;
+#endif
+}
 #endif

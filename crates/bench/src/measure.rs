@@ -39,6 +39,11 @@ pub struct CellRun {
     pub frames: Vec<FrameReport>,
     /// Host wall time of each measured per-pass frame (record, submit, wait), ms.
     pub wall_ms: Vec<f64>,
+    /// Host time of the pose update (`Renderer::set_pose`) before each measured per-pass frame
+    /// that had one, ms: outside the frame's time.
+    pub pose_ms: Vec<f64>,
+    /// What each of those pose updates asked of the driver (its acceleration structures built).
+    pub pose_counters: Vec<Counters>,
     /// What each measured per-pass frame (pose update included) asked of the driver.
     pub counters: Vec<Counters>,
     pub throughput: Option<ThroughputRun>,
@@ -282,6 +287,8 @@ impl<'a> Runner<'a> {
         }
         let mut frames = vec![];
         let mut wall_ms = vec![];
+        let mut pose_ms = vec![];
+        let mut pose_counters = vec![];
         let mut counters = vec![];
         // temporal_change: the last measured frame's receiver map, and each frame's change from it.
         let temporal = self.needs_temporal();
@@ -302,13 +309,21 @@ impl<'a> Runner<'a> {
                 }
             }
             let before = self.ctx.counters();
+            let mut posed = None;
             if f > 0 && !anim.is_static() {
-                renderer.set_pose(&scene_at(&scene, &anim, f))?;
+                let pose = scene_at(&scene, &anim, f);
+                let start = Instant::now();
+                renderer.set_pose(&pose)?;
+                posed = Some((start.elapsed().as_secs_f64() * 1e3, self.ctx.counters().since(&before)));
             }
             let start = Instant::now();
             let report = renderer.frame(step)?;
             let ms = start.elapsed().as_secs_f64() * 1e3;
             if f >= plan.warmup {
+                if let Some((ms, c)) = posed {
+                    pose_ms.push(ms);
+                    pose_counters.push(c);
+                }
                 frames.push(report);
                 wall_ms.push(ms);
                 counters.push(self.ctx.counters().since(&before));
@@ -381,11 +396,15 @@ impl<'a> Runner<'a> {
         if !per_pass_timing {
             frames.clear();
             wall_ms.clear();
+            pose_ms.clear();
+            pose_counters.clear();
             counters.clear();
         }
         Ok(CellRun {
             frames,
             wall_ms,
+            pose_ms,
+            pose_counters,
             counters,
             throughput,
             stats_frame,

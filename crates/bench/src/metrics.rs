@@ -110,6 +110,11 @@ fn photons_processed(run: &CellRun) -> u64 {
     }
 }
 
+/// The mean of a count over `counters` (`None` without any).
+fn mean_count(counters: &[vkcore::Counters], count: impl Fn(&vkcore::Counters) -> u64) -> Option<f64> {
+    (!counters.is_empty()).then(|| counters.iter().map(|c| count(c) as f64).sum::<f64>() / counters.len() as f64)
+}
+
 /// A throughput metric: from the timed blocks (host) or each frame's timestamp pair (GPU). fps
 /// is the median of the blocks' rates, its spread theirs.
 fn throughput(k: &str, run: &CellRun) -> Value {
@@ -151,6 +156,11 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
                 v.value = (mean > 0.0).then(|| 1000.0 / mean);
                 v
             }
+            // The pose updates before the measured frames, timed on the host (outside `frame_ms`).
+            "pose_ms" => of_samples(k, run.pose_ms.clone()),
+            // Acceleration structures built per pose update before a measured frame.
+            "blas_builds" => exact(k, mean_count(&run.pose_counters, |c| c.blas_builds)),
+            "tlas_builds" => exact(k, mean_count(&run.pose_counters, |c| c.tlas_builds)),
             "photons_emitted" => exact(k, Some(run.photons_emitted as f64)),
             "splats_drawn" => exact(k, Some(run.splats_drawn as f64)),
             "photons_processed" => exact(k, Some(photons_processed(run) as f64)),
@@ -186,6 +196,29 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pose_updates_are_timed_and_their_structures_counted_apart_from_the_frames() {
+        let c = |blas_builds, tlas_builds| vkcore::Counters { blas_builds, tlas_builds, ..Default::default() };
+        let run = CellRun {
+            pose_ms: vec![2.0, 4.0, 3.0],
+            // The frames' own counters hold their pose updates' builds too, and more.
+            counters: vec![c(5, 5); 3],
+            pose_counters: vec![c(1, 1), c(0, 1), c(0, 1)],
+            ..CellRun::default()
+        };
+        let spec = |kind: &str| -> MetricSpec {
+            toml::from_str(&format!("label = \"{kind}\"\nkind = \"{kind}\"")).expect("a metric")
+        };
+        let out = evaluate(&[spec("pose_ms"), spec("blas_builds"), spec("tlas_builds")], &run);
+        assert_eq!(out["pose_ms"].value, Some(3.0));
+        assert_eq!(out["pose_ms"].samples, vec![2.0, 4.0, 3.0]);
+        assert_eq!(out["blas_builds"].value, Some(1.0 / 3.0));
+        assert_eq!(out["tlas_builds"].value, Some(1.0));
+        let still = CellRun { counters: vec![c(0, 0)], ..CellRun::default() };
+        let out = evaluate(&[spec("pose_ms"), spec("blas_builds")], &still);
+        assert_eq!((out["pose_ms"].value, out["blas_builds"].value), (None, None), "no pose update, no number");
+    }
 
     #[test]
     fn globs() {

@@ -113,6 +113,10 @@ pub struct CellResult {
     pub metrics: BTreeMap<String, Value>,
     /// Host wall time of each measured frame, ms.
     pub wall_ms: Vec<f64>,
+    /// Host time of each pose update before a measured frame (`Renderer::set_pose`), ms; absent
+    /// on a static path and in results written before it was kept.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pose_ms: Vec<f64>,
     /// Per-pass GPU times over the measured frames.
     pub passes: Vec<Pass>,
     /// Share of the host's CPU time the hypervisor gave to other guests while the cell's frames
@@ -223,6 +227,7 @@ pub fn is_timing(kind: &str) -> bool {
             | "pass_host_ms"
             | "gpu_frame_ms"
             | "frame_ms"
+            | "pose_ms"
             | "fps"
             | "pass_fps"
             | "pass_mphotons"
@@ -242,6 +247,7 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         models: run.models.clone(),
         metrics,
         wall_ms: run.wall_ms.clone(),
+        pose_ms: run.pose_ms.clone(),
         passes,
         cpu_steal: run.cpu_steal,
         other_cores: run.other_cores,

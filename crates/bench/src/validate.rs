@@ -317,6 +317,19 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     // that frame's pose. temporal_change compares each frame with the one before it.
     // The receiver map moves with the light and the objects, not with the camera.
     let moving = [&r.light_path, &r.object_path].iter().any(|p| *p != "static");
+    let posed = moving || r.camera_path != "static";
+    for (i, mt) in c.metrics.iter().enumerate() {
+        if matches!(mt.kind.as_str(), "pose_ms" | "blas_builds" | "tlas_builds") && !posed {
+            return Err(bad(
+                &format!("metric[{i}].kind"),
+                format!(
+                    "`{}` measures the pose updates between frames: it needs something that moves (run.light_path, \
+                     run.camera_path or run.object_path = \"orbit\")",
+                    mt.kind
+                ),
+            ));
+        }
+    }
     for (i, mt) in c.metrics.iter().enumerate() {
         if !crate::config::is_temporal_metric(&mt.kind) {
             continue;

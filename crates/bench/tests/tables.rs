@@ -429,7 +429,13 @@ fn the_header_names_the_models_and_says_when_one_is_not_the_listed_file() {
 #[test]
 fn frame_counters_are_medians_per_frame_and_the_most_objects() {
     use bench::results::FrameCounters;
-    let c = |objects, submits, barriers, timestamps| vkcore::Counters { objects, submits, barriers, timestamps };
+    let c = |objects, submits, barriers, timestamps| vkcore::Counters {
+        objects,
+        submits,
+        barriers,
+        timestamps,
+        ..Default::default()
+    };
     let frames = [c(0, 1, 10, 4), c(7, 3, 30, 8), c(1, 2, 20, 6)];
     let f = FrameCounters::of(&frames, &[5, 9, 7]).expect("three frames");
     assert_eq!(

@@ -89,6 +89,13 @@ fn config_errors_name_the_file_and_key() {
             SMALL.replace("kind = \"splats_drawn\"", "kind = \"temporal_change\""),
             "metric[1].kind",
         ),
+        ("pose_still.toml", SMALL.replace("kind = \"splats_drawn\"", "kind = \"pose_ms\""), "metric[1].kind"),
+        ("builds_still.toml", SMALL.replace("kind = \"splats_drawn\"", "kind = \"blas_builds\""), "metric[1].kind"),
+        (
+            "moving_objects_compute.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\nmoving_objects = \"rebuild\""),
+            "moving_objects",
+        ),
         (
             "temporal_one_frame.toml",
             SMALL

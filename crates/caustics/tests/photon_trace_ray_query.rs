@@ -16,10 +16,12 @@
 //!     the receiver maps differ by less than half of what two seeds of the compute path differ
 //!     by (its noise);
 //! - an object that moves (the compute path refuses it: its BVH is built once): with ray
-//!   queries the acceleration structures are built again for each pose, and in each pose of
-//!   `sphere_on_plane`'s animated sphere the receiver map matches the CPU reference of that pose
-//!   (caustic flux within 1%, relative RMSE under half of its RMSE against the other pose's
-//!   reference, which a stale structure would match instead);
+//!   queries, in each pose of `sphere_on_plane`'s animated sphere (turned a quarter and moved,
+//!   back, squashed, ...) the receiver map matches the CPU reference of that pose (caustic flux
+//!   within 1%, relative RMSE under half of its RMSE against another pose's reference, which a
+//!   stale structure would match instead), with `moving_objects = "transform"` (a rigid motion
+//!   moves the sphere's instance and builds no bottom level; the squash rebuilds it) and
+//!   `"rebuild"` (every pose rebuilds it), each pose building one top level;
 //! - a device without acceleration structures or ray queries refuses `trace = "ray-query"`
 //!   naming the feature (Mesa 22.3's lavapipe has neither; here they are also hidden).
 //!
@@ -155,16 +157,33 @@ fn ray_queries_trace_the_compute_paths_photons_on_five_scenes() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `base` with its object `name` squashed to `0.7` of its height about its centre (not a rigid
+/// motion), the normals turned as a squash turns them.
+fn squashed(base: &Scene, name: &str) -> Scene {
+    let mut s = base.clone();
+    let obj = s.objects.iter_mut().find(|o| o.name == name).expect("the object");
+    let (lo, hi) = obj.mesh.bounds();
+    let centre = 0.5 * (lo + hi);
+    let k = glam::Vec3::new(1.0, 0.7, 1.0);
+    obj.mesh.positions.iter_mut().for_each(|p| *p = centre + (*p - centre) * k);
+    obj.mesh.normals.iter_mut().for_each(|n| *n = (*n / k).normalize_or_zero());
+    s
+}
+
 #[test]
 fn ray_queries_follow_a_moving_object_pose_by_pose() {
     use caustics::animation::{scene_at, Animation};
     use caustics::reference::{trace_reference, ReferenceOptions};
+    use caustics::techniques::photon_trace::settings::MovingObjects;
     let Some((ctx, sh)) = ray_query_context() else { return };
     let mut base = scene("sphere_on_plane.toml", Trace::RayQuery);
     base.caustics.fresnel = false;
     base.receiver_map.as_mut().expect("a receiver map").resolution = 32;
     let anim = Animation { light: false, camera: false, object: true, period_frames: 4 };
-    let poses: Vec<Scene> = [0, 1].iter().map(|&f| scene_at(&base, &anim, f)).collect();
+    // Pose 1 turns the sphere a quarter about its vertical axis and moves it (rigid); pose 2
+    // squashes it (not rigid).
+    let mut poses: Vec<Scene> = [0, 1].iter().map(|&f| scene_at(&base, &anim, f)).collect();
+    poses.push(squashed(&base, "sphere"));
     let references: Vec<ImageF32> = poses
         .iter()
         .map(|p| {
@@ -172,26 +191,50 @@ fn ray_queries_follow_a_moving_object_pose_by_pose() {
             trace_reference(p, &opts).expect("reference").image
         })
         .collect();
-    let mut r = Renderer::new(&ctx, &sh, &poses[0], &RendererOptions::default()).expect("renderer");
     let mut failures = vec![];
-    for (i, pose) in poses.iter().enumerate().chain([(0, &poses[0])]) {
-        let start = std::time::Instant::now();
-        r.set_pose(pose).expect("ray queries follow a moving object");
-        let rebuilt = start.elapsed();
-        r.frame(FrameStep::default()).expect("frame");
-        let receiver = r.receiver_map().expect("read").expect("a receiver map");
-        let (own, _) = compare(&receiver, &references[i]).expect("compare");
-        let (other, _) = compare(&receiver, &references[1 - i]).expect("compare");
-        println!(
-            "pose {i}: set_pose {:.1} ms (the structures rebuilt where the sphere moved); against its reference rel. RMSE {:.4}, flux ratio {:.4}; \
-             against the other pose's rel. RMSE {:.4}",
-            rebuilt.as_secs_f64() * 1e3,
-            own.rel_rmse,
-            own.caustic_flux_ratio,
-            other.rel_rmse
-        );
-        if !own.within(0.5 * other.rel_rmse, 0.01) {
-            failures.push(format!("pose {i}: {own:?} against its reference, {other:?} against the other"));
+    for moving in [MovingObjects::Transform, MovingObjects::Rebuild] {
+        let mut first = poses[0].clone();
+        first.caustics.moving_objects = moving;
+        let mut r = Renderer::new(&ctx, &sh, &first, &RendererOptions::default()).expect("renderer");
+        // Each pose after the one before it, with the bottom levels it should build: a rigid
+        // motion from the mesh the sphere's bottom level was built over moves its instance
+        // (`transform`), anything else rebuilds it. After the squash that mesh is the squashed
+        // one, so pose 1 is not a rigid motion of it.
+        let rigid_blas = u64::from(moving == MovingObjects::Rebuild);
+        for (i, blas) in [(1, rigid_blas), (0, rigid_blas), (2, 1), (1, 1), (0, rigid_blas)] {
+            let mut pose = poses[i].clone();
+            pose.caustics.moving_objects = moving;
+            let before = ctx.counters();
+            let start = std::time::Instant::now();
+            r.set_pose(&pose).expect("ray queries follow a moving object");
+            let posed = start.elapsed();
+            let built = ctx.counters().since(&before);
+            r.frame(FrameStep::default()).expect("frame");
+            let receiver = r.receiver_map().expect("read").expect("a receiver map");
+            let (own, _) = compare(&receiver, &references[i]).expect("compare");
+            let other = if i == 1 { 0 } else { 1 };
+            let (against_other, _) = compare(&receiver, &references[other]).expect("compare");
+            println!(
+                "{moving}, pose {i}: set_pose {:.1} ms, {} bottom and {} top level(s) built; against its reference \
+                 rel. RMSE {:.4}, flux ratio {:.4}; against pose {other}'s rel. RMSE {:.4}",
+                posed.as_secs_f64() * 1e3,
+                built.blas_builds,
+                built.tlas_builds,
+                own.rel_rmse,
+                own.caustic_flux_ratio,
+                against_other.rel_rmse
+            );
+            if (built.blas_builds, built.tlas_builds) != (blas, 1) {
+                failures.push(format!(
+                    "{moving}, pose {i}: {} bottom and {} top levels built, expected {blas} and 1",
+                    built.blas_builds, built.tlas_builds
+                ));
+            }
+            if !own.within(0.5 * against_other.rel_rmse, 0.01) {
+                failures.push(format!(
+                    "{moving}, pose {i}: {own:?} against its reference, {against_other:?} against pose {other}'s"
+                ));
+            }
         }
     }
     let log = ctx.validation_log();

@@ -262,6 +262,7 @@ fn build(
     one_shot(ctx, &format!("build {name}"), |cb| unsafe {
         accel.cmd_build_acceleration_structures(cb, std::slice::from_ref(&info), &[std::slice::from_ref(&range)])
     })?;
+    ctx.shared.counters.acceleration_structure(ty == vk::AccelerationStructureTypeKHR::TOP_LEVEL);
     drop(scratch);
     Ok(built)
 }

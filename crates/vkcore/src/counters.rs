@@ -1,6 +1,7 @@
 //! What the host asked of the driver, counted: Vulkan objects created or allocated (buffers,
 //! images, views, samplers, memory allocations, pipelines and their layouts and modules, query
-//! pools, command buffers, fences), queue submissions, pipeline barriers and timestamps written.
+//! pools, command buffers, fences), queue submissions, pipeline barriers and timestamps written,
+//! and acceleration structures built (bottom and top levels apart: what a moving object costs).
 //! A real-time frame creates nothing once it is warm: throughput frames are tested for that, and
 //! the bench and `timings.json` report each count per frame.
 
@@ -18,6 +19,10 @@ pub struct Counters {
     pub barriers: u64,
     /// `vkCmdWriteTimestamp2` calls recorded.
     pub timestamps: u64,
+    /// Bottom-level acceleration structures built (over a mesh's triangles).
+    pub blas_builds: u64,
+    /// Top-level acceleration structures built (over instances).
+    pub tlas_builds: u64,
 }
 
 impl Counters {
@@ -28,6 +33,8 @@ impl Counters {
             submits: self.submits.saturating_sub(earlier.submits),
             barriers: self.barriers.saturating_sub(earlier.barriers),
             timestamps: self.timestamps.saturating_sub(earlier.timestamps),
+            blas_builds: self.blas_builds.saturating_sub(earlier.blas_builds),
+            tlas_builds: self.tlas_builds.saturating_sub(earlier.tlas_builds),
         }
     }
 }
@@ -38,6 +45,8 @@ pub(crate) struct AtomicCounters {
     submits: AtomicU64,
     barriers: AtomicU64,
     timestamps: AtomicU64,
+    blas_builds: AtomicU64,
+    tlas_builds: AtomicU64,
 }
 
 impl AtomicCounters {
@@ -53,12 +62,19 @@ impl AtomicCounters {
     pub fn timestamp(&self) {
         self.timestamps.fetch_add(1, Ordering::Relaxed);
     }
+    /// An acceleration structure built: a top level (`top`) or a bottom one.
+    pub fn acceleration_structure(&self, top: bool) {
+        let c = if top { &self.tlas_builds } else { &self.blas_builds };
+        c.fetch_add(1, Ordering::Relaxed);
+    }
     pub fn snapshot(&self) -> Counters {
         Counters {
             objects: self.objects.load(Ordering::Relaxed),
             submits: self.submits.load(Ordering::Relaxed),
             barriers: self.barriers.load(Ordering::Relaxed),
             timestamps: self.timestamps.load(Ordering::Relaxed),
+            blas_builds: self.blas_builds.load(Ordering::Relaxed),
+            tlas_builds: self.tlas_builds.load(Ordering::Relaxed),
         }
     }
 }

@@ -38,6 +38,7 @@ pub fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: 
         models: vec![],
         metrics: BTreeMap::from([("Gather".to_string(), value(samples))]),
         wall_ms: samples.to_vec(),
+        pose_ms: vec![],
         passes: vec![],
         cpu_steal: None,
         other_cores: None,

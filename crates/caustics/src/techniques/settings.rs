@@ -6,7 +6,7 @@
 //! - [`CausticSettings::validate_combination`]: a setting that belongs to some techniques only
 //!   (`only Hcm`) is refused, with its key, for the others.
 
-use super::photon_trace::settings::{Deposit as PhotonDeposit, Trace};
+use super::photon_trace::settings::{Deposit as PhotonDeposit, MovingObjects, Trace};
 use super::shah2007::settings::{Lookup, Refractions};
 use super::shared::settings::{Intersect, PhotonView, SplatKernel, SplatPath, TraversalPath};
 use super::technique::Technique;
@@ -206,6 +206,10 @@ caustic_settings! {
     /// traversal in a compute shader, default) or ray-query (rayQueryEXT against Vulkan
     /// acceleration structures: VK_KHR_acceleration_structure and VK_KHR_ray_query).
     trace: Trace = Trace::Compute, only PhotonTrace;
+    /// photon-trace with trace ray-query: how the acceleration structures follow an object that
+    /// moves, transform (a rigid motion moves its instance, any other rebuilds its bottom level;
+    /// default) or rebuild (every moved object's bottom level rebuilt).
+    moving_objects: MovingObjects = MovingObjects::Transform, only PhotonTrace;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.
     precision: Precision = Precision::Float, only PoolConvolution;

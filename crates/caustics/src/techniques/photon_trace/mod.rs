@@ -23,14 +23,18 @@
 //! does not (the option is refused there by name).
 //!
 //! The BVH is built once, when the renderer is made: with it a pose that moves a mesh is
-//! refused (`Renderer::set_pose`). The acceleration structures follow a pose that moves meshes:
-//! the device is waited for, and the structures and the triangles the shader reads are built
-//! again from the moved vertices (rebuilt, not refitted: a pose may move a mesh anywhere).
+//! refused (`Renderer::set_pose`). The acceleration structures follow a pose that moves meshes
+//! ([`instances`]): the device is waited for, a rigidly moved object's instance gets the motion
+//! as its transform, and any other moved object's bottom level is rebuilt from its moved
+//! vertices (every moved object's with `moving_objects = "rebuild"`); the top level is built
+//! again.
 
+pub mod instances;
 pub mod push;
 pub mod settings;
 
-use settings::Trace;
+pub use instances::RayQueryScene;
+use settings::{MovingObjects, Trace};
 
 use super::shared::photon_buffer::record_receiver_positions;
 use super::shared::CausticPasses;
@@ -40,9 +44,7 @@ use crate::reference::emit::bounding_sphere;
 use crate::scene::Scene;
 use anyhow::Result;
 use push::PhotonTraceConstants;
-use vkcore::{
-    AccelerationStructure, Access, Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler, TlasInstance, Use,
-};
+use vkcore::{Access, Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler, Use};
 
 /// `PHOTON_TRACE_OUTSIDE_REFLECTION` in trace.comp.
 const FLAG_OUTSIDE_REFLECTION: u32 = 1;
@@ -55,40 +57,6 @@ enum Intersection {
     Bvh { nodes: Buffer },
     /// Ray queries against the Vulkan acceleration structures (`photon_trace/ray_query.glsl`).
     RayQuery(RayQueryScene),
-}
-
-/// The scene as ray queries see it: a bottom-level structure per object with triangles, over
-/// its triangles in the scene's order, and a top-level one with an instance of each (the
-/// identity transform: the scene's meshes are in world space), whose custom index is the
-/// object's first triangle in the tracer's triangle buffer.
-pub struct RayQueryScene {
-    pub top: AccelerationStructure,
-    pub bottom: Vec<AccelerationStructure>,
-}
-
-impl RayQueryScene {
-    /// Builds the structures of `scene`'s objects; `first[o]` is object o's first triangle.
-    pub fn new(ctx: &Context, scene: &Scene, first: &[u32]) -> Result<RayQueryScene> {
-        let mut bottom = vec![];
-        let mut custom = vec![];
-        for (o, obj) in scene.objects.iter().enumerate() {
-            if obj.mesh.indices.is_empty() {
-                continue;
-            }
-            let positions: Vec<[f32; 3]> = obj.mesh.positions.iter().map(|p| p.to_array()).collect();
-            let name = format!("photon_trace object {o}");
-            bottom.push(AccelerationStructure::triangles(ctx, &name, &positions, &obj.mesh.indices)?);
-            custom.push(first[o]);
-        }
-        const IDENTITY: [[f32; 4]; 3] = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]];
-        let instances: Vec<TlasInstance> = bottom
-            .iter()
-            .zip(&custom)
-            .map(|(blas, &custom_index)| TlasInstance { blas, transform: IDENTITY, custom_index })
-            .collect();
-        let top = AccelerationStructure::instances(ctx, "photon_trace scene", &instances)?;
-        Ok(RayQueryScene { top, bottom })
-    }
 }
 
 /// The tracer's pipeline and the scene as it reads it.
@@ -106,6 +74,8 @@ pub struct PhotonTracer {
     receiver_deposit: bool,
     /// Per object, whether it is specular (the emission cone subtends these).
     specular: Vec<bool>,
+    /// How ray queries' structures follow a moving object.
+    moving: MovingObjects,
 }
 
 impl PhotonTracer {
@@ -186,13 +156,16 @@ impl PhotonTracer {
             },
             receiver_deposit,
             specular,
+            moving: s.moving_objects,
         })
     }
 
     /// Follows `scene`, a pose in which the objects `moved` moved: with ray queries, waits for
-    /// the device and builds the acceleration structures and the triangle records again from
-    /// the moved vertices; the BVH is built once (an input error naming the object).
-    pub fn follow(&mut self, ctx: &Context, scene: &Scene, moved: &[&str]) -> Result<()> {
+    /// the device and moves their instances or rebuilds their bottom levels
+    /// ([`RayQueryScene::follow`]), and uploads the triangles and normals again where a bottom
+    /// level was rebuilt (the shader reads each object as its bottom level was built); the BVH is
+    /// built once (an input error naming the object).
+    pub fn follow(&mut self, ctx: &Context, scene: &Scene, moved: &[&str]) -> Result<instances::Followed> {
         let Intersection::RayQuery(rq) = &mut self.intersection else {
             return Err(crate::input_error!(
                 "technique photon-trace: object `{}` moves, and the tracer's BVH is built once, when the renderer \
@@ -204,12 +177,15 @@ impl PhotonTracer {
         ctx.wait_idle()?;
         (self.constants.sphere, self.constants.eps, self.constants.receiver_tolerance) =
             placement(scene, &self.specular);
-        let (tris, first) = scene_triangles(scene);
-        *rq = RayQueryScene::new(ctx, scene, &first)?;
-        let records: Vec<[f32; 12]> = tris.iter().map(triangle_record).collect();
-        ctx.upload_buffer(&self.triangles, bytemuck::cast_slice(&records))?;
-        ctx.upload_buffer(&self.normals, bytemuck::cast_slice(&shading_normals(scene, &tris)))?;
-        Ok(())
+        let followed = rq.follow(ctx, scene, moved, self.moving)?;
+        if followed.rebuilt > 0 {
+            let rest = rq.rest_scene(scene);
+            let (tris, _) = scene_triangles(&rest);
+            let records: Vec<[f32; 12]> = tris.iter().map(triangle_record).collect();
+            ctx.upload_buffer(&self.triangles, bytemuck::cast_slice(&records))?;
+            ctx.upload_buffer(&self.normals, bytemuck::cast_slice(&shading_normals(&rest, &tris)))?;
+        }
+        Ok(followed)
     }
 
     /// Light `l`'s receiver positions (for the caustic map's lookup), then its photons traced

@@ -51,6 +51,21 @@ value_enum! {
     }
 }
 
+value_enum! {
+    /// How `trace = "ray-query"`'s acceleration structures follow an object that moves
+    /// (`caustics.moving_objects`, `--moving-objects`).
+    pub enum MovingObjects {
+        /// An object moved rigidly since its bottom level was built (every vertex and normal
+        /// where one rotation and translation put them) keeps that bottom level and its instance
+        /// in the top level gets the motion as its transform; any other motion rebuilds its
+        /// bottom level. The top level is rebuilt on every pose that moves an object.
+        Transform = "transform",
+        /// Every moved object's bottom level is rebuilt from its moved vertices (what a deforming
+        /// mesh costs), its instance's transform the identity.
+        Rebuild = "rebuild",
+    }
+}
+
 /// What `s`'s `trace` and `deposit` need of the device, each with what needs it.
 pub fn required_features(s: &CausticSettings) -> Vec<(&'static str, &'static [Feature])> {
     let mut needs = vec![];
@@ -67,6 +82,16 @@ pub fn required_features(s: &CausticSettings) -> Vec<(&'static str, &'static [Fe
 pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
     if !(1..=MAX_BOUNCES).contains(&s.max_bounces) {
         bad("max_bounces", format!("must be between 1 and {MAX_BOUNCES}, got {}", s.max_bounces))?;
+    }
+    if s.moving_objects != MovingObjects::Transform && s.trace != Trace::RayQuery {
+        bad(
+            "moving_objects",
+            format!(
+                "`{}` is how trace = \"ray-query\"'s acceleration structures follow a moving object; trace `{}` \
+                 builds its BVH once and refuses moving objects",
+                s.moving_objects, s.trace
+            ),
+        )?;
     }
     Ok(())
 }

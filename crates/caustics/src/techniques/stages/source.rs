@@ -107,19 +107,19 @@ impl Source {
         })
     }
 
-    /// Whether this stage has the light-space buffer `d` (one it owns but does not have, it
-    /// never dumps).
     /// Follows `scene`, a pose in which the objects `moved` moved: the tracer's acceleration
-    /// structures are rebuilt (`trace = "ray-query"`); its BVH is built once, when it is made
-    /// (an input error naming the object otherwise). The other sources read the meshes as they
-    /// are drawn.
+    /// structures follow them (`trace = "ray-query"`: moved instances or rebuilt bottom levels,
+    /// `photon_trace::instances`); its BVH is built once, when it is made (an input error naming
+    /// the object otherwise). The other sources read the meshes as they are drawn.
     pub fn follow_moved_meshes(&mut self, ctx: &Context, scene: &Scene, moved: &[&str]) -> anyhow::Result<()> {
         match self {
-            Source::Traced(tracer) => tracer.follow(ctx, scene, moved),
+            Source::Traced(tracer) => tracer.follow(ctx, scene, moved).map(|_| ()),
             _ => Ok(()),
         }
     }
 
+    /// Whether this stage has the light-space buffer `d` (one it owns but does not have, it
+    /// never dumps).
     pub fn has_dump(&self, d: &'static Dump) -> bool {
         match self {
             Source::Deferred(_) => true,
