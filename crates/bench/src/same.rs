@@ -67,14 +67,35 @@ pub fn differences(a: &Results, b: &Results, tolerance: f64) -> Vec<String> {
     out
 }
 
+/// The caustic settings two cells ran with, key by key (`key: a against b`). A key one result
+/// lacks (written before the setting existed) reads as the setting's default, which is what
+/// that run used.
+fn settings_differences(x: &serde_json::Value, y: &serde_json::Value) -> Vec<String> {
+    let (Some(a), Some(b)) = (x.as_object(), y.as_object()) else {
+        return if x == y { vec![] } else { vec![format!("{x} against {y}")] };
+    };
+    let defaults = serde_json::to_value(caustics::techniques::settings::CausticSettings::default()).unwrap_or_default();
+    let keys: std::collections::BTreeSet<&String> = a.keys().chain(b.keys()).collect();
+    let missing = serde_json::Value::String("(absent)".into());
+    keys.into_iter()
+        .filter_map(|k| {
+            let of = |side: &serde_json::Map<String, serde_json::Value>| {
+                side.get(k).or_else(|| defaults.get(k)).cloned().unwrap_or_else(|| missing.clone())
+            };
+            let (u, v) = (of(a), of(b));
+            (u != v).then(|| format!("`{k}` {u} against {v}"))
+        })
+        .collect()
+}
+
 fn cell(x: &CellResult, y: &CellResult, tolerance: f64, out: &mut Vec<String>) {
     let name = x.cell.describe();
     if x.cell != y.cell {
         out.push(format!("{name}: the cell differs ({} in the second)", y.cell.describe()));
         return;
     }
-    if x.caustics != y.caustics {
-        out.push(format!("{name}: the caustic settings in effect differ ({} against {})", x.caustics, y.caustics));
+    for d in settings_differences(&x.caustics, &y.caustics) {
+        out.push(format!("{name}: the caustic settings in effect differ: {d}"));
     }
     if x.photon_copy != y.photon_copy {
         out.push(format!("{name}: photon copy `{}` against `{}`", x.photon_copy, y.photon_copy));
@@ -215,6 +236,23 @@ mod tests {
         let mut f = a.clone();
         f.config.hash = "0".into();
         assert!(differences(&a, &f, 1e-5)[0].starts_with("config: hash"));
+    }
+
+    #[test]
+    fn a_setting_one_result_lacks_reads_as_its_default() {
+        let mut a = results(10.0, 4096.0, 0.25);
+        let defaults =
+            serde_json::to_value(caustics::techniques::settings::CausticSettings::default()).expect("settings");
+        a.cells[0].caustics = defaults.clone();
+        let mut b = a.clone();
+        b.cells[0].caustics.as_object_mut().expect("an object").remove("moving_objects");
+        assert!(differences(&a, &b, 1e-5).is_empty(), "an absent key is its default");
+        b.cells[0].caustics["moving_objects"] = serde_json::json!("rebuild");
+        let d = differences(&a, &b, 1e-5);
+        assert!(d.len() == 1 && d[0].contains("`moving_objects` \"transform\" against \"rebuild\""), "{d:?}");
+        b.cells[0].caustics.as_object_mut().expect("an object").remove("moving_objects");
+        a.cells[0].caustics["moving_objects"] = serde_json::json!("rebuild");
+        assert_eq!(differences(&a, &b, 1e-5).len(), 1, "absent (the default) against a set value");
     }
 
     #[test]

@@ -122,10 +122,13 @@ fn top_level(ctx: &Context, instances: &[Instance], first: &[u32]) -> Result<Acc
     Ok(AccelerationStructure::instances(ctx, "photon_trace scene", &records)?)
 }
 
-/// How far a vertex may lie from where the fitted motion puts it, relative to the largest
-/// coordinate of the two meshes: f32 rounding of a pose's rotation is 1e-7 of that; this is the
-/// tracer's own ray offset (`placement`'s `eps`), far below anything a photon resolves.
+/// How far a vertex may lie from where the fitted motion puts it, relative to the rest mesh's
+/// size (its bounding box's diagonal): far below anything a photon resolves...
 const POSITION_TOLERANCE: f64 = 1e-5;
+/// ...or, for a small object far from the origin, this many times f32's epsilon (1.2e-7) of the
+/// largest coordinate of the two meshes, about 8 units in its last place: a pose's rotation in
+/// f32 rounds a vertex by one or two.
+const POSITION_EPSILONS: f64 = 4.0;
 /// How far a unit normal, and the fitted rotation's columns, may be from a rotation's.
 const NORMAL_TOLERANCE: f64 = 1e-4;
 
@@ -155,8 +158,10 @@ pub fn rigid_motion(rest: &Mesh, now: &Mesh) -> Option<Transform> {
     if (m.transpose() * m - DMat3::IDENTITY).to_cols_array().iter().any(|e| e.abs() > NORMAL_TOLERANCE) {
         return None;
     }
-    let largest = p.iter().chain(q).map(|v| v.abs().max_element() as f64).fold(0.0, f64::max).max(1e-30);
-    let tol = POSITION_TOLERANCE * largest;
+    let largest = p.iter().chain(q).map(|v| v.abs().max_element() as f64).fold(0.0, f64::max);
+    let (lo, hi) = rest.bounds();
+    let size = (hi - lo).as_dvec3().length();
+    let tol = (POSITION_TOLERANCE * size).max(POSITION_EPSILONS * f32::EPSILON as f64 * largest);
     if p.iter().zip(q).any(|(&x, &y)| !within(dist(m * x.as_dvec3() + t, y.as_dvec3()), tol)) {
         return None;
     }
@@ -247,6 +252,18 @@ mod tests {
         let mut normal = moved(&rest, turned, Vec3::Y, Vec3::ONE);
         normal.normals[2] = -normal.normals[2];
         assert_eq!(rigid_motion(&rest, &normal), None, "one normal flipped");
+        // Far from the origin the tolerance follows the mesh's size, not its coordinates: at
+        // x = 1000 a unit-sized object with one vertex moved by 5e-3 (an interior one, which the
+        // fit never picks) is not rigid, though that is within 1e-5 of the coordinates.
+        let mut far = moved(&rest, Mat3::IDENTITY, Vec3::new(1000.0, 0.0, 0.0), Vec3::ONE);
+        let centre = far.positions.iter().sum::<Vec3>() / 4.0;
+        far.positions.push(centre);
+        far.normals.push(Vec3::Y);
+        let mut dented = far.clone();
+        dented.positions[4].y += 5e-3;
+        assert!(rigid_motion(&rest, &moved(&rest, Mat3::IDENTITY, Vec3::new(1000.0, 0.0, 0.0), Vec3::ONE)).is_some());
+        assert!(rigid_motion(&far, &far).is_some(), "no motion at x = 1000 is rigid");
+        assert!(rigid_motion(&far, &dented).is_none(), "a vertex moved by 5e-3 at x = 1000");
         let mut fewer = rest.clone();
         fewer.positions.pop();
         assert_eq!(rigid_motion(&rest, &fewer), None, "a vertex fewer");
