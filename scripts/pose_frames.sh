@@ -8,7 +8,7 @@
 #   bash scripts/pose_frames.sh results/<device>/photon_trace_moving.json [OUT.csv]
 #
 # OUT defaults to results/<table>_frames.csv. Frame f of a cell is its warm-up frames plus the
-# sample's index (each attempt of a cell measured again starts at frame 0; its kept attempt's
+# sample's index (frame 0, the scene's own pose, has no pose update and no row) (each attempt of a cell measured again starts at frame 0; its kept attempt's
 # samples are the cell's); its angle is 360° × (f mod period) / period
 # (`caustics::animation`). Needs python3.
 set -euo pipefail
@@ -28,11 +28,13 @@ rows = [["frame", "scene", "technique", "photons", "orientation", "angle_deg", "
 for c in table["cells"]:
     cell = c["cell"]
     scene = os.path.basename(cell["scene"]).removesuffix(".toml")
-    poses = c.get("pose_ms", [])
-    if len(poses) != len(c["wall_ms"]):
-        sys.exit(f"pose_frames.sh: cell {cell['index']}: {len(poses)} pose updates for {len(c['wall_ms'])} frames")
-    for i, (wall, pose) in enumerate(zip(c["wall_ms"], poses)):
-        f = warmup + i
+    poses, walls = c.get("pose_ms", []), c["wall_ms"]
+    # Frame 0 is the scene's own pose, without an update: without warm-up it is measured too.
+    first = 1 if warmup == 0 else 0
+    if len(poses) != len(walls) - first:
+        sys.exit(f"pose_frames.sh: cell {cell['index']}: {len(poses)} pose updates for {len(walls)} frames")
+    for i, (wall, pose) in enumerate(zip(walls[first:], poses)):
+        f = warmup + first + i
         angle = 360.0 * (f % period) / period
         orientation = "axis-aligned" if angle % 90.0 == 0.0 else "turned"
         rows.append([f"f{f}", scene, cell["technique_label"], cell["photons"], orientation, angle, wall, pose])

@@ -42,7 +42,8 @@ pub struct CellRun {
     /// Host time of the pose update (`Renderer::set_pose`) before each measured per-pass frame
     /// that had one, ms: outside the frame's time.
     pub pose_ms: Vec<f64>,
-    /// What each of those pose updates asked of the driver (its acceleration structures built).
+    /// What each of those pose updates asked of the driver (its acceleration structures built);
+    /// kept where the frames themselves are not timed (a config with only the build counts).
     pub pose_counters: Vec<Counters>,
     /// What each measured per-pass frame (pose update included) asked of the driver.
     pub counters: Vec<Counters>,
@@ -269,7 +270,9 @@ impl<'a> Runner<'a> {
         let mut plan = c.frame_plan(self.quick.is_some());
         // Untimed frames along an animation for a quality or temporal metric: the warm-up
         // frames (which fill a temporal filter's history), then exactly `measured_frames`.
-        let along_animation = !per_pass_timing && !anim.is_static() && self.needs_receiver_map();
+        // The acceleration structures' build counts likewise read the pose updates between frames.
+        let counts_poses = c.metrics.iter().any(|m| matches!(m.kind.as_str(), "blas_builds" | "tlas_builds"));
+        let along_animation = !per_pass_timing && !anim.is_static() && (self.needs_receiver_map() || counts_poses);
         if along_animation {
             plan = crate::config::FramePlan { max: plan.min, budget_s: 0.0, ..plan };
         } else if !per_pass_timing {
@@ -397,7 +400,6 @@ impl<'a> Runner<'a> {
             frames.clear();
             wall_ms.clear();
             pose_ms.clear();
-            pose_counters.clear();
             counters.clear();
         }
         Ok(CellRun {

@@ -67,25 +67,37 @@ pub fn differences(a: &Results, b: &Results, tolerance: f64) -> Vec<String> {
     out
 }
 
-/// The caustic settings two cells ran with, key by key (`key: a against b`). A key one result
-/// lacks (written before the setting existed) reads as the setting's default, which is what
-/// that run used.
+/// The caustic settings two cells ran with, key by key (`key: a against b`). A key only one
+/// side has (a result written before the setting existed) is not compared: what the older
+/// run did is not always the setting's default today (before `moving_objects`, ray queries
+/// rebuilt every structure on each pose, which is `rebuild`, not the default `transform`);
+/// [`absent_settings`] names such keys.
 fn settings_differences(x: &serde_json::Value, y: &serde_json::Value) -> Vec<String> {
     let (Some(a), Some(b)) = (x.as_object(), y.as_object()) else {
         return if x == y { vec![] } else { vec![format!("{x} against {y}")] };
     };
-    let defaults = serde_json::to_value(caustics::techniques::settings::CausticSettings::default()).unwrap_or_default();
-    let keys: std::collections::BTreeSet<&String> = a.keys().chain(b.keys()).collect();
-    let missing = serde_json::Value::String("(absent)".into());
-    keys.into_iter()
-        .filter_map(|k| {
-            let of = |side: &serde_json::Map<String, serde_json::Value>| {
-                side.get(k).or_else(|| defaults.get(k)).cloned().unwrap_or_else(|| missing.clone())
-            };
-            let (u, v) = (of(a), of(b));
+    a.iter()
+        .filter_map(|(k, u)| {
+            let v = b.get(k)?;
             (u != v).then(|| format!("`{k}` {u} against {v}"))
         })
         .collect()
+}
+
+/// The caustic settings some cell of one result has and the same cell of the other lacks:
+/// `same` does not compare them (see [`settings_differences`]), and says so.
+pub fn absent_settings(a: &Results, b: &Results) -> std::collections::BTreeSet<String> {
+    let by_index = |r: &Results| -> BTreeMap<usize, serde_json::Value> {
+        r.cells.iter().map(|c| (c.cell.index, c.caustics.clone())).collect()
+    };
+    let (ca, cb) = (by_index(a), by_index(b));
+    let mut out = std::collections::BTreeSet::new();
+    for (i, x) in &ca {
+        let (Some(x), Some(y)) = (x.as_object(), cb.get(i).and_then(|y| y.as_object())) else { continue };
+        out.extend(x.keys().filter(|k| !y.contains_key(*k)).cloned());
+        out.extend(y.keys().filter(|k| !x.contains_key(*k)).cloned());
+    }
+    out
 }
 
 fn cell(x: &CellResult, y: &CellResult, tolerance: f64, out: &mut Vec<String>) {
@@ -147,7 +159,7 @@ fn show(v: Option<f64>) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::differences;
+    use super::{absent_settings, differences};
     use crate::results::{Results, Value};
 
     /// A result of two cells, each with a time, a count and an error.
@@ -239,20 +251,18 @@ mod tests {
     }
 
     #[test]
-    fn a_setting_one_result_lacks_reads_as_its_default() {
+    fn a_setting_one_result_lacks_is_not_compared_and_is_named() {
         let mut a = results(10.0, 4096.0, 0.25);
-        let defaults =
-            serde_json::to_value(caustics::techniques::settings::CausticSettings::default()).expect("settings");
-        a.cells[0].caustics = defaults.clone();
+        a.cells[0].caustics = serde_json::json!({"photons": 4096, "trace": "ray-query", "moving_objects": "transform"});
         let mut b = a.clone();
         b.cells[0].caustics.as_object_mut().expect("an object").remove("moving_objects");
-        assert!(differences(&a, &b, 1e-5).is_empty(), "an absent key is its default");
+        assert!(differences(&a, &b, 1e-5).is_empty(), "a key one side lacks is not compared");
+        assert_eq!(absent_settings(&a, &b).into_iter().collect::<Vec<_>>(), ["moving_objects"]);
+        assert_eq!(absent_settings(&b, &a).into_iter().collect::<Vec<_>>(), ["moving_objects"]);
+        assert!(absent_settings(&a, &a).is_empty());
         b.cells[0].caustics["moving_objects"] = serde_json::json!("rebuild");
         let d = differences(&a, &b, 1e-5);
         assert!(d.len() == 1 && d[0].contains("`moving_objects` \"transform\" against \"rebuild\""), "{d:?}");
-        b.cells[0].caustics.as_object_mut().expect("an object").remove("moving_objects");
-        a.cells[0].caustics["moving_objects"] = serde_json::json!("rebuild");
-        assert_eq!(differences(&a, &b, 1e-5).len(), 1, "absent (the default) against a set value");
     }
 
     #[test]

@@ -317,9 +317,13 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     // that frame's pose. temporal_change compares each frame with the one before it.
     // The receiver map moves with the light and the objects, not with the camera.
     let moving = [&r.light_path, &r.object_path].iter().any(|p| *p != "static");
-    let posed = moving || r.camera_path != "static";
+    let moving_camera = r.camera_path != "static";
+    let posed = moving || moving_camera;
     for (i, mt) in c.metrics.iter().enumerate() {
-        if matches!(mt.kind.as_str(), "pose_ms" | "blas_builds" | "tlas_builds") && !posed {
+        if !matches!(mt.kind.as_str(), "pose_ms" | "blas_builds" | "tlas_builds") {
+            continue;
+        }
+        if !posed {
             return Err(bad(
                 &format!("metric[{i}].kind"),
                 format!(
@@ -328,6 +332,32 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
                     mt.kind
                 ),
             ));
+        }
+        if c.matrix.lighting.iter().any(|l| l == "static") && !moving_camera {
+            return Err(bad(
+                "matrix.lighting",
+                format!(
+                    "`static` keeps the light and the objects still, and no camera path moves: `{}` (metric[{i}]) would \
+                     have no pose update to measure",
+                    mt.kind
+                ),
+            ));
+        }
+        // Frame 0 is the scene's own pose: a pose update comes before every later frame.
+        for (key, warmup, measured) in [
+            ("run.measured_frames", r.warmup_frames, r.measured_frames),
+            ("quick.measured_frames", c.quick.warmup_frames, c.quick.measured_frames),
+        ] {
+            if warmup + measured < 2 {
+                return Err(bad(
+                    key,
+                    format!(
+                        "`{}` (metric[{i}]) measures the pose update before each frame after the first: warm-up and \
+                         measured frames must be at least 2 together, got {warmup} and {measured}",
+                        mt.kind
+                    ),
+                ));
+            }
         }
     }
     for (i, mt) in c.metrics.iter().enumerate() {

@@ -74,6 +74,14 @@ fn same(s: &crate::cli::SameArgs) -> Result<()> {
     let b = bench::results::read(&s.second, "result")?;
     let d = bench::same::differences(&a, &b, s.tolerance);
     let (na, nb) = (s.first.display(), s.second.display());
+    let absent = bench::same::absent_settings(&a, &b);
+    if !absent.is_empty() {
+        let keys: Vec<&str> = absent.iter().map(|k| k.as_str()).collect();
+        println!(
+            "bench same: not compared, in one result only (written before the setting existed): {}",
+            keys.join(", ")
+        );
+    }
     if d.is_empty() {
         println!(
             "bench same: {na} and {nb} agree in all {} cells outside the timings (tolerance {})",

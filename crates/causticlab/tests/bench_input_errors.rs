@@ -92,6 +92,20 @@ fn config_errors_name_the_file_and_key() {
         ("pose_still.toml", SMALL.replace("kind = \"splats_drawn\"", "kind = \"pose_ms\""), "metric[1].kind"),
         ("builds_still.toml", SMALL.replace("kind = \"splats_drawn\"", "kind = \"blas_builds\""), "metric[1].kind"),
         (
+            "pose_one_frame.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"pose_ms\"").replace("[run]", "[run]\nobject_path = \"orbit\""),
+            "run.measured_frames",
+        ),
+        (
+            "pose_static_lighting.toml",
+            SMALL
+                .replace("kind = \"splats_drawn\"", "kind = \"tlas_builds\"")
+                .replace("[run]", "[run]\nobject_path = \"orbit\"")
+                .replace("measured_frames = 1", "measured_frames = 2")
+                .replace("[matrix]", "[matrix]\nlighting = [\"static\", \"dynamic\"]"),
+            "matrix.lighting",
+        ),
+        (
             "moving_objects_compute.toml",
             SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\nmoving_objects = \"rebuild\""),
             "moving_objects",

@@ -178,3 +178,37 @@ fn an_interrupted_run_leaves_the_previous_table_untouched() {
     assert!(r.stderr.contains("--quick"), "{}", r.describe());
     assert_eq!(std::fs::read(dev.join("small.md")).expect("md"), before[0]);
 }
+
+#[test]
+fn pose_updates_are_timed_and_counted_without_a_timed_frame_metric() {
+    // Along an orbit every frame after the first has a pose update: `pose_ms` times each, and the
+    // structure counts (which time nothing) still get frames along the path. wd-points builds no
+    // acceleration structure, so both counts are 0, not n/a.
+    let dir = scratch("bench-poses");
+    let text = SMALL
+        .replace("[run]", "[run]\nobject_path = \"orbit\"\nperiod_frames = 4")
+        .replace("measured_frames = 1", "measured_frames = 3")
+        .replace("photons = [80, 128]", "photons = [80]")
+        .replace("kind = \"photons_emitted\"", "kind = \"blas_builds\"")
+        .replace("kind = \"splats_drawn\"", "kind = \"tlas_builds\"");
+    let counts_only = text.replace("kind = \"pass_ms\"\npasses = [\"splat.*\"]", "kind = \"valid_photons\"");
+    for (name, cfg_text, timed) in [("counts.toml", &counts_only, false), ("timed.toml", &text, true)] {
+        let cfg = config_file(&dir, name, cfg_text);
+        let out = dir.join(name);
+        let r = bench(&[cfg.as_os_str(), "--results".as_ref(), out.as_os_str()]);
+        assert_eq!(r.code, Some(0), "{}", r.describe());
+        let json = device_dir(&out).join(name.replace(".toml", ".json"));
+        let v: Value = serde_json::from_str(&std::fs::read_to_string(&json).expect("table")).expect("json");
+        for c in v["cells"].as_array().expect("cells") {
+            for m in ["photons", "splats"] {
+                assert_eq!(c["metrics"][m]["value"].as_f64(), Some(0.0), "{name}: {m} of {}", c["cell"]);
+            }
+            // Frame 0 is the scene's own pose: a pose update before each measured frame after it
+            // (untimed frames keep no times: no pose_ms there).
+            let poses = c["pose_ms"].as_array().map_or(0, |p| p.len());
+            let frames = c["wall_ms"].as_array().expect("frames").len();
+            assert_eq!(poses, if timed { frames - 1 } else { 0 }, "{name}: {frames} frames");
+            assert!(!timed || frames >= 3, "{name}: {frames} frames");
+        }
+    }
+}

@@ -68,33 +68,61 @@ impl RayQueryScene {
 
     /// Follows `scene`, a pose of the scene these structures were built for in which the
     /// objects named `moved` moved, as `moving` says (the device must be idle: structures in use
-    /// are replaced).
+    /// are replaced). The new top level is built before any old structure is dropped, so that
+    /// on an error the old ones stand together. A pose may move an object's vertices, not change
+    /// its triangles (the tracer's buffers hold them): an error naming the object.
     pub fn follow(&mut self, ctx: &Context, scene: &Scene, moved: &[&str], moving: MovingObjects) -> Result<Followed> {
-        let mut done = Followed::default();
-        for inst in &mut self.instances {
+        let mut transforms: Vec<(usize, Transform)> = vec![];
+        let mut rebuilt: Vec<(usize, AccelerationStructure)> = vec![];
+        for (k, inst) in self.instances.iter().enumerate() {
             let obj = &scene.objects[inst.object];
             if !moved.contains(&obj.name.as_str()) {
                 continue;
             }
+            anyhow::ensure!(
+                obj.mesh.indices.len() == inst.rest.indices.len(),
+                "technique photon-trace (trace ray-query): object `{}` has {} triangles in this pose and had {}: a pose \
+                 may move an object's vertices, not change its triangles",
+                obj.name,
+                obj.mesh.indices.len() / 3,
+                inst.rest.indices.len() / 3
+            );
             let rigid = match moving {
                 MovingObjects::Transform => rigid_motion(&inst.rest, &obj.mesh),
                 MovingObjects::Rebuild => None,
             };
             match rigid {
-                Some(t) => {
-                    inst.transform = t;
-                    done.moved_instances += 1;
-                }
-                None => {
-                    inst.blas = bottom_level(ctx, inst.object, &obj.mesh)?;
-                    inst.rest = obj.mesh.clone();
-                    inst.transform = IDENTITY;
-                    done.rebuilt += 1;
-                }
+                Some(t) => transforms.push((k, t)),
+                None => rebuilt.push((k, bottom_level(ctx, inst.object, &obj.mesh)?)),
             }
         }
-        if done != Followed::default() {
-            self.top = top_level(ctx, &self.instances, &self.first)?;
+        let done = Followed { moved_instances: transforms.len(), rebuilt: rebuilt.len() };
+        if done == Followed::default() {
+            return Ok(done);
+        }
+        let records: Vec<TlasInstance> = self
+            .instances
+            .iter()
+            .enumerate()
+            .map(|(k, inst)| {
+                let (blas, transform) = match rebuilt.iter().find(|(j, _)| *j == k) {
+                    Some((_, blas)) => (blas, IDENTITY),
+                    None => (&inst.blas, transforms.iter().find(|(j, _)| *j == k).map_or(inst.transform, |(_, t)| *t)),
+                };
+                TlasInstance { blas, transform, custom_index: self.first[inst.object] }
+            })
+            .collect();
+        let top = AccelerationStructure::instances(ctx, "photon_trace scene", &records)?;
+        drop(records);
+        self.top = top;
+        for (k, t) in transforms {
+            self.instances[k].transform = t;
+        }
+        for (k, blas) in rebuilt {
+            let inst = &mut self.instances[k];
+            inst.blas = blas;
+            inst.rest = scene.objects[inst.object].mesh.clone();
+            inst.transform = IDENTITY;
         }
         Ok(done)
     }
