@@ -318,6 +318,7 @@ pub const METRIC_KINDS: &[&str] = &[
     "pose_ms",
     "blas_builds",
     "tlas_builds",
+    "blas_refits",
     "photons_emitted",
     "splats_drawn",
     "photons_processed",

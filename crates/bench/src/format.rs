@@ -34,7 +34,7 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         "pass_ms" | "pass_host_ms" | "gpu_frame_ms" | "frame_ms" | "pose_ms" | "fps" | "pass_fps" | "pass_mphotons"
         | "pass_host_mphotons" | "frame_mphotons" => significant(v),
         // A mean per pose update: 1 where each builds one.
-        "blas_builds" | "tlas_builds" => format!("{v:.2}"),
+        "blas_builds" | "tlas_builds" | "blas_refits" => format!("{v:.2}"),
         "photons_emitted" | "splats_drawn" | "photons_processed" | "valid_photons" | "photon_batches" => {
             thousands(v.round() as u64)
         }
@@ -82,6 +82,7 @@ pub fn unit(kind: &str) -> &'static str {
     match kind {
         "pass_ms" | "pass_host_ms" | "gpu_frame_ms" | "frame_ms" | "pose_ms" => "ms",
         "blas_builds" | "tlas_builds" => "builds per pose update",
+        "blas_refits" => "refits per pose update",
         "fps" | "pass_fps" => "fps",
         "pass_mphotons" | "pass_host_mphotons" | "frame_mphotons" => "M photons/s",
         "photons_emitted" => "photons",

@@ -161,6 +161,7 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
             // Acceleration structures built per pose update before a measured frame.
             "blas_builds" => exact(k, mean_count(&run.pose_counters, |c| c.blas_builds)),
             "tlas_builds" => exact(k, mean_count(&run.pose_counters, |c| c.tlas_builds)),
+            "blas_refits" => exact(k, mean_count(&run.pose_counters, |c| c.blas_refits)),
             "photons_emitted" => exact(k, Some(run.photons_emitted as f64)),
             "splats_drawn" => exact(k, Some(run.splats_drawn as f64)),
             "photons_processed" => exact(k, Some(photons_processed(run) as f64)),
@@ -199,7 +200,12 @@ mod tests {
 
     #[test]
     fn pose_updates_are_timed_and_their_structures_counted_apart_from_the_frames() {
-        let c = |blas_builds, tlas_builds| vkcore::Counters { blas_builds, tlas_builds, ..Default::default() };
+        let c = |blas_builds, tlas_builds| vkcore::Counters {
+            blas_builds,
+            tlas_builds,
+            blas_refits: 2 * blas_builds,
+            ..Default::default()
+        };
         let run = CellRun {
             pose_ms: vec![2.0, 4.0, 3.0],
             // The frames' own counters hold their pose updates' builds too, and more.
@@ -210,11 +216,12 @@ mod tests {
         let spec = |kind: &str| -> MetricSpec {
             toml::from_str(&format!("label = \"{kind}\"\nkind = \"{kind}\"")).expect("a metric")
         };
-        let out = evaluate(&[spec("pose_ms"), spec("blas_builds"), spec("tlas_builds")], &run);
+        let out = evaluate(&[spec("pose_ms"), spec("blas_builds"), spec("tlas_builds"), spec("blas_refits")], &run);
         assert_eq!(out["pose_ms"].value, Some(3.0));
         assert_eq!(out["pose_ms"].samples, vec![2.0, 4.0, 3.0]);
         assert_eq!(out["blas_builds"].value, Some(1.0 / 3.0));
         assert_eq!(out["tlas_builds"].value, Some(1.0));
+        assert_eq!(out["blas_refits"].value, Some(2.0 / 3.0));
         let still = CellRun { counters: vec![c(0, 0)], ..CellRun::default() };
         let out = evaluate(&[spec("pose_ms"), spec("blas_builds")], &still);
         assert_eq!((out["pose_ms"].value, out["blas_builds"].value), (None, None), "no pose update, no number");

@@ -21,7 +21,8 @@
 //!   within 1%, relative RMSE under half of its RMSE against another pose's reference, which a
 //!   stale structure would match instead), with `moving_objects = "transform"` (a rigid motion
 //!   moves the sphere's instance and builds no bottom level; the squash rebuilds it) and
-//!   `"rebuild"` (every pose rebuilds it), each pose building one top level; a pose that
+//!   `"rebuild"` (every pose rebuilds it) and `"refit"` (every pose refits it in place), each pose
+//!   building one top level; a pose that
 //!   changes the sphere's triangles is refused naming it;
 //! - a device without acceleration structures or ray queries refuses `trace = "ray-query"`
 //!   naming the feature (Mesa 22.3's lavapipe has neither; here they are also hidden).
@@ -193,16 +194,18 @@ fn ray_queries_follow_a_moving_object_pose_by_pose() {
         })
         .collect();
     let mut failures = vec![];
-    for moving in [MovingObjects::Transform, MovingObjects::Rebuild] {
+    for moving in [MovingObjects::Transform, MovingObjects::Rebuild, MovingObjects::Refit] {
         let mut first = poses[0].clone();
         first.caustics.moving_objects = moving;
         let mut r = Renderer::new(&ctx, &sh, &first, &RendererOptions::default()).expect("renderer");
         // Each pose after the one before it, with the bottom levels it should build: a rigid
         // motion from the mesh the sphere's bottom level was built over moves its instance
         // (`transform`), anything else rebuilds it. After the squash that mesh is the squashed
-        // one, so pose 1 is not a rigid motion of it.
+        // one, so pose 1 is not a rigid motion of it. `refit` builds none and refits one.
         let rigid_blas = u64::from(moving == MovingObjects::Rebuild);
-        for (i, blas) in [(1, rigid_blas), (0, rigid_blas), (2, 1), (1, 1), (0, rigid_blas)] {
+        let refit = moving == MovingObjects::Refit;
+        let steps = [(1, rigid_blas), (0, rigid_blas), (2, 1), (1, 1), (0, rigid_blas)];
+        for (i, blas) in steps.map(|(i, b)| (i, if refit { 0 } else { b })) {
             let mut pose = poses[i].clone();
             pose.caustics.moving_objects = moving;
             let before = ctx.counters();
@@ -216,19 +219,22 @@ fn ray_queries_follow_a_moving_object_pose_by_pose() {
             let other = if i == 1 { 0 } else { 1 };
             let (against_other, _) = compare(&receiver, &references[other]).expect("compare");
             println!(
-                "{moving}, pose {i}: set_pose {:.1} ms, {} bottom and {} top level(s) built; against its reference \
-                 rel. RMSE {:.4}, flux ratio {:.4}; against pose {other}'s rel. RMSE {:.4}",
+                "{moving}, pose {i}: set_pose {:.1} ms, {} bottom level(s) built, {} refitted, {} top level(s) built; \
+                 against its reference rel. RMSE {:.4}, flux ratio {:.4}; against pose {other}'s rel. RMSE {:.4}",
                 posed.as_secs_f64() * 1e3,
                 built.blas_builds,
+                built.blas_refits,
                 built.tlas_builds,
                 own.rel_rmse,
                 own.caustic_flux_ratio,
                 against_other.rel_rmse
             );
-            if (built.blas_builds, built.tlas_builds) != (blas, 1) {
+            let refits = u64::from(refit);
+            if (built.blas_builds, built.blas_refits, built.tlas_builds) != (blas, refits, 1) {
                 failures.push(format!(
-                    "{moving}, pose {i}: {} bottom and {} top levels built, expected {blas} and 1",
-                    built.blas_builds, built.tlas_builds
+                    "{moving}, pose {i}: {} bottom levels built, {} refitted and {} top levels built, expected {blas}, \
+                     {refits} and 1",
+                    built.blas_builds, built.blas_refits, built.tlas_builds
                 ));
             }
             if !own.within(0.5 * against_other.rel_rmse, 0.01) {
@@ -250,6 +256,27 @@ fn ray_queries_follow_a_moving_object_pose_by_pose() {
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn a_refit_needs_a_structure_built_for_it_and_the_same_triangles() {
+    use vkcore::AccelerationStructure;
+    let Some((ctx, _)) = ray_query_context() else { return };
+    let quad = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    let moved = quad.map(|[x, y, z]| [x, y, z + 0.5]);
+    let indices = [0, 1, 2, 0, 2, 3];
+    let mut fixed = AccelerationStructure::triangles(&ctx, "fixed", &quad, &indices).expect("built");
+    let e = fixed.refit(&ctx, &moved, &indices).expect_err("not updatable").to_string();
+    assert!(e.contains("`fixed`") && e.contains("not built to be refitted"), "{e}");
+    let mut updatable = AccelerationStructure::triangles_updatable(&ctx, "updatable", &quad, &indices).expect("built");
+    let before = ctx.counters();
+    updatable.refit(&ctx, &moved, &indices).expect("the same triangles, moved");
+    let e = updatable.refit(&ctx, &moved, &indices[..3]).expect_err("a triangle fewer").to_string();
+    assert!(e.contains("`updatable`") && e.contains("2 over 4") && e.contains("1 over 4"), "{e}");
+    let counted = ctx.counters().since(&before);
+    assert_eq!((counted.blas_refits, counted.blas_builds), (1, 0), "one refit, no build");
+    let log = ctx.validation_log();
+    assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
 }
 
 #[test]

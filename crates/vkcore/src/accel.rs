@@ -1,5 +1,6 @@
 //! Acceleration structures (VK_KHR_acceleration_structure) for ray queries: a bottom level over
-//! a mesh's triangles, built once and compacted, and a top level over instances of them, each
+//! a mesh's triangles, built once and compacted (or, to be refitted to moved vertices later, built
+//! updatable and not compacted), and a top level over instances of them, each
 //! with its transform and a custom index the shader reads back
 //! (`rayQueryGetIntersectionInstanceCustomIndexEXT`). Every build is its own one-shot submission
 //! that ends in a barrier making the structure visible to every later command, so a pass that
@@ -31,6 +32,8 @@ pub struct AccelerationStructure {
     buffer: Buffer,
     address: vk::DeviceAddress,
     name: String,
+    /// A bottom level built to be refitted: its triangle and vertex counts (a refit keeps them).
+    updatable: Option<(u32, usize)>,
 }
 
 /// Scratch memory and build inputs are addressed at this alignment, the largest
@@ -41,31 +44,40 @@ impl AccelerationStructure {
     /// A bottom-level structure over the triangles `indices` (three per triangle) of `positions`,
     /// opaque and two-sided (ray queries see both faces), compacted after its build.
     pub fn triangles(ctx: &Context, name: &str, positions: &[[f32; 3]], indices: &[u32]) -> Result<Self> {
-        let accel = loader(ctx, name)?;
-        if !indices.len().is_multiple_of(3) || indices.iter().any(|&i| i as usize >= positions.len()) {
-            return Err(VkError::Invalid(format!(
-                "acceleration structure `{name}`: {} indices into {} vertices",
-                indices.len(),
-                positions.len()
-            )));
+        let built = triangles_build(ctx, name, positions, indices, Flags::Compactable(true))?;
+        built.expect("a new structure").compacted(ctx)
+    }
+
+    /// The same, built to be refitted ([`AccelerationStructure::refit`]) and so not compacted.
+    pub fn triangles_updatable(ctx: &Context, name: &str, positions: &[[f32; 3]], indices: &[u32]) -> Result<Self> {
+        let mut built = triangles_build(ctx, name, positions, indices, Flags::Updatable)?.expect("a new structure");
+        built.updatable = Some(((indices.len() / 3) as u32, positions.len()));
+        Ok(built)
+    }
+
+    /// Refits this bottom level, built by [`AccelerationStructure::triangles_updatable`], in place
+    /// to moved vertices of the same triangles (`VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR`):
+    /// the tree's topology stays the first build's, its boxes grow to the moved triangles.
+    pub fn refit(&mut self, ctx: &Context, positions: &[[f32; 3]], indices: &[u32]) -> Result<()> {
+        let counts = ((indices.len() / 3) as u32, positions.len());
+        match self.updatable {
+            Some(built) if built == counts => {}
+            Some((t, v)) => {
+                return Err(VkError::Invalid(format!(
+                    "acceleration structure `{}`: a refit keeps the triangles ({t} over {v} vertices), got {} over {}",
+                    self.name, counts.0, counts.1
+                )))
+            }
+            None => {
+                return Err(VkError::Invalid(format!(
+                    "acceleration structure `{}` was not built to be refitted (triangles_updatable)",
+                    self.name
+                )))
+            }
         }
-        let vertices = host_buffer(ctx, &format!("{name} vertices"), bytemuck::cast_slice(positions))?;
-        let index_buffer = host_buffer(ctx, &format!("{name} indices"), bytemuck::cast_slice(indices))?;
-        let triangles = vk::AccelerationStructureGeometryTrianglesDataKHR::default()
-            .vertex_format(vk::Format::R32G32B32_SFLOAT)
-            .vertex_data(vk::DeviceOrHostAddressConstKHR { device_address: address(ctx, &vertices) })
-            .vertex_stride(12)
-            .max_vertex(positions.len().saturating_sub(1) as u32)
-            .index_type(vk::IndexType::UINT32)
-            .index_data(vk::DeviceOrHostAddressConstKHR { device_address: address(ctx, &index_buffer) });
-        let geometry = vk::AccelerationStructureGeometryKHR::default()
-            .geometry_type(vk::GeometryTypeKHR::TRIANGLES)
-            .geometry(vk::AccelerationStructureGeometryDataKHR { triangles })
-            .flags(vk::GeometryFlagsKHR::OPAQUE);
-        let count = (indices.len() / 3) as u32;
-        let built = build(ctx, accel, name, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, geometry, count, true)?;
-        drop((vertices, index_buffer));
-        built.compacted(ctx)
+        let name = self.name.clone();
+        triangles_build(ctx, &name, positions, indices, Flags::Refit(self))?;
+        Ok(())
     }
 
     /// A top-level structure over `instances`.
@@ -101,9 +113,17 @@ impl AccelerationStructure {
             .geometry(vk::AccelerationStructureGeometryDataKHR { instances: data })
             .flags(vk::GeometryFlagsKHR::OPAQUE);
         let count = instances.len() as u32;
-        let built = build(ctx, accel, name, vk::AccelerationStructureTypeKHR::TOP_LEVEL, geometry, count, false);
+        let built = build(
+            ctx,
+            accel,
+            name,
+            vk::AccelerationStructureTypeKHR::TOP_LEVEL,
+            geometry,
+            count,
+            Flags::Compactable(false),
+        );
         drop(buffer);
-        built
+        Ok(built?.expect("a new structure"))
     }
 
     /// Bytes the structure occupies (after compaction, for a bottom level).
@@ -220,11 +240,55 @@ fn create(
             &vk::AccelerationStructureDeviceAddressInfoKHR::default().acceleration_structure(raw),
         )
     };
-    Ok(AccelerationStructure { shared: ctx.shared.clone(), raw, buffer, address, name: name.into() })
+    Ok(AccelerationStructure { shared: ctx.shared.clone(), raw, buffer, address, name: name.into(), updatable: None })
 }
 
-/// Builds a structure of `ty` over `count` primitives of `geometry` (compactable with
-/// `compactable`) and waits for it.
+/// A bottom level over the triangles `indices` (three per triangle) of `positions`, opaque and
+/// two-sided, built as `how` says (`None` for a refit, which writes over its structure).
+fn triangles_build(
+    ctx: &Context,
+    name: &str,
+    positions: &[[f32; 3]],
+    indices: &[u32],
+    how: Flags,
+) -> Result<Option<AccelerationStructure>> {
+    let accel = loader(ctx, name)?;
+    if !indices.len().is_multiple_of(3) || indices.iter().any(|&i| i as usize >= positions.len()) {
+        return Err(VkError::Invalid(format!(
+            "acceleration structure `{name}`: {} indices into {} vertices",
+            indices.len(),
+            positions.len()
+        )));
+    }
+    let vertices = host_buffer(ctx, &format!("{name} vertices"), bytemuck::cast_slice(positions))?;
+    let index_buffer = host_buffer(ctx, &format!("{name} indices"), bytemuck::cast_slice(indices))?;
+    let triangles = vk::AccelerationStructureGeometryTrianglesDataKHR::default()
+        .vertex_format(vk::Format::R32G32B32_SFLOAT)
+        .vertex_data(vk::DeviceOrHostAddressConstKHR { device_address: address(ctx, &vertices) })
+        .vertex_stride(12)
+        .max_vertex(positions.len().saturating_sub(1) as u32)
+        .index_type(vk::IndexType::UINT32)
+        .index_data(vk::DeviceOrHostAddressConstKHR { device_address: address(ctx, &index_buffer) });
+    let geometry = vk::AccelerationStructureGeometryKHR::default()
+        .geometry_type(vk::GeometryTypeKHR::TRIANGLES)
+        .geometry(vk::AccelerationStructureGeometryDataKHR { triangles })
+        .flags(vk::GeometryFlagsKHR::OPAQUE);
+    let count = (indices.len() / 3) as u32;
+    let built = build(ctx, accel, name, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, geometry, count, how)?;
+    drop((vertices, index_buffer));
+    Ok(built)
+}
+
+/// How [`build`] builds: a new structure, compactable or not, updatable, or an update (refit) of
+/// an updatable one in place.
+enum Flags<'a> {
+    Compactable(bool),
+    Updatable,
+    Refit(&'a AccelerationStructure),
+}
+
+/// Builds a structure of `ty` over `count` primitives of `geometry` as `how` says and waits for
+/// it; a refit writes over the structure it updates (returned as `None`).
 fn build(
     ctx: &Context,
     accel: &ash::khr::acceleration_structure::Device,
@@ -232,18 +296,21 @@ fn build(
     ty: vk::AccelerationStructureTypeKHR,
     geometry: vk::AccelerationStructureGeometryKHR,
     count: u32,
-    compactable: bool,
-) -> Result<AccelerationStructure> {
+    how: Flags,
+) -> Result<Option<AccelerationStructure>> {
     let mut flags = vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE;
-    if compactable {
-        flags |= vk::BuildAccelerationStructureFlagsKHR::ALLOW_COMPACTION;
+    match how {
+        Flags::Compactable(true) => flags |= vk::BuildAccelerationStructureFlagsKHR::ALLOW_COMPACTION,
+        Flags::Compactable(false) => {}
+        Flags::Updatable | Flags::Refit(_) => flags |= vk::BuildAccelerationStructureFlagsKHR::ALLOW_UPDATE,
     }
+    let mode = match how {
+        Flags::Refit(_) => vk::BuildAccelerationStructureModeKHR::UPDATE,
+        _ => vk::BuildAccelerationStructureModeKHR::BUILD,
+    };
     let geometries = [geometry];
-    let mut info = vk::AccelerationStructureBuildGeometryInfoKHR::default()
-        .ty(ty)
-        .flags(flags)
-        .mode(vk::BuildAccelerationStructureModeKHR::BUILD)
-        .geometries(&geometries);
+    let mut info =
+        vk::AccelerationStructureBuildGeometryInfoKHR::default().ty(ty).flags(flags).mode(mode).geometries(&geometries);
     let mut sizes = vk::AccelerationStructureBuildSizesInfoKHR::default();
     unsafe {
         accel.get_acceleration_structure_build_sizes(
@@ -253,16 +320,32 @@ fn build(
             &mut sizes,
         )
     };
-    let built = create(ctx, accel, name, ty, sizes.acceleration_structure_size)?;
-    let scratch = Buffer::new(ctx, &format!("{name} scratch"), sizes.build_scratch_size + ALIGN, Memory::Gpu)?;
+    let (built, target) = match how {
+        Flags::Refit(existing) => (None, existing.raw),
+        _ => {
+            let b = create(ctx, accel, name, ty, sizes.acceleration_structure_size)?;
+            let raw = b.raw;
+            (Some(b), raw)
+        }
+    };
+    let scratch_size =
+        if matches!(how, Flags::Refit(_)) { sizes.update_scratch_size } else { sizes.build_scratch_size };
+    let scratch = Buffer::new(ctx, &format!("{name} scratch"), scratch_size + ALIGN, Memory::Gpu)?;
     info = info
-        .dst_acceleration_structure(built.raw)
+        .dst_acceleration_structure(target)
         .scratch_data(vk::DeviceOrHostAddressKHR { device_address: address(ctx, &scratch) });
+    if matches!(how, Flags::Refit(_)) {
+        info = info.src_acceleration_structure(target);
+    }
     let range = vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_count(count);
-    one_shot(ctx, &format!("build {name}"), |cb| unsafe {
+    let what = if matches!(how, Flags::Refit(_)) { "refit" } else { "build" };
+    one_shot(ctx, &format!("{what} {name}"), |cb| unsafe {
         accel.cmd_build_acceleration_structures(cb, std::slice::from_ref(&info), &[std::slice::from_ref(&range)])
     })?;
-    ctx.shared.counters.acceleration_structure(ty == vk::AccelerationStructureTypeKHR::TOP_LEVEL);
+    match how {
+        Flags::Refit(_) => ctx.shared.counters.acceleration_structure_refit(),
+        _ => ctx.shared.counters.acceleration_structure(ty == vk::AccelerationStructureTypeKHR::TOP_LEVEL),
+    }
     drop(scratch);
     Ok(built)
 }

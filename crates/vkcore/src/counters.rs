@@ -1,7 +1,8 @@
 //! What the host asked of the driver, counted: Vulkan objects created or allocated (buffers,
 //! images, views, samplers, memory allocations, pipelines and their layouts and modules, query
 //! pools, command buffers, fences), queue submissions, pipeline barriers and timestamps written,
-//! and acceleration structures built (bottom and top levels apart: what a moving object costs).
+//! and acceleration structures built (bottom and top levels apart) and refitted: what a moving
+//! object costs.
 //! A real-time frame creates nothing once it is warm: throughput frames are tested for that, and
 //! the bench and `timings.json` report each count per frame.
 
@@ -23,6 +24,8 @@ pub struct Counters {
     pub blas_builds: u64,
     /// Top-level acceleration structures built (over instances).
     pub tlas_builds: u64,
+    /// Bottom-level acceleration structures refitted in place to moved vertices.
+    pub blas_refits: u64,
 }
 
 impl Counters {
@@ -35,6 +38,7 @@ impl Counters {
             timestamps: self.timestamps.saturating_sub(earlier.timestamps),
             blas_builds: self.blas_builds.saturating_sub(earlier.blas_builds),
             tlas_builds: self.tlas_builds.saturating_sub(earlier.tlas_builds),
+            blas_refits: self.blas_refits.saturating_sub(earlier.blas_refits),
         }
     }
 }
@@ -47,6 +51,7 @@ pub(crate) struct AtomicCounters {
     timestamps: AtomicU64,
     blas_builds: AtomicU64,
     tlas_builds: AtomicU64,
+    blas_refits: AtomicU64,
 }
 
 impl AtomicCounters {
@@ -67,6 +72,10 @@ impl AtomicCounters {
         let c = if top { &self.tlas_builds } else { &self.blas_builds };
         c.fetch_add(1, Ordering::Relaxed);
     }
+    /// A bottom level refitted.
+    pub fn acceleration_structure_refit(&self) {
+        self.blas_refits.fetch_add(1, Ordering::Relaxed);
+    }
     pub fn snapshot(&self) -> Counters {
         Counters {
             objects: self.objects.load(Ordering::Relaxed),
@@ -75,6 +84,7 @@ impl AtomicCounters {
             timestamps: self.timestamps.load(Ordering::Relaxed),
             blas_builds: self.blas_builds.load(Ordering::Relaxed),
             tlas_builds: self.tlas_builds.load(Ordering::Relaxed),
+            blas_refits: self.blas_refits.load(Ordering::Relaxed),
         }
     }
 }

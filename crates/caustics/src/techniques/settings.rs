@@ -208,7 +208,8 @@ caustic_settings! {
     trace: Trace = Trace::Compute, only PhotonTrace;
     /// photon-trace with trace ray-query: how the acceleration structures follow an object that
     /// moves, transform (a rigid motion moves its instance, any other rebuilds its bottom level;
-    /// default) or rebuild (every moved object's bottom level rebuilt).
+    /// default), rebuild (every moved object's bottom level rebuilt) or refit (every moved
+    /// object's bottom level refitted in place).
     moving_objects: MovingObjects = MovingObjects::Transform, only PhotonTrace;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.

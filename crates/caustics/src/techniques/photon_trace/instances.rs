@@ -9,8 +9,10 @@
 //! instance carries the motion; the tracer reads its triangles and normals at rest and turns them
 //! by the instance's rotation (`hit_to_world` in `photon_trace/triangles.glsl`). Any other
 //! motion, and every motion with `moving_objects = "rebuild"`, rebuilds the object's bottom level
-//! from its moved vertices, which become its rest. Rebuilt, not refitted: a refit keeps the old
-//! tree's topology, whose boxes grow with the motion and slow every later trace.
+//! from its moved vertices, which become its rest. With `moving_objects = "refit"` every bottom
+//! level is built updatable and a moved object's is refitted in place to its moved vertices: the
+//! first build's tree keeps its topology and its boxes grow with the motion (cheaper to update,
+//! possibly slower to trace: `bench_configs/photon_trace_moving.toml` measures both).
 
 use super::settings::MovingObjects;
 use crate::scene::{Mesh, Scene};
@@ -48,18 +50,26 @@ pub struct Followed {
     pub moved_instances: usize,
     /// Objects whose bottom level was rebuilt.
     pub rebuilt: usize,
+    /// Objects whose bottom level was refitted in place.
+    pub refitted: usize,
 }
 
 impl RayQueryScene {
-    /// Builds the structures of `scene`'s objects at rest where they are; `first[o]` is object
-    /// o's first triangle.
-    pub fn new(ctx: &Context, scene: &Scene, first: &[u32]) -> Result<RayQueryScene> {
+    /// Builds the structures of `scene`'s objects at rest where they are (updatable where
+    /// `moving` refits them); `first[o]` is object o's first triangle.
+    pub fn new(ctx: &Context, scene: &Scene, first: &[u32], moving: MovingObjects) -> Result<RayQueryScene> {
         let mut instances = vec![];
         for (o, obj) in scene.objects.iter().enumerate() {
             if obj.mesh.indices.is_empty() {
                 continue;
             }
-            let blas = bottom_level(ctx, o, &obj.mesh)?;
+            let blas = if moving == MovingObjects::Refit {
+                let positions: Vec<[f32; 3]> = obj.mesh.positions.iter().map(|p| p.to_array()).collect();
+                let name = format!("photon_trace object {o}");
+                AccelerationStructure::triangles_updatable(ctx, &name, &positions, &obj.mesh.indices)?
+            } else {
+                bottom_level(ctx, o, &obj.mesh)?
+            };
             instances.push(Instance { object: o, blas, rest: obj.mesh.clone(), transform: IDENTITY });
         }
         let top = top_level(ctx, &instances, first)?;
@@ -69,12 +79,14 @@ impl RayQueryScene {
     /// Follows `scene`, a pose of the scene these structures were built for in which the
     /// objects named `moved` moved, as `moving` says (the device must be idle: structures in use
     /// are replaced). The new top level is built before any old structure is dropped, so that
-    /// on an error the old ones stand together. A pose may move an object's vertices, not change
+    /// on an error the old ones stand together (a refit, in place, is the exception: after a
+    /// failed one the scene is not to be traced). A pose may move an object's vertices, not change
     /// its triangles (the tracer's buffers hold them): an error naming the object.
     pub fn follow(&mut self, ctx: &Context, scene: &Scene, moved: &[&str], moving: MovingObjects) -> Result<Followed> {
         let mut transforms: Vec<(usize, Transform)> = vec![];
         let mut rebuilt: Vec<(usize, AccelerationStructure)> = vec![];
-        for (k, inst) in self.instances.iter().enumerate() {
+        let mut refitted: Vec<usize> = vec![];
+        for (k, inst) in self.instances.iter_mut().enumerate() {
             let obj = &scene.objects[inst.object];
             if !moved.contains(&obj.name.as_str()) {
                 continue;
@@ -87,16 +99,23 @@ impl RayQueryScene {
                 obj.mesh.indices.len() / 3,
                 inst.rest.indices.len() / 3
             );
+            if moving == MovingObjects::Refit {
+                let positions: Vec<[f32; 3]> = obj.mesh.positions.iter().map(|p| p.to_array()).collect();
+                inst.blas.refit(ctx, &positions, &obj.mesh.indices)?;
+                inst.rest = obj.mesh.clone();
+                refitted.push(k);
+                continue;
+            }
             let rigid = match moving {
                 MovingObjects::Transform => rigid_motion(&inst.rest, &obj.mesh),
-                MovingObjects::Rebuild => None,
+                MovingObjects::Rebuild | MovingObjects::Refit => None,
             };
             match rigid {
                 Some(t) => transforms.push((k, t)),
                 None => rebuilt.push((k, bottom_level(ctx, inst.object, &obj.mesh)?)),
             }
         }
-        let done = Followed { moved_instances: transforms.len(), rebuilt: rebuilt.len() };
+        let done = Followed { moved_instances: transforms.len(), rebuilt: rebuilt.len(), refitted: refitted.len() };
         if done == Followed::default() {
             return Ok(done);
         }

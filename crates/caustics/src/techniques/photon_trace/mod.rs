@@ -26,8 +26,8 @@
 //! refused (`Renderer::set_pose`). The acceleration structures follow a pose that moves meshes
 //! ([`instances`]): the device is waited for, a rigidly moved object's instance gets the motion
 //! as its transform, and any other moved object's bottom level is rebuilt from its moved
-//! vertices (every moved object's with `moving_objects = "rebuild"`); the top level is built
-//! again.
+//! vertices (every moved object's with `moving_objects = "rebuild"`; refitted in place with
+//! `"refit"`); the top level is built again.
 
 pub mod instances;
 pub mod push;
@@ -99,7 +99,7 @@ impl PhotonTracer {
         let (tris, first) = scene_triangles(scene);
         let (intersection, ordered, triangles) = if ray_query {
             let records = tris.iter().map(triangle_record).collect();
-            (Intersection::RayQuery(RayQueryScene::new(ctx, scene, &first)?), tris, records)
+            (Intersection::RayQuery(RayQueryScene::new(ctx, scene, &first, s.moving_objects)?), tris, records)
         } else {
             let bvh = Bvh::build(tris);
             if bvh.depth() > settings::MAX_BVH_DEPTH {
@@ -178,7 +178,7 @@ impl PhotonTracer {
         (self.constants.sphere, self.constants.eps, self.constants.receiver_tolerance) =
             placement(scene, &self.specular);
         let followed = rq.follow(ctx, scene, moved, self.moving)?;
-        if followed.rebuilt > 0 {
+        if followed.rebuilt + followed.refitted > 0 {
             let rest = rq.rest_scene(scene);
             let (tris, _) = scene_triangles(&rest);
             let records: Vec<[f32; 12]> = tris.iter().map(triangle_record).collect();

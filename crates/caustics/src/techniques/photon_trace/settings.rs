@@ -63,6 +63,10 @@ value_enum! {
         /// Every moved object's bottom level is rebuilt from its moved vertices (what a deforming
         /// mesh costs), its instance's transform the identity.
         Rebuild = "rebuild",
+        /// Every object's bottom level is built updatable (not compacted) and, when the object
+        /// moves, refitted in place to its moved vertices: the first build's tree with its boxes
+        /// grown to them, the cheap update of a deforming mesh.
+        Refit = "refit",
     }
 }
 
