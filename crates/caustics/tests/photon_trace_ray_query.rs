@@ -253,6 +253,18 @@ fn ray_queries_follow_a_moving_object_pose_by_pose() {
     if !(e.contains("`sphere`") && e.contains("triangles")) {
         failures.push(format!("a pose with a triangle fewer: {e:?}"));
     }
+    // A refit moves vertices only: the same triangles in another order are refused, by name.
+    let mut first = poses[0].clone();
+    first.caustics.moving_objects = MovingObjects::Refit;
+    let mut r = Renderer::new(&ctx, &sh, &first, &RendererOptions::default()).expect("renderer");
+    let mut reordered = poses[1].clone();
+    reordered.caustics.moving_objects = MovingObjects::Refit;
+    let sphere = reordered.objects.iter_mut().find(|o| o.name == "sphere").expect("the sphere");
+    sphere.mesh.indices.rotate_left(3);
+    let e = r.set_pose(&reordered).err().map(|e| format!("{e:#}")).unwrap_or_default();
+    if !(e.contains("`sphere`") && e.contains("other triangles") && e.contains("refit")) {
+        failures.push(format!("refit, a pose with the triangles reordered: {e:?}"));
+    }
     let log = ctx.validation_log();
     assert_eq!(log.count(), 0, "validation messages:\n{}", log.messages().join("\n"));
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -273,6 +285,9 @@ fn a_refit_needs_a_structure_built_for_it_and_the_same_triangles() {
     updatable.refit(&ctx, &moved, &indices).expect("the same triangles, moved");
     let e = updatable.refit(&ctx, &moved, &indices[..3]).expect_err("a triangle fewer").to_string();
     assert!(e.contains("`updatable`") && e.contains("2 over 4") && e.contains("1 over 4"), "{e}");
+    let swapped = [0, 2, 3, 0, 1, 2];
+    let e = updatable.refit(&ctx, &moved, &swapped).expect_err("other indices").to_string();
+    assert!(e.contains("`updatable`") && e.contains("with other indices"), "{e}");
     let counted = ctx.counters().since(&before);
     assert_eq!((counted.blas_refits, counted.blas_builds), (1, 0), "one refit, no build");
     let log = ctx.validation_log();

@@ -32,8 +32,9 @@ pub struct AccelerationStructure {
     buffer: Buffer,
     address: vk::DeviceAddress,
     name: String,
-    /// A bottom level built to be refitted: its triangle and vertex counts (a refit keeps them).
-    updatable: Option<(u32, usize)>,
+    /// A bottom level built to be refitted: its vertex count and its indices, which a refit must
+    /// keep (Vulkan: an update's primitives are the build's, only their vertices move).
+    updatable: Option<(usize, Vec<u32>)>,
 }
 
 /// Scratch memory and build inputs are addressed at this alignment, the largest
@@ -51,23 +52,26 @@ impl AccelerationStructure {
     /// The same, built to be refitted ([`AccelerationStructure::refit`]) and so not compacted.
     pub fn triangles_updatable(ctx: &Context, name: &str, positions: &[[f32; 3]], indices: &[u32]) -> Result<Self> {
         let mut built = triangles_build(ctx, name, positions, indices, Flags::Updatable)?.expect("a new structure");
-        built.updatable = Some(((indices.len() / 3) as u32, positions.len()));
+        built.updatable = Some((positions.len(), indices.to_vec()));
         Ok(built)
     }
 
     /// Refits this bottom level, built by [`AccelerationStructure::triangles_updatable`], in place
     /// to moved vertices of the same triangles (`VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR`):
-    /// the tree's topology stays the first build's, its boxes grow to the moved triangles.
+    /// the tree's topology stays the first build's, its boxes grow to the moved triangles. The
+    /// vertex count and every index must be the build's (an error naming the structure).
     pub fn refit(&mut self, ctx: &Context, positions: &[[f32; 3]], indices: &[u32]) -> Result<()> {
-        let counts = ((indices.len() / 3) as u32, positions.len());
-        match self.updatable {
-            Some(built) if built == counts => {}
-            Some((t, v)) => {
-                return Err(VkError::Invalid(format!(
-                    "acceleration structure `{}`: a refit keeps the triangles ({t} over {v} vertices), got {} over {}",
-                    self.name, counts.0, counts.1
-                )))
-            }
+        match &self.updatable {
+            Some((vertices, built)) if *vertices == positions.len() && built.as_slice() == indices => {}
+            Some((vertices, built)) => return Err(VkError::Invalid(format!(
+                "acceleration structure `{}`: a refit keeps the triangles ({} over {vertices} vertices), got {} over \
+                     {}{}",
+                self.name,
+                built.len() / 3,
+                indices.len() / 3,
+                positions.len(),
+                if built.len() == indices.len() && *vertices == positions.len() { " with other indices" } else { "" }
+            ))),
             None => {
                 return Err(VkError::Invalid(format!(
                     "acceleration structure `{}` was not built to be refitted (triangles_updatable)",

@@ -86,11 +86,10 @@ impl RayQueryScene {
         let mut transforms: Vec<(usize, Transform)> = vec![];
         let mut rebuilt: Vec<(usize, AccelerationStructure)> = vec![];
         let mut refitted: Vec<usize> = vec![];
-        for (k, inst) in self.instances.iter_mut().enumerate() {
+        let is_moved = |inst: &Instance| moved.contains(&scene.objects[inst.object].name.as_str());
+        // Every check before the first structure changes (a refit is in place).
+        for inst in self.instances.iter().filter(|i| is_moved(i)) {
             let obj = &scene.objects[inst.object];
-            if !moved.contains(&obj.name.as_str()) {
-                continue;
-            }
             anyhow::ensure!(
                 obj.mesh.indices.len() == inst.rest.indices.len(),
                 "technique photon-trace (trace ray-query): object `{}` has {} triangles in this pose and had {}: a pose \
@@ -99,6 +98,19 @@ impl RayQueryScene {
                 obj.mesh.indices.len() / 3,
                 inst.rest.indices.len() / 3
             );
+            anyhow::ensure!(
+                moving != MovingObjects::Refit
+                    || (obj.mesh.indices == inst.rest.indices && obj.mesh.positions.len() == inst.rest.positions.len()),
+                "technique photon-trace (trace ray-query): object `{}` has other triangles in this pose (its indices or \
+                 vertex count changed), which moving_objects = \"refit\" cannot follow: a refit moves vertices only",
+                obj.name
+            );
+        }
+        for (k, inst) in self.instances.iter_mut().enumerate() {
+            if !is_moved(inst) {
+                continue;
+            }
+            let obj = &scene.objects[inst.object];
             if moving == MovingObjects::Refit {
                 let positions: Vec<[f32; 3]> = obj.mesh.positions.iter().map(|p| p.to_array()).collect();
                 inst.blas.refit(ctx, &positions, &obj.mesh.indices)?;

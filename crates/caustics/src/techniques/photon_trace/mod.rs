@@ -161,10 +161,10 @@ impl PhotonTracer {
     }
 
     /// Follows `scene`, a pose in which the objects `moved` moved: with ray queries, waits for
-    /// the device and moves their instances or rebuilds their bottom levels
+    /// the device and moves their instances, rebuilds or refits their bottom levels
     /// ([`RayQueryScene::follow`]), and uploads the triangles and normals again where a bottom
-    /// level was rebuilt (the shader reads each object as its bottom level was built); the BVH is
-    /// built once (an input error naming the object).
+    /// level was rebuilt or refitted (the shader reads each object as its bottom level holds it);
+    /// the BVH is built once (an input error naming the object).
     pub fn follow(&mut self, ctx: &Context, scene: &Scene, moved: &[&str]) -> Result<instances::Followed> {
         let Intersection::RayQuery(rq) = &mut self.intersection else {
             return Err(crate::input_error!(
