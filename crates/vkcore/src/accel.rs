@@ -63,7 +63,8 @@ impl AccelerationStructure {
     pub fn refit(&mut self, ctx: &Context, positions: &[[f32; 3]], indices: &[u32]) -> Result<()> {
         match &self.updatable {
             Some((vertices, built)) if *vertices == positions.len() && built.as_slice() == indices => {}
-            Some((vertices, built)) => return Err(VkError::Invalid(format!(
+            Some((vertices, built)) => {
+                return Err(VkError::Invalid(format!(
                 "acceleration structure `{}`: a refit keeps the triangles ({} over {vertices} vertices), got {} over \
                      {}{}",
                 self.name,
@@ -71,7 +72,8 @@ impl AccelerationStructure {
                 indices.len() / 3,
                 positions.len(),
                 if built.len() == indices.len() && *vertices == positions.len() { " with other indices" } else { "" }
-            ))),
+            )))
+            }
             None => {
                 return Err(VkError::Invalid(format!(
                     "acceleration structure `{}` was not built to be refitted (triangles_updatable)",
