@@ -337,30 +337,38 @@ fn quick_splat_paths_splat_the_same_photons_and_time_every_splat() {
 
 #[test]
 fn photon_trace_paths_without_ray_queries_is_refused_before_its_first_cell() {
-    // T2 compares the tracer's compute traversal with ray queries: a device without them (here
-    // hidden; Mesa 22.3's lavapipe has none) refuses it by name before any cell is measured,
-    // and no table is written. scripts/mesa25_check.sh runs it --quick on Mesa 25's lavapipe.
-    let root = common::scratch("bench-ray-query");
-    let cfg = workspace().join("bench_configs").join("photon_trace_paths.toml");
-    let r = common::causticlab(&[
-        "--without-feature".as_ref(),
-        "acceleration_structure".as_ref(),
-        "bench".as_ref(),
-        cfg.as_os_str(),
-        "--quick".as_ref(),
-        "--results".as_ref(),
-        root.as_os_str(),
-    ]);
-    assert_eq!(r.code, Some(2), "{}", r.describe());
-    assert!(r.stderr.contains("trace `ray-query`") && r.stderr.contains("acceleration_structure"), "{}", r.describe());
-    assert!(
-        r.stderr.contains("technique[1]") && !r.stderr.contains("cells,"),
-        "refused before a cell: {}",
-        r.describe()
-    );
-    let tables: Vec<_> =
-        files_under(&root).into_iter().filter(|p| p.extension().is_some_and(|e| e == "json")).collect();
-    assert!(tables.is_empty(), "{tables:?}");
+    // T2 compares the tracer's compute traversal with ray queries, T3 times ray queries following
+    // a moving object: a device without them (here hidden; Mesa 22.3's lavapipe has none)
+    // refuses each by name before any cell is measured, naming the first technique entry that
+    // needs them, and no table is written. scripts/mesa25_check.sh runs both --quick on Mesa 25's
+    // lavapipe.
+    for (config, entry) in [("photon_trace_paths.toml", "technique[1]"), ("photon_trace_moving.toml", "technique[0]")] {
+        let root = common::scratch(&format!("bench-ray-query-{config}"));
+        let cfg = workspace().join("bench_configs").join(config);
+        let r = common::causticlab(&[
+            "--without-feature".as_ref(),
+            "acceleration_structure".as_ref(),
+            "bench".as_ref(),
+            cfg.as_os_str(),
+            "--quick".as_ref(),
+            "--results".as_ref(),
+            root.as_os_str(),
+        ]);
+        assert_eq!(r.code, Some(2), "{config}: {}", r.describe());
+        assert!(
+            r.stderr.contains("trace `ray-query`") && r.stderr.contains("acceleration_structure"),
+            "{config}: {}",
+            r.describe()
+        );
+        assert!(
+            r.stderr.contains(entry) && !r.stderr.contains("cells,"),
+            "{config}: refused before a cell: {}",
+            r.describe()
+        );
+        let tables: Vec<_> =
+            files_under(&root).into_iter().filter(|p| p.extension().is_some_and(|e| e == "json")).collect();
+        assert!(tables.is_empty(), "{config}: {tables:?}");
+    }
 }
 
 #[test]
