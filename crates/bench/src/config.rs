@@ -351,6 +351,18 @@ pub fn is_temporal_metric(kind: &str) -> bool {
     kind == "temporal_change"
 }
 
+/// Whether metric `kind` counts the acceleration structures each pose update built or refitted
+/// (what the pose updates between frames asked of the driver, timing nothing).
+pub fn is_pose_count(kind: &str) -> bool {
+    matches!(kind, "blas_builds" | "tlas_builds" | "blas_refits")
+}
+
+/// Whether metric `kind` measures the pose updates between frames: their host time
+/// (`pose_ms`) or their counts ([`is_pose_count`]).
+pub fn is_pose_metric(kind: &str) -> bool {
+    kind == "pose_ms" || is_pose_count(kind)
+}
+
 /// Whether metric `kind` compares the final image with the reference final image
 /// (`crate::final_flip`).
 pub fn is_flip_metric(kind: &str) -> bool {

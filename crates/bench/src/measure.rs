@@ -271,8 +271,7 @@ impl<'a> Runner<'a> {
         // Untimed frames along an animation for a quality or temporal metric: the warm-up
         // frames (which fill a temporal filter's history), then exactly `measured_frames`.
         // The acceleration structures' build counts likewise read the pose updates between frames.
-        let counts_poses =
-            c.metrics.iter().any(|m| matches!(m.kind.as_str(), "blas_builds" | "tlas_builds" | "blas_refits"));
+        let counts_poses = c.metrics.iter().any(|m| crate::config::is_pose_count(&m.kind));
         let along_animation = !per_pass_timing && !anim.is_static() && (self.needs_receiver_map() || counts_poses);
         if along_animation {
             plan = crate::config::FramePlan { max: plan.min, budget_s: 0.0, ..plan };

@@ -320,7 +320,7 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
     let moving_camera = r.camera_path != "static";
     let posed = moving || moving_camera;
     for (i, mt) in c.metrics.iter().enumerate() {
-        if !matches!(mt.kind.as_str(), "pose_ms" | "blas_builds" | "tlas_builds" | "blas_refits") {
+        if !crate::config::is_pose_metric(&mt.kind) {
             continue;
         }
         if !posed {

@@ -310,9 +310,15 @@ fn build(
         Flags::Compactable(false) => {}
         Flags::Updatable | Flags::Refit(_) => flags |= vk::BuildAccelerationStructureFlagsKHR::ALLOW_UPDATE,
     }
-    let mode = match how {
-        Flags::Refit(_) => vk::BuildAccelerationStructureModeKHR::UPDATE,
-        _ => vk::BuildAccelerationStructureModeKHR::BUILD,
+    // A refit updates its structure in place: it is both source and destination.
+    let refit = match how {
+        Flags::Refit(existing) => Some(existing.raw),
+        _ => None,
+    };
+    let mode = if refit.is_some() {
+        vk::BuildAccelerationStructureModeKHR::UPDATE
+    } else {
+        vk::BuildAccelerationStructureModeKHR::BUILD
     };
     let geometries = [geometry];
     let mut info =
@@ -326,31 +332,27 @@ fn build(
             &mut sizes,
         )
     };
-    let (built, target) = match how {
-        Flags::Refit(existing) => (None, existing.raw),
-        _ => {
-            let b = create(ctx, accel, name, ty, sizes.acceleration_structure_size)?;
-            let raw = b.raw;
-            (Some(b), raw)
-        }
+    let built = match refit {
+        Some(_) => None,
+        None => Some(create(ctx, accel, name, ty, sizes.acceleration_structure_size)?),
     };
-    let scratch_size =
-        if matches!(how, Flags::Refit(_)) { sizes.update_scratch_size } else { sizes.build_scratch_size };
+    let target = refit.or(built.as_ref().map(|b| b.raw)).expect("a structure to write");
+    let scratch_size = if refit.is_some() { sizes.update_scratch_size } else { sizes.build_scratch_size };
     let scratch = Buffer::new(ctx, &format!("{name} scratch"), scratch_size + ALIGN, Memory::Gpu)?;
     info = info
         .dst_acceleration_structure(target)
         .scratch_data(vk::DeviceOrHostAddressKHR { device_address: address(ctx, &scratch) });
-    if matches!(how, Flags::Refit(_)) {
-        info = info.src_acceleration_structure(target);
+    if let Some(existing) = refit {
+        info = info.src_acceleration_structure(existing);
     }
     let range = vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_count(count);
-    let what = if matches!(how, Flags::Refit(_)) { "refit" } else { "build" };
+    let what = if refit.is_some() { "refit" } else { "build" };
     one_shot(ctx, &format!("{what} {name}"), |cb| unsafe {
         accel.cmd_build_acceleration_structures(cb, std::slice::from_ref(&info), &[std::slice::from_ref(&range)])
     })?;
-    match how {
-        Flags::Refit(_) => ctx.shared.counters.acceleration_structure_refit(),
-        _ => ctx.shared.counters.acceleration_structure(ty == vk::AccelerationStructureTypeKHR::TOP_LEVEL),
+    match refit {
+        Some(_) => ctx.shared.counters.acceleration_structure_refit(),
+        None => ctx.shared.counters.acceleration_structure(ty == vk::AccelerationStructureTypeKHR::TOP_LEVEL),
     }
     drop(scratch);
     Ok(built)

@@ -63,16 +63,10 @@ impl RayQueryScene {
             if obj.mesh.indices.is_empty() {
                 continue;
             }
-            let blas = if moving == MovingObjects::Refit {
-                let positions: Vec<[f32; 3]> = obj.mesh.positions.iter().map(|p| p.to_array()).collect();
-                let name = format!("photon_trace object {o}");
-                AccelerationStructure::triangles_updatable(ctx, &name, &positions, &obj.mesh.indices)?
-            } else {
-                bottom_level(ctx, o, &obj.mesh)?
-            };
+            let blas = bottom_level(ctx, o, &obj.mesh, moving == MovingObjects::Refit)?;
             instances.push(Instance { object: o, blas, rest: obj.mesh.clone(), transform: IDENTITY });
         }
-        let top = top_level(ctx, &instances, first)?;
+        let top = top_level(ctx, instances.iter().map(|i| (&i.blas, i.transform, i.object)), first)?;
         Ok(RayQueryScene { top, instances, first: first.to_vec() })
     }
 
@@ -85,7 +79,7 @@ impl RayQueryScene {
     pub fn follow(&mut self, ctx: &Context, scene: &Scene, moved: &[&str], moving: MovingObjects) -> Result<Followed> {
         let mut transforms: Vec<(usize, Transform)> = vec![];
         let mut rebuilt: Vec<(usize, AccelerationStructure)> = vec![];
-        let mut refitted: Vec<usize> = vec![];
+        let mut refitted = 0;
         let is_moved = |inst: &Instance| moved.contains(&scene.objects[inst.object].name.as_str());
         // Every check before the first structure changes (a refit is in place).
         for inst in self.instances.iter().filter(|i| is_moved(i)) {
@@ -112,10 +106,9 @@ impl RayQueryScene {
             }
             let obj = &scene.objects[inst.object];
             if moving == MovingObjects::Refit {
-                let positions: Vec<[f32; 3]> = obj.mesh.positions.iter().map(|p| p.to_array()).collect();
-                inst.blas.refit(ctx, &positions, &obj.mesh.indices)?;
+                inst.blas.refit(ctx, &positions(&obj.mesh), &obj.mesh.indices)?;
                 inst.rest = obj.mesh.clone();
-                refitted.push(k);
+                refitted += 1;
                 continue;
             }
             let rigid = match moving {
@@ -124,28 +117,22 @@ impl RayQueryScene {
             };
             match rigid {
                 Some(t) => transforms.push((k, t)),
-                None => rebuilt.push((k, bottom_level(ctx, inst.object, &obj.mesh)?)),
+                None => rebuilt.push((k, bottom_level(ctx, inst.object, &obj.mesh, false)?)),
             }
         }
-        let done = Followed { moved_instances: transforms.len(), rebuilt: rebuilt.len(), refitted: refitted.len() };
+        let done = Followed { moved_instances: transforms.len(), rebuilt: rebuilt.len(), refitted };
         if done == Followed::default() {
             return Ok(done);
         }
-        let records: Vec<TlasInstance> = self
-            .instances
-            .iter()
-            .enumerate()
-            .map(|(k, inst)| {
-                let (blas, transform) = match rebuilt.iter().find(|(j, _)| *j == k) {
-                    Some((_, blas)) => (blas, IDENTITY),
-                    None => (&inst.blas, transforms.iter().find(|(j, _)| *j == k).map_or(inst.transform, |(_, t)| *t)),
-                };
-                TlasInstance { blas, transform, custom_index: self.first[inst.object] }
-            })
-            .collect();
-        let top = AccelerationStructure::instances(ctx, "photon_trace scene", &records)?;
-        drop(records);
-        self.top = top;
+        // Each instance as it will be: the new bottom levels and transforms, not yet stored.
+        let next = self.instances.iter().enumerate().map(|(k, inst)| match rebuilt.iter().find(|(j, _)| *j == k) {
+            Some((_, blas)) => (blas, IDENTITY, inst.object),
+            None => {
+                let transform = transforms.iter().find(|(j, _)| *j == k).map_or(inst.transform, |(_, t)| *t);
+                (&inst.blas, transform, inst.object)
+            }
+        });
+        self.top = top_level(ctx, next, &self.first)?;
         for (k, t) in transforms {
             self.instances[k].transform = t;
         }
@@ -168,15 +155,26 @@ impl RayQueryScene {
     }
 }
 
-fn bottom_level(ctx: &Context, o: usize, mesh: &Mesh) -> Result<AccelerationStructure> {
-    let positions: Vec<[f32; 3]> = mesh.positions.iter().map(|p| p.to_array()).collect();
-    Ok(AccelerationStructure::triangles(ctx, &format!("photon_trace object {o}"), &positions, &mesh.indices)?)
+fn positions(mesh: &Mesh) -> Vec<[f32; 3]> {
+    mesh.positions.iter().map(|p| p.to_array()).collect()
 }
 
-fn top_level(ctx: &Context, instances: &[Instance], first: &[u32]) -> Result<AccelerationStructure> {
+/// Object `o`'s bottom level over `mesh`: compacted, or built to be refitted (`updatable`).
+fn bottom_level(ctx: &Context, o: usize, mesh: &Mesh, updatable: bool) -> Result<AccelerationStructure> {
+    let name = format!("photon_trace object {o}");
+    let build = if updatable { AccelerationStructure::triangles_updatable } else { AccelerationStructure::triangles };
+    Ok(build(ctx, &name, &positions(mesh), &mesh.indices)?)
+}
+
+/// The top level over `instances`: each a bottom level, its transform and its object, whose
+/// first triangle (`first`) is the instance's custom index.
+fn top_level<'a>(
+    ctx: &Context,
+    instances: impl Iterator<Item = (&'a AccelerationStructure, Transform, usize)>,
+    first: &[u32],
+) -> Result<AccelerationStructure> {
     let records: Vec<TlasInstance> = instances
-        .iter()
-        .map(|i| TlasInstance { blas: &i.blas, transform: i.transform, custom_index: first[i.object] })
+        .map(|(blas, transform, object)| TlasInstance { blas, transform, custom_index: first[object] })
         .collect();
     Ok(AccelerationStructure::instances(ctx, "photon_trace scene", &records)?)
 }
