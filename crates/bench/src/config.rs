@@ -338,6 +338,9 @@ pub const METRIC_KINDS: &[&str] = &[
     "quad_coverage",
     "temporal_change",
     "flip",
+    "progressive_rel_rmse",
+    "progressive_ms",
+    "progressive_frames",
 ];
 
 /// Whether metric `kind` reads the caustic quads' depth complexity (`wd-quads` only).
@@ -412,6 +415,14 @@ pub struct MetricSpec {
     /// would move them faster is implausible (rule c).
     #[serde(default)]
     pub bytes_per_photon: Option<BytesPerPhoton>,
+    /// For `progressive_rel_rmse` and `progressive_ms`: after this many accumulated frames
+    /// (`crate::progressive`).
+    #[serde(default)]
+    pub frames: Option<u32>,
+    /// For `progressive_rel_rmse` and `progressive_frames`: after the first frame whose
+    /// accumulated time reaches this many ms.
+    #[serde(default)]
+    pub after_ms: Option<f64>,
 }
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -531,7 +542,10 @@ impl Config {
     /// Whether the per-pass frames submit every pass alone to time it on the host: a
     /// `pass_host_ms` or `pass_host_mphotons` metric asks for it.
     pub fn host_pass_times(&self) -> bool {
-        self.metrics.iter().any(|m| matches!(m.kind.as_str(), "pass_host_ms" | "pass_host_mphotons"))
+        self.metrics.iter().any(|m| {
+            matches!(m.kind.as_str(), "pass_host_ms" | "pass_host_mphotons")
+                || (crate::progressive::is_progressive_metric(&m.kind) && !m.passes.is_empty())
+        })
     }
 
     /// The frames of every cell: `[run]`, or `[quick]` under `--quick`.

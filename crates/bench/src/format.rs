@@ -40,7 +40,9 @@ pub fn format_value(kind: &str, v: Option<f64>) -> String {
         }
         // A share of the photon buffer, as a percentage with three significant digits.
         "valid_fraction" => format!("{}%", significant(100.0 * v)),
-        "rel_rmse" | "flux_ratio" | "peak_ratio" | "temporal_change" => format!("{v:.4}"),
+        "rel_rmse" | "flux_ratio" | "peak_ratio" | "temporal_change" | "progressive_rel_rmse" => format!("{v:.4}"),
+        "progressive_ms" => significant(v),
+        "progressive_frames" => format!("{v:.0}"),
         "peak_offset" => format!("{v:.1}"),
         // HDR-FLIP's mean, three significant digits (0.00947, 0.0304).
         "flip" => significant(v),

@@ -25,6 +25,7 @@ pub mod plan;
 pub mod plausibility;
 pub mod plot;
 pub mod progress;
+pub mod progressive;
 pub mod record;
 pub mod report;
 pub mod results;

@@ -82,6 +82,9 @@ pub struct CellRun {
     /// `temporal_change`: the relative RMS change of the receiver map from one measured frame to
     /// the next (`compare(frame t, frame t - 1).rel_rmse`), one per pair of measured frames.
     pub temporal_changes: Vec<f64>,
+    /// Progressive accumulation's curve (`crate::progressive`): every frame after the means
+    /// started again, with its accumulated time and error; empty without a progressive metric.
+    pub progressive: Vec<crate::progressive::Point>,
     /// `flip`: HDR-FLIP of the last frame's final image against the reference final image.
     pub final_flip: Option<crate::final_flip::FinalFlip>,
 }
@@ -171,6 +174,10 @@ impl<'a> Runner<'a> {
         self.config.config.metrics.iter().any(|m| crate::config::is_quality_metric(&m.kind))
     }
 
+    fn needs_progressive(&self) -> bool {
+        self.config.config.metrics.iter().any(|m| crate::progressive::is_progressive_metric(&m.kind))
+    }
+
     fn needs_temporal(&self) -> bool {
         self.config.config.metrics.iter().any(|m| crate::config::is_temporal_metric(&m.kind))
     }
@@ -178,7 +185,7 @@ impl<'a> Runner<'a> {
     /// Whether a cell reads its receiver map (a validation instrument, not part of any
     /// technique): for the CPU reference or for the frame-to-frame change.
     fn needs_receiver_map(&self) -> bool {
-        self.needs_quality() || self.needs_temporal()
+        self.needs_quality() || self.needs_temporal() || self.needs_progressive()
     }
 
     fn needs_depth_complexity(&self) -> bool {
@@ -351,6 +358,9 @@ impl<'a> Runner<'a> {
         // filter's history too).
         let quality =
             if self.needs_quality() { Some(self.quality(&mut renderer, &scene, &anim, last_pose)?) } else { None };
+        // Validated: the progressive metrics' light and objects stay still.
+        let progressive =
+            if self.needs_progressive() { self.progressive_curve(&mut renderer, &scene, &anim, step)? } else { vec![] };
         // The last frame's final image (paths are static with a flip metric: validated).
         let final_flip = if self.needs_flip() {
             let ours = renderer.final_image()?;
@@ -426,8 +436,44 @@ impl<'a> Runner<'a> {
             host_probe_ms,
             depth_complexity,
             temporal_changes,
+            progressive,
             final_flip,
         })
+    }
+
+    /// Progressive accumulation's curve (`crate::progressive`): the means started again, then
+    /// frame after frame, each timed (its `passes`' host times, or its wall time) and its
+    /// receiver map compared with the reference after it (outside the time), until the curve
+    /// reaches every progressive metric's frames and time.
+    fn progressive_curve(
+        &mut self,
+        renderer: &mut Renderer,
+        scene: &Scene,
+        anim: &Animation,
+        step: FrameStep,
+    ) -> Result<Vec<crate::progressive::Point>> {
+        let metrics = &self.config.config.metrics;
+        let targets = crate::progressive::targets(metrics);
+        let passes = crate::progressive::timed_passes(metrics);
+        let step = FrameStep { host_pass_times: !passes.is_empty(), reuse_photons: false, ..step };
+        renderer.restart_accumulation();
+        let mut curve: Vec<crate::progressive::Point> = vec![];
+        let mut ms = 0.0;
+        let cap = if self.quick.is_some() { crate::progressive::QUICK_FRAMES } else { crate::progressive::MAX_FRAMES };
+        while !crate::progressive::reached(&curve, targets, cap) {
+            let start = Instant::now();
+            let report = renderer.frame(step)?;
+            let wall = start.elapsed().as_secs_f64() * 1e3;
+            ms += crate::progressive::frame_time(&passes, &report, wall).with_context(|| {
+                format!(
+                    "progressive metrics: no pass of a frame matches {passes:?} (passes: {:?})",
+                    pass_names(&report)
+                )
+            })?;
+            let rel_rmse = self.quality(renderer, scene, anim, None)?.rel_rmse;
+            curve.push(crate::progressive::Point { frames: curve.len() as u32 + 1, ms, rel_rmse });
+        }
+        Ok(curve)
     }
 
     /// The throughput frame mode: frames submitted back to back through the renderer's ring,
@@ -586,6 +632,11 @@ fn set_light_count(scene: &mut Scene, n: usize) -> Result<()> {
         scene.lights.push(l);
     }
     Ok(())
+}
+
+/// The names of a frame's passes, for messages.
+fn pass_names(report: &FrameReport) -> Vec<&str> {
+    report.passes.iter().map(|p| p.name.as_str()).collect()
 }
 
 #[cfg(test)]

@@ -187,6 +187,9 @@ pub fn evaluate(specs: &[MetricSpec], run: &CellRun) -> BTreeMap<String, Value> 
             "peak_ratio" => exact(k, run.quality.as_ref().map(|q| q.peak_ratio)),
             "peak_offset" => exact(k, run.quality.as_ref().map(|q| q.peak_offset_texels)),
             "flip" => exact(k, run.final_flip.as_ref().map(|f| f.mean)),
+            k if crate::progressive::is_progressive_metric(k) => {
+                exact(k, crate::progressive::evaluate(m, &run.progressive))
+            }
             _ => exact(k, None),
         };
         out.insert(m.label.clone(), v);

@@ -149,6 +149,10 @@ pub struct CellResult {
     /// next (the metric is their mean).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub temporal_changes: Vec<f64>,
+    /// Progressive accumulation's curve: every frame's accumulated time and error
+    /// (`crate::progressive`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub progressive: Vec<crate::progressive::Point>,
     /// A cell measured again because its spread was over 10%: the largest spread of its timed
     /// metrics at each attempt, in order (the attempt with the smallest is the one kept).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -266,6 +270,7 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
         .collect(),
         block_ms: run.throughput.as_ref().map(|t| t.block_ms.clone()).unwrap_or_default(),
         temporal_changes: run.temporal_changes.clone(),
+        progressive: run.progressive.clone(),
         spread_attempts: vec![],
         final_flip: run.final_flip.clone(),
     }

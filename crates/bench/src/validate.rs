@@ -245,11 +245,14 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             mt.kind.as_str(),
             "pass_ms" | "pass_fps" | "pass_mphotons" | "pass_host_ms" | "pass_host_mphotons"
         );
-        if per_pass == mt.passes.is_empty() {
+        // A progressive metric may time its frames by their passes (or their wall time).
+        let optional = crate::progressive::is_progressive_metric(&mt.kind);
+        if !optional && per_pass == mt.passes.is_empty() {
             let msg = if mt.passes.is_empty() {
                 format!("kind {} needs `passes`", mt.kind)
             } else {
-                "only kinds pass_ms, pass_fps, pass_mphotons, pass_host_ms and pass_host_mphotons take `passes`"
+                "only kinds pass_ms, pass_fps, pass_mphotons, pass_host_ms, pass_host_mphotons and the progressive \
+                 ones take `passes`"
                     .to_string()
             };
             return Err(bad(&format!("metric[{i}].passes"), msg));
@@ -399,7 +402,99 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
             ));
         }
     }
+    validate_progressive(c, moving, &bad)?;
     crate::validate_layout::validate_layout(lc, &bad)
+}
+
+/// The progressive metrics (`crate::progressive`): each reads its curve at `frames` or at
+/// `after_ms` as its kind allows, within [`crate::progressive::MAX_FRAMES`] and an hour; they
+/// share their `passes` (one time per frame); the light and objects stay still (a pose that
+/// moves them starts the means again), and `static` lighting, which reuses the photons, is
+/// refused.
+fn validate_progressive(
+    c: &crate::config::Config,
+    moving: bool,
+    bad: &dyn Fn(&str, String) -> anyhow::Error,
+) -> Result<()> {
+    use crate::progressive::{is_progressive_metric, MAX_FRAMES};
+    let mut passes: Option<&Vec<String>> = None;
+    for (i, m) in c.metrics.iter().enumerate() {
+        let progressive = is_progressive_metric(&m.kind);
+        if !progressive {
+            for (key, set) in [("frames", m.frames.is_some()), ("after_ms", m.after_ms.is_some())] {
+                if set {
+                    return Err(bad(
+                        &format!("metric[{i}].{key}"),
+                        format!("is where a progressive metric reads its curve; `{}` has no curve", m.kind),
+                    ));
+                }
+            }
+            continue;
+        }
+        let (frames_ok, ms_ok) = match m.kind.as_str() {
+            "progressive_ms" => (true, false),
+            "progressive_frames" => (false, true),
+            _ => (true, true),
+        };
+        match (m.frames, m.after_ms) {
+            (Some(_), Some(_)) => {
+                return Err(bad(&format!("metric[{i}]"), "set `frames` or `after_ms`, not both".into()));
+            }
+            (None, None) => {
+                let which = match (frames_ok, ms_ok) {
+                    (true, true) => "`frames` or `after_ms`",
+                    (true, false) => "`frames`",
+                    _ => "`after_ms`",
+                };
+                return Err(bad(
+                    &format!("metric[{i}]"),
+                    format!("`{}` needs {which}: where it reads the curve", m.kind),
+                ));
+            }
+            (Some(n), None) if !frames_ok || !(1..=MAX_FRAMES).contains(&n) => {
+                let msg = match frames_ok {
+                    true => format!("must be between 1 and {MAX_FRAMES}, got {n}"),
+                    false => format!("`{}` reads the curve at a time: set `after_ms`", m.kind),
+                };
+                return Err(bad(&format!("metric[{i}].frames"), msg));
+            }
+            (None, Some(t)) if !(ms_ok && t.is_finite() && t > 0.0 && t <= 3.6e6) => {
+                let msg = match ms_ok {
+                    true => format!("must be in (0, 3600000] ms, got {t}"),
+                    false => format!("`{}` reads the curve at a frame: set `frames`", m.kind),
+                };
+                return Err(bad(&format!("metric[{i}].after_ms"), msg));
+            }
+            _ => {}
+        }
+        if passes.is_some_and(|p| p != &m.passes) {
+            return Err(bad(
+                &format!("metric[{i}].passes"),
+                "the progressive metrics time one curve: give them the same `passes`".into(),
+            ));
+        }
+        passes = Some(&m.passes);
+        if moving {
+            return Err(bad(
+                &format!("metric[{i}].kind"),
+                format!(
+                    "`{}` accumulates frames of a still light and still objects (a pose that moves them starts the \
+                     means again): run.light_path and run.object_path must be \"static\"",
+                    m.kind
+                ),
+            ));
+        }
+        if c.matrix.lighting.iter().any(|l| l == "static") {
+            return Err(bad(
+                "matrix.lighting",
+                format!(
+                    "`static` reuses the last frame's photons, which `{}` (metric[{i}]) needs new every frame",
+                    m.kind
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Longest time budget a cell may have, seconds.

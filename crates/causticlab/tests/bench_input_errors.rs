@@ -134,6 +134,55 @@ fn config_errors_name_the_file_and_key() {
             "metric[2].kind",
         ),
         (
+            "progressive_nowhere.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"progressive_rel_rmse\""),
+            "`frames` or `after_ms`",
+        ),
+        (
+            "progressive_both.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"progressive_rel_rmse\"\nframes = 4\nafter_ms = 100"),
+            "not both",
+        ),
+        (
+            "progressive_ms_at_a_time.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"progressive_ms\"\nafter_ms = 100"),
+            "metric[1].after_ms",
+        ),
+        (
+            "progressive_too_many_frames.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"progressive_rel_rmse\"\nframes = 100000"),
+            "metric[1].frames",
+        ),
+        (
+            "frames_without_a_curve.toml",
+            SMALL.replace("kind = \"splats_drawn\"", "kind = \"splats_drawn\"\nframes = 4"),
+            "metric[1].frames",
+        ),
+        (
+            "progressive_moving_light.toml",
+            SMALL
+                .replace("kind = \"splats_drawn\"", "kind = \"progressive_rel_rmse\"\nframes = 4")
+                .replace("[run]", "[run]\nlight_path = \"orbit\""),
+            "run.light_path",
+        ),
+        (
+            "progressive_static_lighting.toml",
+            SMALL
+                .replace("kind = \"splats_drawn\"", "kind = \"progressive_rel_rmse\"\nframes = 4")
+                .replace("[matrix]", "[matrix]\nlighting = [\"static\", \"dynamic\"]"),
+            "matrix.lighting",
+        ),
+        (
+            "progressive_alpha_without_progressive.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\nprogressive_alpha = 0.5"),
+            "progressive_alpha",
+        ),
+        (
+            "progressive_thin_lens.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\nprogressive = true\nsplat = \"thin-lens\""),
+            "progressive",
+        ),
+        (
             "bad_pick.toml",
             format!("{SMALL}\n[[layout.column]]\ntechnique = \"quads\"\nmetric = \"photons\"\n"),
             "layout.column[0].technique",

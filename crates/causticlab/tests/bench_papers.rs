@@ -404,6 +404,46 @@ fn quick_photon_trace_rate_times_the_trace_and_counts_every_emitted_photon() {
 }
 
 #[test]
+fn quick_photon_trace_progressive_draws_each_curve_frame_by_frame() {
+    // T4: every cell's curve has a point per frame (8 under --quick), its accumulated time
+    // growing; the plain tracer's frames are the same photons, so its error is the same at every
+    // frame; progressive's first frame is the plain tracer's (the same seed and radius), and its
+    // later ones are new photons (the error moves); the 1- and 4-frame columns read the curve.
+    let (_, r) = quick_run("photon_trace_progressive.toml");
+    let curve = |c: &Value| -> Vec<(u64, f64, f64)> {
+        c["progressive"]
+            .as_array()
+            .expect("a curve")
+            .iter()
+            .map(|p| {
+                (
+                    p["frames"].as_u64().expect("frames"),
+                    p["ms"].as_f64().expect("ms"),
+                    p["rel_rmse"].as_f64().expect("rel_rmse"),
+                )
+            })
+            .collect()
+    };
+    for scene in ["sphere_on_plane.toml", "ring_cardioid.toml", "bunny_in_room.toml"] {
+        let plain = curve(cell_in(&r, scene, "photon-trace", 64));
+        for t in ["photon-trace", "progressive", "alpha 1", "binned"] {
+            let c = cell_in(&r, scene, t, 64);
+            let points = curve(c);
+            assert_eq!(points.iter().map(|p| p.0).collect::<Vec<_>>(), (1..=8).collect::<Vec<_>>(), "{scene} {t}");
+            assert!(points.windows(2).all(|w| w[1].1 > w[0].1 && w[0].1 > 0.0), "{scene} {t}: {points:?}");
+            for (label, frame) in [("1 frame", 0), ("4 frames", 3)] {
+                assert_eq!(c["metrics"][label]["value"].as_f64(), Some(points[frame].2), "{scene} {t} {label}");
+            }
+            assert!(c["metrics"]["64 frames"]["value"].is_null(), "{scene} {t}: --quick stops at 8 frames");
+        }
+        assert!(plain.iter().all(|p| p.2 == plain[0].2), "{scene}: the plain tracer's error moved: {plain:?}");
+        let progressive = curve(cell_in(&r, scene, "progressive", 64));
+        assert_eq!(progressive[0].2, plain[0].2, "{scene}: progressive's first frame is the plain tracer's");
+        assert!(progressive[1..].iter().all(|p| p.2 != plain[0].2), "{scene}: no new photons? {progressive:?}");
+    }
+}
+
+#[test]
 fn quick_trendall_stewart2000_table1_times_the_passes_and_the_height_field() {
     let (dir, r) = quick_run("trendall_stewart2000_table1.toml");
     let cells = r["cells"].as_array().expect("cells");

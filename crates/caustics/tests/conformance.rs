@@ -195,7 +195,9 @@ fn check(rows: &[Variant], photon_refraction: PhotonRefraction) -> Vec<String> {
                 label += " (deferred photons)";
             }
             let mut r = Renderer::new(&ctx, &sh, &scene, &RendererOptions::default()).expect("renderer");
-            r.frame(FrameStep::default()).expect("frame");
+            for _ in 0..row.frames() {
+                r.frame(FrameStep::default()).expect("frame");
+            }
             let dumps = every_dump(&ctx, &mut r, &scene, &label, scene_name);
             let receiver = &dumps.iter().find(|(n, _)| n == "receiver").expect("a receiver map").1;
             let (c, _) = compare(receiver, reference).expect("compare");

@@ -48,6 +48,7 @@ pub fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: 
         frame_counters: BTreeMap::new(),
         block_ms: vec![],
         temporal_changes: vec![],
+        progressive: vec![],
         spread_attempts: vec![],
         final_flip: None,
     }

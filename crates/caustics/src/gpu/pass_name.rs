@@ -51,9 +51,12 @@ stages! {
     VertexPhotonsClear => "vertex_photons.clear",
     VertexPhotons => "vertex_photons",
     /// `photon-trace`: its direct deposit into the receiver map cleared before the frame's first
-    /// light, then photons traced through the scene's BVH into the photon buffer.
+    /// light, then photons traced through the scene's BVH into the photon buffer; with
+    /// `progressive`, after every light's deposit, the running means of the caustic map (and of
+    /// the receiver-map binning: `.flux`).
     PhotonTraceClear => "photon_trace.clear",
     PhotonTrace => "photon_trace",
+    PhotonTraceAccumulate => "photon_trace.accumulate",
     /// Deferred caustic maps (Wyman & Nichols 2009 Fig. 10): the light-space geometry buffers,
     /// then the full-screen pass writing the photon buffer.
     DeferredPhotonsGeometry => "deferred_photons.geometry",

@@ -159,6 +159,14 @@ impl<'c> Renderer<'c> {
         }
     }
 
+    /// `photon-trace --progressive`: the next frame starts its means again (nothing for the
+    /// other techniques).
+    pub fn restart_accumulation(&mut self) {
+        if let Renderer::Mesh(r) = self {
+            r.restart_accumulation();
+        }
+    }
+
     /// Points drawn per frame over all lights (a pool draws none).
     pub fn splats_drawn(&self) -> Result<u64> {
         match self {

@@ -31,7 +31,9 @@ impl MeshRenderer<'_> {
         match &self.caustic {
             Some(c) => {
                 // One photon buffer serves every light: only one light's can be kept.
-                let reuse = step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1;
+                // Progressive accumulation traces new photons every frame.
+                let reuse =
+                    step.reuse_photons && self.photons_ready && self.targets.shadow.lights == 1 && !c.progressive();
                 let inputs = self.caustic_inputs();
                 let lights = self.targets.shadow.lights;
                 c.record(f, &inputs, &self.caustic_targets, lights, Some(self.eye_view()), reuse)?;

@@ -106,6 +106,13 @@ impl<'c> MeshRenderer<'c> {
     pub fn caustics(&self) -> Option<&CausticPipeline> {
         self.caustic.as_ref()
     }
+
+    /// `photon-trace --progressive`: the next frame starts its means again.
+    pub fn restart_accumulation(&mut self) {
+        if let Some(c) = self.caustic.as_mut() {
+            c.restart_accumulation();
+        }
+    }
 }
 
 /// A frame: its uniforms (and moved meshes), then every pass (`super::record`).
@@ -119,6 +126,9 @@ impl RecordFrame for MeshRenderer<'_> {
     }
 
     fn record(&mut self, f: &mut Frame, slot: Option<Slot>, step: FrameStep) -> Result<()> {
+        if let Some(radius) = self.caustic.as_mut().and_then(|c| c.next_frame()) {
+            self.slots.set_splat_radius(radius);
+        }
         self.slots.record(self.ctx, f, slot, &self.meshes, &self.scene)?;
         self.record_frame(f, step)
     }
@@ -143,8 +153,14 @@ impl FrameRenderer for MeshRenderer<'_> {
             "set_pose: {} is not a pose of the scene this renderer was made for",
             scene.path.display()
         );
-        if scene.lights != self.scene.lights {
+        let moved_any = scene.objects.iter().zip(&self.scene.objects).any(|(obj, old)| obj.mesh != old.mesh);
+        if scene.lights != self.scene.lights || moved_any {
             self.photons_ready = false;
+            // The light-space caustic map and the receiver map do not depend on the camera:
+            // progressive means start again only when the light reaching them changes.
+            if let Some(c) = self.caustic.as_mut() {
+                c.restart_accumulation();
+            }
         }
         let moved: Vec<&str> = scene
             .objects

@@ -82,6 +82,13 @@ impl SlotData {
         self.pending = Some(uniforms);
     }
 
+    /// The splat radius of the next frames (caustic-map texels: `photon-trace`'s progressive
+    /// accumulation shrinks it frame by frame), written by the next frame.
+    pub fn set_splat_radius(&mut self, radius: f32) {
+        self.current.1.splat[0] = radius;
+        self.pending = Some(self.current);
+    }
+
     /// Mesh `i` moved: true if the next frame copies it (throughput frames), false if the
     /// caller uploads it now.
     pub fn mesh_moved(&mut self, i: usize) -> bool {

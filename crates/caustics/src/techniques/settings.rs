@@ -211,6 +211,14 @@ caustic_settings! {
     /// default), rebuild (every moved object's bottom level rebuilt) or refit (every moved
     /// object's bottom level refitted in place).
     moving_objects: MovingObjects = MovingObjects::Transform, only PhotonTrace;
+    /// photon-trace: progressive accumulation (Knaus & Zwicker 2011): new photons every frame,
+    /// each frame's splatted with a smaller radius, and the caustic map (and the receiver-map
+    /// binning) the mean of every frame since the lights or objects last changed; default false.
+    progressive: bool = false, only PhotonTrace;
+    /// photon-trace with progressive: the radius rule's alpha in (0, 1], r_{i+1}^2 = r_i^2
+    /// (i + alpha) / (i + 1) (Knaus & Zwicker 2011 Eq. 15); default 2/3 (their choice for
+    /// surfaces; 1 keeps the radius).
+    progressive_alpha: f32 = photon_trace::progressive::DEFAULT_ALPHA, only PhotonTrace;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.
     precision: Precision = Precision::Float, only PoolConvolution;

@@ -50,6 +50,9 @@ pub struct Variant {
     #[serde(default)]
     pub quality: bool,
     scenes: Option<Vec<String>>,
+    /// Frames the conformance suite renders before it reads the row's buffers (a progressive
+    /// row's accumulation); 1 when unset.
+    frames: Option<u32>,
 }
 
 #[derive(Deserialize)]
@@ -69,6 +72,11 @@ impl Variant {
             Some(s) => s.iter().map(String::as_str).collect(),
             None => SPHERE_SCENES.to_vec(),
         }
+    }
+
+    /// Frames rendered before the row is read (`frames`, at least 1).
+    pub fn frames(&self) -> u32 {
+        self.frames.unwrap_or(1).max(1)
     }
 
     /// The settings as `render` flags: `--technique wd-points --splat thin-lens`.

@@ -30,6 +30,7 @@
 //! `"refit"`); the top level is built again.
 
 pub mod instances;
+pub mod progressive;
 pub mod push;
 pub mod settings;
 
@@ -76,6 +77,8 @@ pub struct PhotonTracer {
     specular: Vec<bool>,
     /// How ray queries' structures follow a moving object.
     moving: MovingObjects,
+    /// `progressive = true`: the running means and their frame count ([`progressive`]).
+    accumulation: Option<progressive::Accumulation>,
 }
 
 impl PhotonTracer {
@@ -138,7 +141,21 @@ impl PhotonTracer {
         if ray_query {
             defines.push(("RAY_QUERY", "1"));
         }
+        let accumulation = match s.progressive {
+            true => {
+                let lights = scene.lights.len().clamp(1, crate::gpu::MAX_LIGHTS) as u32;
+                let flux = scene
+                    .receiver_map
+                    .as_ref()
+                    .filter(|_| receiver_deposit)
+                    .map(|r| 16 * u64::from(r.resolution).pow(2));
+                let (side, layers) = (s.caustic_map_resolution, lights * s.caustic_levels());
+                Some(progressive::Accumulation::new(ctx, sh, side, layers, flux, s.progressive_alpha, s.splat_radius)?)
+            }
+            false => None,
+        };
         Ok(PhotonTracer {
+            accumulation,
             pipeline: Pipeline::compute(ctx, "photon_trace", &sh.compile("photon_trace/trace.comp", &defines)?)?,
             intersection,
             triangles: upload("photon_trace BVH triangles", bytemuck::cast_slice(&triangles), 48)?,
@@ -188,6 +205,33 @@ impl PhotonTracer {
         Ok(followed)
     }
 
+    /// Progressive accumulation: the next frame (new photons, one more frame in the means);
+    /// returns its splat radius. None without `progressive`.
+    pub fn next_frame(&mut self) -> Option<f32> {
+        self.accumulation.as_mut().map(|a| a.next_frame())
+    }
+
+    /// Progressive accumulation: the next frame is the first of new means (the lights or the
+    /// objects changed).
+    pub fn restart(&mut self) {
+        if let Some(a) = &mut self.accumulation {
+            a.restart();
+        }
+    }
+
+    /// Progressive accumulation: frames in the means (None without `progressive`).
+    pub fn accumulated_frames(&self) -> Option<u32> {
+        self.accumulation.as_ref().map(|a| a.frames())
+    }
+
+    /// After every light's deposit: the running means (`progressive`; nothing otherwise).
+    pub fn record_accumulation(&self, f: &mut Frame, c: &CausticPasses) -> Result<()> {
+        match &self.accumulation {
+            Some(a) => a.record(f, &c.targets.caustic_map, &c.targets.receiver_flux),
+            None => Ok(()),
+        }
+    }
+
     /// Light `l`'s receiver positions (for the caustic map's lookup), then its photons traced
     /// into the photon buffer.
     pub fn record(&self, f: &mut Frame, c: &CausticPasses, l: u32) -> Result<()> {
@@ -222,7 +266,11 @@ impl PhotonTracer {
         }
         let side = pt.width;
         f.pass(&Stage::PhotonTrace.light(l)).bind(&self.pipeline, binds).record(|cmd| {
-            cmd.push(&PhotonTraceConstants { light: l, ..self.constants })?;
+            let seed = match &self.accumulation {
+                Some(a) => progressive::frame_seed(self.constants.seed, a.frames()),
+                None => self.constants.seed,
+            };
+            cmd.push(&PhotonTraceConstants { light: l, seed, ..self.constants })?;
             cmd.dispatch(side.div_ceil(8), side.div_ceil(8), 1);
             Ok(())
         })?;

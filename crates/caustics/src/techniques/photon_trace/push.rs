@@ -21,6 +21,16 @@ push_constants! {
     }
 }
 
+push_constants! {
+    /// Progressive accumulation's running means (`photon_trace/accumulate.comp`).
+    pub struct AccumulateConstants {
+        /// The frame's share of the mean, 1/i (1: the mean is the frame).
+        pub weight: f32,
+        /// FLUX: the receiver-map binning's texels.
+        pub count: u32,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -31,6 +41,14 @@ mod tests {
         check::<PhotonTraceConstants>(&[
             ("photon_trace/trace.comp", &[]),
             ("photon_trace/trace.comp", &[("RECEIVER_DEPOSIT", "1")]),
+        ]);
+    }
+
+    #[test]
+    fn accumulate_constants() {
+        check::<AccumulateConstants>(&[
+            ("photon_trace/accumulate.comp", &[]),
+            ("photon_trace/accumulate.comp", &[("FLUX", "1")]),
         ]);
     }
 }

@@ -4,6 +4,7 @@ use super::super::settings::{Bad, CausticSettings};
 use super::super::shared::settings as shared;
 use super::super::value_enum::value_enum;
 use crate::dump::Dump;
+use crate::techniques::wyman2008::SplatMode;
 use vkcore::Feature;
 
 /// The technique's source, as tables and `--help` cite it.
@@ -94,6 +95,25 @@ pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
                 "`{}` is how trace = \"ray-query\"'s acceleration structures follow a moving object; trace `{}` \
                  builds its BVH once and refuses moving objects",
                 s.moving_objects, s.trace
+            ),
+        )?;
+    }
+    if !(s.progressive_alpha > 0.0 && s.progressive_alpha <= 1.0) {
+        bad(
+            "progressive_alpha",
+            format!("must be in (0, 1] (Knaus & Zwicker 2011's alpha), got {}", s.progressive_alpha),
+        )?;
+    }
+    if !s.progressive && s.progressive_alpha != super::progressive::DEFAULT_ALPHA {
+        bad("progressive_alpha", "is the radius rule of progressive accumulation; set progressive = true".into())?;
+    }
+    if s.progressive && s.splat != SplatMode::Fixed {
+        bad(
+            "progressive",
+            format!(
+                "progressive accumulation shrinks the fixed splat radius frame by frame; splat `{}` sizes its splats \
+                 otherwise (use splat = \"fixed\")",
+                s.splat
             ),
         )?;
     }

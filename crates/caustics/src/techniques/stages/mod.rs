@@ -153,7 +153,33 @@ impl CausticPipeline {
             }
             self.deposit.record(f, &c, &self.selection, l, eye, reuse)?;
         }
+        self.source.record_after_deposit(f, &c)?;
         self.deposit.record_after_lights(f, &c, eye, reuse)
+    }
+
+    /// The next frame of `photon-trace`'s progressive accumulation (`Source::next_frame`): its
+    /// splat radius, None without one.
+    pub fn next_frame(&mut self) -> Option<f32> {
+        self.source.next_frame()
+    }
+
+    /// Progressive accumulation starts again with the next frame (the lights or objects changed).
+    pub fn restart_accumulation(&mut self) {
+        self.source.restart_accumulation()
+    }
+
+    /// Whether every frame traces new photons into running means (`progressive`): the last
+    /// frame's photons are never reused.
+    pub fn progressive(&self) -> bool {
+        matches!(&self.source, Source::Traced(t) if t.accumulated_frames().is_some())
+    }
+
+    /// Frames in `photon-trace`'s progressive means (None without `progressive`).
+    pub fn accumulated_frames(&self) -> Option<u32> {
+        match &self.source {
+            Source::Traced(t) => t.accumulated_frames(),
+            _ => None,
+        }
     }
 
     /// Light `l`'s light-space passes before its deposit: its source and selection. One set

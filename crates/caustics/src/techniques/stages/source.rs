@@ -56,7 +56,7 @@ impl Source {
             Source::PerVertex(_) => &[Stage::PhotonBackFaces, Stage::VertexPhotonsClear, Stage::VertexPhotons],
             // The geometry buffers are drawn by the adaptive selection's first pass.
             Source::GeometryBuffers => &[],
-            Source::Traced(_) => &[Stage::PhotonTraceClear, Stage::PhotonTrace],
+            Source::Traced(_) => &[Stage::PhotonTraceClear, Stage::PhotonTrace, Stage::PhotonTraceAccumulate],
         }
     }
 
@@ -114,6 +114,30 @@ impl Source {
     pub fn follow_moved_meshes(&mut self, ctx: &Context, scene: &Scene, moved: &[&str]) -> anyhow::Result<()> {
         match self {
             Source::Traced(tracer) => tracer.follow(ctx, scene, moved).map(|_| ()),
+            _ => Ok(()),
+        }
+    }
+
+    /// `photon-trace` with `progressive`: the next frame of its accumulation, and its splat
+    /// radius (None for every other source).
+    pub fn next_frame(&mut self) -> Option<f32> {
+        match self {
+            Source::Traced(tracer) => tracer.next_frame(),
+            _ => None,
+        }
+    }
+
+    /// `photon-trace` with `progressive`: its accumulation starts again with the next frame.
+    pub fn restart_accumulation(&mut self) {
+        if let Source::Traced(tracer) = self {
+            tracer.restart();
+        }
+    }
+
+    /// After every light's deposit: `photon-trace`'s running means (`progressive`).
+    pub fn record_after_deposit(&self, f: &mut Frame, c: &CausticPasses) -> Result<()> {
+        match self {
+            Source::Traced(tracer) => tracer.record_accumulation(f, c),
             _ => Ok(()),
         }
     }
