@@ -8,6 +8,7 @@
 
 pub mod claims;
 pub mod config;
+pub mod curve_plot;
 pub mod explain;
 pub mod figure;
 pub mod final_flip;

@@ -358,6 +358,7 @@ pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Re
     let md = crate::report::markdown(c, results);
     let plot = match &c.front {
         Some(spec) => crate::front_plot::render(c, results, spec)?,
+        None if crate::curve_plot::has_curves(results) => crate::curve_plot::render(c, results)?,
         None => crate::plot::render(&crate::figure::figure(c, results, &crate::table::grid(c, results)))?,
     };
     make_dir(dir)?;
