@@ -2,7 +2,8 @@
 //! per-pass frames and throughput frames in flight (per-slot uniforms, moved meshes and a pool's
 //! CPU-path fields copied from per-slot staging inside the frame) give the same final image and
 //! caustic map along an animation. A warm throughput frame creates or allocates no Vulkan object
-//! and submits once. Validation layer on; any message fails.
+//! and submits once. `photon-trace --progressive`'s running means, shared by the frames in
+//! flight, accumulate the same. Validation layer on; any message fails.
 
 use caustics::animation::{scene_at, Animation};
 use caustics::render::{FrameMode, FrameStep, Renderer, RendererOptions};
@@ -194,5 +195,16 @@ fn the_pool_on_its_gpu_and_cpu_paths() {
         scene.camera.height = 48;
         scene.receiver_map = None;
         same_in_both_modes(&scene, orbit(false, false, true), 4, FrameStep::default(), 0.0);
+    }
+}
+
+#[test]
+fn progressive_photons_accumulate_the_same_in_flight() {
+    // The running means are one image shared by every ring slot: frames in flight must add to
+    // them in order. A moving camera keeps accumulating; a moving light starts again each frame.
+    for light in [false, true] {
+        let mut scene = small(shipped("sphere_on_plane.toml"), "photon-trace");
+        scene.caustics.progressive = true;
+        same_in_both_modes(&scene, orbit(light, true, false), 6, FrameStep::default(), 0.0);
     }
 }
