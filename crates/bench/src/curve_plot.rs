@@ -6,7 +6,7 @@
 
 use crate::font::FAMILY;
 use crate::plot::{
-    draw_title, encode, err, log_light_lines, log_ticks, tick, DrawResult, Drawing, Plot, PALETTE, PANEL_HEIGHT,
+    draw_title, encode, err, log_light_lines, log_mesh, log_ticks, DrawResult, Drawing, Plot, PALETTE, PANEL_HEIGHT,
     TITLE_HEIGHT,
 };
 use crate::progressive::Point;
@@ -45,10 +45,9 @@ pub fn render(config: &crate::config::Config, results: &Results) -> Result<Plot>
             None => panels.push(Panel { title, curves: vec![curve] }),
         }
     }
-    let m = &results.meta;
     let curves = Curves {
         title: config.table.title(),
-        subtitle: format!("{} · {} {} · {}", m.device, m.driver_name, m.driver_info, m.date),
+        subtitle: crate::plot::subtitle(&results.meta),
         techniques: config.techniques.iter().map(|t| t.label.clone()).collect(),
         panels,
     };
@@ -88,19 +87,7 @@ fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Curves, p: &Pane
             (y0..y1).log_scale().with_key_points(log_ticks(y0, y1)).with_light_points(log_light_lines(y0, y1)),
         )
         .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
-        .x_desc("accumulated ms")
-        .y_desc("rel. RMSE of the receiver map")
-        .x_label_style((FAMILY, 13.0))
-        .y_label_style((FAMILY, 13.0))
-        .axis_desc_style((FAMILY, 14.0))
-        .light_line_style(RGBColor(0xf0, 0xf0, 0xf0))
-        .bold_line_style(RGBColor(0xd8, 0xd8, 0xd8))
-        .draw()
-        .map_err(err)?;
+    log_mesh(&mut chart, "accumulated ms", "rel. RMSE of the receiver map")?;
     for (label, curve) in &p.curves {
         let colour = PALETTE[f.techniques.iter().position(|t| t == label).unwrap_or(0) % PALETTE.len()];
         let line: Vec<(f64, f64)> = curve.iter().map(|q| (q.ms, q.rel_rmse)).collect();

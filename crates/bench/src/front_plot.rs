@@ -8,8 +8,8 @@ use crate::config::{Config, FrontSpec};
 use crate::font::FAMILY;
 use crate::front::{fronts, SceneFront};
 use crate::plot::{
-    draw_title, ellipsize, encode_sized, err, log_light_lines, log_ticks, text_width, tick, DrawResult, Drawing, Plot,
-    GREY, PALETTE, PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
+    draw_title, ellipsize, encode_sized, err, log_light_lines, log_mesh, log_ticks, text_width, DrawResult, Drawing,
+    Plot, GREY, PALETTE, PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
 };
 
 use crate::results::Results;
@@ -64,10 +64,9 @@ pub fn render(config: &Config, results: &Results, spec: &FrontSpec) -> Result<Pl
     crate::font::load()?;
     let rows = rows(config, results, spec);
     let papers = crate::format::first_seen(rows.iter().flatten().flat_map(|f| &f.points).map(|p| p.paper.clone()));
-    let m = &results.meta;
     let frame = Frame {
         title: config.table.title(),
-        subtitle: format!("{} · {} {} · {}", m.device, m.driver_name, m.driver_info, m.date),
+        subtitle: crate::plot::subtitle(&results.meta),
         techniques: config.techniques.iter().map(|t| t.label.clone()).collect(),
         papers,
         width: WIDTH + PANEL_WIDTH * (spec.y.len().max(1) as u32 - 1),
@@ -176,19 +175,7 @@ fn panel<DB: DrawingBackend>(chart_area: &DrawingArea<DB, Shift>, f: &Frame, sce
                 .with_light_points(log_light_lines(y0 / 1.4, y1 * 1.4)),
         )
         .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
-        .x_desc(scene.x.as_str())
-        .y_desc(scene.y.as_str())
-        .x_label_style((FAMILY, 13.0))
-        .y_label_style((FAMILY, 13.0))
-        .axis_desc_style((FAMILY, 14.0))
-        .light_line_style(RGBColor(0xf0, 0xf0, 0xf0))
-        .bold_line_style(RGBColor(0xd8, 0xd8, 0xd8))
-        .draw()
-        .map_err(err)?;
+    log_mesh(&mut chart, &scene.x, &scene.y)?;
     let front: Vec<(f64, f64)> = scene.front.iter().map(|&i| (scene.points[i].x, scene.points[i].y)).collect();
     chart.draw_series(LineSeries::new(front, GREY.stroke_width(2))).map_err(err)?;
     let plot = chart.plotting_area();

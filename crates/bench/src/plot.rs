@@ -315,6 +315,37 @@ pub fn linear_range(lo: f64, hi: f64, bars: bool) -> (f64, f64) {
     (lo, hi + pad)
 }
 
+/// A plot's subtitle: the device, its driver and the date of the run.
+pub(crate) fn subtitle(m: &crate::results::Meta) -> String {
+    format!("{} · {} {} · {}", m.device, m.driver_name, m.driver_info, m.date)
+}
+
+/// The grid, ticks and axis names of a log-log chart (the front's panels, progressive curves).
+pub(crate) fn log_mesh<DB, X, Y>(
+    chart: &mut ChartContext<DB, Cartesian2d<X, Y>>,
+    x_desc: &str,
+    y_desc: &str,
+) -> DrawResult
+where
+    DB: DrawingBackend,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    chart
+        .configure_mesh()
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_style((FAMILY, 13.0))
+        .y_label_style((FAMILY, 13.0))
+        .axis_desc_style((FAMILY, 14.0))
+        .light_line_style(RGBColor(0xf0, 0xf0, 0xf0))
+        .bold_line_style(RGBColor(0xd8, 0xd8, 0xd8))
+        .draw()
+        .map_err(err)
+}
+
 fn mesh<DB, Y>(
     chart: &mut ChartContext<DB, Cartesian2d<RangedCoordf64, Y>>,
     p: &Panel,
