@@ -21,7 +21,8 @@ layout(std430, binding = 0) buffer FrameFlux { vec4 frame_flux[]; };
 layout(std430, binding = 1) buffer MeanFlux { vec4 mean_flux[]; };
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    // The grid's rows flattened (vkcore::dispatch_grid: a large map needs more than 65535 groups).
+    uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x;
     if (i >= constants.count) return;
     vec4 m = mean_with(mean_flux[i], frame_flux[i]);
     mean_flux[i] = m;

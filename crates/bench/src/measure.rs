@@ -237,7 +237,7 @@ impl<'a> Runner<'a> {
             }
         } else if scene.receiver_map.is_none() {
             anyhow::bail!(caustics::input_error!(
-                "{}: a quality or temporal_change metric needs a [receiver_map] in scene {}",
+                "{}: a quality, temporal_change or progressive metric needs a [receiver_map] in scene {}",
                 self.config.path.display(),
                 path.display()
             ));
@@ -356,6 +356,13 @@ impl<'a> Runner<'a> {
         let last_pose = (f > 1 && (anim.light || anim.object)).then(|| f - 1);
         // Before the statistics frame, which would add a frame in the same pose (to a temporal
         // filter's history too).
+        // A progressive technique's quality and final image are its first frame's (the means
+        // started again): its frames so far depend on the time budget. Its curve is the
+        // progressive metrics'.
+        if (self.needs_quality() || self.needs_flip()) && renderer.caustics().is_some_and(|c| c.progressive()) {
+            renderer.restart_accumulation();
+            renderer.frame(step)?;
+        }
         let quality =
             if self.needs_quality() { Some(self.quality(&mut renderer, &scene, &anim, last_pose)?) } else { None };
         // Validated: the progressive metrics' light and objects stay still.

@@ -52,6 +52,9 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             )
             .into());
         }
+        if n == caustics::techniques::shared::settings::PHOTON_FOOTPRINTS.name && technique == Technique::PhotonTrace {
+            return Err(input_error!("--dump: `{n}` is a buffer of `photon-trace` with --differentials true").into());
+        }
         if named_in(&technique.dumps(), n).is_some() {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of `{technique}` with --space {}, not with --space {}",

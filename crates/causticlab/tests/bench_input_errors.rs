@@ -175,12 +175,17 @@ fn config_errors_name_the_file_and_key() {
         (
             "progressive_alpha_without_progressive.toml",
             SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\nprogressive_alpha = 0.5"),
-            "progressive_alpha",
+            "technique[1].progressive_alpha",
         ),
         (
             "progressive_thin_lens.toml",
             SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\nprogressive = true\nsplat = \"thin-lens\""),
-            "progressive",
+            "technique[1].progressive`",
+        ),
+        (
+            "differentials_varying.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\ndifferentials = true\nsplat = \"thin-lens\""),
+            "technique[1].differentials`",
         ),
         (
             "bad_pick.toml",

@@ -648,6 +648,11 @@ fn deferred_refraction_without_geometry_shaders() {
         &["render", "--scene", &s, "--refraction", "deferred", "--dump", "refractor_back_faces"],
         &["refractor_back_faces", "--refraction forward"],
     );
+    // Photon differentials' footprints, without differentials.
+    expect_input_error(
+        &["render", "--scene", &s, "--technique", "photon-trace", "--dump", "photon_footprints"],
+        &["photon_footprints", "--differentials true"],
+    );
 }
 
 #[test]

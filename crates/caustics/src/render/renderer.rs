@@ -153,15 +153,15 @@ impl FrameRenderer for MeshRenderer<'_> {
             "set_pose: {} is not a pose of the scene this renderer was made for",
             scene.path.display()
         );
-        let moved_any = scene.objects.iter().zip(&self.scene.objects).any(|(obj, old)| obj.mesh != old.mesh);
-        if scene.lights != self.scene.lights || moved_any {
+        if scene.lights != self.scene.lights {
             self.photons_ready = false;
-            // The light-space caustic map and the receiver map do not depend on the camera:
-            // progressive means start again only when the light reaching them changes.
-            if let Some(c) = self.caustic.as_mut() {
-                c.restart_accumulation();
-            }
         }
+        // The light-space caustic map and the receiver map do not depend on the camera:
+        // progressive means start again when anything else changes (after the structures follow).
+        let new_light = scene.lights != self.scene.lights
+            || scene.objects != self.scene.objects
+            || scene.materials != self.scene.materials
+            || scene.receiver_map != self.scene.receiver_map;
         let moved: Vec<&str> = scene
             .objects
             .iter()
@@ -171,6 +171,9 @@ impl FrameRenderer for MeshRenderer<'_> {
             .collect();
         if let (Some(c), false) = (self.caustic.as_mut(), moved.is_empty()) {
             c.follow_moved_meshes(self.ctx, scene, &moved)?;
+        }
+        if let (Some(c), true) = (self.caustic.as_mut(), new_light) {
+            c.restart_accumulation();
         }
         for (i, ((obj, old), mesh)) in scene.objects.iter().zip(&self.scene.objects).zip(&self.meshes).enumerate() {
             if obj.mesh.positions == old.mesh.positions && obj.mesh.normals == old.mesh.normals {

@@ -56,6 +56,7 @@ use vkcore::{Context, ShaderCompiler};
 pub fn technique_dumps() -> Vec<&'static Dump> {
     [
         shared::settings::DUMPS,
+        &[&shared::settings::PHOTON_FOOTPRINTS],
         wyman_nichols2009::settings::DEFERRED_PHOTONS_DUMPS,
         wyman_davis2006::settings::DUMPS,
         wyman2008::DUMPS,

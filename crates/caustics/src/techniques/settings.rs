@@ -219,6 +219,14 @@ caustic_settings! {
     /// (i + alpha) / (i + 1) (Knaus & Zwicker 2011 Eq. 15); default 2/3 (their choice for
     /// surfaces; 1 keeps the radius).
     progressive_alpha: f32 = photon_trace::progressive::DEFAULT_ALPHA, only PhotonTrace;
+    /// photon-trace: photon differentials (Schjøth et al. 2007, after Igehy 1999): each photon
+    /// carries its position's and direction's derivatives through every transfer, reflection and
+    /// refraction, and is splatted as the ellipse its footprint spans (an anisotropic Gaussian,
+    /// its power kept whole) instead of the fixed splat; default false.
+    differentials: bool = false, only PhotonTrace;
+    /// photon-trace: each photon jittered inside its stratum of the emission square (true, the
+    /// default) or at the stratum's centre (false: a regular grid of photons).
+    jitter: bool = true, only PhotonTrace;
     /// pool-convolution: the arithmetic of passes 1-6 (Trendall & Stewart 2000 Sec. 3.2, 5);
     /// default float.
     precision: Precision = Precision::Float, only PoolConvolution;
@@ -301,6 +309,9 @@ impl CausticSettings {
             Technique::Hcm => [shared::settings::DUMPS, wyman2008::settings::DUMPS].concat(),
             // No photon buffer: photons come from the geometry buffers (Wyman & Nichols 2009 Sec. 3.2).
             Technique::Adaptive => [&[&RECEIVER_POSITIONS, &CAUSTIC_MAP], wn2009::ADAPTIVE_DUMPS].concat(),
+            Technique::PhotonTrace if self.differentials => {
+                [super::photon_trace::settings::DUMPS, &[&shared::settings::PHOTON_FOOTPRINTS]].concat()
+            }
             Technique::PhotonTrace => super::photon_trace::settings::DUMPS.to_vec(),
             _ => shared::settings::DUMPS.to_vec(),
         };

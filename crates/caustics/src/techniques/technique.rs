@@ -144,6 +144,10 @@ impl Technique {
             // With photon_refraction `deferred`.
             all.push(&super::wyman_nichols2009::settings::PHOTON_GEOMETRY_BUFFERS);
         }
+        if self == Technique::PhotonTrace {
+            // With `differentials`.
+            all.push(&super::shared::settings::PHOTON_FOOTPRINTS);
+        }
         if matches!(self, Technique::WdQuads | Technique::WdGather) {
             let light = CausticSettings { technique: self, space: Space::Light, ..Default::default() }.dumps();
             all.extend(light.into_iter().filter(|d| !all.contains(d)).collect::<Vec<_>>());

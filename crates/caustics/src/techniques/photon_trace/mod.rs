@@ -29,6 +29,7 @@
 //! vertices (every moved object's with `moving_objects = "rebuild"`; refitted in place with
 //! `"refit"`); the top level is built again.
 
+pub mod differential;
 pub mod instances;
 pub mod progressive;
 pub mod push;
@@ -51,6 +52,8 @@ use vkcore::{Access, Bind, Buffer, Context, Frame, Pipeline, ShaderCompiler, Use
 const FLAG_OUTSIDE_REFLECTION: u32 = 1;
 /// `PHOTON_TRACE_DISPERSIVE`: a material's IORs differ between channels.
 const FLAG_DISPERSIVE: u32 = 2;
+/// `PHOTON_TRACE_CENTRED`: each photon at its stratum's centre (`jitter = false`).
+const FLAG_CENTRED: u32 = 4;
 
 /// How the tracer finds the surface a photon meets next (`trace`).
 enum Intersection {
@@ -73,6 +76,8 @@ pub struct PhotonTracer {
     constants: PhotonTraceConstants,
     /// `deposit = "receiver-map"`: photons are binned into the receiver map too.
     receiver_deposit: bool,
+    /// `differentials = true`: each photon's footprint is written beside the photon buffer.
+    differentials: bool,
     /// Per object, whether it is specular (the emission cone subtends these).
     specular: Vec<bool>,
     /// How ray queries' structures follow a moving object.
@@ -141,6 +146,9 @@ impl PhotonTracer {
         if ray_query {
             defines.push(("RAY_QUERY", "1"));
         }
+        if s.differentials {
+            defines.push(("DIFFERENTIALS", "1"));
+        }
         let accumulation = match s.progressive {
             true => {
                 let lights = scene.lights.len().clamp(1, crate::gpu::MAX_LIGHTS) as u32;
@@ -167,11 +175,13 @@ impl PhotonTracer {
                 seed: s.seed,
                 max_bounces: s.max_bounces,
                 flags: if s.outside_reflection { FLAG_OUTSIDE_REFLECTION } else { 0 }
-                    | if dispersive { FLAG_DISPERSIVE } else { 0 },
+                    | if dispersive { FLAG_DISPERSIVE } else { 0 }
+                    | if s.jitter { 0 } else { FLAG_CENTRED },
                 eps,
                 receiver_tolerance,
             },
             receiver_deposit,
+            differentials: s.differentials,
             specular,
             moving: s.moving_objects,
         })
@@ -263,6 +273,10 @@ impl PhotonTracer {
         ];
         if self.receiver_deposit {
             binds.push(("ReceiverFlux", Bind::Buffer(flux)));
+        }
+        if self.differentials {
+            binds.push(("photon_footprint_u", Bind::Storage(&pt.footprint_u.view)));
+            binds.push(("photon_footprint_v", Bind::Storage(&pt.footprint_v.view)));
         }
         let side = pt.width;
         f.pass(&Stage::PhotonTrace.light(l)).bind(&self.pipeline, binds).record(|cmd| {

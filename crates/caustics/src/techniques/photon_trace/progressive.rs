@@ -30,7 +30,8 @@ use vkcore::{Bind, Buffer, Context, Frame, ImageDesc, Memory, Pipeline, ShaderCo
 pub const DEFAULT_ALPHA: f32 = 2.0 / 3.0;
 
 /// r_i / r_1 after the global rule r_{k+1}^2 = r_k^2 (k + alpha) / (k + 1), for frame `i` (1
-/// for the first frame since the last restart).
+/// for the first frame since the last restart), from the product (`Accumulation` keeps it
+/// running).
 pub fn radius_scale(i: u32, alpha: f32) -> f32 {
     let alpha = f64::from(alpha);
     let squared: f64 = (1..i.max(1)).map(|k| (f64::from(k) + alpha) / (f64::from(k) + 1.0)).product();
@@ -50,6 +51,8 @@ pub struct Accumulation {
     radius: f32,
     /// Frames in the means (the one being recorded included), 0 before the first.
     frames: u32,
+    /// r_i^2 / r_1^2 of the frame being recorded (the rule kept running, not recomputed).
+    squared: f64,
     /// The caustic map's mean, every light's layers.
     mean_map: Target,
     /// The receiver-map binning's mean (`deposit = "receiver-map"`), else none.
@@ -87,6 +90,7 @@ impl Accumulation {
             alpha,
             radius,
             frames: 0,
+            squared: 1.0,
             mean_map: Target::array(ctx, desc)?,
             mean_flux,
             map_pipeline: Pipeline::compute(
@@ -101,7 +105,12 @@ impl Accumulation {
     /// The next frame: one more in the means. Returns its splat radius.
     pub fn next_frame(&mut self) -> f32 {
         self.frames = self.frames.saturating_add(1);
-        self.radius * radius_scale(self.frames, self.alpha)
+        self.squared = match self.frames {
+            1 => 1.0,
+            // r_i^2 = r_{i-1}^2 (i - 1 + alpha) / i.
+            i => self.squared * (f64::from(i - 1) + f64::from(self.alpha)) / f64::from(i),
+        };
+        self.radius * self.squared.sqrt() as f32
     }
 
     /// Frames in the means, the one being recorded included.
@@ -132,7 +141,8 @@ impl Accumulation {
             let binds = vec![("FrameFlux", Bind::Buffer(receiver_flux)), ("MeanFlux", Bind::Buffer(mean))];
             f.pass(&Stage::PhotonTraceAccumulate.pass().view("flux")).bind(pipeline, binds).record(|cmd| {
                 cmd.push(&AccumulateConstants { weight, count })?;
-                cmd.dispatch(count.div_ceil(64), 1, 1);
+                let (x, y) = vkcore::dispatch_grid(count.div_ceil(64));
+                cmd.dispatch(x, y, 1);
                 Ok(())
             })?;
         }
@@ -155,6 +165,26 @@ mod tests {
         assert!((radius_scale(2, 0.5) - 0.75f32.sqrt()).abs() < 1e-6);
         assert!((radius_scale(3, 0.5) - 0.625f32.sqrt()).abs() < 1e-6);
         assert_eq!(radius_scale(0, 0.5), 1.0);
+    }
+
+    #[test]
+    fn the_running_rule_is_the_product() {
+        let running = |alpha: f32| {
+            let mut squared = 1.0f64;
+            (1..=200u32)
+                .map(|i| {
+                    if i > 1 {
+                        squared *= (f64::from(i - 1) + f64::from(alpha)) / f64::from(i);
+                    }
+                    (i, squared.sqrt() as f32)
+                })
+                .collect::<Vec<_>>()
+        };
+        for alpha in [DEFAULT_ALPHA, 0.25, 1.0] {
+            for (i, r) in running(alpha) {
+                assert!((r - radius_scale(i, alpha)).abs() < 1e-6, "alpha {alpha}, frame {i}");
+            }
+        }
     }
 
     #[test]

@@ -22,6 +22,17 @@ push_constants! {
 }
 
 push_constants! {
+    /// The splat of photon differentials (`photon_trace/differential_splat.comp`).
+    pub struct DifferentialSplatConstants {
+        pub photon_texels: u32,
+        pub light: u32,
+        /// The clamp of the kernel's standard deviations, caustic-map texels.
+        pub min_sigma: f32,
+        pub max_sigma: f32,
+    }
+}
+
+push_constants! {
     /// Progressive accumulation's running means (`photon_trace/accumulate.comp`).
     pub struct AccumulateConstants {
         /// The frame's share of the mean, 1/i (1: the mean is the frame).
@@ -41,7 +52,13 @@ mod tests {
         check::<PhotonTraceConstants>(&[
             ("photon_trace/trace.comp", &[]),
             ("photon_trace/trace.comp", &[("RECEIVER_DEPOSIT", "1")]),
+            ("photon_trace/trace.comp", &[("DIFFERENTIALS", "1")]),
         ]);
+    }
+
+    #[test]
+    fn differential_splat_constants() {
+        check::<DifferentialSplatConstants>(&[("photon_trace/differential_splat.comp", &[])]);
     }
 
     #[test]

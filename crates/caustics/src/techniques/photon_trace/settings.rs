@@ -80,6 +80,10 @@ pub fn required_features(s: &CausticSettings) -> Vec<(&'static str, &'static [Fe
     if s.deposit == Deposit::ReceiverMap {
         needs.push(("deposit `receiver-map` (float atomics in photon_trace/trace.comp)", RECEIVER_DEPOSIT_FEATURES));
     }
+    if s.differentials {
+        needs
+            .push(("differentials (float atomics in photon_trace/differential_splat.comp)", RECEIVER_DEPOSIT_FEATURES));
+    }
     needs
 }
 
@@ -104,8 +108,18 @@ pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
             format!("must be in (0, 1] (Knaus & Zwicker 2011's alpha), got {}", s.progressive_alpha),
         )?;
     }
-    if !s.progressive && s.progressive_alpha != super::progressive::DEFAULT_ALPHA {
+    if !s.progressive && (s.progressive_alpha - super::progressive::DEFAULT_ALPHA).abs() > 1e-4 {
         bad("progressive_alpha", "is the radius rule of progressive accumulation; set progressive = true".into())?;
+    }
+    if s.differentials && s.splat != SplatMode::Fixed {
+        bad(
+            "differentials",
+            format!(
+                "photon differentials size each photon's splat by its footprint; splat `{}` sizes them otherwise \
+                 (leave splat = \"fixed\")",
+                s.splat
+            ),
+        )?;
     }
     if s.progressive && s.splat != SplatMode::Fixed {
         bad(

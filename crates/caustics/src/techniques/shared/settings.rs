@@ -33,6 +33,16 @@ pub static PHOTON_BUFFER: Dump = Dump::new(
         layer("light<l>.power", &["R", "G", "B"]),
     ],
 );
+/// `photon-trace --differentials`: each photon's footprint on the surface it landed on, the
+/// derivatives of its position with respect to the emission square's two coordinates times the
+/// stratum's side (world units): the parallelogram its power covers.
+pub static PHOTON_FOOTPRINTS: Dump = Dump::new(
+    "photon_footprints",
+    module_path!(),
+    Space::LightInTurn,
+    Format::Image,
+    &[layer("light<l>.u", &["X", "Y", "Z"]), layer("light<l>.v", &["X", "Y", "Z"])],
+);
 /// The caustic map the photons are splatted into.
 pub static CAUSTIC_MAP: Dump = Dump::new(
     "caustic_map",

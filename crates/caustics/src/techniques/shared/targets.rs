@@ -1,7 +1,7 @@
 //! Images of the caustic techniques: per-light receiver positions and caustic map layers, and the
 //! photon buffer (reused light after light).
 
-use super::settings::{PHOTON_BACK_FACES, PHOTON_BUFFER};
+use super::settings::{PHOTON_BACK_FACES, PHOTON_BUFFER, PHOTON_FOOTPRINTS};
 use crate::dump::Dump;
 pub use crate::gpu::formats::{COLOR, DEPTH};
 use crate::gpu::{Target, MAX_LIGHTS};
@@ -65,13 +65,17 @@ pub struct PhotonTargets {
     pub power: Target,
     pub back_faces: Target,
     pub depth: Target,
+    /// `photon-trace --differentials`: each photon's footprint vectors (`PHOTON_FOOTPRINTS`);
+    /// 1 x 1 otherwise.
+    pub footprint_u: Target,
+    pub footprint_v: Target,
     pub width: u32,
 }
 
 impl PhotonTargets {
     /// `n` x `n` light-space photons; `photon_texels` is the photon texture's side (N for the
     /// photon buffer, ceil(sqrt(vertices)) for vertex photons).
-    pub fn new(ctx: &Context, n: u32, photon_texels: u32) -> Result<PhotonTargets> {
+    pub fn new(ctx: &Context, n: u32, photon_texels: u32, footprints: bool) -> Result<PhotonTargets> {
         let w = photon_texels.max(1);
         let c = |name: &str, s: u32| Target::new(ctx, ImageDesc::new_2d(name, COLOR, s, s));
         Ok(PhotonTargets {
@@ -80,6 +84,8 @@ impl PhotonTargets {
             power: c("photon power", w)?,
             back_faces: c("light-space back faces", n)?,
             depth: Target::new(ctx, ImageDesc::new_2d("light-space depth", DEPTH, n, n))?,
+            footprint_u: c("photon footprint u", if footprints { w } else { 1 })?,
+            footprint_v: c("photon footprint v", if footprints { w } else { 1 })?,
             width: w,
         })
     }
@@ -100,6 +106,10 @@ impl PhotonTargets {
                 self.position.read_layer(ctx, 0, Some("position"), &["X", "Y", "Z", "valid"], &xyzw)?,
                 self.direction.read_layer(ctx, 0, Some("direction"), &["X", "Y", "Z", "W"], &xyzw)?,
                 self.power.read_layer(ctx, 0, Some("power"), &["R", "G", "B"], &[0, 1, 2])?,
+            ]),
+            d if d == &PHOTON_FOOTPRINTS => self.footprint_u.as_image(vec![
+                self.footprint_u.read_layer(ctx, 0, Some("u"), &["X", "Y", "Z"], &[0, 1, 2])?,
+                self.footprint_v.read_layer(ctx, 0, Some("v"), &["X", "Y", "Z"], &[0, 1, 2])?,
             ]),
             other => anyhow::bail!("the photon buffer has no dump `{other}`"),
         })

@@ -6,6 +6,7 @@ use crate::dump::Dump;
 use crate::gpu::Stage;
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
+use crate::techniques::photon_trace::differential::DifferentialSplat;
 use crate::techniques::shared::compute_splat::Photons;
 use crate::techniques::shared::splat::PointSplat;
 use crate::techniques::shared::{CausticPasses, ComputeSplat, EyeView, SplatPath};
@@ -37,6 +38,9 @@ pub enum Deposit {
     /// Wyman & Davis 2006's eye-space points, quads and gathers (Sec. 3.2), or their quads and
     /// gathers into the caustic map (light space).
     ImageSpace(ImageSpace),
+    /// `photon-trace --differentials`: each photon splatted as its footprint's anisotropic
+    /// Gaussian (Schjøth et al. 2007), a compute pass.
+    Differential(DifferentialSplat),
 }
 
 impl Deposit {
@@ -48,6 +52,7 @@ impl Deposit {
             Deposit::ThinLens(_) => "ThinLens",
             Deposit::Interpolated(_) => "Interpolated",
             Deposit::ImageSpace(_) => "ImageSpace",
+            Deposit::Differential(_) => "Differential",
         }
     }
 
@@ -56,6 +61,7 @@ impl Deposit {
         match self {
             Deposit::Points(_) | Deposit::ThinLens(_) | Deposit::Interpolated(_) => &[Stage::Splat],
             Deposit::Compute(_) => &[Stage::SplatClear, Stage::SplatArguments, Stage::Splat, Stage::SplatResolve],
+            Deposit::Differential(_) => &[Stage::SplatClear, Stage::Splat, Stage::SplatResolve],
             Deposit::ImageSpace(_) => {
                 &[Stage::WdPhotons, Stage::WdGather, Stage::WdQuads, Stage::WdShade, Stage::WdReceiverView]
             }
@@ -67,6 +73,9 @@ impl Deposit {
             return Ok(Deposit::ImageSpace(is));
         }
         let s = &scene.caustics;
+        if s.technique == crate::techniques::Technique::PhotonTrace && s.differentials {
+            return Ok(Deposit::Differential(DifferentialSplat::new(ctx, sh, s.caustic_map_resolution)?));
+        }
         if s.splat == SplatMode::ThinLens {
             // The settings' checks refused the others (`SplatMode::needs`, `check_photon_copy`).
             anyhow::ensure!(matches!(selection, Selection::Dense), "thin-lens splats are the photon buffer's points");
@@ -125,6 +134,10 @@ impl Deposit {
                 Selection::Hierarchy(h, _) => is.record(f, c, h, l),
                 _ => anyhow::bail!("interpolated splats are hcm's"),
             },
+            Deposit::Differential(ds) => match selection {
+                Selection::Dense => ds.record(f, c, l),
+                _ => anyhow::bail!("photon differentials are the traced photons'"),
+            },
         }
     }
 
@@ -138,7 +151,11 @@ impl Deposit {
     ) -> Result<()> {
         match self {
             Deposit::ImageSpace(is) => is.record_after_lights(f, c, eye, reuse),
-            Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) | Deposit::Interpolated(_) => Ok(()),
+            Deposit::Points(_)
+            | Deposit::Compute(_)
+            | Deposit::ThinLens(_)
+            | Deposit::Interpolated(_)
+            | Deposit::Differential(_) => Ok(()),
         }
     }
 
@@ -149,7 +166,11 @@ impl Deposit {
             inputs: c.inputs,
             compute: match self {
                 Deposit::Compute(cs) => Some(cs),
-                Deposit::Points(_) | Deposit::ImageSpace(_) | Deposit::ThinLens(_) | Deposit::Interpolated(_) => None,
+                Deposit::Points(_)
+                | Deposit::ImageSpace(_)
+                | Deposit::ThinLens(_)
+                | Deposit::Interpolated(_)
+                | Deposit::Differential(_) => None,
             },
             photon_targets: c.photons,
             cmap: &c.targets.per_light[l as usize].0,
@@ -167,7 +188,11 @@ impl Deposit {
     pub fn receiver_caustic(&self) -> Option<&ImageView> {
         match self {
             Deposit::ImageSpace(is) => is.receiver_caustic(),
-            Deposit::Points(_) | Deposit::Compute(_) | Deposit::ThinLens(_) | Deposit::Interpolated(_) => None,
+            Deposit::Points(_)
+            | Deposit::Compute(_)
+            | Deposit::ThinLens(_)
+            | Deposit::Interpolated(_)
+            | Deposit::Differential(_) => None,
         }
     }
 
@@ -180,7 +205,8 @@ impl Deposit {
             | Deposit::Points(_)
             | Deposit::Compute(_)
             | Deposit::ThinLens(_)
-            | Deposit::Interpolated(_) => Ok(None),
+            | Deposit::Interpolated(_)
+            | Deposit::Differential(_) => Ok(None),
         }
     }
 }

@@ -12,7 +12,7 @@
 //! | `wd-eye-points`, `wd-quads`, `wd-gather` | `Rasterized` (or `Deferred`) | `Dense` | `ImageSpace` |
 //! | `hcm` | `Rasterized` (or `Deferred`) | `Hierarchy` | `Points`, `Compute` or `Interpolated` |
 //! | `adaptive` | `GeometryBuffers` | `Adaptive` | `Points` or `Compute` |
-//! | `photon-trace` | `Traced` | `Dense` | `Points` or `Compute` |
+//! | `photon-trace` | `Traced` | `Dense` | `Points`, `Compute` or `Differential` |
 //!
 //! Each stage declares the pass stages it records (`Source::stages`, `Selection::stages`,
 //! `Deposit::stages`); `tests/frame_graph_stages.rs` renders every row of the registry of
@@ -111,7 +111,7 @@ impl CausticPipeline {
             selection,
             deposit,
             pipelines: CausticPipelines::new(ctx, sh)?,
-            photons: PhotonTargets::new(ctx, buffer_side, photon_side)?,
+            photons: PhotonTargets::new(ctx, buffer_side, photon_side, s.differentials)?,
             splat_path: s.splat_path,
             instance_vertices: s.instance_vertices,
         })
