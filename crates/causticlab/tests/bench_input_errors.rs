@@ -178,16 +178,6 @@ fn config_errors_name_the_file_and_key() {
             "technique[1].progressive_alpha",
         ),
         (
-            "progressive_thin_lens.toml",
-            SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\nprogressive = true\nsplat = \"thin-lens\""),
-            "technique[1].progressive`",
-        ),
-        (
-            "differentials_varying.toml",
-            SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\ndifferentials = true\nsplat = \"thin-lens\""),
-            "technique[1].differentials`",
-        ),
-        (
             "bad_pick.toml",
             format!("{SMALL}\n[[layout.column]]\ntechnique = \"quads\"\nmetric = \"photons\"\n"),
             "layout.column[0].technique",

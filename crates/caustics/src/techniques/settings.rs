@@ -218,7 +218,7 @@ caustic_settings! {
     /// photon-trace with progressive: the radius rule's alpha in (0, 1], r_{i+1}^2 = r_i^2
     /// (i + alpha) / (i + 1) (Knaus & Zwicker 2011 Eq. 15); default 2/3 (their choice for
     /// surfaces; 1 keeps the radius).
-    progressive_alpha: f32 = photon_trace::progressive::DEFAULT_ALPHA, only PhotonTrace;
+    progressive_alpha: f32 = photon_trace::settings::DEFAULT_ALPHA, only PhotonTrace;
     /// photon-trace: photon differentials (Schjøth et al. 2007, after Igehy 1999): each photon
     /// carries its position's and direction's derivatives through every transfer, reflection and
     /// refraction, and is splatted as the ellipse its footprint spans (an anisotropic Gaussian,

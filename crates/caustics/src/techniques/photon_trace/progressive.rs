@@ -26,8 +26,7 @@ use crate::gpu::{Stage, Target};
 use anyhow::Result;
 use vkcore::{Bind, Buffer, Context, Frame, ImageDesc, Memory, Pipeline, ShaderCompiler};
 
-/// Knaus & Zwicker 2011's alpha for surfaces (Sec. 4.3): the error's fastest fall, N^-2/3.
-pub const DEFAULT_ALPHA: f32 = 2.0 / 3.0;
+pub use super::settings::DEFAULT_ALPHA;
 
 /// r_i / r_1 after the global rule r_{k+1}^2 = r_k^2 (k + alpha) / (k + 1), for frame `i` (1
 /// for the first frame since the last restart), from the product (`Accumulation` keeps it

@@ -4,7 +4,6 @@ use super::super::settings::{Bad, CausticSettings};
 use super::super::shared::settings as shared;
 use super::super::value_enum::value_enum;
 use crate::dump::Dump;
-use crate::techniques::wyman2008::SplatMode;
 use vkcore::Feature;
 
 /// The technique's source, as tables and `--help` cite it.
@@ -13,6 +12,10 @@ pub const PAPER: &str = "beyond the papers: exact photon tracing through a BVH (
 /// Its light-space buffers: the receiver positions the caustic-map lookup tests against, the
 /// traced photons (the photon buffer's layout) and the caustic map they are splatted into.
 pub static DUMPS: &[&Dump] = &[&shared::RECEIVER_POSITIONS, &shared::PHOTON_BUFFER, &shared::CAUSTIC_MAP];
+
+/// Progressive accumulation's default alpha (`progressive_alpha`): Knaus & Zwicker 2011's for
+/// surfaces (Sec. 4.3), the error's fastest fall, N^-2/3 (`super::progressive`).
+pub const DEFAULT_ALPHA: f32 = 2.0 / 3.0;
 
 /// The most specular interactions `max_bounces` may allow.
 pub const MAX_BOUNCES: u32 = 64;
@@ -108,28 +111,8 @@ pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
             format!("must be in (0, 1] (Knaus & Zwicker 2011's alpha), got {}", s.progressive_alpha),
         )?;
     }
-    if !s.progressive && (s.progressive_alpha - super::progressive::DEFAULT_ALPHA).abs() > 1e-4 {
+    if !s.progressive && (s.progressive_alpha - DEFAULT_ALPHA).abs() > 1e-4 {
         bad("progressive_alpha", "is the radius rule of progressive accumulation; set progressive = true".into())?;
-    }
-    if s.differentials && s.splat != SplatMode::Fixed {
-        bad(
-            "differentials",
-            format!(
-                "photon differentials size each photon's splat by its footprint; splat `{}` sizes them otherwise \
-                 (leave splat = \"fixed\")",
-                s.splat
-            ),
-        )?;
-    }
-    if s.progressive && s.splat != SplatMode::Fixed {
-        bad(
-            "progressive",
-            format!(
-                "progressive accumulation shrinks the fixed splat radius frame by frame; splat `{}` sizes its splats \
-                 otherwise (use splat = \"fixed\")",
-                s.splat
-            ),
-        )?;
     }
     Ok(())
 }
