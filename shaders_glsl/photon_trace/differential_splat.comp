@@ -5,9 +5,14 @@
 // perspective projection, in texels), and the photon's power is spread over the caustic-map
 // texels by a Gaussian in the footprint's own lattice coordinates: covariance
 // C = FOOTPRINT_SIGMA^2 (a a^T + b b^T), which sums to a nearly flat field over a regular
-// lattice of such photons (ripple under 1% at 0.6). The weights are divided by their sum over the
+// lattice of such photons (ripple about 0.2% at 0.6: 2 exp(-2 pi^2 0.6^2)). The weights are
+// divided by their sum over the
 // texel centres they cover, so each photon deposits exactly its power (and, in alpha, one
-// photon), as the fixed splat's do (shared/splat_photon.glsl).
+// photon), as the fixed splat's do (shared/splat_photon.glsl), less the kernel's part that
+// falls off the map, as theirs. (The ripple is a regular
+// lattice's, `jitter = false`; jittered photons are not one.) With a dispersive material each
+// photon carries one channel at three times the power while its footprint is the whole grid's:
+// each channel's kernels are about sqrt(3) too narrow, the flux still whole.
 //
 // The clamp: C's eigenvalues are held to [min_sigma^2, max_sigma^2] caustic-map texels^2. At a
 // caustic's fold the footprint collapses (a and b parallel, or zero: the derivative of the map
@@ -67,10 +72,15 @@ void main() {
     if (clip.w <= 0.0) return;
     int m = int(cl.caustic_plane.y);
     vec2 centre = (clip.xy / clip.w * 0.5 + 0.5) * float(m);
-    // As the fixed splat's: a photon centred off the map splats nothing.
-    if (any(lessThan(centre, vec2(0.0))) || any(greaterThanEqual(centre, vec2(m)))) return;
+    // As the fixed splat's (shared/splat_photon.glsl): a photon centred off the map splats nothing.
+    if (!(all(greaterThanEqual(centre, vec2(0.0))) && all(lessThanEqual(centre, vec2(m))))) return;
     vec2 a = texel_derivative(cl, clip, texelFetch(photon_footprint_u, texel, 0).xyz);
     vec2 b = texel_derivative(cl, clip, texelFetch(photon_footprint_v, texel, 0).xyz);
+    if (any(isnan(a)) || any(isinf(a)) || any(isnan(b)) || any(isinf(b))) {
+        // No footprint to speak of: the smallest kernel.
+        a = vec2(0.0);
+        b = vec2(0.0);
+    }
     // C = s^2 (a a^T + b b^T): its eigenvalues and the unit eigenvector of the larger.
     float s2 = FOOTPRINT_SIGMA * FOOTPRINT_SIGMA;
     float cxx = s2 * (a.x * a.x + b.x * b.x);
@@ -81,10 +91,10 @@ void main() {
     float l1 = half_trace + disc;
     float l2 = max(half_trace - disc, 0.0);
     vec2 e1 = abs(cxy) > 1e-12 ? normalize(vec2(l1 - cyy, cxy)) : (cxx >= cyy ? vec2(1.0, 0.0) : vec2(0.0, 1.0));
-    if (!(l1 == l1)) {
-        // A NaN footprint: the smallest kernel.
-        l1 = 0.0;
-        l2 = 0.0;
+    if (!(l1 <= 3.4e38) || any(isnan(e1))) {
+        // A footprint too large for f32's squares: the widest kernel.
+        l1 = constants.max_sigma * constants.max_sigma;
+        l2 = l1;
         e1 = vec2(1.0, 0.0);
     }
     vec2 e2 = vec2(-e1.y, e1.x);
@@ -95,11 +105,16 @@ void main() {
     // The clamped C's inverse, and the box of its support.
     mat2 inv = outerProduct(e1, e1) / l1 + outerProduct(e2, e2) / l2;
     vec2 half_box = SUPPORT * sqrt(vec2(l1 * e1.x * e1.x + l2 * e2.x * e2.x, l1 * e1.y * e1.y + l2 * e2.y * e2.y));
-    ivec2 from = max(ivec2(ceil(centre - half_box - 0.5)), ivec2(0));
-    ivec2 to = min(ivec2(floor(centre + half_box - 0.5)), ivec2(m - 1));
+    // The weights' sum over every texel centre of the support, on the map or not (as the fixed
+    // splat's, shared/splat_photon.glsl: the kernel's part off the map is light off it); the
+    // deposit over those on the map.
+    ivec2 box_from = ivec2(ceil(centre - half_box - 0.5));
+    ivec2 box_to = ivec2(floor(centre + half_box - 0.5));
+    ivec2 from = max(box_from, ivec2(0));
+    ivec2 to = min(box_to, ivec2(m - 1));
     float sum = 0.0;
-    for (int y = from.y; y <= to.y; ++y) {
-        for (int x = from.x; x <= to.x; ++x) {
+    for (int y = box_from.y; y <= box_to.y; ++y) {
+        for (int x = box_from.x; x <= box_to.x; ++x) {
             vec2 d = vec2(x, y) + 0.5 - centre;
             float q = dot(d, inv * d);
             if (q <= SUPPORT * SUPPORT) sum += exp(-0.5 * q);

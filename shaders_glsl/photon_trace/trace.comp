@@ -6,7 +6,8 @@
 //
 // Emission: light l sends side² photons uniformly in solid angle over the cone from it that
 // subtends the specular objects' bounding sphere (the reference's cone per object, made one);
-// photon (i, j) is jittered inside stratum (i, j) of the (1 - cos, azimuth) square, so the
+// photon (i, j) is jittered inside stratum (i, j) of the (1 - cos, azimuth) square (at its
+// centre with PHOTON_TRACE_CENTRED, `jitter = false`), so the
 // cone's solid angle Omega is split evenly and each photon carries I(w) Omega / side² (I the
 // light's radiant intensity towards w, spot cone and texture applied), the photon buffer's
 // power per photon. Seeded: the same seed gives the same photons, frame after frame.
@@ -149,9 +150,14 @@ struct Differentials {
 // along `d`.
 void transfer(inout Differentials x, vec3 d, float t, vec3 ng) {
     float dn = dot(d, ng);
-    if (dn == 0.0) return;
     vec3 qu = x.pu + t * x.du;
     vec3 qv = x.pv + t * x.dv;
+    if (dn == 0.0) {
+        // Grazing: no projection onto the plane.
+        x.pu = qu;
+        x.pv = qv;
+        return;
+    }
     x.pu = qu - d * (dot(qu, ng) / dn);
     x.pv = qv - d * (dot(qv, ng) / dn);
 }

@@ -178,6 +178,16 @@ fn config_errors_name_the_file_and_key() {
             "technique[1].progressive_alpha",
         ),
         (
+            "differentials_progressive.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\ndifferentials = true\nprogressive = true"),
+            "technique[1].differentials`",
+        ),
+        (
+            "differentials_splat_radius.toml",
+            SMALL.replace("technique = \"shah\"", "technique = \"photon-trace\"\ndifferentials = true\nsplat_radius = 3.0"),
+            "technique[1].splat_radius`",
+        ),
+        (
             "bad_pick.toml",
             format!("{SMALL}\n[[layout.column]]\ntechnique = \"quads\"\nmetric = \"photons\"\n"),
             "layout.column[0].technique",

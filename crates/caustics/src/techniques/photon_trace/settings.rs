@@ -105,6 +105,24 @@ pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
             ),
         )?;
     }
+    if s.differentials && s.progressive {
+        bad(
+            "differentials",
+            "photon differentials size each photon's splat by its footprint, which progressive accumulation's \
+             shrinking radius does not reach: set one of differentials and progressive"
+                .into(),
+        )?;
+    }
+    let defaults = CausticSettings::default();
+    if s.differentials && (s.splat_radius != defaults.splat_radius || s.splat_kernel != defaults.splat_kernel) {
+        let key = if s.splat_radius != defaults.splat_radius { "splat_radius" } else { "splat_kernel" };
+        bad(
+            key,
+            "sizes the fixed splat; photon differentials (differentials = true) splat each photon as the Gaussian its \
+             footprint spans"
+                .to_string(),
+        )?;
+    }
     if !(s.progressive_alpha > 0.0 && s.progressive_alpha <= 1.0) {
         bad(
             "progressive_alpha",
