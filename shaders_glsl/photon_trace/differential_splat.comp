@@ -51,13 +51,7 @@ vec2 texel_derivative(CausticLight cl, vec4 clip, vec3 v) {
     return dndc * 0.5 * cl.caustic_plane.y;
 }
 
-void deposit(ivec2 t, int m, vec4 v) {
-    uint i = 4u * (uint(t.y) * uint(m) + uint(t.x));
-    atomicAdd(texels[i], v.x);
-    atomicAdd(texels[i + 1u], v.y);
-    atomicAdd(texels[i + 2u], v.z);
-    atomicAdd(texels[i + 3u], v.w);
-}
+#include "shared/splat_deposit.glsl"
 
 void main() {
     uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x;
@@ -122,14 +116,14 @@ void main() {
     }
     if (!(sum > 0.0)) {
         // The kernel misses every texel centre: the nearest texel takes the whole photon.
-        deposit(clamp(ivec2(centre), ivec2(0), ivec2(m - 1)), m, vec4(power, 1.0));
+        deposit(0, clamp(ivec2(centre), ivec2(0), ivec2(m - 1)), m, vec4(power, 1.0));
         return;
     }
     for (int y = from.y; y <= to.y; ++y) {
         for (int x = from.x; x <= to.x; ++x) {
             vec2 d = vec2(x, y) + 0.5 - centre;
             float q = dot(d, inv * d);
-            if (q <= SUPPORT * SUPPORT) deposit(ivec2(x, y), m, vec4(power, 1.0) * (exp(-0.5 * q) / sum));
+            if (q <= SUPPORT * SUPPORT) deposit(0, ivec2(x, y), m, vec4(power, 1.0) * (exp(-0.5 * q) / sum));
         }
     }
 }

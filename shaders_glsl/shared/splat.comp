@@ -41,13 +41,7 @@ uint entry_count() { return min(counter.count, counter.capacity); }
 #endif
 #endif
 
-void deposit(int layer, ivec2 t, int m, vec4 v) {
-    uint i = 4u * (uint(layer * m + t.y) * uint(m) + uint(t.x));
-    atomicAdd(texels[i], v.x);
-    atomicAdd(texels[i + 1u], v.y);
-    atomicAdd(texels[i + 2u], v.z);
-    atomicAdd(texels[i + 3u], v.w);
-}
+#include "shared/splat_deposit.glsl"
 
 void main() {
     uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x;

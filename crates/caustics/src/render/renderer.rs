@@ -153,12 +153,13 @@ impl FrameRenderer for MeshRenderer<'_> {
             "set_pose: {} is not a pose of the scene this renderer was made for",
             scene.path.display()
         );
-        if scene.lights != self.scene.lights {
+        let lights_moved = scene.lights != self.scene.lights;
+        if lights_moved {
             self.photons_ready = false;
         }
         // The light-space caustic map and the receiver map do not depend on the camera:
         // progressive means start again when anything else changes (after the structures follow).
-        let new_light = scene.lights != self.scene.lights
+        let new_light = lights_moved
             || scene.objects != self.scene.objects
             || scene.materials != self.scene.materials
             || scene.receiver_map != self.scene.receiver_map;

@@ -80,16 +80,73 @@ enum ListDispatch {
     ByteCount(Box<(Pipeline, Buffer)>),
 }
 
+/// What a compute splat adds its photons into with float atomics, and the pass that stores it in
+/// the caustic map: one light's caustic-map layers as (power rgb, photon count) floats, layer by
+/// layer, cleared before the light's splat and resolved after it (`shared/splat_resolve.comp`).
+/// The compute splat's and photon differentials' (`photon_trace::differential`).
+pub struct Accumulated {
+    pub buffer: Buffer,
+    resolve: Pipeline,
+    side: u32,
+    layers: u32,
+}
+
+impl Accumulated {
+    /// `layers` caustic-map layers of `side`² texels for `who`'s splat; the error for a buffer
+    /// the device cannot bind says `remedy`.
+    pub fn new(
+        ctx: &Context,
+        sh: &ShaderCompiler,
+        side: u32,
+        layers: u32,
+        who: &str,
+        remedy: &str,
+    ) -> Result<Accumulated> {
+        let bytes = side as u64 * side as u64 * layers as u64 * 16;
+        let limit = ctx.info().max_storage_buffer_range as u64;
+        if bytes > limit {
+            return Err(crate::input_error!(
+                "caustics.caustic_map_resolution: {who} accumulates {layers} layer(s) of {side}² texels in one storage \
+                 buffer of {bytes} bytes, more than this device's maxStorageBufferRange ({limit}); {remedy}"
+            )
+            .into());
+        }
+        Ok(Accumulated {
+            buffer: Buffer::new(ctx, &format!("{who} accumulation"), bytes, Memory::Gpu)?,
+            resolve: Pipeline::compute(ctx, "splat.resolve", &sh.compile("shared/splat_resolve.comp", &[])?)?,
+            side,
+            layers,
+        })
+    }
+
+    /// Light `l`'s clear, before its first splat.
+    pub fn record_clear(&self, f: &mut Frame, l: u32) -> Result<()> {
+        f.pass(&Stage::SplatClear.light(l)).uses([Use::buffer(&self.buffer, Access::TRANSFER_WRITE)]).record(
+            |cmd| {
+                cmd.fill_buffer(&self.buffer, 0);
+                Ok(())
+            },
+        )?;
+        Ok(())
+    }
+
+    /// Stores the sum in `cmap`, light `l`'s caustic-map layers.
+    pub fn record_resolve(&self, f: &mut Frame, cmap: &ImageView, l: u32) -> Result<()> {
+        let resolve = [("caustic_map", Bind::Storage(cmap)), ("Accumulated", Bind::BufferRead(&self.buffer))];
+        f.pass(&Stage::SplatResolve.light(l)).bind(&self.resolve, resolve).record(|cmd| {
+            cmd.dispatch(self.side.div_ceil(8), self.side.div_ceil(8), self.layers);
+            Ok(())
+        })?;
+        Ok(())
+    }
+}
+
 pub struct ComputeSplat {
-    /// One light's caustic-map layers as (power rgb, photon count) floats, layer by layer.
-    accumulated: Buffer,
+    accumulated: Accumulated,
     /// hcm, adaptive: what the dispatch over the traversal's final list reads its work groups
     /// from, and which list it is.
     list: Option<(ListDispatch, ListKind)>,
     splat: Pipeline,
-    resolve: Pipeline,
-    side: u32,
-    layers: u32,
 }
 
 impl ComputeSplat {
@@ -103,17 +160,8 @@ impl ComputeSplat {
         list: Option<SplatList>,
     ) -> Result<ComputeSplat> {
         ctx.require("splat_path `compute` (float atomics in shared/splat.comp)", FEATURES)?;
-        let bytes = side as u64 * side as u64 * layers as u64 * 16;
-        let limit = ctx.info().max_storage_buffer_range as u64;
-        if bytes > limit {
-            return Err(crate::input_error!(
-                "caustics.caustic_map_resolution: the compute splat accumulates {layers} layer(s) of {side}² texels in \
-                 one storage buffer of {bytes} bytes, more than this device's maxStorageBufferRange ({limit}); use a \
-                 smaller caustic map or splat_path = \"raster\""
-            )
-            .into());
-        }
-        let accumulated = Buffer::new(ctx, "compute splat accumulation", bytes, Memory::Gpu)?;
+        let remedy = "use a smaller caustic map or splat_path = \"raster\"";
+        let accumulated = Accumulated::new(ctx, sh, side, layers, "the compute splat", remedy)?;
         let entry_bytes = list.map_or(4, |l| l.element_bytes).to_string();
         let mut defines = vec![("ENTRY_BYTES", entry_bytes.as_str())];
         let list = match list {
@@ -145,8 +193,7 @@ impl ComputeSplat {
             }
         };
         let splat = Pipeline::compute(ctx, "splat.compute", &sh.compile("shared/splat.comp", &defines)?)?;
-        let resolve = Pipeline::compute(ctx, "splat.resolve", &sh.compile("shared/splat_resolve.comp", &[])?)?;
-        Ok(ComputeSplat { accumulated, list, splat, resolve, side, layers })
+        Ok(ComputeSplat { accumulated, list, splat })
     }
 
     /// Splats light `l`'s photons into `cmap`, the light's caustic-map layers.
@@ -188,12 +235,7 @@ impl ComputeSplat {
             anyhow::bail!("compute splat: built for {kind:?} (None: the photon texture), given {given:?}");
         }
         if batch.first {
-            f.pass(&Stage::SplatClear.light(l)).uses([Use::buffer(&self.accumulated, Access::TRANSFER_WRITE)]).record(
-                |cmd| {
-                    cmd.fill_buffer(&self.accumulated, 0);
-                    Ok(())
-                },
-            )?;
+            self.accumulated.record_clear(f, l)?;
         }
         let mut binds =
             vec![("frame", Bind::Uniform(inp.frame_uniforms)), ("caustics", Bind::Uniform(inp.caustic_uniforms))];
@@ -207,7 +249,7 @@ impl ComputeSplat {
         // The indirect dispatch's arguments (buffer, byte offset); None: a grid over the texels.
         let mut indirect = None;
         match photons {
-            Photons::Dense => binds.push(("Accumulated", Bind::Buffer(&self.accumulated))),
+            Photons::Dense => binds.push(("Accumulated", Bind::Buffer(&self.accumulated.buffer))),
             Photons::List { list, .. } | Photons::Adaptive { list } => {
                 match &self.list {
                     Some((ListDispatch::ByteCount(b), _)) => {
@@ -233,7 +275,7 @@ impl ComputeSplat {
                 }
                 let list_data = if matches!(photons, Photons::Adaptive { .. }) { "Records" } else { "Entries" };
                 binds.extend([
-                    ("Accumulated", Bind::Buffer(&self.accumulated)),
+                    ("Accumulated", Bind::Buffer(&self.accumulated.buffer)),
                     (list_data, Bind::BufferRead(list.data())),
                     ("Counter", Bind::BufferRead(list.counter())),
                 ]);
@@ -254,12 +296,7 @@ impl ComputeSplat {
         if !batch.last {
             return Ok(());
         }
-        let resolve = [("caustic_map", Bind::Storage(cmap)), ("Accumulated", Bind::BufferRead(&self.accumulated))];
-        f.pass(&Stage::SplatResolve.light(l)).bind(&self.resolve, resolve).record(|cmd| {
-            cmd.dispatch(self.side.div_ceil(8), self.side.div_ceil(8), self.layers);
-            Ok(())
-        })?;
-        Ok(())
+        self.accumulated.record_resolve(f, cmap, l)
     }
 }
 
