@@ -22,6 +22,8 @@ layout(push_constant) uniform ImageSpaceConstants {
 
 const float PI = 3.14159265358979;
 
+#include "shared/pixel_area.glsl"
+
 // The surface point of a view's pixel: world position (w = 1 where there is a surface) and
 // normal. Light space has no normal image: it is the cross product of the differences to the
 // neighbouring texels' world positions (the receiver positions map), turned towards `toward`.
@@ -38,35 +40,6 @@ vec3 normal_from_positions(sampler2D positions, ivec2 t, vec3 toward) {
     if (px.w < 0.5 || py.w < 0.5 || dot(n, n) == 0.0) return vec3(0.0, 1.0, 0.0);
     n = normalize(n);
     return dot(n, toward - p) < 0.0 ? -n : n;
-}
-
-// The difference to the neighbour across pixel q along `axis` of a view's world positions
-// (w = 1 on a surface): central where both neighbours lie on the surface at similar distances,
-// else the shorter valid side.
-vec3 position_edge(sampler2D positions, ivec2 q, ivec2 axis, vec3 p) {
-    ivec2 size = textureSize(positions, 0);
-    ivec2 a = q + axis, b = q - axis;
-    bool va = all(lessThan(a, size)) && all(greaterThanEqual(a, ivec2(0)));
-    bool vb = all(lessThan(b, size)) && all(greaterThanEqual(b, ivec2(0)));
-    vec4 pa = va ? texelFetch(positions, a, 0) : vec4(0.0);
-    vec4 pb = vb ? texelFetch(positions, b, 0) : vec4(0.0);
-    va = va && pa.w > 0.5;
-    vb = vb && pb.w > 0.5;
-    vec3 da = pa.xyz - p, db = p - pb.xyz;
-    if (va && vb) {
-        float la = length(da), lb = length(db);
-        if (la < 2.0 * lb && lb < 2.0 * la) return 0.5 * (da + db);
-        return la < lb ? da : db;
-    }
-    if (va) return da;
-    if (vb) return db;
-    return vec3(0.0);
-}
-
-// Sec. 3.2.2 step 2 (2): the area pixel q at world position p covers, from the world positions
-// next to it (not Eq. 5).
-float pixel_area(sampler2D positions, ivec2 q, vec3 p) {
-    return length(cross(position_edge(positions, q, ivec2(1, 0), p), position_edge(positions, q, ivec2(0, 1), p)));
 }
 
 // Whether a photon at `photon` belongs to the surface `surface` (w = 1 where there is one)

@@ -97,6 +97,10 @@ stages! {
     WdQuads => "wd.quads",
     WdShade => "wd.shade",
     WdReceiverView => "wd.receiver_view",
+    /// Screen-space photon mapping (Kim 2019) in the eye-space views: each pixel's photons
+    /// divided by their kernel's edge-aware support, then the edge-aware gather.
+    ScreenSpaceNormalize => "screen_space.normalize",
+    ScreenSpaceFilter => "screen_space.filter",
     /// The eye render: shadow maps, background, refraction (forward or deferred, Wyman & Nichols
     /// 2009 Sec. 3.1), composite, the receiver map.
     ShadowMap => "shadow_map",

@@ -200,7 +200,8 @@ caustic_settings! {
     outside_reflection: bool = true, only PhotonTrace;
     /// photon-trace: where its photons' light reaches the receiver map, through the caustic map
     /// (caustic-map, default) or also binned straight into the receiver map's texels
-    /// (receiver-map, as the CPU reference bins them; float atomics).
+    /// (receiver-map, as the CPU reference bins them; float atomics), or into the eye's view
+    /// instead (screen-space: Kim 2019's screen-space photon mapping, an edge-aware filter).
     deposit: PhotonDeposit = PhotonDeposit::CausticMap, only PhotonTrace;
     /// photon-trace: how photons find the surface they meet next, compute (its own BVH
     /// traversal in a compute shader, default) or ray-query (rayQueryEXT against Vulkan
@@ -288,12 +289,13 @@ impl CausticSettings {
     }
 
     /// Whether the technique renders its caustics in the eye's view (Wyman & Davis 2006's
-    /// eye-space points, quads and gather): the eye render then has no caustic-map lookup, and
+    /// eye-space points, quads and gather; photon-trace's screen-space photon mapping): the eye render then has no caustic-map lookup, and
     /// the receiver map comes from an orthographic view of the receiver plane.
     pub fn eye_space(&self) -> bool {
         match self.technique {
             Technique::WdEyePoints => true,
             Technique::WdQuads | Technique::WdGather => self.space == Space::Eye,
+            Technique::PhotonTrace => self.deposit == PhotonDeposit::ScreenSpace,
             _ => false,
         }
     }
@@ -305,6 +307,10 @@ impl CausticSettings {
         let mut dumps = match self.technique {
             Technique::None => vec![],
             Technique::PoolConvolution => super::trendall_stewart2000::settings::DUMPS.to_vec(),
+            // Screen-space photon mapping: the traced photons, then the eye's view.
+            Technique::PhotonTrace if self.eye_space() => {
+                vec![&RECEIVER_POSITIONS, &PHOTON_BUFFER, &wyman_davis2006::settings::EYE_CAUSTIC]
+            }
             _ if self.eye_space() => wyman_davis2006::settings::EYE_DUMPS.to_vec(),
             Technique::Hcm => [shared::settings::DUMPS, wyman2008::settings::DUMPS].concat(),
             // No photon buffer: photons come from the geometry buffers (Wyman & Nichols 2009 Sec. 3.2).
@@ -555,5 +561,25 @@ mod tests {
         }
         let ok = CausticSettings { technique: Technique::PhotonTrace, max_bounces: 64, ..Default::default() };
         ok.validate("test.toml", "caustics.").expect("64 bounces");
+    }
+
+    /// Screen-space photon mapping deposits into the eye's view: the caustic map's progressive
+    /// means and differential splats are refused beside it, naming the key.
+    #[test]
+    fn the_screen_space_deposit_refuses_what_only_a_caustic_map_has() {
+        let screen = CausticSettings {
+            technique: Technique::PhotonTrace,
+            deposit: PhotonDeposit::ScreenSpace,
+            ..Default::default()
+        };
+        assert!(screen.eye_space(), "screen-space photon mapping is in the eye's view");
+        screen.validate("test.toml", "caustics.").expect("screen-space alone");
+        for (s, key) in [
+            (CausticSettings { progressive: true, ..screen.clone() }, "progressive"),
+            (CausticSettings { differentials: true, ..screen.clone() }, "differentials"),
+        ] {
+            let err = s.validate("test.toml", "caustics.").expect_err(key).to_string();
+            assert!(err.contains(&format!("caustics.{key}")) && err.contains("screen-space"), "{key}: {err}");
+        }
     }
 }

@@ -36,6 +36,11 @@ value_enum! {
         /// adds its power to its texel, as the CPU reference bins it; the receiver map's caustic
         /// term is that power over the texel's area (the final image still reads the caustic map).
         ReceiverMap = "receiver-map",
+        /// Into the eye's view instead of a caustic map: screen-space photon mapping (Kim 2019),
+        /// each photon drawn into the pixel that sees where it landed, then an edge-aware filter
+        /// on the eye's geometry buffer (`techniques::shared::screen_space`); the receiver map
+        /// from the same filter in the orthographic receiver view, as `wd-eye-points`'.
+        ScreenSpace = "screen-space",
     }
 }
 
@@ -103,6 +108,15 @@ pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
                  builds its BVH once and refuses moving objects",
                 s.moving_objects, s.trace
             ),
+        )?;
+    }
+    if s.deposit == Deposit::ScreenSpace && (s.progressive || s.differentials) {
+        let key = if s.progressive { "progressive" } else { "differentials" };
+        bad(
+            key,
+            "accumulates or splats into the caustic map; deposit = \"screen-space\" deposits the photons into the \
+             eye's view and has none: set one of them"
+                .into(),
         )?;
     }
     if s.differentials && s.progressive {

@@ -7,6 +7,7 @@ pub mod compute_splat;
 pub mod lists;
 pub mod photon_buffer;
 pub mod pipelines;
+pub mod screen_space;
 pub mod settings;
 pub mod splat;
 pub mod targets;

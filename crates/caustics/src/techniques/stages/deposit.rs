@@ -36,7 +36,8 @@ pub enum Deposit {
     /// interpolated`, Wyman 2008 Fig. 7).
     Interpolated(InterpolatedSplat),
     /// Wyman & Davis 2006's eye-space points, quads and gathers (Sec. 3.2), or their quads and
-    /// gathers into the caustic map (light space).
+    /// gathers into the caustic map (light space); and screen-space photon mapping (Kim 2019)
+    /// of the traced photons in the same eye-space views.
     ImageSpace(ImageSpace),
     /// `photon-trace --differentials`: each photon splatted as its footprint's anisotropic
     /// Gaussian (Schjøth et al. 2007), a compute pass.
@@ -62,9 +63,15 @@ impl Deposit {
             Deposit::Points(_) | Deposit::ThinLens(_) | Deposit::Interpolated(_) => &[Stage::Splat],
             Deposit::Compute(_) => &[Stage::SplatClear, Stage::SplatArguments, Stage::Splat, Stage::SplatResolve],
             Deposit::Differential(_) => &[Stage::SplatClear, Stage::Splat, Stage::SplatResolve],
-            Deposit::ImageSpace(_) => {
-                &[Stage::WdPhotons, Stage::WdGather, Stage::WdQuads, Stage::WdShade, Stage::WdReceiverView]
-            }
+            Deposit::ImageSpace(_) => &[
+                Stage::WdPhotons,
+                Stage::WdGather,
+                Stage::WdQuads,
+                Stage::WdShade,
+                Stage::WdReceiverView,
+                Stage::ScreenSpaceNormalize,
+                Stage::ScreenSpaceFilter,
+            ],
         }
     }
 

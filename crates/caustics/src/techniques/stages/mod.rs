@@ -12,7 +12,7 @@
 //! | `wd-eye-points`, `wd-quads`, `wd-gather` | `Rasterized` (or `Deferred`) | `Dense` | `ImageSpace` |
 //! | `hcm` | `Rasterized` (or `Deferred`) | `Hierarchy` | `Points`, `Compute` or `Interpolated` |
 //! | `adaptive` | `GeometryBuffers` | `Adaptive` | `Points` or `Compute` |
-//! | `photon-trace` | `Traced` | `Dense` | `Points`, `Compute` or `Differential` |
+//! | `photon-trace` | `Traced` | `Dense` | `Points`, `Compute`, `Differential` or `ImageSpace` |
 //!
 //! Each stage declares the pass stages it records (`Source::stages`, `Selection::stages`,
 //! `Deposit::stages`); `tests/frame_graph_stages.rs` renders every row of the registry of

@@ -18,6 +18,9 @@
 //!
 //! and temporal filtering of the counts (Sec. 3.2.3, [`temporal`]). The eye-space variants
 //! render their receiver map from an orthographic view of the receiver plane ([`views`]).
+//! `photon-trace --deposit screen-space` draws its exact photons into the same views as
+//! `wd-eye-points` and filters them there edge-aware (Kim 2019's screen-space photon mapping,
+//! `techniques::shared::screen_space`).
 //! Light-space quads and gathers are rendered again only when the lighting changes.
 
 mod gather;
@@ -35,6 +38,7 @@ use crate::gpu::{Stage, Target};
 use crate::image_io::ImageF32;
 use crate::scene::Scene;
 use crate::techniques::settings::CausticSettings;
+use crate::techniques::shared::screen_space::{self, FilterView, ScreenSpaceFilter};
 use crate::techniques::shared::{CausticPasses, EyeView};
 use crate::techniques::technique::Technique;
 use anyhow::{Context as _, Result};
@@ -51,6 +55,9 @@ pub enum Method {
     EyePoints,
     Quads(Space),
     Gather(Space),
+    /// `photon-trace --deposit screen-space`: the exact photons as eye points, filtered
+    /// edge-aware (Kim 2019).
+    ScreenSpace,
 }
 
 /// The orthographic view of the receiver plane: its photons, and its geometry.
@@ -69,6 +76,9 @@ enum Draw {
     PointsGathered { points: Pipeline, gather: Pipeline },
     /// Polygons between adjacent photons, drawn straight into the caustic (Sec. 3.2.1).
     Quads(quads::QuadPipelines),
+    /// Drawn as points into a view's photon buffer, then filtered edge-aware on the view's
+    /// geometry buffer (screen-space photon mapping, Kim 2019).
+    PointsFiltered { points: Pipeline, filter: ScreenSpaceFilter },
 }
 
 /// Where they are drawn (one per renderer: boxing the eye's variant would save nothing).
@@ -100,6 +110,7 @@ impl ImageSpace {
             Technique::WdEyePoints => Some(Method::EyePoints),
             Technique::WdQuads => Some(Method::Quads(settings.space)),
             Technique::WdGather => Some(Method::Gather(settings.space)),
+            Technique::PhotonTrace if settings.eye_space() => Some(Method::ScreenSpace),
             _ => None,
         }
     }
@@ -114,32 +125,42 @@ impl ImageSpace {
         let lights = scene.lights.len().clamp(1, crate::gpu::MAX_LIGHTS) as u32;
         let (gathers, lighting) = match method {
             Method::Quads(_) => (false, s.quad_lighting.equation()),
+            // Exact photons keep their flux on a Lambertian receiver: Eq. 11.
+            Method::ScreenSpace => (true, 11),
             _ => (true, s.gather_lighting.equation()),
         };
         let camera = (scene.camera.width, scene.camera.height);
         let layers = history.layers();
-        let draw = match gathers {
-            true => Draw::PointsGathered {
+        let draw = match (gathers, method) {
+            (true, Method::ScreenSpace) => Draw::PointsFiltered {
+                points: points::pipeline(ctx, sh, light_space)?,
+                filter: ScreenSpaceFilter::new(ctx, sh)?,
+            },
+            (true, _) => Draw::PointsGathered {
                 points: points::pipeline(ctx, sh, light_space)?,
                 gather: gather::pipeline(ctx, sh, light_space)?,
             },
-            false => Draw::Quads(quads::pipeline(ctx, sh, light_space, s.quad_draw)?),
+            (false, _) => Draw::Quads(quads::pipeline(ctx, sh, light_space, s.quad_draw)?),
         };
         let into = match eye_space {
             true => {
                 // A light's photons have their own history layers (light * layers + slot), so
                 // each light is gathered from its own photons.
-                let eye = ViewBuffers::new(ctx, "eye", camera, layers * lights, true)?;
+                let filtered = matches!(draw, Draw::PointsFiltered { .. });
+                let eye =
+                    ViewBuffers::new(ctx, "eye", camera, layers * lights, true)?.filtered(ctx, "eye", filtered)?;
                 let receiver = match (&scene.receiver_map, views::receiver_view_proj(scene)) {
                     (Some(r), Some(view_proj)) => {
                         let size = (r.resolution, r.resolution);
-                        let view = ReceiverView {
-                            buffers: ViewBuffers::new(ctx, "receiver view", size, layers * lights, true)?,
-                            position: Target::color(ctx, "receiver view position", r.resolution, r.resolution)?,
-                            normal: Target::color(ctx, "receiver view normal", r.resolution, r.resolution)?,
-                            view_proj,
-                            tolerance: views::tolerance(scene, true),
-                        };
+                        let view =
+                            ReceiverView {
+                                buffers: ViewBuffers::new(ctx, "receiver view", size, layers * lights, true)?
+                                    .filtered(ctx, "receiver view", filtered)?,
+                                position: Target::color(ctx, "receiver view position", r.resolution, r.resolution)?,
+                                normal: Target::color(ctx, "receiver view normal", r.resolution, r.resolution)?,
+                                view_proj,
+                                tolerance: views::tolerance(scene, true),
+                            };
                         Some((view, gather::receiver_view_pipeline(ctx, sh)?))
                     }
                     _ => None,
@@ -216,6 +237,7 @@ impl ImageSpace {
             let base = views::view_constants(r.view_proj, Vec3::ZERO, r.tolerance, true);
             targets.push(("receiver", &r.buffers, (&r.position.view, &r.normal.view), base));
         }
+        let receiver_tolerance = receiver.as_ref().map_or([0.0; 2], |(r, _)| r.tolerance);
         for (view, buffers, geometry, base) in targets {
             let k = self.constants(base, c, l, 0);
             let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
@@ -238,6 +260,30 @@ impl ImageSpace {
                 }
                 Draw::Quads(q) => {
                     quads::record(f, &Stage::WdQuads.pass().view(view).light(l), c, q, out, geometry, first, k)?;
+                }
+                Draw::PointsFiltered { points: p, filter } => {
+                    let into = points::PointsInto {
+                        name: Stage::WdPhotons.pass().view(view).light(l),
+                        buffers,
+                        slot: k.slot,
+                        geometry,
+                        clear: true,
+                    };
+                    points::record(f, c, p, into, k)?;
+                    let ortho = view != "eye";
+                    let v = FilterView {
+                        view,
+                        photons: &buffers.photons.view,
+                        position: geometry.0,
+                        normal: geometry.1,
+                        normalized: &buffers.normalized.as_ref().context("no normalized photons")?.view,
+                        caustic: out,
+                        size: (buffers.width, buffers.height),
+                        eye: if ortho { Vec3::ZERO } else { eye.eye },
+                        ortho,
+                        tolerance: if ortho { receiver_tolerance } else { screen_space::EYE_TOLERANCE },
+                    };
+                    filter.record(f, c.inputs.nearest, &v, l, k.slot)?;
                 }
             }
         }
@@ -280,6 +326,7 @@ impl ImageSpace {
                 let name = Stage::WdQuads.pass().view("light_space").light(l);
                 quads::record(f, &name, c, q, cmap, (rpos, rpos), true, k)?;
             }
+            Draw::PointsFiltered { .. } => anyhow::bail!("screen-space photon mapping is in the eye's view"),
         }
         Ok(())
     }

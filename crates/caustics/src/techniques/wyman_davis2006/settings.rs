@@ -15,10 +15,22 @@ pub static EYE_CAUSTIC: Dump = Dump::new(
     dump::Space::Eye,
     Format::Image,
     &[
-        layer_when("", &["R", "G", "B", "photons"], "with `wd-eye-points` and `wd-gather`"),
+        layer_when(
+            "",
+            &["R", "G", "B", "photons"],
+            "with `wd-eye-points`, `wd-gather` and photon-trace's `screen-space` deposit",
+        ),
         layer_when("", &["R", "G", "B", "quads"], "with `wd-quads`"),
-        layer_when("photons", &["R", "G", "B", "count"], "with `wd-eye-points` and `wd-gather`"),
-        layer_when("direction", &["X", "Y", "Z", "cos_direct"], "with `wd-eye-points` and `wd-gather`"),
+        layer_when(
+            "photons",
+            &["R", "G", "B", "count"],
+            "with `wd-eye-points`, `wd-gather` and photon-trace's `screen-space` deposit",
+        ),
+        layer_when(
+            "direction",
+            &["X", "Y", "Z", "cos_direct"],
+            "with `wd-eye-points`, `wd-gather` and photon-trace's `screen-space` deposit",
+        ),
     ],
 );
 /// The buffers only the eye-space variants have.

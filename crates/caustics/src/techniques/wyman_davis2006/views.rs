@@ -47,6 +47,9 @@ pub struct ViewBuffers {
     pub directions: Target,
     /// rgb caustic irradiance (W/m^2), a: photons in the neighbourhood (eye space only).
     pub caustic: Option<Target>,
+    /// Screen-space photon mapping's photons over their kernel's support (rgb W/m^2, a:
+    /// photons; `techniques::shared::screen_space`), None for the others.
+    pub normalized: Option<Target>,
     pub width: u32,
     pub height: u32,
 }
@@ -65,9 +68,19 @@ impl ViewBuffers {
             layers: views,
             directions: Target::color(ctx, &format!("{name} photon directions"), w, h)?,
             caustic,
+            normalized: None,
             width: w,
             height: h,
         })
+    }
+
+    /// With `filtered`, the scratch image of screen-space photon mapping's filter.
+    pub fn filtered(mut self, ctx: &Context, name: &str, filtered: bool) -> Result<ViewBuffers> {
+        if filtered {
+            let name = format!("{name} normalized photons");
+            self.normalized = Some(Target::color(ctx, &name, self.width, self.height)?);
+        }
+        Ok(self)
     }
 }
 
