@@ -460,12 +460,14 @@ fn quick_photon_trace_reconstructions_time_and_judge_every_reconstruction() {
                 "photon-trace",
                 "differentials",
                 "binned",
+                "wd-eye-points Eq. 10",
+                "screen-space",
             ] {
                 let c = cell_in(&r, scene, t, photons);
                 assert!(value(c, "Caustic map").is_some_and(|ms| ms > 0.0), "{scene} {t} {photons}: no time");
                 assert!(value(c, "rel. RMSE").is_some_and(|e| e.is_finite()), "{scene} {t} {photons}: no error");
             }
-            for t in ["photon-trace", "differentials", "binned"] {
+            for t in ["photon-trace", "differentials", "binned", "screen-space"] {
                 let flux = value(cell_in(&r, scene, t, photons), "flux ratio").expect("a flux ratio");
                 assert!((flux - 1.0).abs() < 0.05, "{scene} {t} {photons}: flux ratio {flux}");
             }

@@ -132,7 +132,7 @@ fn quick_front_places_every_cell_and_names_the_cheapest_per_error_level() {
     // from the JSON).
     let (dir, r) = quick_run("front.toml");
     let cells = r["cells"].as_array().expect("cells");
-    assert_eq!(cells.len(), 3 * 14 * 2, "3 scenes x 14 techniques x 2 photon counts");
+    assert_eq!(cells.len(), 3 * 17 * 2, "3 scenes x 17 techniques x 2 photon counts");
     for cell in cells {
         let get = |m: &str| metric(cell, m).unwrap_or(f64::NAN);
         let (stages, ms, rmse) = (get("Caustic map"), get("Frame"), get("rel. RMSE"));
