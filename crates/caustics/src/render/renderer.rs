@@ -162,7 +162,8 @@ impl FrameRenderer for MeshRenderer<'_> {
         let new_light = lights_moved
             || scene.objects != self.scene.objects
             || scene.materials != self.scene.materials
-            || scene.receiver_map != self.scene.receiver_map;
+            || scene.receiver_map != self.scene.receiver_map
+            || scene.caustic_frame != self.scene.caustic_frame;
         let moved: Vec<&str> = scene
             .objects
             .iter()

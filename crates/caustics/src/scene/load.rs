@@ -143,7 +143,19 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
     let mut caustics = super::CausticSettings::default();
     def.caustics.apply(&mut caustics);
     caustics.validate(&ctx.file.display().to_string(), "caustics.")?;
-    Ok(Scene { path: ctx.file.to_path_buf(), camera, lights, materials, objects, receiver_map, render, caustics, pool })
+    let caustic_frame = None;
+    Ok(Scene {
+        path: ctx.file.to_path_buf(),
+        camera,
+        lights,
+        materials,
+        objects,
+        receiver_map,
+        caustic_frame,
+        render,
+        caustics,
+        pool,
+    })
 }
 
 fn build_camera(ctx: &Ctx, c: &schema::CameraDef) -> anyhow::Result<Camera> {

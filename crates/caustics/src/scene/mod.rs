@@ -39,6 +39,10 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub objects: Vec<Object>,
     pub receiver_map: Option<ReceiverMapSpec>,
+    /// The receiver rectangle that frames the light-space caustic map where the receiver map
+    /// itself is left out (a bench's throughput frames drop the instrument, not the framing:
+    /// `techniques::uniforms`); None: the receiver map's, if any. Never read from a file.
+    pub caustic_frame: Option<ReceiverMapSpec>,
     pub render: RenderSettings,
     pub caustics: CausticSettings,
     /// `[pool]`: a pool scene (Trendall & Stewart 2000) has this instead of objects and lights.

@@ -137,10 +137,11 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
             .into());
         }
         let (axis, photon_half) = photon_view(settings, light, centre, radius);
-        // The caustic map holds wherever photons may land: the receiver map if there is one,
-        // else three times the photon cone, capped at 80 degrees.
+        // The caustic map holds wherever photons may land: the receiver map if there is one
+        // (or the rectangle that stands for it, `Scene::caustic_frame`), else three times the
+        // photon cone, capped at 80 degrees.
         let mut caustic_half = photon_half * 1.2;
-        match &scene.receiver_map {
+        match scene.receiver_map.as_ref().or(scene.caustic_frame.as_ref()) {
             Some(r) => {
                 for x in r.x_range {
                     for z in r.z_range {
