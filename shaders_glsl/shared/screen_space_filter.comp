@@ -7,7 +7,10 @@
 //   otherwise: the gather, E_t = sum_q w_q(t) Phi_q / N_q over the pixels q joined to t
 //              within their r_q (W/m^2).
 // Each photon pixel's kernel is normalised over its own support, so sum_t E_t A_t = sum_q Phi_q:
-// the filter keeps the photons' power exactly, whatever the radii (the splats' normalisation).
+// the filter keeps the photons' power exactly, whatever the radii (the splats' normalisation),
+// wherever a photon pixel's support has an area. Where it has none (a surface one pixel wide,
+// whose area the neighbouring positions cannot give: pixel_area.glsl) the pixel's photons are
+// dropped.
 //
 // The kernel: a Gaussian of the pixel offset, sigma = r_q / 2, nothing beyond r_q (r_q = 0: the
 // pixel alone), times the edge tests, which are 0 or 1 and symmetric in t and q:
@@ -44,7 +47,7 @@ layout(binding = 2) uniform sampler2D view_normal;
 layout(binding = 3, rgba32f) uniform writeonly image2D normalized;   // rgb Phi_q / N_q, a: r_q
 #else
 layout(binding = 3) uniform sampler2D normalized;
-layout(binding = 4, rgba32f) uniform image2DArray gathered;   // rgb E (W/m^2), a: photon pixels reaching it
+layout(binding = 4, rgba32f) uniform image2DArray gathered;   // rgb E (W/m^2), a: photon pixels (not photons) reaching it
 #endif
 
 float depth_of(vec3 p) {

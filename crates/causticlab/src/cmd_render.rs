@@ -55,6 +55,19 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         if n == caustics::techniques::shared::settings::PHOTON_FOOTPRINTS.name && technique == Technique::PhotonTrace {
             return Err(input_error!("--dump: `{n}` is a buffer of `photon-trace` with --differentials true").into());
         }
+        if technique == Technique::PhotonTrace {
+            // Screen-space photon mapping has the eye's caustic and no caustic map; the other
+            // deposits the reverse.
+            let eye = caustics::techniques::wyman_davis2006::settings::EYE_CAUSTIC.name;
+            let needs = if n == eye { "screen-space" } else { "caustic-map or receiver-map" };
+            if n == eye || n == caustics::techniques::shared::settings::CAUSTIC_MAP.name {
+                return Err(input_error!(
+                    "--dump: `{n}` is a buffer of `photon-trace` with --deposit {needs}, not with --deposit {}",
+                    scene.caustics.deposit
+                )
+                .into());
+            }
+        }
         if named_in(&technique.dumps(), n).is_some() {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of `{technique}` with --space {}, not with --space {}",

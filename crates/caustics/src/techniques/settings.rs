@@ -577,6 +577,8 @@ mod tests {
         for (s, key) in [
             (CausticSettings { progressive: true, ..screen.clone() }, "progressive"),
             (CausticSettings { differentials: true, ..screen.clone() }, "differentials"),
+            (CausticSettings { splat_radius: 3.0, ..screen.clone() }, "splat_radius"),
+            (CausticSettings { splat_path: SplatPath::Compute, ..screen.clone() }, "splat_path"),
         ] {
             let err = s.validate("test.toml", "caustics.").expect_err(key).to_string();
             assert!(err.contains(&format!("caustics.{key}")) && err.contains("screen-space"), "{key}: {err}");

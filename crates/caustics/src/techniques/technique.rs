@@ -145,8 +145,9 @@ impl Technique {
             all.push(&super::wyman_nichols2009::settings::PHOTON_GEOMETRY_BUFFERS);
         }
         if self == Technique::PhotonTrace {
-            // With `differentials`.
+            // With `differentials`; with `deposit = "screen-space"`.
             all.push(&super::shared::settings::PHOTON_FOOTPRINTS);
+            all.push(&super::wyman_davis2006::settings::EYE_CAUSTIC);
         }
         if matches!(self, Technique::WdQuads | Technique::WdGather) {
             let light = CausticSettings { technique: self, space: Space::Light, ..Default::default() }.dumps();

@@ -110,14 +110,23 @@ pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
             ),
         )?;
     }
-    if s.deposit == Deposit::ScreenSpace && (s.progressive || s.differentials) {
-        let key = if s.progressive { "progressive" } else { "differentials" };
-        bad(
-            key,
-            "accumulates or splats into the caustic map; deposit = \"screen-space\" deposits the photons into the \
-             eye's view and has none: set one of them"
-                .into(),
-        )?;
+    if s.deposit == Deposit::ScreenSpace {
+        let defaults = CausticSettings::default();
+        let caustic_map_keys = [
+            ("progressive", s.progressive != defaults.progressive),
+            ("differentials", s.differentials != defaults.differentials),
+            ("splat_radius", s.splat_radius != defaults.splat_radius),
+            ("splat_kernel", s.splat_kernel != defaults.splat_kernel),
+            ("splat_path", s.splat_path != defaults.splat_path),
+        ];
+        if let Some((key, _)) = caustic_map_keys.iter().find(|(_, set)| *set) {
+            bad(
+                key,
+                "shapes the caustic map, and deposit = \"screen-space\" deposits the photons into the eye's view \
+                 instead: drop the key or choose another deposit"
+                    .into(),
+            )?;
+        }
     }
     if s.differentials && s.progressive {
         bad(

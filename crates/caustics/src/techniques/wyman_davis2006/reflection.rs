@@ -5,10 +5,11 @@
 
 use crate::scene::{MaterialKind, Scene};
 
-/// The height of the background plane: the receiver map's plane where the scene has one, else
-/// the lowest point of the diffuse surfaces (the floor), else 0.
+/// The height of the background plane: the receiver map's plane where the scene has one (or the
+/// rectangle that stands for it, `Scene::caustic_frame`), else the lowest point of the diffuse
+/// surfaces (the floor), else 0.
 pub fn background_plane(scene: &Scene) -> f32 {
-    if let Some(r) = &scene.receiver_map {
+    if let Some(r) = scene.receiver_map.as_ref().or(scene.caustic_frame.as_ref()) {
         return r.plane_y;
     }
     let lowest = scene
