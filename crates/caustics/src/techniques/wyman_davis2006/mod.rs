@@ -241,18 +241,20 @@ impl ImageSpace {
         for (view, buffers, geometry, base) in targets {
             let k = self.constants(base, c, l, 0);
             let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
+            if let Draw::PointsGathered { points: p, .. } | Draw::PointsFiltered { points: p, .. } = &self.draw {
+                let into = points::PointsInto {
+                    name: Stage::WdPhotons.pass().view(view).light(l),
+                    buffers,
+                    slot: k.slot,
+                    geometry,
+                    clear: true,
+                };
+                points::record(f, c, p, into, k)?;
+            }
             match &self.draw {
-                Draw::PointsGathered { points: p, gather: g } => {
+                Draw::PointsGathered { gather: g, .. } => {
                     // Light l's photons, gathered at once into the view's caustic (lights
                     // after the first add to it: gather.comp).
-                    let into = points::PointsInto {
-                        name: Stage::WdPhotons.pass().view(view).light(l),
-                        buffers,
-                        slot: k.slot,
-                        geometry,
-                        clear: true,
-                    };
-                    points::record(f, c, p, into, k)?;
                     let radius = if self.method == Method::EyePoints { 0 } else { gather::RADIUS };
                     let kg = self.constants(base, c, l, radius);
                     let name = Stage::WdGather.pass().view(view).light(l);
@@ -261,15 +263,8 @@ impl ImageSpace {
                 Draw::Quads(q) => {
                     quads::record(f, &Stage::WdQuads.pass().view(view).light(l), c, q, out, geometry, first, k)?;
                 }
-                Draw::PointsFiltered { points: p, filter } => {
-                    let into = points::PointsInto {
-                        name: Stage::WdPhotons.pass().view(view).light(l),
-                        buffers,
-                        slot: k.slot,
-                        geometry,
-                        clear: true,
-                    };
-                    points::record(f, c, p, into, k)?;
+                Draw::PointsFiltered { filter, .. } => {
+                    // Light l's photons, filtered edge-aware into the view's caustic.
                     let ortho = view != "eye";
                     let v = FilterView {
                         view,
