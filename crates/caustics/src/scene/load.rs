@@ -143,7 +143,6 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
     let mut caustics = super::CausticSettings::default();
     def.caustics.apply(&mut caustics);
     caustics.validate(&ctx.file.display().to_string(), "caustics.")?;
-    let caustic_frame = None;
     Ok(Scene {
         path: ctx.file.to_path_buf(),
         camera,
@@ -151,7 +150,7 @@ fn build(ctx: &Ctx, def: schema::SceneFile, search: &ModelSearchPath) -> anyhow:
         materials,
         objects,
         receiver_map,
-        caustic_frame,
+        caustic_frame: None,
         render,
         caustics,
         pool,

@@ -150,6 +150,12 @@ impl Default for RenderSettings {
 }
 
 impl Scene {
+    /// The receiver rectangle that frames the light-space caustic map: the receiver map's, or
+    /// the `caustic_frame` that stands for it where the receiver map is left out.
+    pub fn framing_rectangle(&self) -> Option<&ReceiverMapSpec> {
+        self.receiver_map.as_ref().or(self.caustic_frame.as_ref())
+    }
+
     /// The model files its objects were loaded from, each once.
     pub fn models(&self) -> Vec<models::ModelFile> {
         let mut out: Vec<models::ModelFile> = self.objects.iter().filter_map(|o| o.model.clone()).collect();

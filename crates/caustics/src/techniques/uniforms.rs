@@ -141,7 +141,7 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
         // (or the rectangle that stands for it, `Scene::caustic_frame`), else three times the
         // photon cone, capped at 80 degrees.
         let mut caustic_half = photon_half * 1.2;
-        match scene.receiver_map.as_ref().or(scene.caustic_frame.as_ref()) {
+        match scene.framing_rectangle() {
             Some(r) => {
                 for x in r.x_range {
                     for z in r.z_range {

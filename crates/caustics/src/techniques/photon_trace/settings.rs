@@ -110,16 +110,23 @@ pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
             ),
         )?;
     }
+    // The keys that shape the fixed splat, each with whether it is set (not its default).
+    let defaults = CausticSettings::default();
+    let fixed_splat = [
+        ("splat_radius", s.splat_radius != defaults.splat_radius),
+        ("splat_kernel", s.splat_kernel != defaults.splat_kernel),
+    ];
+    let first_set = |keys: &[(&'static str, bool)]| keys.iter().find(|(_, set)| *set).map(|(key, _)| *key);
     if s.deposit == Deposit::ScreenSpace {
-        let defaults = CausticSettings::default();
+        let [radius, kernel] = fixed_splat;
         let caustic_map_keys = [
-            ("progressive", s.progressive != defaults.progressive),
-            ("differentials", s.differentials != defaults.differentials),
-            ("splat_radius", s.splat_radius != defaults.splat_radius),
-            ("splat_kernel", s.splat_kernel != defaults.splat_kernel),
+            ("progressive", s.progressive),
+            ("differentials", s.differentials),
+            radius,
+            kernel,
             ("splat_path", s.splat_path != defaults.splat_path),
         ];
-        if let Some((key, _)) = caustic_map_keys.iter().find(|(_, set)| *set) {
+        if let Some(key) = first_set(&caustic_map_keys) {
             bad(
                 key,
                 "shapes the caustic map, and deposit = \"screen-space\" deposits the photons into the eye's view \
@@ -136,9 +143,7 @@ pub fn validate_ranges(s: &CausticSettings, bad: Bad) -> anyhow::Result<()> {
                 .into(),
         )?;
     }
-    let defaults = CausticSettings::default();
-    if s.differentials && (s.splat_radius != defaults.splat_radius || s.splat_kernel != defaults.splat_kernel) {
-        let key = if s.splat_radius != defaults.splat_radius { "splat_radius" } else { "splat_kernel" };
+    if let Some(key) = first_set(&fixed_splat).filter(|_| s.differentials) {
         bad(
             key,
             "sizes the fixed splat; photon differentials (differentials = true) splat each photon as the Gaussian its \

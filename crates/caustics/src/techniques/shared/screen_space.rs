@@ -59,9 +59,9 @@ pub struct FilterView<'a> {
     pub normalized: &'a ImageView,
     pub caustic: &'a ImageView,
     pub size: (u32, u32),
-    /// The view's eye, and whether it is orthographic (no distance to the eye).
-    pub eye: glam::Vec3,
-    pub ortho: bool,
+    /// xyz: the view's eye; w: 1 for an orthographic view (no distance to the eye), as the
+    /// view's other passes have it (`ImageSpaceConstants::eye`).
+    pub eye: [f32; 4],
     /// The depth-edge tolerance (x: of the distance to the eye, y: metres).
     pub tolerance: [f32; 2],
 }
@@ -85,7 +85,7 @@ impl ScreenSpaceFilter {
     /// (the lights after the first add to it).
     pub fn record(&self, f: &mut Frame, nearest: &Sampler, v: &FilterView, l: u32, slot: u32) -> Result<()> {
         let k = ScreenSpaceConstants {
-            eye: v.eye.extend(if v.ortho { 1.0 } else { 0.0 }).to_array(),
+            eye: v.eye,
             tolerance: [v.tolerance[0], v.tolerance[1], 0.0, 0.0],
             max_radius: MAX_RADIUS,
             slot,

@@ -123,24 +123,24 @@ impl ImageSpace {
         let light_space = !eye_space;
         let history = History::new(s.temporal_filter == TemporalFilter::On);
         let lights = scene.lights.len().clamp(1, crate::gpu::MAX_LIGHTS) as u32;
-        let (gathers, lighting) = match method {
-            Method::Quads(_) => (false, s.quad_lighting.equation()),
+        let lighting = match method {
+            Method::Quads(_) => s.quad_lighting.equation(),
             // Exact photons keep their flux on a Lambertian receiver: Eq. 11.
-            Method::ScreenSpace => (true, 11),
-            _ => (true, s.gather_lighting.equation()),
+            Method::ScreenSpace => 11,
+            Method::EyePoints | Method::Gather(_) => s.gather_lighting.equation(),
         };
         let camera = (scene.camera.width, scene.camera.height);
         let layers = history.layers();
-        let draw = match (gathers, method) {
-            (true, Method::ScreenSpace) => Draw::PointsFiltered {
+        let draw = match method {
+            Method::ScreenSpace => Draw::PointsFiltered {
                 points: points::pipeline(ctx, sh, light_space)?,
                 filter: ScreenSpaceFilter::new(ctx, sh)?,
             },
-            (true, _) => Draw::PointsGathered {
+            Method::EyePoints | Method::Gather(_) => Draw::PointsGathered {
                 points: points::pipeline(ctx, sh, light_space)?,
                 gather: gather::pipeline(ctx, sh, light_space)?,
             },
-            (false, _) => Draw::Quads(quads::pipeline(ctx, sh, light_space, s.quad_draw)?),
+            Method::Quads(_) => Draw::Quads(quads::pipeline(ctx, sh, light_space, s.quad_draw)?),
         };
         let into = match eye_space {
             true => {
@@ -169,9 +169,11 @@ impl ImageSpace {
             }
             false => {
                 let m = s.caustic_map_resolution;
-                let counts = match gathers {
-                    true => Some(ViewBuffers::new(ctx, "light-space", (m, m), layers * lights, false)?),
-                    false => None,
+                let counts = match draw {
+                    Draw::PointsGathered { .. } => {
+                        Some(ViewBuffers::new(ctx, "light-space", (m, m), layers * lights, false)?)
+                    }
+                    Draw::Quads(_) | Draw::PointsFiltered { .. } => None,
                 };
                 DrawnInto::Light { counts }
             }
@@ -237,7 +239,6 @@ impl ImageSpace {
             let base = views::view_constants(r.view_proj, Vec3::ZERO, r.tolerance, true);
             targets.push(("receiver", &r.buffers, (&r.position.view, &r.normal.view), base));
         }
-        let receiver_tolerance = receiver.as_ref().map_or([0.0; 2], |(r, _)| r.tolerance);
         for (view, buffers, geometry, base) in targets {
             let k = self.constants(base, c, l, 0);
             let out = &buffers.caustic.as_ref().context("no caustic image")?.view;
@@ -265,7 +266,9 @@ impl ImageSpace {
                 }
                 Draw::PointsFiltered { filter, .. } => {
                     // Light l's photons, filtered edge-aware into the view's caustic.
-                    let ortho = view != "eye";
+                    // The receiver view's depth-edge tolerance is its points'; the eye's is the
+                    // filter's own.
+                    let ortho = base.eye[3] > 0.5;
                     let v = FilterView {
                         view,
                         photons: &buffers.photons.view,
@@ -274,9 +277,12 @@ impl ImageSpace {
                         normalized: &buffers.normalized.as_ref().context("no normalized photons")?.view,
                         caustic: out,
                         size: (buffers.width, buffers.height),
-                        eye: if ortho { Vec3::ZERO } else { eye.eye },
-                        ortho,
-                        tolerance: if ortho { receiver_tolerance } else { screen_space::EYE_TOLERANCE },
+                        eye: base.eye,
+                        tolerance: if ortho {
+                            [base.tolerance[0], base.tolerance[1]]
+                        } else {
+                            screen_space::EYE_TOLERANCE
+                        },
                     };
                     filter.record(f, c.inputs.nearest, &v, l, k.slot)?;
                 }

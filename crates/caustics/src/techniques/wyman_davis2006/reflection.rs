@@ -9,7 +9,7 @@ use crate::scene::{MaterialKind, Scene};
 /// rectangle that stands for it, `Scene::caustic_frame`), else the lowest point of the diffuse
 /// surfaces (the floor), else 0.
 pub fn background_plane(scene: &Scene) -> f32 {
-    if let Some(r) = scene.receiver_map.as_ref().or(scene.caustic_frame.as_ref()) {
+    if let Some(r) = scene.framing_rectangle() {
         return r.plane_y;
     }
     let lowest = scene
