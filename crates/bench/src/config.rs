@@ -64,6 +64,10 @@ pub struct FrontSpec {
     /// The error levels of the table of the cheapest cells, each above 0: a list for one y
     /// metric, or a table of lists keyed by the y metrics' labels.
     pub levels: FrontLevels,
+    /// Progressive accumulation's curves from another table of the results folder, drawn on
+    /// one x and y pair's panels (`crate::front_curves`).
+    #[serde(default)]
+    pub curves: Option<crate::front_curves::CurvesSpec>,
 }
 
 /// `[front] levels`: one list, or one per y metric.

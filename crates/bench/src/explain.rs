@@ -1,12 +1,14 @@
 //! `causticlab bench explain CONFIG TABLE.json`: a committed table judged again with the
 //! explanations (`[[plausibility.explained]]`) its config gained after the run, without timing
 //! anything again. An explanation is a reading of the numbers, not a number: it may come after
-//! them. The config may differ from the one the table embeds in its explanations only, and in
+//! them. The config may differ from the one the table embeds in its explanations only, in
 //! the `source` of its `[[paper]]` entries (where in the paper the published values are: a
-//! citation, not a measurement), compared as TOML values, so comments and layout may change
-//! too; anything else would make the table describe a run that did not happen, and is refused.
-//! The table then embeds the new config and says under its commit line which commit added the
-//! explanations, and the config's hash when measured.
+//! citation, not a measurement) and in its `[front]` (how the cells are drawn and summed up,
+//! and which other table's curves are drawn beside them: `crate::front_curves`, read again
+//! here), compared as TOML values, so comments and layout may change too; anything else would
+//! make the table describe a run that did not happen, and is refused. The table then embeds
+//! the new config and says under its commit line which commit added the explanations, and the
+//! config's hash when measured.
 
 use crate::config::LoadedConfig;
 use crate::plausibility::Finding;
@@ -16,10 +18,13 @@ use anyhow::Result;
 use caustics::input_error;
 use std::path::Path;
 
-/// The config's TOML without its `[[plausibility.explained]]` entries and without the `source`
-/// of its `[[paper]]` entries: what must not change after the run.
+/// The config's TOML without its `[[plausibility.explained]]` entries, the `source` of its
+/// `[[paper]]` entries and its `[front]`: what must not change after the run.
 fn without_explanations_or_sources(text: &str, what: &str) -> Result<toml::Value> {
     let mut v: toml::Value = toml::from_str(text).map_err(|e| input_error!("{what}: does not parse: {e}"))?;
+    if let Some(t) = v.as_table_mut() {
+        t.remove("front");
+    }
     if let Some(entries) = v.get_mut("paper").and_then(|p| p.as_array_mut()) {
         for e in entries.iter_mut().filter_map(|e| e.as_table_mut()) {
             e.remove("source");
@@ -59,7 +64,7 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
     if without_explanations_or_sources(&config.text, &config.path.display().to_string())? != measured {
         return Err(input_error!(
             "{}: differs from the config {t} was measured with (hash {}) in more than its \
-             [[plausibility.explained]] entries and its [[paper]] sources: run the table again",
+             [[plausibility.explained]] entries, its [[paper]] sources and its [front]: run the table again",
             config.path.display(),
             r.run.explained.as_ref().map_or(&r.config.hash, |e| &e.measured_config_hash)
         )

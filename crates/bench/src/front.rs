@@ -37,6 +37,9 @@ pub(crate) fn validate(c: &Config, f: &FrontSpec, bad: &dyn Fn(&str, String) -> 
         }
         FrontLevels::All(_) => {}
     }
+    if let Some(curves) = &f.curves {
+        crate::front_curves::validate(c, curves, bad)?;
+    }
     for y in &f.y {
         let levels = f.levels_of(y);
         if levels.is_empty() || levels.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
@@ -140,6 +143,11 @@ fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str, y: &st
     // The error as the table prints its metric.
     let kind = config.metric_kind(y).unwrap_or("rel_rmse");
     let err = |v: f64| crate::format::format_value(kind, Some(v));
+    // Progressive accumulation's curves, where they are drawn against this x and y.
+    let curves = results.front_curves.as_ref().filter(|_| spec.curves.as_ref().is_some_and(|c| c.x == x && c.y == y));
+    if let Some(why) = curves.and_then(|c| c.missing.as_ref()) {
+        let _ = writeln!(s, "No progressive curves drawn: {why}.\n");
+    }
     for f in fronts(config, results, x, y) {
         let _ = writeln!(s, "**{}**\n", f.scene);
         let _ = writeln!(s, "| {y} at most | cheapest | photons | {x} | {y} |");
@@ -171,6 +179,9 @@ fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str, y: &st
             })
             .collect();
         let _ = writeln!(s, "\nFront: {}.\n", front.join(" → "));
+        if let Some(c) = curves {
+            s.push_str(&crate::front_curves::markdown(c, &f.scene, spec.levels_of(y), x, y, &err));
+        }
     }
     s
 }

@@ -2,11 +2,14 @@
 //! one log-log panel per error metric side by side (the receiver map's relative RMSE beside the
 //! final image's FLIP), every cell a marker (its colour the technique, its shape the technique's
 //! paper), the Pareto front a grey line through its points, and a legend of the techniques'
-//! colours and the papers' shapes.
+//! colours and the papers' shapes. Progressive accumulation's curves (`crate::front_curves`), on
+//! the panels of their x and y, are lines of their own colours (not the techniques'), an open
+//! square at 1, 4, 16, 64, ... frames.
 
 use crate::config::{Config, FrontSpec};
 use crate::font::FAMILY;
 use crate::front::{fronts, SceneFront};
+use crate::front_curves::Curve;
 use crate::plot::{
     draw_title, ellipsize, encode_sized, err, log_light_lines, log_mesh, log_ticks, text_width, DrawResult, Drawing,
     Plot, GREY, PALETTE, PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
@@ -29,6 +32,35 @@ struct Frame {
     /// Per row (x metric and scene), a front per y metric.
     rows: Vec<Vec<SceneFront>>,
     width: u32,
+    /// Progressive accumulation's curves, the (x, y) labels of the panels they are drawn on,
+    /// and their techniques' labels in order (their colours).
+    curves: Vec<Curve>,
+    curve_axes: Option<(String, String)>,
+    curve_labels: Vec<String>,
+    /// The table the curves come from (the legend names it).
+    curve_table: String,
+}
+
+/// The curves' colours: dark, and none of the techniques' palette, so that a line is not read
+/// as a technique's markers.
+const CURVE_COLOURS: [RGBColor; 4] =
+    [RGBColor(0, 0, 0), RGBColor(0x8c, 0x2d, 0x04), RGBColor(0x54, 0x27, 0x8f), RGBColor(0x00, 0x5a, 0x32)];
+
+impl Frame {
+    /// The curves of one panel, each with its colour.
+    fn curves_of(&self, f: &SceneFront) -> Vec<(&Curve, RGBColor)> {
+        if self.curve_axes.as_ref() != Some(&(f.x.clone(), f.y.clone())) {
+            return vec![];
+        }
+        self.curves
+            .iter()
+            .filter(|c| c.scene == f.scene)
+            .map(|c| {
+                let k = self.curve_labels.iter().position(|l| *l == c.technique).unwrap_or(0);
+                (c, CURVE_COLOURS[k % CURVE_COLOURS.len()])
+            })
+            .collect()
+    }
 }
 
 /// The rows of the plot: per x metric and scene (the x metrics' rows one after the other), the
@@ -64,7 +96,13 @@ pub fn render(config: &Config, results: &Results, spec: &FrontSpec) -> Result<Pl
     crate::font::load()?;
     let rows = rows(config, results, spec);
     let papers = crate::format::first_seen(rows.iter().flatten().flat_map(|f| &f.points).map(|p| p.paper.clone()));
+    let drawn = results.front_curves.as_ref().filter(|c| c.missing.is_none());
+    let curves = drawn.map_or_else(Vec::new, |c| c.curves.clone());
     let frame = Frame {
+        curve_axes: spec.curves.as_ref().map(|c| (c.x.clone(), c.y.clone())),
+        curve_labels: crate::format::first_seen(curves.iter().map(|c| c.technique.clone())),
+        curve_table: drawn.map_or_else(String::new, |c| c.table.clone()),
+        curves,
         title: config.table.title(),
         subtitle: crate::plot::subtitle(&results.meta),
         techniques: config.techniques.iter().map(|t| t.label.clone()).collect(),
@@ -115,7 +153,8 @@ fn marker<DB: DrawingBackend>(
 /// The legend at the right of a row: the techniques' colours in their papers' shapes, then the
 /// papers' shapes; returns its width.
 fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame) -> Result<u32, String> {
-    let rows = f.techniques.len() + f.papers.len() + 1;
+    let curve_rows = if f.curve_labels.is_empty() { 0 } else { f.curve_labels.len() + 2 };
+    let rows = f.techniques.len() + f.papers.len() + 1 + curve_rows;
     let row = ((PANEL_HEIGHT as i32 - 40) / rows.max(1) as i32).clamp(12, 22);
     let font = (row as f64 - 6.0).clamp(10.0, 14.0);
     let widest = f.techniques.iter().chain(&f.papers).map(|s| text_width(s, font)).max().unwrap_or(0);
@@ -145,6 +184,18 @@ fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, f: &Frame) -> Resul
         marker(&legend, k, (20, y), GREY)?;
         legend.draw(&(EmptyElement::at((44, y)) + text(p))).map_err(err)?;
     }
+    if !f.curve_labels.is_empty() {
+        let first = f.techniques.len() + f.papers.len() + 2;
+        let y = 40 + first as i32 * row;
+        legend.draw(&(EmptyElement::at((8, y)) + text(&format!("curves of {}", f.curve_table)))).map_err(err)?;
+        for (k, label) in f.curve_labels.iter().enumerate() {
+            let y = 40 + (first + 1 + k) as i32 * row;
+            let colour = CURVE_COLOURS[k % CURVE_COLOURS.len()];
+            legend.draw(&PathElement::new(vec![(8, y), (32, y)], colour.stroke_width(2))).map_err(err)?;
+            legend.draw(&Rectangle::new([(17, y - 3), (23, y + 3)], colour.stroke_width(1))).map_err(err)?;
+            legend.draw(&(EmptyElement::at((44, y)) + text(label))).map_err(err)?;
+        }
+    }
     Ok(legend_w)
 }
 
@@ -154,7 +205,12 @@ fn panel<DB: DrawingBackend>(chart_area: &DrawingArea<DB, Shift>, f: &Frame, sce
         let caption = format!("{}: {} against {}: no cell has both", scene.scene, scene.y, scene.x);
         return chart_area.draw(&Text::new(caption, (20, 20), (FAMILY, 16.0).into_font())).map_err(err);
     }
-    let (xs, ys): (Vec<f64>, Vec<f64>) = scene.points.iter().map(|p| (p.x, p.y)).unzip();
+    let curves = f.curves_of(scene);
+    // The axes hold the cells and the curves (whose points are all finite and positive: a
+    // time and an error of a frame that ran).
+    let curve_points = curves.iter().flat_map(|(c, _)| &c.points).filter(|p| p.ms > 0.0 && p.rel_rmse > 0.0);
+    let (xs, ys): (Vec<f64>, Vec<f64>) =
+        scene.points.iter().map(|p| (p.x, p.y)).chain(curve_points.map(|p| (p.ms, p.rel_rmse))).unzip();
     let span = |v: &[f64]| v.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
     let ((x0, x1), (y0, y1)) = (span(&xs), span(&ys));
     let caption = format!("{}: {} against {}", scene.scene, scene.y, scene.x);
@@ -178,6 +234,17 @@ fn panel<DB: DrawingBackend>(chart_area: &DrawingArea<DB, Shift>, f: &Frame, sce
     log_mesh(&mut chart, &scene.x, &scene.y)?;
     let front: Vec<(f64, f64)> = scene.front.iter().map(|&i| (scene.points[i].x, scene.points[i].y)).collect();
     chart.draw_series(LineSeries::new(front, GREY.stroke_width(2))).map_err(err)?;
+    for (c, colour) in &curves {
+        let line = c.points.iter().filter(|p| p.ms > 0.0 && p.rel_rmse > 0.0).map(|p| (p.ms, p.rel_rmse));
+        chart.draw_series(LineSeries::new(line, colour.stroke_width(2))).map_err(err)?;
+        // An open square at 1, 4, 16, 64, ... frames: the frames can be read off the line.
+        let marks = c.points.iter().filter(|p| {
+            p.ms > 0.0 && p.rel_rmse > 0.0 && p.frames.is_power_of_two() && p.frames.trailing_zeros() % 2 == 0
+        });
+        let squares = marks
+            .map(|p| EmptyElement::at((p.ms, p.rel_rmse)) + Rectangle::new([(-3, -3), (3, 3)], colour.stroke_width(1)));
+        chart.draw_series(squares).map_err(err)?;
+    }
     let plot = chart.plotting_area();
     for p in &scene.points {
         let colour = PALETTE[f.techniques.iter().position(|t| *t == p.technique).unwrap_or(0) % PALETTE.len()];

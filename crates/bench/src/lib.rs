@@ -15,6 +15,7 @@ pub mod final_flip;
 pub mod font;
 pub mod format;
 pub mod front;
+pub mod front_curves;
 pub mod front_plot;
 pub mod host_speed;
 pub mod index;

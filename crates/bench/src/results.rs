@@ -22,6 +22,10 @@ pub struct Results {
     /// is written.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub plausibility: Vec<crate::plausibility::Finding>,
+    /// The curves a front drew from another table (`crate::front_curves`), read when the table
+    /// is written.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub front_curves: Option<crate::front_curves::FrontCurves>,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

@@ -281,6 +281,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         meta: crate::results::Meta { commit, ..crate::meta::meta(ctx.info()) },
         cells: done,
         plausibility: vec![],
+        front_curves: None,
     };
     let dir = device_dir(&opts.results_root, &results);
     if filter.is_empty() && shard.is_none() {
@@ -334,7 +335,8 @@ fn check_patterns(lc: &LoadedConfig, cell: &crate::plan::Cell, run: &crate::meas
     Ok(())
 }
 
-pub(crate) fn device_dir(root: &Path, r: &Results) -> PathBuf {
+/// The folder of `r`'s tables under `root`: its device's, and in it `quick/` for a `--quick` run.
+pub fn device_dir(root: &Path, r: &Results) -> PathBuf {
     let d = root.join(&r.meta.device_slug);
     if r.run.quick {
         d.join("quick")
@@ -353,6 +355,7 @@ fn write_json(path: &Path, results: &Results) -> Result<()> {
 pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Result<Outcome> {
     let mut results = crate::results::rounded(results)?;
     results.plausibility = crate::plausibility::check(c, &results);
+    results.front_curves = crate::front_curves::load(c, &results, dir);
     let results = &results;
     let name = &results.config.name;
     let md = crate::report::markdown(c, results);

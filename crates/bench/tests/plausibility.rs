@@ -6,7 +6,7 @@ mod common;
 use bench::config::Config;
 use bench::plausibility::{check, Finding};
 use bench::results::{CellResult, Results};
-use common::{cell, results, value};
+use common::{cell, loaded_config, results, value};
 
 const CONFIG: &str = r#"
 [table]
@@ -149,17 +149,6 @@ fn findings_mark_the_table_and_an_explanation_lifts_the_mark() {
     let row = out.markdown.lines().find(|l| l.starts_with("| 1024²")).expect("1024 row").to_string();
     assert!(!row.contains('?'), "an explained finding is not marked: {row}");
     assert!(out.markdown.contains("Explained, 1 entries"), "{}", out.markdown);
-}
-
-/// `text` as if loaded from `<dir>/synthetic.toml`.
-fn loaded_config(dir: &std::path::Path, text: &str) -> bench::LoadedConfig {
-    bench::LoadedConfig {
-        path: dir.join("synthetic.toml"),
-        name: "synthetic".into(),
-        hash: bench::config::fnv1a(text.as_bytes()),
-        text: text.into(),
-        config: toml::from_str(text).expect("parses"),
-    }
 }
 
 #[test]

@@ -181,7 +181,8 @@ pub enum BenchCommand {
     /// Merge the parts of a sharded or filtered sweep into the full table.
     Merge(MergeArgs),
     /// Judge a written table again with the `[[plausibility.explained]]` entries its config
-    /// gained after the run (nothing is timed; the config may differ in those entries only).
+    /// gained after the run, and draw its `[front]` again (nothing is timed; the config may
+    /// differ in those entries, its `[[paper]]` sources and its `[front]` only).
     Explain(ExplainArgs),
     /// Recompute every number the README, docs/ and results/ pages quote from the committed
     /// tables (their `<!--= ... -->` claims), and find measured-looking numbers without one

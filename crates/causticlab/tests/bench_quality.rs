@@ -148,6 +148,11 @@ fn quick_front_places_every_cell_and_names_the_cheapest_per_error_level() {
         assert!(md.contains(&format!("## FLIP against {x}\n")), "no FLIP front against {x}");
     }
     assert!(md.contains("- **FLIP:** the mean HDR-FLIP"), "no FLIP line in the header");
+    // Alone in its results folder, the front draws none of T4's curves, and says why.
+    assert!(
+        md.contains("No progressive curves drawn: no table `photon_trace_progressive` in this results folder."),
+        "{md}"
+    );
     for x in ["Caustic map", "Frame"] {
         let section = md.split(&format!("## rel. RMSE against {x}\n")).nth(1).unwrap_or_else(|| panic!("no {x} front"));
         let section = section.split("\n## ").next().unwrap_or_default();

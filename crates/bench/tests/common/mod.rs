@@ -100,5 +100,17 @@ pub fn results(config: &Config, toml: &str, cells: Vec<CellResult>) -> Results {
         },
         cells,
         plausibility: vec![],
+        front_curves: None,
+    }
+}
+
+/// `text` as if loaded from `<dir>/synthetic.toml`.
+pub fn loaded_config(dir: &std::path::Path, text: &str) -> bench::LoadedConfig {
+    bench::LoadedConfig {
+        path: dir.join("synthetic.toml"),
+        name: "synthetic".into(),
+        hash: bench::config::fnv1a(text.as_bytes()),
+        text: text.into(),
+        config: toml::from_str(text).expect("parses"),
     }
 }
