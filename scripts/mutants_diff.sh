@@ -53,15 +53,30 @@ for f in "${changed[@]}"; do
     out=target/mutants/diff/$(basename "$f" .rs)
     mkdir -p "$out"
     # Exit 2: mutants missed, 3: some timed out (counted below); anything else but 0 is a failed run.
-    rc=0
-    cargo mutants --in-place -f "$f" --in-diff "$patch" "${shard[@]}" "${judge[@]}" \
-        --output "$out" > "$out/run.log" 2>&1 || rc=$?
+    # A run that fails for another reason (its unmutated baseline did not build or pass: a
+    # test process killed by a signal inside the driver, a full disk) is said with what it
+    # printed, its baseline's last lines but cargo's `Fresh` ones, and the disk's free space,
+    # then tried once more: the judged code is not at fault until a second run fails too.
+    for attempt in 1 2; do
+        rc=0
+        cargo mutants --in-place -f "$f" --in-diff "$patch" "${shard[@]}" "${judge[@]}" \
+            --output "$out" > "$out/run.log" 2>&1 || rc=$?
+        if [ $rc -eq 0 ] || [ $rc -eq 2 ] || [ $rc -eq 3 ] || grep -q "No mutants" "$out/run.log"; then
+            break
+        fi
+        {
+            echo "mutants_diff.sh: cargo mutants failed on $f (exit $rc, attempt $attempt of 2); it printed:"
+            grep -v '^ *Fresh ' "$out/run.log" | tail -30
+            echo "mutants_diff.sh: the end of its baseline's log (cargo's Fresh lines left out):"
+            grep -v '^ *Fresh ' "$out/mutants.out/log/baseline.log" 2> /dev/null | tail -30 | cut -c1-400
+            df -h . | sed 's/^/mutants_diff.sh: disk: /'
+        } >&2
+        [ $attempt -eq 2 ] && { echo "mutants_diff.sh: cargo mutants failed twice on $f: $out/run.log" >&2; exit 1; }
+    done
+    # No mutant on the changed lines (a comment, a test) is not a failure.
     if [ $rc -ne 0 ] && [ $rc -ne 2 ] && [ $rc -ne 3 ]; then
-        # No mutant on the changed lines (a comment, a test) is not a failure.
-        grep -q "No mutants" "$out/run.log" && { echo "mutants_diff.sh: $f: no mutant on the changed lines"; continue; }
-        tail -20 "$out/run.log" >&2
-        echo "mutants_diff.sh: cargo mutants failed on $f (exit $rc): $out/run.log" >&2
-        exit 1
+        echo "mutants_diff.sh: $f: no mutant on the changed lines"
+        continue
     fi
     o=$out/mutants.out
     # cargo-mutants exits 0 and writes no mutants.out when the diff leaves no mutant in the file.
