@@ -242,14 +242,18 @@ pub fn markdown(c: &FrontCurves, scene: &str, levels: &[f64], x: &str, y: &str, 
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "Progressive accumulation (`{}`, commit {}): the accumulated `{x}` at which each curve's `{y}` is first at \
-         most each level, with the frames it took; the last row, where each curve ends.\n",
+        "Progressive accumulation (`{}`, commit {}): the `{x}` time its frames took together until each curve's \
+         `{y}` is first at most each level, with those frames and the error they reached; the last row, where each \
+         curve ends.\n",
         c.table, c.commit
     );
     let names: Vec<&str> = mine.iter().map(|k| k.technique.as_str()).collect();
     let _ = writeln!(s, "| {y} at most | {} |", names.join(" | "));
     let _ = writeln!(s, "|---|{}", "---|".repeat(names.len()));
-    let cell = |p: &Point| format!("{} ({} frames, {})", significant(p.ms), p.frames, err(p.rel_rmse));
+    let cell = |p: &Point| {
+        let frames = if p.frames == 1 { "1 frame".to_string() } else { format!("{} frames", p.frames) };
+        format!("{} ({frames}, {})", significant(p.ms), err(p.rel_rmse))
+    };
     for &level in levels {
         let row: Vec<String> =
             mine.iter().map(|k| reaches(&k.points, level).map_or_else(|| "(not reached)".to_string(), cell)).collect();

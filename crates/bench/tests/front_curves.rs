@@ -50,7 +50,7 @@ reference_photons = 65536
 [front]
 x = "Caustic map"
 y = "rel. RMSE"
-levels = [0.2, 0.1, 0.05]
+levels = [0.5, 0.2, 0.1, 0.05]
 "#;
 
 const CURVES: &str = "\n[front.curves]\ntable = \"progressive\"\nx = \"Caustic map\"\ny = \"rel. RMSE\"\n";
@@ -149,6 +149,7 @@ fn the_front_says_when_each_curve_reaches_each_level_and_draws_it() {
     assert_eq!(fc.curves[0].scene, "sphere_on_plane");
     // Neither cell reaches 0.1; the curve does at its 16th frame, 160 ms.
     for row in [
+        "| 0.5 | 10.0 (1 frame, 0.3000) |",
         "| 0.2 | 30.0 (3 frames, 0.1700) |",
         "| 0.1 | 160.0 (16 frames, 0.0800) |",
         "| 0.05 | (not reached) |",
@@ -257,7 +258,7 @@ fn front_curves_must_name_a_front_axis_of_the_right_kind() {
     // A second error metric, so that front.curves.y can name one of front.y of the wrong kind.
     let two_errors = |curves: &str| {
         with(curves).replace(
-            "[front]\nx = \"Caustic map\"\ny = \"rel. RMSE\"\nlevels = [0.2, 0.1, 0.05]",
+            "[front]\nx = \"Caustic map\"\ny = \"rel. RMSE\"\nlevels = [0.5, 0.2, 0.1, 0.05]",
             "[[metric]]\nlabel = \"flux\"\nkind = \"flux_ratio\"\n\n[front]\nx = \"Caustic map\"\ny = [\"rel. RMSE\", \"flux\"]\nlevels = { \"rel. RMSE\" = [0.2], \"flux\" = [1.1] }",
         )
     };
