@@ -46,9 +46,10 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     if let Some(e) = &r.explained {
         let _ = writeln!(
             s,
-            "- **Explained after the run:** the config's `[[plausibility.explained]]` entries applied at commit {} \
-             ({}) by `causticlab bench explain`, which times nothing; the config was hash {} when measured and \
-             differs from it in those entries only",
+            "- **Explained after the run:** the config's `[[plausibility.explained]]` entries applied and its \
+             `[front]` drawn at commit {} ({}) by `causticlab bench explain`, which times nothing; the config was \
+             hash {} when measured and differs from it at most in those entries, its `[[paper]]` sources and its \
+             `[front]`, none of which is measured",
             e.commit, e.date, e.measured_config_hash
         );
     }
