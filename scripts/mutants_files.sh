@@ -15,6 +15,7 @@ declare -A TESTS=(
     [crates/bench/src/results.rs]="-p bench --lib --test plausibility --test tables"
     [crates/bench/src/measure.rs]="-p bench --lib"
     [crates/bench/src/same.rs]="-p bench --lib"
+    [crates/bench/src/front_curves.rs]="-p bench --lib --test front_curves"
     [crates/caustics/src/reference/optics.rs]="-p caustics --lib"
     [crates/caustics/src/compare.rs]="-p caustics --lib"
     [crates/caustics/src/scene/load.rs]="-p caustics --lib --test scene_files"

@@ -20,7 +20,7 @@ use std::path::Path;
 
 /// The config's TOML without its `[[plausibility.explained]]` entries, the `source` of its
 /// `[[paper]]` entries and its `[front]`: what must not change after the run.
-fn without_explanations_or_sources(text: &str, what: &str) -> Result<toml::Value> {
+fn what_was_measured(text: &str, what: &str) -> Result<toml::Value> {
     let mut v: toml::Value = toml::from_str(text).map_err(|e| input_error!("{what}: does not parse: {e}"))?;
     if let Some(t) = v.as_table_mut() {
         t.remove("front");
@@ -60,8 +60,8 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
         )
         .into());
     }
-    let measured = without_explanations_or_sources(&r.config.toml, &format!("{t}: the embedded config"))?;
-    if without_explanations_or_sources(&config.text, &config.path.display().to_string())? != measured {
+    let measured = what_was_measured(&r.config.toml, &format!("{t}: the embedded config"))?;
+    if what_was_measured(&config.text, &config.path.display().to_string())? != measured {
         return Err(input_error!(
             "{}: differs from the config {t} was measured with (hash {}) in more than its \
              [[plausibility.explained]] entries, its [[paper]] sources and its [front]: run the table again",

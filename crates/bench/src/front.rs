@@ -146,7 +146,7 @@ fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str, y: &st
     // Progressive accumulation's curves, where they are drawn against this x and y.
     let curves = results.front_curves.as_ref().filter(|_| spec.curves.as_ref().is_some_and(|c| c.x == x && c.y == y));
     if let Some(why) = curves.and_then(|c| c.missing.as_ref()) {
-        let _ = writeln!(s, "No progressive curves drawn: {why}.\n");
+        let _ = writeln!(s, "No progressive curves drawn: {}.\n", why.trim_end_matches('.'));
     }
     for f in fronts(config, results, x, y) {
         let _ = writeln!(s, "**{}**\n", f.scene);

@@ -6,11 +6,12 @@
 //! into the front's JSON when its table is written (with that table's commit), so that the
 //! front's Markdown and plot are their own; `bench explain` draws them again from a newer run.
 //!
-//! A curve is drawn only where it measures what the front's cells measure: the same device and
-//! `--quick`, the same CPU reference (photons and seed), and per scene the same receiver map
-//! (resolution) and Fresnel setting as every cell of the front; its frames time passes the
-//! front's x metric times (each of its patterns one of the x metric's). Otherwise the front's
-//! table says why no curve is drawn, and the plot has none.
+//! A curve is drawn only where it measures what the front's cells measure: the same device,
+//! `--quick` and validation, the same paths of light, camera and objects, the same CPU reference
+//! (photons and seed), and per scene the same scene file (and models), output size, lights,
+//! lighting and Fresnel setting as every cell of the front, from a cell that was not busy; its
+//! frames time passes the front's x metric times (each of its patterns one of the x metric's).
+//! Otherwise the front's table says why no curve is drawn, and the plot has none.
 
 use crate::config::Config;
 use crate::format::significant;
@@ -126,7 +127,7 @@ pub fn load(c: &Config, front: &Results, dir: &Path) -> Option<FrontCurves> {
 }
 
 /// Whether the config of the curves' table (`other`) measures what the front's (`c`) does,
-/// as far as the configs say (`--quick` or not): the same reference and receiver maps, a scene
+/// as far as the configs say (`--quick` or not): the same reference and output sizes, a scene
 /// in common, the Fresnel setting of each drawn technique that of every front technique, and
 /// timed passes the x metric names; `Err` says what differs. [`curves`] checks it, then each
 /// cell as run.
@@ -140,7 +141,7 @@ pub fn agree(c: &Config, spec: &CurvesSpec, other: &Config, quick: bool) -> Resu
     }
     let resolutions = |c: &Config| if quick { c.quick.resolution.clone() } else { c.matrix.resolution.clone() };
     if resolutions(c) != resolutions(other) {
-        return Err(format!("its receiver maps are {:?}, the front's {:?}", resolutions(other), resolutions(c)));
+        return Err(format!("its output sizes are {:?}, the front's {:?}", resolutions(other), resolutions(c)));
     }
     let scenes = |c: &Config| c.matrix.scenes.iter().map(|s| scene_label(s)).collect::<Vec<_>>();
     if !scenes(other).iter().any(|s| scenes(c).contains(s)) {
@@ -182,6 +183,14 @@ pub fn curves(c: &Config, front: &Results, spec: &CurvesSpec, other: &Results) -
             if front.run.quick { " (--quick)" } else { "" }
         ));
     }
+    let (a, b) = (&other.run, &front.run);
+    if a.validation != b.validation {
+        return Err(format!("its run had validation {}, the front's {}", on(a.validation), on(b.validation)));
+    }
+    let paths = |r: &crate::results::RunInfo| [r.light_path.clone(), r.camera_path.clone(), r.object_path.clone()];
+    if paths(a) != paths(b) {
+        return Err(format!("its light, camera and object paths are {:?}, the front's {:?}", paths(a), paths(b)));
+    }
     let oc: Config =
         toml::from_str(&other.config.toml).map_err(|e| format!("its embedded config does not parse: {e}"))?;
     agree(c, spec, &oc, front.run.quick)?;
@@ -196,24 +205,27 @@ pub fn curves(c: &Config, front: &Results, spec: &CurvesSpec, other: &Results) -
         if same_scene.is_empty() {
             continue;
         }
-        let fresnel = |v: &serde_json::Value| v.get("fresnel").cloned();
+        if cell.busy {
+            return Err(format!("{scene}: its `{technique}` cell ran on a busy machine"));
+        }
+        let fresnel = |v: &serde_json::Value| v.get("fresnel").map_or_else(|| "unset".to_string(), |f| f.to_string());
         for f in same_scene {
-            if f.cell.resolution != cell.cell.resolution {
+            let (mine, theirs) = (&cell.cell, &f.cell);
+            let differs = if mine.scene != theirs.scene || cell.models != f.models {
+                Some(format!("scene file {} (its models by checksum)", mine.scene))
+            } else if mine.resolution != theirs.resolution {
+                Some(format!("output {}x{}", mine.resolution[0], mine.resolution[1]))
+            } else if (mine.lights, &mine.lighting) != (theirs.lights, &theirs.lighting) {
+                Some(format!("lights {} with {} lighting", mine.lights, mine.lighting))
+            } else if fresnel(&cell.caustics) != fresnel(&f.caustics) {
+                Some(format!("fresnel {}", fresnel(&cell.caustics)))
+            } else {
+                None
+            };
+            if let Some(d) = differs {
                 return Err(format!(
-                    "{scene}: its receiver map is {}x{}, the front's {} cell's {}x{}",
-                    cell.cell.resolution[0],
-                    cell.cell.resolution[1],
-                    f.cell.technique_label,
-                    f.cell.resolution[0],
-                    f.cell.resolution[1]
-                ));
-            }
-            if fresnel(&f.caustics) != fresnel(&cell.caustics) {
-                return Err(format!(
-                    "{scene}: `{technique}` has fresnel {:?}, the front's {} cell {:?}",
-                    fresnel(&cell.caustics),
-                    f.cell.technique_label,
-                    fresnel(&f.caustics)
+                    "{scene}: `{technique}` has another {d} than the front's `{}` cell",
+                    theirs.technique_label
                 ));
             }
         }
@@ -223,6 +235,14 @@ pub fn curves(c: &Config, front: &Results, spec: &CurvesSpec, other: &Results) -
         return Err("no curve of a scene the front has".into());
     }
     Ok(out)
+}
+
+fn on(b: bool) -> &'static str {
+    if b {
+        "on"
+    } else {
+        "off"
+    }
 }
 
 /// The first point of `points` whose error is at most `level`: the time and frames a curve
@@ -242,9 +262,9 @@ pub fn markdown(c: &FrontCurves, scene: &str, levels: &[f64], x: &str, y: &str, 
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "Progressive accumulation (`{}`, commit {}): the `{x}` time its frames took together until each curve's \
-         `{y}` is first at most each level, with those frames and the error they reached; the last row, where each \
-         curve ends.\n",
+        "Progressive accumulation (`{}`, commit {}): the host time of its frames' passes (those its config names, \
+         each named by `{x}` too), added up until each curve's `{y}` is first at most each level, with those frames \
+         and the error they reached; the last row, where each curve ends.\n",
         c.table, c.commit
     );
     let names: Vec<&str> = mine.iter().map(|k| k.technique.as_str()).collect();

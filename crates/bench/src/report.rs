@@ -44,12 +44,13 @@ pub fn markdown(config: &Config, results: &Results) -> String {
         results.config.hash
     );
     if let Some(e) = &r.explained {
+        let front = if config.front.is_some() { " and its `[front]` drawn" } else { "" };
         let _ = writeln!(
             s,
-            "- **Explained after the run:** the config's `[[plausibility.explained]]` entries applied and its \
-             `[front]` drawn at commit {} ({}) by `causticlab bench explain`, which times nothing; the config was \
-             hash {} when measured and differs from it at most in those entries, its `[[paper]]` sources and its \
-             `[front]`, none of which is measured",
+            "- **Explained after the run:** the config's `[[plausibility.explained]]` entries applied{front} at \
+             commit {} ({}) by `causticlab bench explain`, which times nothing; the config was hash {} when \
+             measured and differs from it at most in those entries, its `[[paper]]` sources and its `[front]`, \
+             none of which is measured",
             e.commit, e.date, e.measured_config_hash
         );
     }

@@ -7,8 +7,8 @@
 mod common;
 use bench::config::Config;
 use bench::final_flip::{FinalFlip, ReferenceFinal};
-use bench::results::{Results, Value};
-use common::{cell, results};
+use bench::results::Results;
+use common::{cell, exact, results};
 
 const CONFIG: &str = r#"
 [table]
@@ -50,10 +50,6 @@ x = "Gather"
 y = ["rel. RMSE", "FLIP"]
 levels = { "rel. RMSE" = [0.2], "FLIP" = [0.05, 0.02] }
 "#;
-
-fn exact(kind: &str, v: f64) -> Value {
-    Value { kind: kind.into(), value: Some(v), min: Some(v), max: Some(v), q1: None, q3: None, samples: vec![] }
-}
 
 /// Four cells: `cheap` is faster; at 512² `sharp` has the lower RMSE but `cheap` the lower FLIP.
 fn synthetic() -> (Config, Results) {

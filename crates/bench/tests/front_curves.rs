@@ -1,7 +1,8 @@
 //! Progressive accumulation's curves on the front (issue 53 item 5, `[front.curves]`), from
 //! synthetic tables: a front written beside a table of curves copies them into its JSON, says per
 //! error level when each curve first reaches it, and draws them; a table of curves that measures
-//! something else (another reference, receiver map, Fresnel setting, device or timed passes) is
+//! something else (another reference, scene file, output size, lights, lighting, Fresnel
+//! setting, device, validation, path, timed passes, or a busy cell) is
 //! named in the front's table with the reason, and nothing is drawn; `bench explain` draws the
 //! curves of a front measured before its config asked for them; and the config's keys are
 //! checked.
@@ -9,8 +10,8 @@
 mod common;
 use bench::config::Config;
 use bench::progressive::Point;
-use bench::results::{Results, Value};
-use common::{cell, loaded_config, results};
+use bench::results::Results;
+use common::{cell, exact, loaded_config, results};
 use std::path::Path;
 
 const FRONT: &str = r#"
@@ -83,10 +84,6 @@ columns = ["metric"]
 [quality]
 reference_photons = 65536
 "#;
-
-fn exact(kind: &str, v: f64) -> Value {
-    Value { kind: kind.into(), value: Some(v), min: Some(v), max: Some(v), q1: None, q3: None, samples: vec![] }
-}
 
 /// The front: cheap 256² (2 ms, 0.30) and sharp 512² (8 ms, 0.12), neither below 0.1.
 fn front(text: &str) -> (Config, Results) {
@@ -184,12 +181,22 @@ fn a_table_that_measures_something_else_is_named_and_not_drawn() {
             Box::new(|r| r.config.toml = r.config.toml.replace("65536", "262144")),
             "reference of 262144 photons",
         ),
-        ("resolution", Box::new(|r| r.cells[0].cell.resolution = [64, 64]), "receiver map is 64x64"),
+        ("resolution", Box::new(|r| r.cells[0].cell.resolution = [64, 64]), "has another output 64x64 than"),
         (
             "fresnel",
             Box::new(|r| r.cells[0].caustics = serde_json::json!({ "fresnel": true })),
-            "has fresnel Some(Bool(true))",
+            "`progressive` has another fresnel true than the front's `cheap` cell",
         ),
+        (
+            "scene file",
+            Box::new(|r| r.cells[0].cell.scene = "../elsewhere/sphere_on_plane.toml".into()),
+            "another scene file ../elsewhere/sphere_on_plane.toml",
+        ),
+        ("lights", Box::new(|r| r.cells[0].cell.lights = 2), "another lights 2 with dynamic lighting"),
+        ("lighting", Box::new(|r| r.cells[0].cell.lighting = "static".into()), "with static lighting"),
+        ("busy", Box::new(|r| r.cells[0].busy = true), "its `progressive` cell ran on a busy machine"),
+        ("validation", Box::new(|r| r.run.validation = true), "its run had validation on, the front's off"),
+        ("paths", Box::new(|r| r.run.light_path = "orbit".into()), "its light, camera and object paths are [\"orbit\""),
         ("device", Box::new(|r| r.meta.device_slug = "another-gpu".into()), "measured on another-gpu"),
         ("quick", Box::new(|r| r.run.quick = true), "(--quick)"),
         (
@@ -222,6 +229,19 @@ fn a_table_that_measures_something_else_is_named_and_not_drawn() {
     let named = format!("{FRONT}{CURVES}techniques = [\"alpha 1\"]\n");
     let (r, _) = write(&root, &named, Some(&progressive(PROGRESSIVE)));
     assert!(r.front_curves.and_then(|c| c.missing).is_some_and(|m| m.contains("no technique `alpha 1`")));
+    // A named technique is drawn, the other one not.
+    let mut two = progressive(PROGRESSIVE);
+    let mut other = two.cells[0].clone();
+    other.cell.index = 1;
+    other.cell.technique = 1;
+    other.cell.technique_label = "alpha 1".into();
+    two.cells.push(other);
+    two.config.toml = PROGRESSIVE
+        .replace("[[metric]]", "[[technique]]\nlabel = \"alpha 1\"\ntechnique = \"photon-trace\"\n\n[[metric]]");
+    let (r, md) = write(&root, &named, Some(&two));
+    let drawn: Vec<String> = r.front_curves.expect("curves").curves.iter().map(|c| c.technique.clone()).collect();
+    assert_eq!(drawn, ["alpha 1"]);
+    assert!(md.contains("| rel. RMSE at most | alpha 1 |"), "{md}");
     // A config without [front.curves] keeps nothing.
     let (r, md) = write(&root, FRONT, Some(&progressive(PROGRESSIVE)));
     assert!(r.front_curves.is_none() && !md.contains("Progressive accumulation"));
@@ -274,6 +294,12 @@ fn front_curves_must_name_a_front_axis_of_the_right_kind() {
             "key `front.curves.y`: `flux` is not a `rel_rmse` metric",
         ),
         (
+            "kind.toml",
+            with("table = \"progressive\"\nx = \"Caustic map\"\ny = \"rel. RMSE\"\n")
+                .replace("kind = \"pass_host_ms\"", "kind = \"pass_ms\""),
+            "key `front.curves.x`: `Caustic map` is not a `pass_host_ms` metric",
+        ),
+        (
             "table.toml",
             with("table = \"../progressive.json\"\nx = \"Caustic map\"\ny = \"rel. RMSE\"\n"),
             "key `front.curves.table`",
@@ -298,7 +324,7 @@ fn front_curves_must_name_a_front_axis_of_the_right_kind() {
 
 #[test]
 fn the_shipped_front_and_its_curves_table_measure_the_same_thing() {
-    // F1 draws T4's curves: the two configs must keep the same reference, receiver maps, Fresnel
+    // F1 draws T4's curves: the two configs must keep the same reference, output sizes, Fresnel
     // setting and timed passes, full size and --quick, or the front would draw none.
     let configs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../bench_configs");
     let f1 = bench::LoadedConfig::load(&configs.join("front.toml")).expect("front.toml");
@@ -322,7 +348,7 @@ fn the_shipped_front_and_its_curves_table_measure_the_same_thing() {
         (
             "resolution",
             PROGRESSIVE.replace("photons = [256]\n", "photons = [256]\nresolution = [[64, 64]]\n"),
-            "its receiver maps are [[64, 64]]",
+            "its output sizes are [[64, 64]]",
         ),
         (
             "reference",
@@ -341,7 +367,7 @@ fn the_shipped_front_and_its_curves_table_measure_the_same_thing() {
             .unwrap_or_else(|| panic!("{name}: agreed"));
         assert!(why.contains(needle), "{name}: {why}");
     }
-    // Under --quick the [quick] reference and receiver maps are compared.
+    // Under --quick the [quick] reference and output sizes are compared.
     let quick_ref = format!("{PROGRESSIVE}\n[quick]\nreference_photons = 4096\n");
     bench::front_curves::agree(&c, &spec, &other(&quick_ref), false).expect("the full-size reference agrees");
     let why = bench::front_curves::agree(&c, &spec, &other(&quick_ref), true).expect_err("the quick one differs");

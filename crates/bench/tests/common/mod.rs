@@ -20,6 +20,11 @@ pub fn value(samples: &[f64]) -> Value {
     }
 }
 
+/// A metric's value without samples: `v` exactly (an error, a FLIP, a time given as is).
+pub fn exact(kind: &str, v: f64) -> Value {
+    Value { kind: kind.into(), value: Some(v), min: Some(v), max: Some(v), q1: None, q3: None, samples: vec![] }
+}
+
 pub fn cell(index: usize, technique: usize, label: &str, photons: u32, samples: &[f64]) -> CellResult {
     CellResult {
         cell: Cell {
