@@ -144,7 +144,7 @@ fn section(config: &Config, results: &Results, spec: &FrontSpec, x: &str, y: &st
     let kind = config.metric_kind(y).unwrap_or("rel_rmse");
     let err = |v: f64| crate::format::format_value(kind, Some(v));
     // Progressive accumulation's curves, where they are drawn against this x and y.
-    let curves = results.front_curves.as_ref().filter(|_| spec.curves.as_ref().is_some_and(|c| c.x == x && c.y == y));
+    let curves = results.front_curves.as_ref().filter(|_| spec.curves.as_ref().is_some_and(|c| c.drawn_on(x, y)));
     if let Some(why) = curves.and_then(|c| c.missing.as_ref()) {
         let _ = writeln!(s, "No progressive curves drawn: {}.\n", why.trim_end_matches('.'));
     }

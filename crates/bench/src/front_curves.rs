@@ -39,6 +39,18 @@ pub struct CurvesSpec {
     pub techniques: Vec<String>,
 }
 
+impl CurvesSpec {
+    /// Whether the curves are drawn on the panels (and sections) of x metric `x` and y metric `y`.
+    pub fn drawn_on(&self, x: &str, y: &str) -> bool {
+        self.x == x && self.y == y
+    }
+
+    /// Whether the curve of the technique labelled `label` is drawn.
+    pub fn draws(&self, label: &str) -> bool {
+        self.techniques.is_empty() || self.techniques.iter().any(|t| t == label)
+    }
+}
+
 /// What a front drew from `[front.curves]`, kept in its JSON.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct FrontCurves {
@@ -99,31 +111,23 @@ fn reference(c: &Config, quick: bool) -> (u64, u64) {
 pub fn load(c: &Config, front: &Results, dir: &Path) -> Option<FrontCurves> {
     let spec = c.front.as_ref()?.curves.as_ref()?;
     let path = dir.join(format!("{}.json", spec.table));
-    let none = |why: String| FrontCurves {
-        table: spec.table.clone(),
-        commit: String::new(),
-        date: String::new(),
-        curves: vec![],
-        missing: Some(why),
+    let outcome = |commit: &str, date: &str, drawn: Result<Vec<Curve>, String>| {
+        let (curves, missing) = match drawn {
+            Ok(curves) => (curves, None),
+            Err(why) => (vec![], Some(why)),
+        };
+        Some(FrontCurves { table: spec.table.clone(), commit: commit.into(), date: date.into(), curves, missing })
     };
     if !path.exists() {
-        return Some(none(format!("no table `{}` in this results folder", spec.table)));
+        return outcome("", "", Err(format!("no table `{}` in this results folder", spec.table)));
     }
     let other = match crate::results::read(&path, "table") {
         Ok(r) => r,
-        Err(e) => return Some(none(format!("{e:#}"))),
+        Err(e) => return outcome("", "", Err(format!("{e:#}"))),
     };
-    let mut out = none(String::new());
-    out.commit = other.meta.commit.clone();
-    out.date = other.meta.date.clone();
-    match curves(c, front, spec, &other) {
-        Ok(curves) => {
-            out.curves = curves;
-            out.missing = None;
-        }
-        Err(why) => out.missing = Some(format!("`{}` (commit {}): {why}", spec.table, other.meta.commit)),
-    }
-    Some(out)
+    let (commit, date) = (&other.meta.commit, &other.meta.date);
+    let drawn = curves(c, front, spec, &other).map_err(|why| format!("`{}` (commit {commit}): {why}", spec.table));
+    outcome(commit, date, drawn)
 }
 
 /// Whether the config of the curves' table (`other`) measures what the front's (`c`) does,
@@ -159,8 +163,7 @@ pub fn agree(c: &Config, spec: &CurvesSpec, other: &Config, quick: bool) -> Resu
     if let Some(t) = spec.techniques.iter().find(|t| !labels.contains(&t.as_str())) {
         return Err(format!("it has no technique `{t}` (front.curves.techniques)"));
     }
-    let drawn = |t: &usize| spec.techniques.is_empty() || spec.techniques.contains(&other.techniques[*t].label);
-    for t in (0..other.techniques.len()).filter(drawn) {
+    for t in (0..other.techniques.len()).filter(|&t| spec.draws(&other.techniques[t].label)) {
         let fresnel = other.technique_settings(t).fresnel;
         if let Some(f) = (0..c.techniques.len()).find(|&f| c.technique_settings(f).fresnel != fresnel) {
             return Err(format!(
@@ -197,7 +200,7 @@ pub fn curves(c: &Config, front: &Results, spec: &CurvesSpec, other: &Results) -
     let mut out = vec![];
     for cell in other.cells.iter().filter(|r| !r.progressive.is_empty()) {
         let technique = &cell.cell.technique_label;
-        if !spec.techniques.is_empty() && !spec.techniques.contains(technique) {
+        if !spec.draws(technique) {
             continue;
         }
         let scene = scene_label(&cell.cell.scene);

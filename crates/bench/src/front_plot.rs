@@ -9,11 +9,12 @@
 use crate::config::{Config, FrontSpec};
 use crate::font::FAMILY;
 use crate::front::{fronts, SceneFront};
-use crate::front_curves::Curve;
+use crate::front_curves::{Curve, CurvesSpec};
 use crate::plot::{
     draw_title, ellipsize, encode_sized, err, log_light_lines, log_mesh, log_ticks, text_width, DrawResult, Drawing,
     Plot, GREY, PALETTE, PANEL_HEIGHT, TITLE_HEIGHT, WIDTH,
 };
+use crate::progressive::Point;
 
 use crate::results::Results;
 use anyhow::Result;
@@ -32,10 +33,10 @@ struct Frame {
     /// Per row (x metric and scene), a front per y metric.
     rows: Vec<Vec<SceneFront>>,
     width: u32,
-    /// Progressive accumulation's curves, the (x, y) labels of the panels they are drawn on,
-    /// and their techniques' labels in order (their colours).
+    /// Progressive accumulation's curves, the `[front.curves]` that says on which panels they
+    /// are drawn, and their techniques' labels in order (their colours).
     curves: Vec<Curve>,
-    curve_axes: Option<(String, String)>,
+    curves_spec: Option<CurvesSpec>,
     curve_labels: Vec<String>,
     /// The table the curves come from (the legend names it).
     curve_table: String,
@@ -49,7 +50,7 @@ const CURVE_COLOURS: [RGBColor; 4] =
 impl Frame {
     /// The curves of one panel, each with its colour.
     fn curves_of(&self, f: &SceneFront) -> Vec<(&Curve, RGBColor)> {
-        if self.curve_axes.as_ref() != Some(&(f.x.clone(), f.y.clone())) {
+        if !self.curves_spec.as_ref().is_some_and(|s| s.drawn_on(&f.x, &f.y)) {
             return vec![];
         }
         self.curves
@@ -99,7 +100,7 @@ pub fn render(config: &Config, results: &Results, spec: &FrontSpec) -> Result<Pl
     let drawn = results.front_curves.as_ref().filter(|c| c.missing.is_none());
     let curves = drawn.map_or_else(Vec::new, |c| c.curves.clone());
     let frame = Frame {
-        curve_axes: spec.curves.as_ref().map(|c| (c.x.clone(), c.y.clone())),
+        curves_spec: spec.curves.clone(),
         curve_labels: crate::format::first_seen(curves.iter().map(|c| c.technique.clone())),
         curve_table: drawn.map_or_else(String::new, |c| c.table.clone()),
         curves,
@@ -129,6 +130,11 @@ impl Drawing for Frame {
         }
         Ok(())
     }
+}
+
+/// The points of curve `c` a log-log panel can place (time and error above 0).
+fn plotted(c: &Curve) -> impl Iterator<Item = &Point> {
+    c.points.iter().filter(|p| p.ms > 0.0 && p.rel_rmse > 0.0)
 }
 
 /// Draws marker `shape` (a paper's) at `at` in `colour`.
@@ -208,7 +214,7 @@ fn panel<DB: DrawingBackend>(chart_area: &DrawingArea<DB, Shift>, f: &Frame, sce
     let curves = f.curves_of(scene);
     // The axes hold the cells and the curves (whose points are all finite and positive: a
     // time and an error of a frame that ran).
-    let curve_points = curves.iter().flat_map(|(c, _)| &c.points).filter(|p| p.ms > 0.0 && p.rel_rmse > 0.0);
+    let curve_points = curves.iter().flat_map(|(c, _)| plotted(c));
     let (xs, ys): (Vec<f64>, Vec<f64>) =
         scene.points.iter().map(|p| (p.x, p.y)).chain(curve_points.map(|p| (p.ms, p.rel_rmse))).unzip();
     let span = |v: &[f64]| v.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
@@ -235,12 +241,10 @@ fn panel<DB: DrawingBackend>(chart_area: &DrawingArea<DB, Shift>, f: &Frame, sce
     let front: Vec<(f64, f64)> = scene.front.iter().map(|&i| (scene.points[i].x, scene.points[i].y)).collect();
     chart.draw_series(LineSeries::new(front, GREY.stroke_width(2))).map_err(err)?;
     for (c, colour) in &curves {
-        let line = c.points.iter().filter(|p| p.ms > 0.0 && p.rel_rmse > 0.0).map(|p| (p.ms, p.rel_rmse));
+        let line = plotted(c).map(|p| (p.ms, p.rel_rmse));
         chart.draw_series(LineSeries::new(line, colour.stroke_width(2))).map_err(err)?;
         // An open square at 1, 4, 16, 64, ... frames: the frames can be read off the line.
-        let marks = c.points.iter().filter(|p| {
-            p.ms > 0.0 && p.rel_rmse > 0.0 && p.frames.is_power_of_two() && p.frames.trailing_zeros() % 2 == 0
-        });
+        let marks = plotted(c).filter(|p| p.frames.is_power_of_two() && p.frames.trailing_zeros() % 2 == 0);
         let squares = marks
             .map(|p| EmptyElement::at((p.ms, p.rel_rmse)) + Rectangle::new([(-3, -3), (3, 3)], colour.stroke_width(1)));
         chart.draw_series(squares).map_err(err)?;

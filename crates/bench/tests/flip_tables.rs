@@ -151,11 +151,8 @@ fn front_levels_must_say_which_error_metric_they_are_for() {
         ),
         ("missing.toml", "levels = { \"rel. RMSE\" = [0.2] }", "levels above 0 for `FLIP`"),
     ] {
-        let p = configs.join(name);
         let bad = text.replace("levels = { \"rel. RMSE\" = [0.2], \"FLIP\" = [0.05, 0.02] }", levels);
-        std::fs::write(&p, bad).expect("a config");
-        let e = bench::LoadedConfig::load(&p).err().unwrap_or_else(|| panic!("{name} loaded"));
-        let msg = format!("{e:#}");
+        let msg = common::load_error(&configs.join(name), &bad);
         assert!(msg.contains("key `front.levels`") && msg.contains(needle), "{name}: {msg}");
     }
     let ok = configs.join("ok.toml");

@@ -310,10 +310,7 @@ fn front_curves_must_name_a_front_axis_of_the_right_kind() {
             "colour",
         ),
     ] {
-        let p = dir.join(name);
-        std::fs::write(&p, bad).expect("a config");
-        let e = bench::LoadedConfig::load(&p).err().unwrap_or_else(|| panic!("{name} loaded"));
-        let msg = format!("{e:#}");
+        let msg = common::load_error(&dir.join(name), &bad);
         assert!(msg.contains(needle), "{name}: {msg}");
     }
     let ok = dir.join("ok.toml");

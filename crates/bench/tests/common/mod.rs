@@ -119,3 +119,13 @@ pub fn loaded_config(dir: &std::path::Path, text: &str) -> bench::LoadedConfig {
         config: toml::from_str(text).expect("parses"),
     }
 }
+
+/// Writes `text` to `path` and loads it as the bench does (validation included): the error it
+/// gives, with its causes. Panics where it loads.
+pub fn load_error(path: &std::path::Path, text: &str) -> String {
+    std::fs::write(path, text).expect("a config");
+    match bench::LoadedConfig::load(path) {
+        Ok(_) => panic!("{} loaded", path.display()),
+        Err(e) => format!("{e:#}"),
+    }
+}
