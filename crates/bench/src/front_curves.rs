@@ -286,3 +286,17 @@ pub fn markdown(c: &FrontCurves, scene: &str, levels: &[f64], x: &str, y: &str, 
     let _ = writeln!(s, "| (end) | {} |\n", last.join(" | "));
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn curves_are_drawn_on_their_own_x_and_y_only_and_for_the_techniques_named() {
+        let spec = CurvesSpec { table: "t".into(), x: "ms".into(), y: "err".into(), techniques: vec!["a".into()] };
+        assert!(spec.drawn_on("ms", "err"));
+        assert!(!spec.drawn_on("ms", "FLIP") && !spec.drawn_on("Frame", "err") && !spec.drawn_on("Frame", "FLIP"));
+        assert!(spec.draws("a") && !spec.draws("b"));
+        assert!(CurvesSpec { techniques: vec![], ..spec }.draws("b"));
+    }
+}
