@@ -148,13 +148,15 @@ if [ "$cluster" -eq 1 ]; then
     exit 0
 fi
 # 6. What would travel to a lent machine: the files git does not ignore (tracked and
-# untracked), plus the pack.
-tree_bytes=$(git ls-files -z --cached --others --exclude-standard | xargs -0 stat -c %s 2>/dev/null | awk '{s+=$1} END {print s+0}')
+# untracked) that are there (a tracked file deleted in the work tree does not travel), plus the
+# pack.
+present() { while IFS= read -r -d '' f; do [ -f "$f" ] && printf '%s\0' "$f"; done; }
+tree_bytes=$(git ls-files -z --cached --others --exclude-standard | present | xargs -0 -r stat -c %s | awk '{s+=$1} END {print s+0}')
 total=$((tree_bytes + pack_bytes))
 echo "gpu_pack: pack $(mib "$pack_bytes") (binary $(mib "$(stat -c %s "$pack/causticlab.xz")") xz, models $(mib "$(stat -c %s "$pack/models.tar.xz")")); working tree $(mib "$tree_bytes"); transfer $(mib "$total") of $limit_mib MiB"
 if [ "$total" -gt $((limit_mib * 1048576)) ]; then
     echo "gpu_pack: the transfer would exceed $limit_mib MiB; the largest folders under results/:" >&2
-    git ls-files -z -- results | xargs -0 stat -c '%s %n' | awk '{ split($2, p, "/"); s[p[1] "/" p[2]] += $1 }
+    git ls-files -z -- results | present | xargs -0 -r stat -c '%s %n' | awk '{ split($2, p, "/"); s[p[1] "/" p[2]] += $1 }
         END { for (d in s) printf "%10.1f MiB  %s\n", s[d] / 1048576, d }' | sort -rn | head -n 5 >&2
     echo "gpu_pack: a GPU folder that a newer run of the same configs has replaced can go (git keeps it; docs/bench.md, A GPU run)" >&2
     exit 1

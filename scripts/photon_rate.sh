@@ -30,8 +30,8 @@ else
 fi
 
 "$bin" bench bench_configs/photon_trace_rate.toml | tee "$tmp/bench.log"
-table=$(grep -o 'results/[^ ]*/photon_trace_rate.json' "$tmp/bench.log" | tail -1)
-[ -n "$table" ] || { echo "photon_rate.sh: the bench wrote no photon_trace_rate.json" >&2; exit 1; }
+table=$(grep -o 'results/[^ ]*/photon_trace_rate\.json\.gz' "$tmp/bench.log" | tail -1)
+[ -n "$table" ] || { echo "photon_rate.sh: the bench wrote no photon_trace_rate.json.gz" >&2; exit 1; }
 
 for scene in sphere_on_plane bunny_in_room; do
     for fresnel in true false; do
@@ -45,9 +45,9 @@ done
 # The measurements, one row per scene and Fresnel setting, into $csv (full precision); then the
 # page from that file's rows: every number on the page is a cell of the CSV, rounded.
 TMP="$tmp" TABLE="$table" PHOTONS="$photons" RUNS="$runs" CSV="$csv" python3 - <<'MEASURED'
-import csv, json, os, statistics
+import csv, gzip, json, os, statistics
 tmp, n, runs = os.environ["TMP"], int(os.environ["PHOTONS"]), int(os.environ["RUNS"])
-bench = json.load(open(os.environ["TABLE"]))
+bench = json.load(gzip.open(os.environ["TABLE"], "rt"))
 def find(scene, label):
     for c in bench["cells"]:
         cell = c["cell"]
@@ -85,8 +85,8 @@ with open(os.environ["CSV"], "w", newline="") as f:
 MEASURED
 
 CSV="$csv" OUT="$out" PHOTONS="$photons" RUNS="$runs" COMMIT="$commit" DATE="$(date -u +%Y-%m-%dT%H:%M:%SZ)" \
-TABLE_MD="$(python3 -c 'import os, sys; print(os.path.relpath(sys.argv[1].removesuffix(".json") + ".md", "results"))' "$table")" \
-DEVICE="$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["meta"]["device"])' "$table")" \
+TABLE_MD="$(python3 -c 'import os, sys; print(os.path.relpath(sys.argv[1].removesuffix(".json.gz") + ".md", "results"))' "$table")" \
+DEVICE="$(python3 -c 'import gzip, json, sys; print(json.load(gzip.open(sys.argv[1], "rt"))["meta"]["device"])' "$table")" \
 CPU="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')" CORES="$(nproc)" \
 python3 - <<'PAGE'
 import csv, os

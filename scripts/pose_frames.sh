@@ -5,7 +5,7 @@
 # are medians over its frames; this is where a median hides a pattern along the path (T3: a
 # bottom level rebuilt around the turned dragon, results/photon_trace_paths_findings.md).
 #
-#   bash scripts/pose_frames.sh results/<device>/photon_trace_moving.json [OUT.csv]
+#   bash scripts/pose_frames.sh results/<device>/photon_trace_moving.json.gz [OUT.csv]
 #
 # OUT defaults to results/<table>_frames.csv. Frame f of a cell is its warm-up frames plus the
 # sample's index (frame 0, the scene's own pose, has no pose update and no row) (each attempt of a cell measured again starts at frame 0; its kept attempt's
@@ -13,13 +13,18 @@
 # (`caustics::animation`). Needs python3.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ $# -ge 1 ] || { echo "usage: scripts/pose_frames.sh TABLE.json [OUT.csv]" >&2; exit 2; }
+[ $# -ge 1 ] || { echo "usage: scripts/pose_frames.sh TABLE.json.gz [OUT.csv]" >&2; exit 2; }
 table=$1
 [ -f "$table" ] || { echo "pose_frames.sh: $table: no such file" >&2; exit 2; }
-out=${2:-results/$(basename "$table" .json)_frames.csv}
+name=$(basename "$table")
+name=${name%.gz}
+out=${2:-results/${name%.json}_frames.csv}
 TABLE="$table" OUT="$out" python3 - <<'ROWS'
-import csv, json, os, sys
-table = json.load(open(os.environ["TABLE"]))
+import csv, gzip, json, os, sys
+# A table as the bench writes it (gzip-compressed, whatever its name) or unpacked.
+with open(os.environ["TABLE"], "rb") as f:
+    gz = f.read(2) == b"\x1f\x8b"
+table = json.load(gzip.open(os.environ["TABLE"], "rt") if gz else open(os.environ["TABLE"]))
 run = table["run"]
 if all(run[k] == "static" for k in ("light_path", "camera_path", "object_path")):
     sys.exit(f"pose_frames.sh: {os.environ['TABLE']}: every path is static, no pose changes")

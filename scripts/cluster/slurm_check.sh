@@ -106,12 +106,12 @@ wait_for() {   # job id: until it has left the queue
 echo "== 1. $config --quick as a 4-task array, one at a time, merged; against an unsharded run"
 bash scripts/cluster/submit.sh --shared "$tmp/shared" --pack "$tmp/pack" --quick --shards 4 --throttle 1 \
     --name whole --wait "$config" || { tail -n 20 "$tmp"/shared/runs/whole.1/logs/*; fail "the sweep's merge failed"; }
-merged=$(find "$tmp/shared/results" -path "*/quick/$config.json")
-[ -n "$merged" ] || fail "the merge wrote no $config.json"
+merged=$(find "$tmp/shared/results" -path "*/quick/$config.json.gz")
+[ -n "$merged" ] || fail "the merge wrote no $config.json.gz"
 [ "$(find "$tmp/shared/runs/whole.1/results" -name "$config.shard-[1-4]-of-4.json" | wc -l)" -eq 4 ] || fail "not 4 parts in the run's folder"
 CAUSTICLAB_COMMIT=$(cat "$tmp/pack/COMMIT") "$bin" bench "bench_configs/$config.toml" --quick --results "$tmp/direct" >"$tmp/direct.log" 2>&1 \
     || { tail -n 20 "$tmp/direct.log"; fail "the unsharded run failed"; }
-direct=$(find "$tmp/direct" -path "*/quick/$config.json")
+direct=$(find "$tmp/direct" -path "*/quick/$config.json.gz")
 "$bin" bench same "$direct" "$merged" || fail "the merged table differs from the unsharded run"
 echo "slurm_check: 1 ok ($(($(date +%s) - t0)) s so far)"
 

@@ -116,8 +116,8 @@ mod tests {
     fn a_table_with_curves_draws_a_panel_per_scene() {
         // The committed T4 table (lavapipe) and the config it embeds.
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../results");
-        let path =
-            root.join("llvmpipe-llvmpipe-llvm-15-0-6-256-bits-mesa-22-3-6-llvm-15-0-6/photon_trace_progressive.json");
+        let path = root
+            .join("llvmpipe-llvmpipe-llvm-15-0-6-256-bits-mesa-22-3-6-llvm-15-0-6/photon_trace_progressive.json.gz");
         let mut results = crate::results::read(&path, "T4").expect("the T4 table");
         let config: crate::config::Config = toml::from_str(&results.config.toml).expect("its config");
         assert!(has_curves(&results));

@@ -41,7 +41,7 @@ fn what_was_measured(text: &str, what: &str) -> Result<toml::Value> {
     Ok(v)
 }
 
-/// Judges `table` (a `<config>.json` the bench wrote) again with `config`'s explanations and
+/// Judges `table` (a `<config>.json.gz` the bench wrote) again with `config`'s explanations and
 /// writes it back, with its Markdown, CSV and plot, into `root`'s device folder.
 pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -> Result<Outcome> {
     let t = table.display();
@@ -72,7 +72,7 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
     }
     // The table is rewritten where the bench keeps it: only from that file, so that a copy or an
     // older table cannot replace it.
-    let home = device_dir(root, &r).join(format!("{}.json", r.config.name));
+    let home = crate::results::table_file(&device_dir(root, &r), &r.config.name);
     let same = |a: &Path, b: &Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b);
     if !same(table, &home) {
         return Err(input_error!(

@@ -27,7 +27,7 @@ use std::path::Path;
 #[serde(deny_unknown_fields)]
 pub struct CurvesSpec {
     /// The name of the config whose table has the curves (`photon_trace_progressive`): its
-    /// `<name>.json` in the front's results folder.
+    /// `<name>.json.gz` in the front's results folder.
     pub table: String,
     /// The front's time metric they are drawn against (a `pass_host_ms` metric: a curve's
     /// time is its frames' pass host times added up).
@@ -110,7 +110,7 @@ fn reference(c: &Config, quick: bool) -> (u64, u64) {
 /// checked against it; None where the config has no `[front.curves]`.
 pub fn load(c: &Config, front: &Results, dir: &Path) -> Option<FrontCurves> {
     let spec = c.front.as_ref()?.curves.as_ref()?;
-    let path = dir.join(format!("{}.json", spec.table));
+    let path = crate::results::table_file(dir, &spec.table);
     let outcome = |commit: &str, date: &str, drawn: Result<Vec<Curve>, String>| {
         let (curves, missing) = match drawn {
             Ok(curves) => (curves, None),

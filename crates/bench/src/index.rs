@@ -1,5 +1,5 @@
 //! `results/README.md`: an index of every table under the results folder, with its device
-//! and date, rebuilt from the `<config>.json` files after each run or merge.
+//! and date, rebuilt from the `<config>.json.gz` files after each run or merge.
 
 use crate::results::Results;
 use anyhow::Result;
@@ -11,8 +11,9 @@ const HEADER: &str = "# Results
 
 Every table here was written by `causticlab bench` (or `causticlab bench merge`); this index is
 rebuilt after each run. One folder per device (`<driver>-<device>` slug); in each, per config:
-`<config>.md` (the table beside the paper's), `.csv` (one row per cell and metric), `.json`
-(everything, raw samples included) and `.png` and `.svg` (the plot). lavapipe numbers are serialized CPU
+`<config>.md` (the table beside the paper's), `.csv` (one row per cell and metric), `.json.gz`
+(everything, raw samples included, as gzip-compressed JSON: `zcat` reads it) and `.png` and
+`.svg` (the plot). lavapipe numbers are serialized CPU
 time: compare techniques within one device, never lavapipe against a GPU.
 ";
 
@@ -35,7 +36,7 @@ const OTHERS: [(&str, &str); 5] = [
     ),
 ];
 
-/// Rebuilds `<root>/README.md` from `<root>/*/*.json`.
+/// Rebuilds `<root>/README.md` from `<root>/*/*.json.gz` (and plain `*.json` tables).
 pub fn write_index(root: &Path) -> Result<PathBuf> {
     let mut rows: Vec<(String, String, String)> = vec![];
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
@@ -47,13 +48,13 @@ pub fn write_index(root: &Path) -> Result<PathBuf> {
             .map(|rd| {
                 rd.filter_map(|e| e.ok())
                     .map(|e| e.path())
-                    .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                    .filter(|p| crate::results::table_name(p).is_some())
                     .collect()
             })
             .unwrap_or_default();
         files.sort();
         for f in files {
-            let Ok(text) = std::fs::read_to_string(&f) else { continue };
+            let Ok(text) = crate::results::read_text(&f, "table") else { continue };
             let Ok(r) = serde_json::from_str::<Results>(&text) else { continue };
             let folder = d.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
             let md = format!("{folder}/{}.md", r.config.name);

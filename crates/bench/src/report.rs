@@ -131,8 +131,9 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     let _ = writeln!(s, "![plot]({name}.png)\n\nThe plot as SVG: [{name}.svg]({name}.svg).\n");
     let _ = writeln!(
         s,
-        "Regenerate: `causticlab bench {}{}`; raw samples in `{name}.json`, one row per cell and metric in \
-         `{name}.csv`; redraw this table from the JSON with `causticlab bench merge {}/{name}.json` from the \
+        "Regenerate: `causticlab bench {}{}`; raw samples in `{name}.json.gz` (gzip-compressed JSON), one row \
+         per cell and metric in `{name}.csv`; redraw this table from the JSON with `causticlab bench merge \
+         {}/{name}.json.gz` from the \
          repository's root (the table goes to the `--results` folder's, `results/` by default).",
         results.config.file,
         if r.quick { " --quick" } else { "" },

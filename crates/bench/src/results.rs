@@ -1,11 +1,15 @@
-//! `<config>.json`: everything a run measured (raw samples included) and what it ran on.
-//! Shard files have the same shape with a subset of the cells; `bench merge` reads them back.
+//! `<config>.json.gz`: everything a run measured (raw samples included) and what it ran on, as
+//! gzip-compressed JSON (`zcat` or Python's `gzip.open` read it; a plain `<config>.json` is read
+//! too). Shard files (`parts/`) have the same shape, uncompressed, with a subset of the cells;
+//! `bench merge` reads them back.
 
 use crate::measure::CellRun;
 use crate::plan::{Cell, Filter, Shard};
 use crate::record::{pass_summaries, Pass};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::io::Read as _;
+use std::path::{Path, PathBuf};
 use vkcore::PipelineStats;
 
 pub const SCHEMA: u32 = 1;
@@ -280,11 +284,75 @@ pub fn cell_result(cell: &Cell, run: &CellRun, metrics: BTreeMap<String, Value>,
     }
 }
 
-/// A results file the bench wrote (a table or a part; `what` names it in errors), checked to be
-/// of this causticlab's schema.
-pub fn read(path: &std::path::Path, what: &str) -> anyhow::Result<Results> {
+/// How the bench names a table's file: `<config>.json.gz`. Its raw samples compress about
+/// ninefold, and the tracked tree must travel to a GPU machine in 64 MiB (`scripts/gpu_pack.sh`).
+pub const TABLE_EXT: &str = "json.gz";
+
+/// The most a results file may decompress to (256 MiB): over fifty times the largest table yet
+/// (a GPU table of 4.6 MB), so that a corrupt or hostile file fails before it fills memory.
+pub const MAX_JSON_BYTES: u64 = 1 << 28;
+
+/// The file of table `name` in `dir`: `<name>.json.gz` as the bench writes it, or `<name>.json`
+/// where only that is there (a folder written before tables were compressed, or unpacked by
+/// hand). Where neither is, the compressed name, for the error that reads it.
+pub fn table_file(dir: &Path, name: &str) -> PathBuf {
+    let gz = dir.join(format!("{name}.{TABLE_EXT}"));
+    let plain = dir.join(format!("{name}.json"));
+    if !gz.exists() && plain.exists() {
+        plain
+    } else {
+        gz
+    }
+}
+
+/// The config name of a table file (`x.json.gz` or `x.json` gives `x`); None for any other file.
+pub fn table_name(path: &Path) -> Option<String> {
+    let file = path.file_name()?.to_str()?;
+    let stem = file.strip_suffix(&format!(".{TABLE_EXT}")).or_else(|| file.strip_suffix(".json"))?;
+    (!stem.is_empty()).then(|| stem.to_string())
+}
+
+/// A results file's JSON text: gzip-compressed (known by its first two bytes, whatever its name)
+/// or plain; `what` names the file in errors.
+pub fn read_text(path: &Path, what: &str) -> anyhow::Result<String> {
     let p = path.display();
-    let text = std::fs::read_to_string(path).map_err(|e| caustics::input_error!("{p}: cannot read the {what}: {e}"))?;
+    let bytes = std::fs::read(path).map_err(|e| caustics::input_error!("{p}: cannot read the {what}: {e}"))?;
+    Ok(decode(&bytes, MAX_JSON_BYTES).map_err(|why| caustics::input_error!("{p}: the {what} {why}"))?)
+}
+
+/// `bytes` as text, gunzipped first where they are gzip's (RFC 1952's magic 1f 8b); an error
+/// where they decompress to more than `limit` bytes, are a broken stream or are not UTF-8.
+fn decode(bytes: &[u8], limit: u64) -> Result<String, String> {
+    let text = if bytes.starts_with(&[0x1f, 0x8b]) {
+        let mut out = vec![];
+        flate2::read::MultiGzDecoder::new(bytes)
+            .take(limit + 1)
+            .read_to_end(&mut out)
+            .map_err(|e| format!("is not a whole gzip stream: {e}"))?;
+        if out.len() as u64 > limit {
+            return Err(format!("decompresses to more than {} MiB", limit >> 20));
+        }
+        out
+    } else {
+        bytes.to_vec()
+    };
+    String::from_utf8(text).map_err(|e| format!("is not UTF-8 text: {e}"))
+}
+
+/// `text` gzip-compressed as the bench keeps a table: the best compression and no name or time
+/// in the header, so that the same table gives the same bytes.
+pub fn gzip(text: &str) -> anyhow::Result<Vec<u8>> {
+    use std::io::Write as _;
+    let mut z = flate2::GzBuilder::new().mtime(0).write(vec![], flate2::Compression::best());
+    z.write_all(text.as_bytes())?;
+    Ok(z.finish()?)
+}
+
+/// A results file the bench wrote (a table or a part, compressed or not; `what` names it in
+/// errors), checked to be of this causticlab's schema.
+pub fn read(path: &Path, what: &str) -> anyhow::Result<Results> {
+    let p = path.display();
+    let text = read_text(path, what)?;
     let r: Results =
         serde_json::from_str(&text).map_err(|e| caustics::input_error!("{p}: not a causticlab bench result: {e}"))?;
     if r.schema != SCHEMA {
@@ -334,5 +402,57 @@ fn round_numbers(v: serde_json::Value) -> serde_json::Value {
         Value::Array(a) => Value::Array(a.into_iter().map(round_numbers).collect()),
         Value::Object(o) => Value::Object(o.into_iter().map(|(k, v)| (k, round_numbers(v))).collect()),
         other => other,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_table_is_gzip_with_no_name_or_time_and_reads_back() {
+        let text = "{\n\"schema\": 1\n}\n".repeat(50);
+        let z = gzip(&text).unwrap();
+        assert_eq!(&z[..3], &[0x1f, 0x8b, 8], "gzip's magic and deflate");
+        assert_eq!(z[3], 0, "no name, comment or extra field in the header");
+        assert_eq!(&z[4..8], &[0, 0, 0, 0], "no modification time");
+        assert!(z.len() < text.len() / 4, "{} bytes for {}", z.len(), text.len());
+        assert_eq!(gzip(&text).unwrap(), z, "the same table gives the same bytes");
+        assert_eq!(decode(&z, MAX_JSON_BYTES).unwrap(), text);
+        // A plain file reads as it is.
+        assert_eq!(decode(text.as_bytes(), MAX_JSON_BYTES).unwrap(), text);
+    }
+
+    #[test]
+    fn decoding_stops_at_the_limit_and_names_what_is_wrong() {
+        let text = "a".repeat(1000);
+        let z = gzip(&text).unwrap();
+        assert_eq!(decode(&z, 1000).unwrap(), text, "exactly the limit is read whole");
+        let over = decode(&z, 999).unwrap_err();
+        assert!(over.contains("decompresses to more than"), "{over}");
+        let cut = decode(&z[..z.len() - 9], MAX_JSON_BYTES).unwrap_err();
+        assert!(cut.contains("not a whole gzip stream"), "{cut}");
+        let binary = decode(&[b'{', 0xff, 0xfe], MAX_JSON_BYTES).unwrap_err();
+        assert!(binary.contains("not UTF-8"), "{binary}");
+    }
+
+    #[test]
+    fn a_tables_name_and_file() {
+        assert_eq!(table_name(Path::new("r/dev/wyman2008_table2.json.gz")).as_deref(), Some("wyman2008_table2"));
+        assert_eq!(table_name(Path::new("r/dev/wyman2008_table2.json")).as_deref(), Some("wyman2008_table2"));
+        assert_eq!(table_name(Path::new("r/dev/wyman2008_table2.csv")), None);
+        assert_eq!(table_name(Path::new("r/dev/.json.gz")), None);
+
+        let dir = std::env::temp_dir().join(format!("causticlab-table-file-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (gz, plain) = (dir.join("t.json.gz"), dir.join("t.json"));
+        assert_eq!(table_file(&dir, "t"), gz, "neither there: the name the bench writes");
+        std::fs::write(&plain, "{}").unwrap();
+        assert_eq!(table_file(&dir, "t"), plain, "only a plain file there");
+        std::fs::write(&gz, gzip("{}").unwrap()).unwrap();
+        assert_eq!(table_file(&dir, "t"), gz, "the compressed file before a plain twin");
+        std::fs::remove_file(&plain).unwrap();
+        assert_eq!(table_file(&dir, "t"), gz);
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

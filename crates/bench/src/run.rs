@@ -350,8 +350,9 @@ fn write_json(path: &Path, results: &Results) -> Result<()> {
     write_file_atomically(path, crate::results::to_json(results)?.as_bytes())
 }
 
-/// Writes `<name>.{json,csv,svg,png,md}` into `dir` (the markdown last: it links the others)
-/// and refreshes the index of `root`.
+/// Writes `<name>.{json.gz,csv,svg,png,md}` into `dir` (the markdown last: it links the others),
+/// removes a plain `<name>.json` left there by an older causticlab (the compressed file replaces
+/// it) and refreshes the index of `root`.
 pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Result<Outcome> {
     let mut results = crate::results::rounded(results)?;
     results.plausibility = crate::plausibility::check(c, &results);
@@ -366,7 +367,10 @@ pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Re
     };
     make_dir(dir)?;
     let files = [
-        (dir.join(format!("{name}.json")), crate::results::to_json(results)?.into_bytes()),
+        (
+            dir.join(format!("{name}.{}", crate::results::TABLE_EXT)),
+            crate::results::gzip(&crate::results::to_json(results)?)?,
+        ),
         (dir.join(format!("{name}.csv")), crate::report::csv(c, results).into_bytes()),
         (dir.join(format!("{name}.svg")), plot.svg.into_bytes()),
         (dir.join(format!("{name}.png")), plot.png),
@@ -376,6 +380,11 @@ pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Re
     for (path, bytes) in files {
         write_file_atomically(&path, &bytes)?;
         written.push(path);
+    }
+    let stale = dir.join(format!("{name}.json"));
+    if stale.is_file() {
+        std::fs::remove_file(&stale)
+            .map_err(|e| input_error!("{}: cannot remove the table's uncompressed twin: {e}", stale.display()))?;
     }
     written.push(crate::index::write_index(root)?);
     Ok(Outcome { written, markdown: md, summary: crate::report::summary(c, results) })

@@ -174,9 +174,11 @@ mod tests {
             samples: vec![v],
         };
         // A committed table, cut to two cells whose metrics are replaced.
-        let mut r: Results = serde_json::from_str(include_str!(
-            "../../../results/llvmpipe-llvmpipe-llvm-15-0-6-256-bits-mesa-22-3-6-llvm-15-0-6/wyman_davis2006_fig8.json"
-        ))
+        let mut r = crate::results::read(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../../results/llvmpipe-llvmpipe-llvm-15-0-6-256-bits-mesa-22-3-6-llvm-15-0-6/wyman_davis2006_fig8.json.gz"),
+            "table",
+        )
         .unwrap();
         r.cells.truncate(2);
         for c in &mut r.cells {

@@ -12,14 +12,15 @@ fn workspace() -> PathBuf {
 }
 
 /// A scratch repository with the committed lavapipe `wyman2008_table3` and `wyman2008_table2`
-/// under `results/dev/`, and the papers' folder beside it when `papers` is given.
+/// (their `.json.gz`, as committed) under `results/dev/`, and the papers' folder beside it when
+/// `papers` is given.
 fn repo(papers: &[(&str, &str)]) -> (ScratchDir, PathBuf) {
     let s = ScratchDir::new("bench", "claims");
     let root = s.join("repo");
     std::fs::create_dir_all(root.join("results/dev")).unwrap();
     for t in ["wyman2008_table3", "wyman2008_table2"] {
-        let from = workspace().join(LAVAPIPE).join(format!("{t}.json"));
-        std::fs::copy(&from, root.join(format!("results/dev/{t}.json"))).unwrap();
+        let from = workspace().join(LAVAPIPE).join(format!("{t}.json.gz"));
+        std::fs::copy(&from, root.join(format!("results/dev/{t}.json.gz"))).unwrap();
     }
     if !papers.is_empty() {
         let dir = s.join("shared/papers");
@@ -71,10 +72,10 @@ fn a_cell_edited_by_hand_fails_the_sentence_that_quotes_it() {
     );
     assert_eq!(problems(&root, &page), vec![]);
     // A re-run that changes the cell: the sentence must fail, naming its line and both numbers.
-    let json = root.join("results/dev/wyman2008_table3.json");
-    let text = std::fs::read_to_string(&json).unwrap();
+    let json = root.join("results/dev/wyman2008_table3.json.gz");
+    let text = bench::results::read_text(&json, "table").unwrap();
     assert!(text.contains("147.59824"), "the committed cell changed: update this test's page");
-    std::fs::write(&json, text.replace("147.59824", "151.2")).unwrap();
+    std::fs::write(&json, bench::results::gzip(&text.replace("147.59824", "151.2")).unwrap()).unwrap();
     let found = problems(&root, &page);
     assert_eq!(found.len(), 1, "{found:#?}");
     assert_eq!((found[0].line, found[0].written.as_str()), (5, "147.6"));
@@ -125,8 +126,11 @@ fn an_unexplained_finding_makes_its_cell_uncitable() {
     let (_s, root) = repo(&[]);
     let page = format!("{GATHER}It takes 147.6<!--= g{{photons=2048 technique=hierarchical}} --> ms.\n");
     assert_eq!(problems(&root, &page), vec![]);
+    // Edited as a user would who unpacks a table: a plain `.json` replaces the `.json.gz`.
+    let gz = root.join("results/dev/wyman2008_table3.json.gz");
+    let mut v: serde_json::Value = serde_json::from_str(&bench::results::read_text(&gz, "table").unwrap()).unwrap();
+    std::fs::remove_file(&gz).unwrap();
     let json = root.join("results/dev/wyman2008_table3.json");
-    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let cell = v["cells"]
         .as_array()
         .unwrap()
@@ -242,15 +246,11 @@ fn a_pass_time_and_a_pipeline_statistic_are_read_from_the_cells_passes() {
     let (_s, root) = repo(&[]);
     let h100 = "results/nvidia-nvidia-h100-80gb-hbm3";
     std::fs::create_dir_all(root.join("results/h100")).unwrap();
-    std::fs::copy(
-        workspace().join(h100).join("wyman2008_table3.json"),
-        root.join("results/h100/wyman2008_table3.json"),
-    )
-    .unwrap();
+    // The older H100 folder's table, unpacked as a user may keep it: a plain `.json`.
+    let text = bench::results::read_text(&workspace().join(h100).join("wyman2008_table3.json.gz"), "table").unwrap();
+    std::fs::write(root.join("results/h100/wyman2008_table3.json"), &text).unwrap();
     // What the claims must give, summed here from the JSON itself.
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(root.join("results/h100/wyman2008_table3.json")).unwrap())
-            .unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
     let cell = json["cells"]
         .as_array()
         .unwrap()
@@ -348,13 +348,19 @@ fn a_page_a_script_writes_beside_its_data_is_not_read_but_its_neighbours_are() {
     std::fs::write(dir.join("sphere.csv"), CPU_RATE).unwrap();
     std::fs::write(dir.join("sphere.md"), "| 0.712 ms |\n").unwrap();
     std::fs::write(dir.join("README.md"), "It takes 0.712 ms.\n").unwrap();
+    // The bench's tables: beside their `.json.gz` (repo's), and beside a plain `.json`.
+    let dev = root.join("results/dev");
+    std::fs::write(dev.join("wyman2008_table3.md"), "| 147.6 ms |\n").unwrap();
+    std::fs::write(dev.join("older.json"), "{}").unwrap();
+    std::fs::write(dev.join("older.md"), "| 1.0 ms |\n").unwrap();
+    std::fs::write(dev.join("notes.md"), "Notes.\n").unwrap();
     let pages = bench::claims::pages(&root).unwrap();
     let rel: Vec<String> = pages
         .iter()
         .map(|p| p.strip_prefix(&root).unwrap().display().to_string())
-        .filter(|p| p.contains("quality"))
+        .filter(|p| p.contains("quality") || p.contains("dev"))
         .collect();
-    assert_eq!(rel, ["results/quality/README.md"]);
+    assert_eq!(rel, ["results/dev/notes.md", "results/quality/README.md"]);
 }
 
 /// A data file whose values make each function and operator give a different number.
@@ -444,8 +450,9 @@ fn the_filters_by_mark_pick_the_marked_entries() {
     assert_eq!(problems(&root, page), vec![]);
     // One cell (the 2048² hierarchical one, whose entries are not noisy) marked busy and measured
     // again: its three timed entries.
-    let path = root.join("results/dev/wyman2008_table3.json");
-    let mut json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let path = root.join("results/dev/wyman2008_table3.json.gz");
+    let mut json: serde_json::Value =
+        serde_json::from_str(&bench::results::read_text(&path, "table").unwrap()).unwrap();
     let cell = json["cells"]
         .as_array_mut()
         .unwrap()
@@ -455,7 +462,7 @@ fn the_filters_by_mark_pick_the_marked_entries() {
     cell["busy"] = serde_json::Value::Bool(true);
     assert!(cell.get("spread_attempts").is_none(), "the cell was measured once");
     cell["spread_attempts"] = serde_json::json!([0.2, 0.05]);
-    std::fs::write(&path, serde_json::to_string(&json).unwrap()).unwrap();
+    std::fs::write(&path, bench::results::gzip(&serde_json::to_string(&json).unwrap()).unwrap()).unwrap();
     let page = "3<!--= count(busy(wyman2008_table3{photons=2048 technique=hierarchical})) -->, \
                 3<!--= count(remeasured(wyman2008_table3{photons=2048 technique=hierarchical})) -->, \
                 0<!--= count(busy(wyman2008_table3{photons=1024})) -->.\n";

@@ -131,7 +131,7 @@ fn write(root: &Path, front_text: &str, curves: Option<&Results>) -> (Results, S
         std::fs::write(dir.join("progressive.json"), bench::results::to_json(t).expect("json")).expect("write");
     }
     let out = bench::run::write_table(&config, &r, &dir, root).expect("front written");
-    let written = bench::results::read(&dir.join("front.json"), "front").expect("the front's json");
+    let written = bench::results::read(&dir.join("front.json.gz"), "front").expect("the front's json");
     (written, out.markdown)
 }
 
@@ -253,7 +253,7 @@ fn bench_explain_draws_the_curves_of_a_front_measured_before_it_asked_for_them()
     let (before, _) = write(&root, FRONT, Some(&progressive(PROGRESSIVE)));
     assert!(before.front_curves.is_none());
     let dir = bench::run::device_dir(&root, &before);
-    let json = dir.join("front.json");
+    let json = dir.join("front.json.gz");
     let mut loaded = loaded_config(&root, &format!("{FRONT}{CURVES}"));
     loaded.name = "front".into();
     let out = bench::explain::explain(&loaded, &json, &root, "abc1234").expect("a new [front] is explained");

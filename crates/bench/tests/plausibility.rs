@@ -135,7 +135,8 @@ fn findings_mark_the_table_and_an_explanation_lifts_the_mark() {
     let row = md.lines().find(|l| l.starts_with("| 1024²")).expect("1024 row");
     assert!(row.contains("6.00 ±1%?") || row.contains("?"), "{row}");
     let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("dev/synthetic.json")).expect("json")).expect("parses");
+        serde_json::from_str(&bench::results::read_text(&dir.join("dev/synthetic.json.gz"), "table").expect("json"))
+            .expect("parses");
     assert_eq!(json["plausibility"][0]["rule"], "b", "{}", json["plausibility"]);
 
     let explained = format!(
@@ -156,8 +157,8 @@ fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
     let (c, r) = table(CONFIG, [12.0, 6.0, 30.0, 35.0], QUIET_EYE, None);
     let dir = caustics::scratch::ScratchDir::new("causticlab", "explain");
     bench::run::write_table(&c, &r, &dir.join("synthetic"), &dir).expect("table written");
-    let json = dir.join("synthetic/synthetic.json");
-    let read = || -> Results { serde_json::from_str(&std::fs::read_to_string(&json).expect("json")).expect("parses") };
+    let json = dir.join("synthetic/synthetic.json.gz");
+    let read = || -> Results { bench::results::read(&json, "table").expect("the table") };
     let before = read();
     let loaded = |text: &str| loaded_config(&dir, text);
     // A config changed in more than its explanations is refused, and the table left alone.
@@ -221,7 +222,7 @@ fn bench_explain_ignores_the_sources_of_paper_values() {
     let (c, r) = table(&measured, [12.0, 6.0, 30.0, 35.0], QUIET_EYE, None);
     let dir = caustics::scratch::ScratchDir::new("causticlab", "explain-sources");
     bench::run::write_table(&c, &r, &dir.join("synthetic"), &dir).expect("table written");
-    let json = dir.join("synthetic/synthetic.json");
+    let json = dir.join("synthetic/synthetic.json.gz");
     let loaded = |text: &str| loaded_config(&dir, text);
     let cited =
         |source: &str| measured.replace("Gather = 5.0 }\n", &format!("Gather = 5.0 }}\nsource = \"{source}\"\n"));

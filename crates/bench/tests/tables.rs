@@ -492,8 +492,17 @@ fn parts_merge_into_one_table_and_mismatched_parts_are_refused() {
         r
     };
     let (a, b) = (write("a.json", &part(&[0, 2])), write("b.json", &part(&[1, 3])));
+    // An uncompressed table an older causticlab left there: the merged one replaces it.
+    let stale = root.join("synthetic/synthetic.json");
+    std::fs::create_dir_all(stale.parent().unwrap()).unwrap();
+    std::fs::write(&stale, bench::results::to_json(&part(&[0])).unwrap()).unwrap();
     bench::run::merge(&[a.clone(), b.clone()], &root, false).expect("two halves merge");
-    let merged = bench::results::read(&root.join("synthetic/synthetic.json"), "table").unwrap();
+    assert!(!stale.exists(), "the uncompressed twin is removed");
+    let gz = root.join("synthetic/synthetic.json.gz");
+    assert!(std::fs::read(&gz).unwrap().starts_with(&[0x1f, 0x8b]), "the table is gzip-compressed");
+    let index = std::fs::read_to_string(root.join("README.md")).unwrap();
+    assert!(index.contains("[synthetic](synthetic/synthetic.md)"), "the index reads the compressed table: {index}");
+    let merged = bench::results::read(&gz, "table").unwrap();
     let indices: Vec<usize> = merged.cells.iter().map(|c| c.cell.index).collect();
     assert_eq!(indices, [0, 1, 2, 3]);
     assert!(merged.run.filter.terms.is_empty() && merged.run.not_run.is_empty());
@@ -501,7 +510,7 @@ fn parts_merge_into_one_table_and_mismatched_parts_are_refused() {
     let err = bench::run::merge(std::slice::from_ref(&a), &root, false).unwrap_err();
     assert!(format!("{err:#}").contains("2 cell(s) missing"), "{err:#}");
     bench::run::merge(std::slice::from_ref(&a), &root, true).expect("a partial table");
-    let merged = bench::results::read(&root.join("synthetic/synthetic.json"), "table").unwrap();
+    let merged = bench::results::read(&root.join("synthetic/synthetic.json.gz"), "table").unwrap();
     assert_eq!(merged.run.not_run, [1, 3]);
     // The same cell twice, and no part at all.
     let err = bench::run::merge(&[a.clone(), a.clone()], &root, false).unwrap_err();

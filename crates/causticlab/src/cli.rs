@@ -189,7 +189,7 @@ pub enum BenchCommand {
     /// (docs/claims.md). Fails naming the page, the line, the number written and the number
     /// computed.
     Claims(ClaimsArgs),
-    /// Compare two results of one config (results/<device>/<config>.json) cell by cell in
+    /// Compare two results of one config (results/<device>/<config>.json.gz) cell by cell in
     /// everything but the timings: the same cells, the same counts, and the same errors and FLIP
     /// values within --tolerance. Names every difference and exits 1 if there is one (a sharded
     /// and merged sweep against an unsharded run: scripts/cluster/slurm_check.sh).
@@ -223,9 +223,9 @@ pub struct ClaimsArgs {
     /// relative to.
     #[arg(long, default_value = ".")]
     pub root: PathBuf,
-    /// Print every entry of this table (results/<device>/<config>.json, or a script's data
+    /// Print every entry of this table (results/<device>/<config>.json.gz, or a script's data
     /// file, FILE.csv) with the pick that selects it, instead of checking pages.
-    #[arg(long, value_name = "TABLE.json|FILE.csv")]
+    #[arg(long, value_name = "TABLE.json.gz|FILE.csv")]
     pub list: Option<PathBuf>,
 }
 
@@ -233,7 +233,7 @@ pub struct ClaimsArgs {
 pub struct ExplainArgs {
     /// The bench config (bench_configs/*.toml) with the explanations.
     pub config: PathBuf,
-    /// The table's JSON (results/<device>/<config>.json).
+    /// The table's JSON (results/<device>/<config>.json.gz).
     pub table: PathBuf,
     /// Results folder; the table goes to <results>/<device-slug>/.
     #[arg(long, default_value = "results")]

@@ -56,7 +56,7 @@ final_level = 0
     // without validation (refused outside quick runs); render and reference run with it.
     let r = causticlab(&["bench".as_ref(), cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
     assert_eq!(r.code, Some(0), "{}", r.describe());
-    let results = json(&device_dir(&root).join("flip.json"));
+    let results = json(&device_dir(&root).join("flip.json.gz"));
     let cell = &results["cells"][0];
     let bench = metric(cell, "FLIP").expect("a FLIP");
 

@@ -400,9 +400,9 @@ fn bench_explain_names_a_missing_table_and_a_table_of_another_config() {
     let other = std::fs::read_dir(workspace().join("results"))
         .expect("results/")
         .flatten()
-        .map(|e| e.path().join("photon_trace_rate.json"))
+        .map(|e| e.path().join("photon_trace_rate.json.gz"))
         .find(|p| p.exists())
-        .expect("a committed photon_trace_rate.json under results/");
+        .expect("a committed photon_trace_rate.json.gz under results/");
     let root = dir.join("results");
     for (table, needle) in
         [(&missing, missing.display().to_string()), (&other, "the table of `photon_trace_rate`".into())]

@@ -366,7 +366,7 @@ fn photon_trace_paths_without_ray_queries_is_refused_before_its_first_cell() {
             r.describe()
         );
         let tables: Vec<_> =
-            files_under(&root).into_iter().filter(|p| p.extension().is_some_and(|e| e == "json")).collect();
+            files_under(&root).into_iter().filter(|p| bench::results::table_name(p).is_some()).collect();
         assert!(tables.is_empty(), "{config}: {tables:?}");
     }
 }

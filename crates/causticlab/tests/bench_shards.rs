@@ -44,7 +44,7 @@ fn shards_merge_into_the_unsharded_table() {
     let shard1 = json(&parts[0]);
     let have: Vec<u64> =
         shard1["cells"].as_array().expect("cells").iter().filter_map(|c| c["cell"]["index"].as_u64()).collect();
-    let merged = json(&device_dir(&partial).join("small.json"));
+    let merged = json(&device_dir(&partial).join("small.json.gz"));
     let not_run: Vec<u64> =
         merged["run"]["not_run"].as_array().expect("run.not_run").iter().filter_map(|i| i.as_u64()).collect();
     assert_eq!(have.len() + not_run.len(), 8, "{have:?} {not_run:?}");
@@ -69,7 +69,7 @@ fn shards_merge_into_the_unsharded_table() {
 
     let (a, b) = (device_dir(&whole), device_dir(&sharded));
     assert_eq!(csv_without_timings(&a.join("small.csv")), csv_without_timings(&b.join("small.csv")));
-    let (ja, jb) = (json(&a.join("small.json")), json(&b.join("small.json")));
+    let (ja, jb) = (json(&a.join("small.json.gz")), json(&b.join("small.json.gz")));
     let cells = |j: &Value| j["cells"].as_array().cloned().unwrap_or_default();
     assert_eq!(cells(&ja).len(), 8);
     for (x, y) in cells(&ja).iter().zip(cells(&jb).iter()) {
@@ -87,9 +87,9 @@ fn shards_merge_into_the_unsharded_table() {
     // A complete result merged alone re-renders its table: the same JSON, CSV and Markdown,
     // byte for byte (floats re-read exactly), which is how a report change regenerates tables.
     let again = dir.join("again");
-    let r = bench(&["merge".as_ref(), a.join("small.json").as_os_str(), "--results".as_ref(), again.as_os_str()]);
+    let r = bench(&["merge".as_ref(), a.join("small.json.gz").as_os_str(), "--results".as_ref(), again.as_os_str()]);
     assert_eq!(r.code, Some(0), "{}", r.describe());
-    for f in ["small.json", "small.csv", "small.md"] {
+    for f in ["small.json.gz", "small.csv", "small.md"] {
         let read = |d: &std::path::Path| std::fs::read(d.join(f)).unwrap_or_default();
         assert!(!read(&a).is_empty() && read(&a) == read(&device_dir(&again)), "{f} changed when re-merged");
     }
@@ -105,7 +105,7 @@ fn an_interrupted_run_leaves_the_previous_table_untouched() {
     let r = bench(&[cfg.as_os_str(), "--results".as_ref(), root.as_os_str()]);
     assert_eq!(r.code, Some(0), "{}", r.describe());
     let dev = device_dir(&root);
-    let files = ["small.md", "small.json", "small.csv", "small.svg", "small.png"];
+    let files = ["small.md", "small.json.gz", "small.csv", "small.svg", "small.png"];
     let before: Vec<Vec<u8>> = files.iter().map(|f| std::fs::read(dev.join(f)).expect("table file")).collect();
 
     // The same sweep again, killed (SIGKILL: no chance to clean up) once two cells are done.
@@ -197,8 +197,8 @@ fn pose_updates_are_timed_and_counted_without_a_timed_frame_metric() {
         let out = dir.join(name);
         let r = bench(&[cfg.as_os_str(), "--results".as_ref(), out.as_os_str()]);
         assert_eq!(r.code, Some(0), "{}", r.describe());
-        let json = device_dir(&out).join(name.replace(".toml", ".json"));
-        let v: Value = serde_json::from_str(&std::fs::read_to_string(&json).expect("table")).expect("json");
+        let json = device_dir(&out).join(name.replace(".toml", ".json.gz"));
+        let v: Value = serde_json::from_str(&bench::results::read_text(&json, "table").expect("table")).expect("json");
         for c in v["cells"].as_array().expect("cells") {
             for m in ["photons", "splats"] {
                 assert_eq!(c["metrics"][m]["value"].as_f64(), Some(0.0), "{name}: {m} of {}", c["cell"]);

@@ -106,7 +106,7 @@ fn a_cell_measured_while_another_process_burns_a_core_is_marked_busy_and_kept_ou
     let dir = device_dir(&elsewhere);
     let md = std::fs::read_to_string(dir.join("busy.md")).expect("table");
     assert!(md.contains("busy cells (`~`)") && md.contains("~"), "{md}");
-    let json = json(&dir.join("busy.json"));
+    let json = json(&dir.join("busy.json.gz"));
     for c in json["cells"].as_array().expect("cells") {
         assert_eq!(c["busy"], true, "{}", c["cell"]);
         assert!(
@@ -148,7 +148,7 @@ fn every_committed_table_fits_its_paper_and_a_terminal() {
         }
         for file in std::fs::read_dir(&device).expect("device folder") {
             let md = file.expect("entry").path();
-            if md.extension().is_none_or(|e| e != "md") || !md.with_extension("json").exists() {
+            if md.extension().is_none_or(|e| e != "md") || !md.with_extension("json.gz").exists() {
                 continue;
             }
             let text = std::fs::read_to_string(&md).expect("table");

@@ -28,8 +28,8 @@ pub struct Checked {
 }
 
 /// The pages the check reads under `root`: the README, `docs/` and `results/`, less the tables
-/// the bench writes (a `.json` beside) and the pages scripts write from their data (a `.csv`
-/// beside).
+/// the bench writes (a `.json.gz`, or a plain `.json`, beside) and the pages scripts write from
+/// their data (a `.csv` beside).
 pub fn pages(root: &Path) -> Result<Vec<PathBuf>> {
     let mut out = vec![];
     let readme = root.join("README.md");
@@ -52,6 +52,7 @@ fn walk(dir: &Path, out: &mut Vec<PathBuf>) -> Result<()> {
         if p.is_dir() {
             walk(&p, out)?;
         } else if p.extension().is_some_and(|x| x == "md")
+            && !p.with_extension(crate::results::TABLE_EXT).is_file()
             && !p.with_extension("json").is_file()
             && !p.with_extension("csv").is_file()
         {
@@ -76,20 +77,24 @@ pub fn check(root: &Path, pages: &[PathBuf]) -> Result<Vec<Checked>> {
 /// claim's author reads to write `table{axis=label ...}`.
 pub fn list(table: &Path) -> Result<String> {
     // The file itself first, so that a wrong path or a file that is no table is named as given.
-    if table.extension().is_some_and(|x| x == "csv") {
+    let csv = table.extension().is_some_and(|x| x == "csv");
+    if csv {
         data::read(table)?;
     } else {
         crate::results::read(table, "table")?;
-        if table.extension().is_none_or(|x| x != "json") {
+    }
+    let name = match (csv, crate::results::table_name(table)) {
+        (true, _) => table.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string(),
+        (false, Some(name)) => name,
+        (false, None) => {
             return Err(caustics::input_error!(
-                "{}: a table is the bench's `<config>.json` or a script's `.csv`",
+                "{}: a table is the bench's `<config>.json.gz` (or `.json`) or a script's `.csv`",
                 table.display()
             )
-            .into());
+            .into())
         }
-    }
+    };
     let dir = table.parent().unwrap_or(Path::new("."));
-    let name = table.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string();
     let mut cache = eval::Cache::new();
     let mut scope = eval::Scope::new(Path::new(""), &mut cache);
     scope.devices.push((None, dir.to_path_buf()));

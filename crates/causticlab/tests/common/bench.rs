@@ -23,7 +23,7 @@ pub fn device_dir(root: &Path) -> PathBuf {
 }
 
 pub fn json(path: &Path) -> Value {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display()));
+    let text = bench::results::read_text(path, "table").unwrap_or_else(|e| panic!("reading {}: {e:#}", path.display()));
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("parsing {}: {e}", path.display()))
 }
 
@@ -41,12 +41,12 @@ pub fn quick_run(config: &str) -> (Scratch, Value) {
     assert_clean(&r);
     let dir = device_dir(&root).join("quick");
     let stem = config.trim_end_matches(".toml");
-    for ext in ["md", "csv", "json", "svg", "png"] {
+    for ext in ["md", "csv", "json.gz", "svg", "png"] {
         let f = dir.join(format!("{stem}.{ext}"));
         assert!(f.is_file(), "{} missing\n{}", f.display(), r.describe());
     }
     assert!(root.join("README.md").is_file(), "results index missing");
-    let results = json(&dir.join(format!("{stem}.json")));
+    let results = json(&dir.join(format!("{stem}.json.gz")));
     let cells = results["cells"].as_array().expect("cells").len();
     assert_eq!(results["run"]["total_cells"].as_u64(), Some(cells as u64), "a quick run measures every cell");
     assert!(results["run"]["quick"].as_bool() == Some(true));
