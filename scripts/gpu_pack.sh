@@ -150,7 +150,7 @@ fi
 # 6. What would travel to a lent machine: the files git does not ignore (tracked and
 # untracked) that are there (a tracked file deleted in the work tree does not travel), plus the
 # pack.
-present() { while IFS= read -r -d '' f; do [ -f "$f" ] && printf '%s\0' "$f"; done; }
+present() { while IFS= read -r -d '' f; do if [ -f "$f" ]; then printf '%s\0' "$f"; fi; done; }
 tree_bytes=$(git ls-files -z --cached --others --exclude-standard | present | xargs -0 -r stat -c %s | awk '{s+=$1} END {print s+0}')
 total=$((tree_bytes + pack_bytes))
 echo "gpu_pack: pack $(mib "$pack_bytes") (binary $(mib "$(stat -c %s "$pack/causticlab.xz")") xz, models $(mib "$(stat -c %s "$pack/models.tar.xz")")); working tree $(mib "$tree_bytes"); transfer $(mib "$total") of $limit_mib MiB"

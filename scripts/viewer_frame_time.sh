@@ -43,7 +43,7 @@ done
 # Every round's measurements, full precision, into $csv (one row per round); then the page from
 # that file's rows: every number on it is a cell of the CSV or computed from its rows.
 python3 - "$tmp" "$rounds" "$csv" <<'MEASURED'
-import csv, glob, json, re, sys
+import csv, glob, gzip, json, re, sys
 tmp, rounds, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 def view(path):
     text = open(path).read()
@@ -58,7 +58,7 @@ for k in ("shown", "hidden", "passes"):
 cols += ["passes_timed", "run_order"]
 rows, meta = [], None
 for r in range(1, rounds + 1):
-    j = json.load(open(glob.glob(f"{tmp}/results-{r}/**/viewer_frame_time.json", recursive=True)[0]))
+    j = json.load(gzip.open(glob.glob(f"{tmp}/results-{r}/**/viewer_frame_time.json.gz", recursive=True)[0], "rt"))
     meta = meta or j["meta"]
     cell = j["cells"][0]
     frame = cell["metrics"]["frame"]

@@ -1,4 +1,4 @@
-//! `causticlab bench explain CONFIG TABLE.json`: a committed table judged again with the
+//! `causticlab bench explain CONFIG TABLE.json.gz`: a committed table judged again with the
 //! explanations (`[[plausibility.explained]]`) its config gained after the run, without timing
 //! anything again. An explanation is a reading of the numbers, not a number: it may come after
 //! them. The config may differ from the one the table embeds in its explanations only, in
@@ -72,7 +72,7 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
     }
     // The table is rewritten where the bench keeps it: only from that file, so that a copy or an
     // older table cannot replace it.
-    let home = crate::results::table_file(&device_dir(root, &r), &r.config.name);
+    let home = crate::results::table_file(&device_dir(root, &r), &r.config.name)?;
     let same = |a: &Path, b: &Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b);
     if !same(table, &home) {
         return Err(input_error!(

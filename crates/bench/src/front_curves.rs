@@ -110,13 +110,16 @@ fn reference(c: &Config, quick: bool) -> (u64, u64) {
 /// checked against it; None where the config has no `[front.curves]`.
 pub fn load(c: &Config, front: &Results, dir: &Path) -> Option<FrontCurves> {
     let spec = c.front.as_ref()?.curves.as_ref()?;
-    let path = crate::results::table_file(dir, &spec.table);
     let outcome = |commit: &str, date: &str, drawn: Result<Vec<Curve>, String>| {
         let (curves, missing) = match drawn {
             Ok(curves) => (curves, None),
             Err(why) => (vec![], Some(why)),
         };
         Some(FrontCurves { table: spec.table.clone(), commit: commit.into(), date: date.into(), curves, missing })
+    };
+    let path = match crate::results::table_file(dir, &spec.table) {
+        Ok(path) => path,
+        Err(e) => return outcome("", "", Err(format!("{e:#}"))),
     };
     if !path.exists() {
         return outcome("", "", Err(format!("no table `{}` in this results folder", spec.table)));

@@ -48,7 +48,9 @@ pub fn write_index(root: &Path) -> Result<PathBuf> {
             .map(|rd| {
                 rd.filter_map(|e| e.ok())
                     .map(|e| e.path())
+                    // A table, once: a plain twin of a `.json.gz` is an older copy, or an edit.
                     .filter(|p| crate::results::table_name(p).is_some())
+                    .filter(|p| p.extension().is_none_or(|x| x != "json") || !p.with_extension("json.gz").exists())
                     .collect()
             })
             .unwrap_or_default();

@@ -294,14 +294,20 @@ pub const MAX_JSON_BYTES: u64 = 1 << 28;
 
 /// The file of table `name` in `dir`: `<name>.json.gz` as the bench writes it, or `<name>.json`
 /// where only that is there (a folder written before tables were compressed, or unpacked by
-/// hand). Where neither is, the compressed name, for the error that reads it.
-pub fn table_file(dir: &Path, name: &str) -> PathBuf {
+/// hand); where neither is, the compressed name, for the error that reads it. Both there is an
+/// error: which of the two is the table (an edited copy, an older causticlab's run) is not for
+/// the reader to guess.
+pub fn table_file(dir: &Path, name: &str) -> anyhow::Result<PathBuf> {
     let gz = dir.join(format!("{name}.{TABLE_EXT}"));
     let plain = dir.join(format!("{name}.json"));
-    if !gz.exists() && plain.exists() {
-        plain
-    } else {
-        gz
+    match (gz.exists(), plain.exists()) {
+        (true, true) => Err(caustics::input_error!(
+            "{}: two tables of `{name}`, {name}.{TABLE_EXT} (as the bench writes it) and {name}.json: remove the one that is not the table",
+            dir.display()
+        )
+        .into()),
+        (false, true) => Ok(plain),
+        _ => Ok(gz),
     }
 }
 
@@ -315,17 +321,27 @@ pub fn table_name(path: &Path) -> Option<String> {
 /// A results file's JSON text: gzip-compressed (known by its first two bytes, whatever its name)
 /// or plain; `what` names the file in errors.
 pub fn read_text(path: &Path, what: &str) -> anyhow::Result<String> {
+    read_capped(path, what, MAX_JSON_BYTES)
+}
+
+/// [`read_text`] with at most `limit` bytes read from the file and at most `limit` decompressed.
+fn read_capped(path: &Path, what: &str, limit: u64) -> anyhow::Result<String> {
     let p = path.display();
-    let bytes = std::fs::read(path).map_err(|e| caustics::input_error!("{p}: cannot read the {what}: {e}"))?;
-    Ok(decode(&bytes, MAX_JSON_BYTES).map_err(|why| caustics::input_error!("{p}: the {what} {why}"))?)
+    let cannot = |e: std::io::Error| caustics::input_error!("{p}: cannot read the {what}: {e}");
+    let mut bytes = vec![];
+    std::fs::File::open(path).map_err(cannot)?.take(limit + 1).read_to_end(&mut bytes).map_err(cannot)?;
+    if bytes.len() as u64 > limit {
+        return Err(caustics::input_error!("{p}: the {what} is larger than {} MiB", limit >> 20).into());
+    }
+    Ok(decode(bytes, limit).map_err(|why| caustics::input_error!("{p}: the {what} {why}"))?)
 }
 
 /// `bytes` as text, gunzipped first where they are gzip's (RFC 1952's magic 1f 8b); an error
 /// where they decompress to more than `limit` bytes, are a broken stream or are not UTF-8.
-fn decode(bytes: &[u8], limit: u64) -> Result<String, String> {
+fn decode(bytes: Vec<u8>, limit: u64) -> Result<String, String> {
     let text = if bytes.starts_with(&[0x1f, 0x8b]) {
         let mut out = vec![];
-        flate2::read::MultiGzDecoder::new(bytes)
+        flate2::read::MultiGzDecoder::new(bytes.as_slice())
             .take(limit + 1)
             .read_to_end(&mut out)
             .map_err(|e| format!("is not a whole gzip stream: {e}"))?;
@@ -334,7 +350,7 @@ fn decode(bytes: &[u8], limit: u64) -> Result<String, String> {
         }
         out
     } else {
-        bytes.to_vec()
+        bytes
     };
     String::from_utf8(text).map_err(|e| format!("is not UTF-8 text: {e}"))
 }
@@ -418,22 +434,42 @@ mod tests {
         assert_eq!(&z[4..8], &[0, 0, 0, 0], "no modification time");
         assert!(z.len() < text.len() / 4, "{} bytes for {}", z.len(), text.len());
         assert_eq!(gzip(&text).unwrap(), z, "the same table gives the same bytes");
-        assert_eq!(decode(&z, MAX_JSON_BYTES).unwrap(), text);
+        assert_eq!(decode(z, MAX_JSON_BYTES).unwrap(), text);
         // A plain file reads as it is.
-        assert_eq!(decode(text.as_bytes(), MAX_JSON_BYTES).unwrap(), text);
+        assert_eq!(decode(text.clone().into_bytes(), MAX_JSON_BYTES).unwrap(), text);
     }
 
     #[test]
     fn decoding_stops_at_the_limit_and_names_what_is_wrong() {
         let text = "a".repeat(1000);
         let z = gzip(&text).unwrap();
-        assert_eq!(decode(&z, 1000).unwrap(), text, "exactly the limit is read whole");
-        let over = decode(&z, 999).unwrap_err();
+        assert_eq!(decode(z.clone(), 1000).unwrap(), text, "exactly the limit is read whole");
+        let over = decode(z.clone(), 999).unwrap_err();
         assert!(over.contains("decompresses to more than"), "{over}");
-        let cut = decode(&z[..z.len() - 9], MAX_JSON_BYTES).unwrap_err();
+        let cut = decode(z[..z.len() - 9].to_vec(), MAX_JSON_BYTES).unwrap_err();
         assert!(cut.contains("not a whole gzip stream"), "{cut}");
-        let binary = decode(&[b'{', 0xff, 0xfe], MAX_JSON_BYTES).unwrap_err();
+        let binary = decode(vec![b'{', 0xff, 0xfe], MAX_JSON_BYTES).unwrap_err();
         assert!(binary.contains("not UTF-8"), "{binary}");
+    }
+
+    #[test]
+    fn a_file_over_the_limit_is_refused_before_it_is_read_whole() {
+        let dir = std::env::temp_dir().join(format!("causticlab-read-capped-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (plain, gz) = (dir.join("t.json"), dir.join("t.json.gz"));
+        let text = "b".repeat(3 << 20);
+        std::fs::write(&plain, &text).unwrap();
+        std::fs::write(&gz, gzip(&text).unwrap()).unwrap();
+        for path in [&plain, &gz] {
+            assert_eq!(read_capped(path, "table", 3 << 20).unwrap(), text, "{}: exactly the limit", path.display());
+        }
+        let err = format!("{:#}", read_capped(&plain, "table", (3 << 20) - 1).unwrap_err());
+        assert!(err.contains("t.json: the table is larger than 2 MiB"), "{err}");
+        let err = format!("{:#}", read_capped(&gz, "table", (3 << 20) - 1).unwrap_err());
+        assert!(err.contains("t.json.gz: the table decompresses to more than 2 MiB"), "{err}");
+        let err = format!("{:#}", read_text(&dir.join("none.json.gz"), "table").unwrap_err());
+        assert!(err.contains("none.json.gz: cannot read the table"), "{err}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]
@@ -446,13 +482,14 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("causticlab-table-file-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let (gz, plain) = (dir.join("t.json.gz"), dir.join("t.json"));
-        assert_eq!(table_file(&dir, "t"), gz, "neither there: the name the bench writes");
+        assert_eq!(table_file(&dir, "t").unwrap(), gz, "neither there: the name the bench writes");
         std::fs::write(&plain, "{}").unwrap();
-        assert_eq!(table_file(&dir, "t"), plain, "only a plain file there");
+        assert_eq!(table_file(&dir, "t").unwrap(), plain, "only a plain file there");
         std::fs::write(&gz, gzip("{}").unwrap()).unwrap();
-        assert_eq!(table_file(&dir, "t"), gz, "the compressed file before a plain twin");
+        let both = format!("{:#}", table_file(&dir, "t").unwrap_err());
+        assert!(both.contains("two tables of `t`, t.json.gz (as the bench writes it) and t.json"), "{both}");
         std::fs::remove_file(&plain).unwrap();
-        assert_eq!(table_file(&dir, "t"), gz);
+        assert_eq!(table_file(&dir, "t").unwrap(), gz, "only the compressed file there");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

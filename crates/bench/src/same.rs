@@ -1,4 +1,4 @@
-//! `bench same A.json B.json`: two results of one config compared cell by cell in everything
+//! `bench same A.json.gz B.json.gz`: two results of one config compared cell by cell in everything
 //! but the timings. The check that a sweep split into shards (the GPU suite, a cluster's job
 //! array) and merged gives the table one unsharded run gives: the same cells, and in each the
 //! same counts, errors and FLIP values. Times (`results::is_timing`) differ from run to run and

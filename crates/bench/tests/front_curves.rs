@@ -128,7 +128,8 @@ fn write(root: &Path, front_text: &str, curves: Option<&Results>) -> (Results, S
     let dir = bench::run::device_dir(root, &r);
     if let Some(t) = curves {
         std::fs::create_dir_all(&dir).expect("the device folder");
-        std::fs::write(dir.join("progressive.json"), bench::results::to_json(t).expect("json")).expect("write");
+        let gz = bench::results::gzip(&bench::results::to_json(t).expect("json")).expect("gzip");
+        std::fs::write(dir.join("progressive.json.gz"), gz).expect("write");
     }
     let out = bench::run::write_table(&config, &r, &dir, root).expect("front written");
     let written = bench::results::read(&dir.join("front.json.gz"), "front").expect("the front's json");

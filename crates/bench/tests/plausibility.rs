@@ -186,12 +186,17 @@ fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
     // Findings that differ from the run's (rules changed since) are refused.
     let mut judged_otherwise = before.clone();
     judged_otherwise.plausibility.clear();
-    std::fs::write(&json, serde_json::to_string(&judged_otherwise).expect("json")).expect("write");
+    std::fs::write(
+        &json,
+        bench::results::gzip(&serde_json::to_string(&judged_otherwise).expect("json")).expect("gzip"),
+    )
+    .expect("write");
     let Err(err) = bench::explain::explain(&loaded(CONFIG), &json, &dir, "abc1234") else {
         panic!("other findings accepted")
     };
     assert!(format!("{err:#}").contains("the rules changed since the run"), "{err:#}");
-    std::fs::write(&json, serde_json::to_string(&before).expect("json")).expect("restore");
+    std::fs::write(&json, bench::results::gzip(&serde_json::to_string(&before).expect("json")).expect("gzip"))
+        .expect("restore");
     // Explanations (and a comment) added: the `?` goes, the cells stay as measured.
     let explained = format!(
         "# explained later\n{CONFIG}\n[[plausibility.explained]]\nrule = \"b\"\nmetric = \"Gather\"\nphotons = 1024\nwhy = \"measured: the static cell rebuilt its photon buffer (test)\"\n"

@@ -502,6 +502,13 @@ fn parts_merge_into_one_table_and_mismatched_parts_are_refused() {
     assert!(std::fs::read(&gz).unwrap().starts_with(&[0x1f, 0x8b]), "the table is gzip-compressed");
     let index = std::fs::read_to_string(root.join("README.md")).unwrap();
     assert!(index.contains("[synthetic](synthetic/synthetic.md)"), "the index reads the compressed table: {index}");
+    // A plain twin unpacked beside it: listed once, and a reader refuses to guess.
+    std::fs::write(&stale, bench::results::read_text(&gz, "table").unwrap()).unwrap();
+    let index = std::fs::read_to_string(bench::index::write_index(&root).unwrap()).unwrap();
+    assert_eq!(index.matches("[synthetic](synthetic/synthetic.md)").count(), 1, "{index}");
+    let err = bench::run::merge(&[a.clone(), b.clone()], &root, false);
+    assert!(err.is_ok(), "a write replaces the twin: {err:?}");
+    assert!(!stale.exists());
     let merged = bench::results::read(&gz, "table").unwrap();
     let indices: Vec<usize> = merged.cells.iter().map(|c| c.cell.index).collect();
     assert_eq!(indices, [0, 1, 2, 3]);

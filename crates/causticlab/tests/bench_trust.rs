@@ -135,7 +135,7 @@ const PAPER_COLUMNS: [(&str, usize); 9] = [
 
 #[test]
 fn every_committed_table_fits_its_paper_and_a_terminal() {
-    // Every table `bench` wrote into results/<device>/ (a .md beside its .json; quick runs are
+    // Every table `bench` wrote into results/<device>/ (a .md beside its .json.gz; quick runs are
     // not committed): each table line within 120 columns, and a paper table with at most one
     // column more than the paper's (its distinct header cells over the wrapped blocks of the
     // value tables, before the ratio grids).

@@ -151,7 +151,7 @@ impl<'c> Scope<'c> {
             None => {
                 // A bench table, or else a data file of that name in the folder.
                 let dir = self.root.join(self.dir(device)?);
-                let json = crate::results::table_file(&dir, name);
+                let json = crate::results::table_file(&dir, name)?;
                 let csv = dir.join(format!("{name}.csv"));
                 if !json.is_file() && csv.is_file() {
                     csv

@@ -9,7 +9,7 @@
 //! the line, the number written and the number computed; so a re-run that changes a cell makes
 //! every sentence that quoted it fail until the sentence is updated. A number that looks measured
 //! (a time, a rate, a ratio, a percentage, a decimal) and has no claim fails too: a number cannot
-//! enter a page without a source. Tables the bench writes (a `.md` beside its `.json`) and pages a
+//! enter a page without a source. Tables the bench writes (a `.md` beside its `.json.gz`) and pages a
 //! script writes from its data (a `.md` beside a `.csv` of the same name, [`data`]) are not
 //! read: they are the source.
 
