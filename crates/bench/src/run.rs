@@ -41,6 +41,8 @@ const SPREAD_PAUSE_S: u64 = 1;
 #[derive(Debug)]
 pub struct Outcome {
     pub written: Vec<PathBuf>,
+    /// A table's plain `<name>.json` the write replaced with its `.json.gz`.
+    pub removed: Vec<PathBuf>,
     pub markdown: String,
     /// The tables in plain text, for the terminal.
     pub summary: String,
@@ -299,7 +301,7 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         let results = crate::results::rounded(&results)?;
         write_json(&part, &results)?;
         let (markdown, summary) = (crate::report::markdown(c, &results), crate::report::summary(c, &results));
-        Ok(Outcome { written: vec![part], markdown, summary })
+        Ok(Outcome { written: vec![part], removed: vec![], markdown, summary })
     }
 }
 
@@ -382,12 +384,14 @@ pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Re
         written.push(path);
     }
     let stale = dir.join(format!("{name}.json"));
+    let mut removed = vec![];
     if stale.is_file() {
         std::fs::remove_file(&stale)
             .map_err(|e| input_error!("{}: cannot remove the table's uncompressed twin: {e}", stale.display()))?;
+        removed.push(stale);
     }
     written.push(crate::index::write_index(root)?);
-    Ok(Outcome { written, markdown: md, summary: crate::report::summary(c, results) })
+    Ok(Outcome { written, removed, markdown: md, summary: crate::report::summary(c, results) })
 }
 
 /// `bench merge`: the cells of every part (shards or filtered runs of one config on one device)

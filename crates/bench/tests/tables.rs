@@ -496,8 +496,9 @@ fn parts_merge_into_one_table_and_mismatched_parts_are_refused() {
     let stale = root.join("synthetic/synthetic.json");
     std::fs::create_dir_all(stale.parent().unwrap()).unwrap();
     std::fs::write(&stale, bench::results::to_json(&part(&[0])).unwrap()).unwrap();
-    bench::run::merge(&[a.clone(), b.clone()], &root, false).expect("two halves merge");
+    let out = bench::run::merge(&[a.clone(), b.clone()], &root, false).expect("two halves merge");
     assert!(!stale.exists(), "the uncompressed twin is removed");
+    assert_eq!(out.removed, std::slice::from_ref(&stale), "and said to be");
     let gz = root.join("synthetic/synthetic.json.gz");
     assert!(std::fs::read(&gz).unwrap().starts_with(&[0x1f, 0x8b]), "the table is gzip-compressed");
     let index = std::fs::read_to_string(root.join("README.md")).unwrap();

@@ -118,6 +118,9 @@ fn report(out: &bench::Outcome) {
     for f in &out.written {
         println!("wrote {}", f.display());
     }
+    for f in &out.removed {
+        println!("removed {} (the table's uncompressed copy: its .json.gz replaces it)", f.display());
+    }
 }
 
 /// `bench claims`: every page's claims against the committed tables.
