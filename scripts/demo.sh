@@ -57,10 +57,10 @@ fi
 
 echo
 if [ "${#failed[@]}" -ne 0 ]; then
-    echo "demo: failed scenes: ${failed[*]}" >&2
+    echo "demo: failed: ${failed[*]}" >&2
     exit 1
 fi
 if [ "${#skipped[@]}" -ne 0 ]; then
     echo "demo: skipped ${#skipped[@]} scene(s) whose models are missing: ${skipped[*]}"
 fi
-echo "demo: every scene that could run rendered into out/<scene>/; quality table (shah, shah-vertex, wd-points, hcm against the CPU reference) in out/quality/sphere_on_plane.md; quick Wyman 2008 Table 1 in out/results/<device>/quick/"
+echo "demo: every scene that could run rendered into out/<scene>/; quality table (shah, shah-vertex, wd-points, wd-points thin-lens, hcm against the CPU reference) in out/quality/sphere_on_plane.md; quick Wyman 2008 Table 1 in out/results/<device>/quick/"

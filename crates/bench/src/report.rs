@@ -132,9 +132,9 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     let _ = writeln!(
         s,
         "Regenerate: `causticlab bench {}{}`; raw samples in `{name}.json.gz` (gzip-compressed JSON), one row \
-         per cell and metric in `{name}.csv`; redraw this table from the JSON with `causticlab bench merge \
-         {}/{name}.json.gz` from the \
-         repository's root (the table goes to the `--results` folder's, `results/` by default).",
+         per cell and metric in `{name}.csv`; redraw this table from the JSON with `causticlab bench merge` of \
+         its `{name}.json.gz`, `--results` naming the results folder it was written under (`results/`, the \
+         default, from the repository's root: `causticlab bench merge {}/{name}.json.gz`).",
         results.config.file,
         if r.quick { " --quick" } else { "" },
         crate::run::device_dir(std::path::Path::new("results"), results).display(),
