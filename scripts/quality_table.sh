@@ -11,8 +11,9 @@
 # Needs a release build (cargo build --release) and python3 for the table layout.
 # REF_PHOTONS (default 16M), FINAL_LEVEL (default 1), WORK (default out/quality) and RESULTS
 # (default results/quality) override the references' sizes and where the renders and the tables
-# go. The references are kept in WORK and reused by the next run (delete them after a change that
-# alters them).
+# go. The references are kept in WORK, in folders named by their photon count, and reused by the
+# next run with that count (delete them after a change that alters them). The table's
+# "Regenerate" line names the overrides its run was given.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=target/release/causticlab
@@ -23,13 +24,18 @@ scenes=("$@")
 work=${WORK:-out/quality}
 results=${RESULTS:-results/quality}
 mkdir -p "$work" "$results"
+# The command that regenerates these tables, with the overrides this run was given.
+regen="bash scripts/quality_table.sh"
+for v in REF_PHOTONS FINAL_LEVEL WORK RESULTS; do
+  if [ -n "${!v:-}" ]; then regen="$v=${!v} $regen"; fi
+done
 for s in "${scenes[@]}"; do
   scene=scenes/$s.toml
   rows=$work/$s.rows
   : > "$rows"
   for seed in 1 2; do
-    [ -f "$work/$s/ref$seed/receiver.exr" ] || \
-      $bin reference --scene "$scene" --photons "$ref_photons" --seed $seed --fresnel false --out "$work/$s/ref$seed"
+    [ -f "$work/$s/ref${seed}_$ref_photons/receiver.exr" ] || \
+      $bin reference --scene "$scene" --photons "$ref_photons" --seed $seed --fresnel false --out "$work/$s/ref${seed}_$ref_photons"
   done
   # The reference final images at the level, named by it: frames seeded from 1 (the one compared
   # with), and, for their own noise, from the first seed the first one did not use (level 1
@@ -45,11 +51,11 @@ for s in "${scenes[@]}"; do
   # compare in its own command, so that a failure (a missing image: compare names it) stops here.
   row() {
     local receiver final
-    receiver=$($bin compare "$3" "$work/$s/ref1/receiver.exr" --json | tr -d '\n')
+    receiver=$($bin compare "$3" "$work/$s/ref1_$ref_photons/receiver.exr" --json | tr -d '\n')
     final=$($bin compare "$4" "$final_ref" --json | tr -d '\n')
     echo "$1|$2|$receiver|$final" >> "$rows"
   }
-  row reference-noise "$ref_photons" "$work/$s/ref2/receiver.exr" "$finals/s$seed2/final.exr"
+  row reference-noise "$ref_photons" "$work/$s/ref2_$ref_photons/receiver.exr" "$finals/s$seed2/final.exr"
   # The registry's rows marked `quality` (crates/caustics/src/techniques/variants.toml):
   # name|label|scenes|render flags|needs (quality rows need no feature beyond their technique).
   registry=$($bin variants --lines --quality)   # fails here with a binary that has no registry
@@ -66,9 +72,9 @@ for s in "${scenes[@]}"; do
   done
   device=$($bin devices | sed -n 's/^\[\([0-9]*\)\] \(.*\) \[default\].*/\2/p' | head -1)
   python3 - "$s" "$rows" "$ref_photons" "$device" "$(git rev-parse --short HEAD)" "$results/$s.csv" "$results/$s.md" \
-    "$finals/s1/reference.json" "$seed2" <<'PY'
+    "$finals/s1/reference.json" "$seed2" "$regen" <<'PY'
 import csv, json, sys, datetime
-scene, rows, ref_photons, device, commit, csv_out, md_out, final_json, seed2 = sys.argv[1:10]
+scene, rows, ref_photons, device, commit, csv_out, md_out, final_json, seed2, regen = sys.argv[1:11]
 final = json.load(open(final_json))
 level = final["refinement"]
 device = device.strip()
@@ -105,7 +111,7 @@ with open(md_out, "w") as f:
         "`--fresnel false` (two refractions, all power transmitted), default splat (Gaussian, radius 1.5 texels; "
         "the `hcm varying` rows size each splat from its neighbours instead, the `thin-lens` row from a per-photon "
         "thin-lens model), "
-        "caustic map 1024^2, 4 back-face iterations. Regenerate: `bash scripts/quality_table.sh " + scene + "`.\n")
+        "caustic map 1024^2, 4 back-face iterations. Regenerate: `" + regen + " " + scene + "`.\n")
     out("Errors are over the texels where either receiver map differs from 1 by more than 0.05 "
         "(see `causticlab compare`). `shah-vertex` traces one photon per mesh vertex, so its photon count is "
         "the tessellation's, not N^2.\n")
