@@ -81,9 +81,12 @@ pub fn write_index(root: &Path) -> Result<PathBuf> {
     }
     if rows.is_empty() {
         let _ = writeln!(s, "\nNo tables yet (`--quick` tables go to `<device>/quick/` and are not listed).");
+    } else {
+        let _ = writeln!(
+            s,
+            "\n| paper, table | config | device (driver) | cells | date | commit |\n|---|---|---|---|---|---|"
+        );
     }
-    let _ =
-        writeln!(s, "\n| paper, table | config | device (driver) | cells | date | commit |\n|---|---|---|---|---|---|");
     for (_, _, line) in rows {
         let _ = writeln!(s, "{line}");
     }
@@ -103,7 +106,7 @@ mod tests {
         std::fs::create_dir_all(&root).expect("a temp folder");
         let text = std::fs::read_to_string(write_index(&root).expect("the index")).expect("README.md");
         assert!(!text.contains("quality/") && !text.contains("findings"), "{text}");
-        assert!(text.contains("No tables yet"), "{text}");
+        assert!(text.contains("No tables yet") && !text.contains("| paper, table |"), "no empty table: {text}");
         std::fs::create_dir_all(root.join("quality")).expect("quality/");
         let text = std::fs::read_to_string(write_index(&root).expect("the index")).expect("README.md");
         assert!(text.contains("Also here: `quality/`") && !text.contains("criterion/"), "{text}");

@@ -70,7 +70,7 @@ pub fn run(
     let start = std::time::Instant::now();
     let image = render_final(&ctx, &shaders, &scene, &r, seed, |f| {
         if r.frames > 1 {
-            eprintln!("frame {} of {} traced", f + 1, r.frames);
+            eprintln!("reference final image: frame {} of {} traced", f + 1, r.frames);
         }
     })
     .with_context(|| format!("rendering the reference final image of {}", args.scene.display()))?;
