@@ -161,6 +161,17 @@ if [ "$total" -gt $((limit_mib * 1048576)) ]; then
     echo "gpu_pack: a GPU folder that a newer run of the same configs has replaced can go (git keeps it; docs/bench.md, A GPU run)" >&2
     exit 1
 fi
+# Room for the next GPU run: its folder will be about the size of the largest GPU folder here
+# (a device folder, one with bench tables, that is not lavapipe's). Where that would not fit, say
+# so now, while the run's results can still land (they are committed after the run; the next
+# pack carries them).
+gpu_folder=$(git ls-files -z -- results | present | xargs -0 -r stat -c '%s %n' \
+    | awk '{ split($2, p, "/"); if (p[3] == "" || p[2] ~ /^llvmpipe/) next; s[p[2]] += $1
+             if (p[4] == "" && p[3] ~ /\.json(\.gz)?$/) tables[p[2]] = 1 }
+        END { for (d in tables) if (s[d] > most) { most = s[d]; name = d } if (name != "") print most, name }')
+if [ -n "$gpu_folder" ] && [ $((total + ${gpu_folder%% *})) -gt $((limit_mib * 1048576)) ]; then
+    echo "gpu_pack: warning: one more GPU folder the size of results/${gpu_folder#* } ($(mib "${gpu_folder%% *}")) would not fit in $limit_mib MiB: remove a GPU folder a newer run has replaced before the next GPU run's results are committed (docs/bench.md, A GPU run)" >&2
+fi
 if [ "$dry_run" -eq 0 ]; then
     echo "gpu_pack: wrote $pack/ (commit $commit); on the GPU machine: bash scripts/gpu_suite.sh BUDGET_SECONDS \$OUT (docs/bench.md)"
 fi
