@@ -151,12 +151,14 @@ fi
 # untracked) that are there (a tracked file deleted in the work tree does not travel), plus the
 # pack.
 present() { while IFS= read -r -d '' f; do if [ -f "$f" ]; then printf '%s\0' "$f"; fi; done; }
+# "bytes path" of every tracked file under results/ that is there.
+results_sizes() { git ls-files -z -- results | present | xargs -0 -r stat -c '%s %n'; }
 tree_bytes=$(git ls-files -z --cached --others --exclude-standard | present | xargs -0 -r stat -c %s | awk '{s+=$1} END {print s+0}')
 total=$((tree_bytes + pack_bytes))
 echo "gpu_pack: pack $(mib "$pack_bytes") (binary $(mib "$(stat -c %s "$pack/causticlab.xz")") xz, models $(mib "$(stat -c %s "$pack/models.tar.xz")")); working tree $(mib "$tree_bytes"); transfer $(mib "$total") of $limit_mib MiB"
 if [ "$total" -gt $((limit_mib * 1048576)) ]; then
     echo "gpu_pack: the transfer would exceed $limit_mib MiB; the largest folders under results/:" >&2
-    git ls-files -z -- results | present | xargs -0 -r stat -c '%s %n' | awk '{ split($2, p, "/"); s[p[1] "/" p[2]] += $1 }
+    results_sizes | awk '{ split($2, p, "/"); s[p[1] "/" p[2]] += $1 }
         END { for (d in s) printf "%10.1f MiB  %s\n", s[d] / 1048576, d }' | sort -rn | head -n 5 >&2
     echo "gpu_pack: a GPU folder that a newer run of the same configs has replaced can go (git keeps it; docs/bench.md, A GPU run)" >&2
     exit 1
@@ -165,7 +167,7 @@ fi
 # (a device folder, one with bench tables, that is not lavapipe's). Where that would not fit, say
 # so now, while the run's results can still land (they are committed after the run; the next
 # pack carries them).
-gpu_folder=$(git ls-files -z -- results | present | xargs -0 -r stat -c '%s %n' \
+gpu_folder=$(results_sizes \
     | awk '{ split($2, p, "/"); if (p[3] == "" || p[2] ~ /^llvmpipe/) next; s[p[2]] += $1
              if (p[4] == "" && p[3] ~ /\.json(\.gz)?$/) tables[p[2]] = 1 }
         END { for (d in tables) if (s[d] > most) { most = s[d]; name = d } if (name != "") print most, name }')

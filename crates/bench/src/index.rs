@@ -50,7 +50,10 @@ pub fn write_index(root: &Path) -> Result<PathBuf> {
                     .map(|e| e.path())
                     // A table, once: a plain twin of a `.json.gz` is an older copy, or an edit.
                     .filter(|p| crate::results::table_name(p).is_some())
-                    .filter(|p| p.extension().is_none_or(|x| x != "json") || !p.with_extension("json.gz").exists())
+                    .filter(|p| {
+                        p.extension().is_none_or(|x| x != "json")
+                            || !p.with_extension(crate::results::TABLE_EXT).exists()
+                    })
                     .collect()
             })
             .unwrap_or_default();
