@@ -1,14 +1,19 @@
-//! `causticlab bench explain CONFIG TABLE.json.gz`: a committed table judged again with the
-//! explanations (`[[plausibility.explained]]`) its config gained after the run, without timing
-//! anything again. An explanation is a reading of the numbers, not a number: it may come after
-//! them. The config may differ from the one the table embeds in its explanations only, in
-//! the `source` of its `[[paper]]` entries (where in the paper the published values are: a
-//! citation, not a measurement) and in its `[front]` (how the cells are drawn and summed up,
-//! and which other table's curves are drawn beside them: `crate::front_curves`, read again
-//! here), compared as TOML values, so comments and layout may change too; anything else would
+//! `causticlab bench explain CONFIG TABLE.json.gz`: a committed table read again with what its
+//! config says of how to read it, without timing anything again. An explanation is a reading of
+//! the numbers, not a number: it may come after them. So may everything else that measures
+//! nothing ([`what_was_measured`] drops it): the `[table]` text (caption, notes, plot scale),
+//! the `[layout]` (which axes are rows and columns), the `source` of the `[[paper]]` entries
+//! (where in the paper the published values are: a citation; the values themselves are cells
+//! of the table, beside ours and in its ratios, and stay), the judging of the cells
+//! (`[plausibility]`: the axes the work grows with and the explanations; a metric's
+//! `independent_of`, `not_monotonic`, `absent` and `bytes_per_photon`), the `[front]` (how the
+//! cells are drawn and summed up, and which other table's curves are drawn beside them:
+//! `crate::front_curves`, read again here) and, for a full table, the `[quick]` sizes. They are
+//! compared as TOML values, so comments and layout may change too; anything else (the matrix,
+//! the run, the caustic settings, a technique or a metric's passes, kind or frame mode) would
 //! make the table describe a run that did not happen, and is refused. The table then embeds
-//! the new config and says under its commit line which commit added the explanations, and the
-//! config's hash when measured.
+//! the new config and says under its commit line which commit read it again, and the config's
+//! hash when measured.
 
 use crate::config::LoadedConfig;
 use crate::plausibility::Finding;
@@ -18,23 +23,33 @@ use anyhow::Result;
 use caustics::input_error;
 use std::path::Path;
 
-/// The config's TOML without its `[[plausibility.explained]]` entries, the `source` of its
-/// `[[paper]]` entries and its `[front]`: what must not change after the run.
-fn what_was_measured(text: &str, what: &str) -> Result<toml::Value> {
+/// What a metric's entry may change after the run: how its cells are judged (`independent_of`,
+/// `not_monotonic`, `bytes_per_photon`) and why some may read n/a (`absent`; a run that
+/// recorded no such pass failed without it, so a table that exists has none to read).
+const METRIC_READING: [&str; 4] = ["independent_of", "not_monotonic", "absent", "bytes_per_photon"];
+
+/// The config's TOML without what measures nothing (see the module): what must not change after
+/// the run. `quick`: the table is a `--quick` run's, which the `[quick]` sizes made.
+pub(crate) fn what_was_measured(text: &str, what: &str, quick: bool) -> Result<toml::Value> {
     let mut v: toml::Value = toml::from_str(text).map_err(|e| input_error!("{what}: does not parse: {e}"))?;
     if let Some(t) = v.as_table_mut() {
-        t.remove("front");
+        for key in ["table", "layout", "plausibility", "front"] {
+            t.remove(key);
+        }
+        if !quick {
+            t.remove("quick");
+        }
     }
+    // A paper's value stays: it is a cell of the table (beside ours, and in the ratio).
     if let Some(entries) = v.get_mut("paper").and_then(|p| p.as_array_mut()) {
         for e in entries.iter_mut().filter_map(|e| e.as_table_mut()) {
             e.remove("source");
         }
     }
-    if let Some(p) = v.get_mut("plausibility").and_then(|p| p.as_table_mut()) {
-        p.remove("explained");
-        if p.is_empty() {
-            if let Some(t) = v.as_table_mut() {
-                t.remove("plausibility");
+    if let Some(entries) = v.get_mut("metric").and_then(|p| p.as_array_mut()) {
+        for e in entries.iter_mut().filter_map(|e| e.as_table_mut()) {
+            for key in METRIC_READING {
+                e.remove(key);
             }
         }
     }
@@ -60,13 +75,15 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
         )
         .into());
     }
-    let measured = what_was_measured(&r.config.toml, &format!("{t}: the embedded config"))?;
-    if what_was_measured(&config.text, &config.path.display().to_string())? != measured {
+    let measured = what_was_measured(&r.config.toml, &format!("{t}: the embedded config"), r.run.quick)?;
+    let today = what_was_measured(&config.text, &config.path.display().to_string(), r.run.quick)?;
+    if today != measured {
+        let keys = crate::drift::differences(&measured, &today);
         return Err(input_error!(
-            "{}: differs from the config {t} was measured with (hash {}) in more than its \
-             [[plausibility.explained]] entries, its [[paper]] sources and its [front]: run the table again",
+            "{}: differs from the config {t} was measured with (hash {}) in what it measures ({}): run the table again",
             config.path.display(),
-            r.run.explained.as_ref().map_or(&r.config.hash, |e| &e.measured_config_hash)
+            r.run.explained.as_ref().map_or(&r.config.hash, |e| &e.measured_config_hash),
+            keys.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
         )
         .into());
     }
@@ -81,10 +98,13 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
         )
         .into());
     }
-    // The findings must be the run's: rules changed since would change more than the explanations.
+    // The rules must be the run's: judged with the config it embeds, the table must give the
+    // findings it has (explanations aside). Then the new config judges it (`write_table`).
     let unexplained =
         |f: &[Finding]| -> Vec<Finding> { f.iter().cloned().map(|x| Finding { explained: None, ..x }).collect() };
-    let now = crate::plausibility::check(&config.config, &crate::results::rounded(&r)?);
+    let embedded: crate::config::Config =
+        toml::from_str(&r.config.toml).map_err(|e| input_error!("{t}: the embedded config does not parse: {e}"))?;
+    let now = crate::plausibility::check(&embedded, &crate::results::rounded(&r)?);
     if unexplained(&now) != unexplained(&r.plausibility) {
         return Err(input_error!(
             "{t}: this causticlab's plausibility rules find {} entries where the run's found {}: the rules changed since the run; run the table again",
@@ -99,6 +119,9 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
         Some(Explained { commit: commit.to_string(), date: crate::meta::utc_now(), measured_config_hash });
     r.config.toml = config.text.clone();
     r.config.hash = config.hash.clone();
+    let table = &config.config.table;
+    (r.config.paper, r.config.table, r.config.caption) =
+        (table.paper.clone(), table.number.clone(), table.caption.clone());
     let dir = device_dir(root, &r);
     write_table(&config.config, &r, &dir, root)
 }

@@ -1,5 +1,8 @@
-//! `results/README.md`: an index of every table under the results folder, with its device
-//! and date, rebuilt from the `<config>.json.gz` files after each run or merge.
+//! `results/README.md`: an index of every table under the results folder, with its device,
+//! date and commit, and whether its config file today still describes its run
+//! (`crate::drift`), rebuilt from the `<config>.json.gz` files after each run or merge, and by
+//! `causticlab bench index` (whose `--check` CI runs: a config edited without its tables run
+//! again shows in the index).
 
 use crate::results::Results;
 use anyhow::Result;
@@ -15,6 +18,13 @@ rebuilt after each run. One folder per device (`<driver>-<device>` slug); in eac
 (everything, raw samples included, as gzip-compressed JSON: `zcat` reads it) and `.png` and
 `.svg` (the plot). lavapipe numbers are serialized CPU
 time: compare techniques within one device, never lavapipe against a GPU.
+
+*config today* compares the config each table embeds with its file in `bench_configs/` today:
+`same`; `read differently` where only what `causticlab bench explain` may change differs (the
+explanations of implausible cells, the papers' sources, the front's drawing); **changed** where
+the table was measured with settings the file no longer has (the keys named): its numbers are
+still that run's, but today's config would measure them differently, so run it again before
+comparing it with a table of today's.
 ";
 
 /// What else the repository's results folder holds, each named only where it is there (a
@@ -38,6 +48,17 @@ const OTHERS: [(&str, &str); 5] = [
 
 /// Rebuilds `<root>/README.md` from `<root>/*/*.json.gz` (and plain `*.json` tables).
 pub fn write_index(root: &Path) -> Result<PathBuf> {
+    let path = root.join("README.md");
+    write_file_atomically(&path, index_text(root).as_bytes())?;
+    Ok(path)
+}
+
+/// What `write_index` writes. A table's config file (`bench_configs/<name>.toml`, as the bench
+/// was given it) is looked for from the results folder's parent (the repository of `results/`),
+/// then from the current folder.
+pub fn index_text(root: &Path) -> String {
+    let here = Path::new(".");
+    let above = root.parent().unwrap_or(here);
     let mut rows: Vec<(String, String, String)> = vec![];
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
         .map(|rd| rd.filter_map(|e| e.ok()).map(|e| e.path()).filter(|p| p.is_dir()).collect())
@@ -63,15 +84,17 @@ pub fn write_index(root: &Path) -> Result<PathBuf> {
             let Ok(r) = serde_json::from_str::<Results>(&text) else { continue };
             let folder = d.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
             let md = format!("{folder}/{}.md", r.config.name);
+            let today = crate::drift::drift(&r.config.toml, &r.config.file, &[above, here], r.run.quick);
             let line = format!(
-                "| {} | [{}]({md}) | {} ({}) | {} | {} | {} |",
+                "| {} | [{}]({md}) | {} ({}) | {} | {} | {} | {} |",
                 crate::config::title(&r.config.paper, &r.config.table),
                 r.config.name,
                 r.meta.device,
                 r.meta.driver_info,
                 r.cells.len(),
                 r.meta.date,
-                r.meta.commit
+                r.meta.commit,
+                crate::drift::describe(&today, 3)
             );
             rows.push((r.config.paper.clone(), r.config.name.clone(), line));
         }
@@ -87,15 +110,38 @@ pub fn write_index(root: &Path) -> Result<PathBuf> {
     } else {
         let _ = writeln!(
             s,
-            "\n| paper, table | config | device (driver) | cells | date | commit |\n|---|---|---|---|---|---|"
+            "\n| paper, table | config | device (driver) | cells | date | commit | config today |\n|---|---|---|---|---|---|---|"
         );
     }
     for (_, _, line) in rows {
         let _ = writeln!(s, "{line}");
     }
+    s
+}
+
+/// `bench index --check`: the lines where `<root>/README.md` differs from what `write_index`
+/// would write now (empty when it is current), each as `README.md:LINE: ...`.
+pub fn stale_lines(root: &Path) -> Result<Vec<String>> {
     let path = root.join("README.md");
-    write_file_atomically(&path, s.as_bytes())?;
-    Ok(path)
+    let now = index_text(root);
+    let Ok(written) = std::fs::read_to_string(&path) else {
+        return Ok(vec![format!("{}: not there (`causticlab bench index` writes it)", path.display())]);
+    };
+    let (a, b): (Vec<&str>, Vec<&str>) = (written.lines().collect(), now.lines().collect());
+    let mut out = vec![];
+    for i in 0..a.len().max(b.len()) {
+        match (a.get(i), b.get(i)) {
+            (Some(x), Some(y)) if x == y => {}
+            (x, y) => out.push(format!(
+                "{}:{}: written `{}`, now `{}`",
+                path.display(),
+                i + 1,
+                x.unwrap_or(&"(no line)"),
+                y.unwrap_or(&"(no line)")
+            )),
+        }
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@
 pub mod claims;
 pub mod config;
 pub mod curve_plot;
+pub mod drift;
 pub mod explain;
 pub mod figure;
 pub mod final_flip;

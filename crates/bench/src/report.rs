@@ -47,10 +47,10 @@ pub fn markdown(config: &Config, results: &Results) -> String {
         let front = if config.front.is_some() { " and its `[front]` drawn" } else { "" };
         let _ = writeln!(
             s,
-            "- **Explained after the run:** the config's `[[plausibility.explained]]` entries applied{front} at \
-             commit {} ({}) by `causticlab bench explain`, which times nothing; the config was hash {} when \
-             measured and differs from it at most in those entries, its `[[paper]]` sources and its `[front]`, \
-             none of which is measured",
+            "- **Explained after the run:** read again with its config as it was at commit {} ({}): its \
+             `[[plausibility.explained]]` entries and rules applied{front} by `causticlab bench explain`, which \
+             times nothing; the config was hash {} when measured and differs from it at most in what measures \
+             nothing (its text, layout, `[[paper]]` sources, how its cells are judged, its `[front]`)",
             e.commit, e.date, e.measured_config_hash
         );
     }

@@ -168,6 +168,7 @@ fn bench_explain_applies_explanations_added_after_the_run_and_times_nothing() {
     };
     let msg = format!("{err:#}");
     assert!(msg.contains("synthetic.toml") && msg.contains("run the table again"), "{msg}");
+    assert!(msg.contains("in what it measures (`matrix.photons`)"), "the key is named: {msg}");
     assert_eq!(read(), before);
     // A copy of the table elsewhere, or a part of one, is refused: either would overwrite the table.
     let copy = dir.join("copy.json");
@@ -243,6 +244,35 @@ fn bench_explain_ignores_the_sources_of_paper_values() {
         panic!("a changed paper value was accepted")
     };
     assert!(format!("{err:#}").contains("run the table again"), "{err:#}");
+}
+
+#[test]
+fn bench_explain_reads_a_table_again_with_what_measures_nothing() {
+    let (c, r) = table(CONFIG, [12.0, 6.0, 30.0, 35.0], QUIET_EYE, None);
+    let dir = caustics::scratch::ScratchDir::new("causticlab", "explain-reading");
+    bench::run::write_table(&c, &r, &dir.join("synthetic"), &dir).expect("table written");
+    let json = dir.join("synthetic/synthetic.json.gz");
+    let before = bench::results::read(&json, "table").expect("the table");
+    assert!(before.plausibility.iter().all(|f| f.rule != "d"), "{:?}", before.plausibility);
+    let loaded = |text: &str| loaded_config(&dir, text);
+    // A new caption and note, and `Gather` said to be independent of the photons: the table is
+    // judged by the new config, so rule d now finds Gather's 12 → 30 ms along the photons.
+    let read_again = CONFIG
+        .replace("caption = \"Plausibility.\"", "caption = \"Read again.\"\nnotes = [\"A note.\"]")
+        .replace("bytes_per_photon = 32\n", "bytes_per_photon = 32\nindependent_of = [\"photons\"]\n");
+    assert_ne!(read_again, CONFIG);
+    let out = bench::explain::explain(&loaded(&read_again), &json, &dir, "abc1234").expect("read again");
+    let after = bench::results::read(&json, "table").expect("the table");
+    assert_eq!(after.cells, before.cells, "no cell changed");
+    assert!(after.plausibility.iter().any(|f| f.rule == "d" && f.metric == "Gather"), "{:?}", after.plausibility);
+    assert_eq!(after.config.caption, "Read again.");
+    assert!(out.markdown.contains("Read again.") && out.markdown.contains("A note."), "{}", out.markdown);
+    // A metric's frame mode is how it was measured: refused, naming it.
+    let other_mode = read_again.replace("passes = [\"composite\"]\n", "passes = [\"composite\"]\nexclude = [\"x\"]\n");
+    let Err(err) = bench::explain::explain(&loaded(&other_mode), &json, &dir, "def5678") else {
+        panic!("a metric's passes changed were accepted")
+    };
+    assert!(format!("{err:#}").contains("(`metric[\"Eye\"].exclude`)"), "{err:#}");
 }
 
 /// One scene, one technique per entry of `labels`, each at the photon counts of `photons`; the

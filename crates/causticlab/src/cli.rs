@@ -180,9 +180,10 @@ fn parse_budget(s: &str) -> Result<f64, String> {
 pub enum BenchCommand {
     /// Merge the parts of a sharded or filtered sweep into the full table.
     Merge(MergeArgs),
-    /// Judge a written table again with the `[[plausibility.explained]]` entries its config
-    /// gained after the run, and draw its `[front]` again (nothing is timed; the config may
-    /// differ in those entries, its `[[paper]]` sources and its `[front]` only).
+    /// Read a written table again with its config as it is now: judge it with the config's
+    /// rules and `[[plausibility.explained]]` entries, and write its text, layout and `[front]`
+    /// again (nothing is timed; the config may differ only in what measures nothing: its text,
+    /// layout, paper sources, judging and front).
     Explain(ExplainArgs),
     /// Recompute every number the README, docs/ and results/ pages quote from the committed
     /// tables (their `<!--= ... -->` claims), and find measured-looking numbers without one
@@ -194,6 +195,20 @@ pub enum BenchCommand {
     /// values within --tolerance. Names every difference and exits 1 if there is one (a sharded
     /// and merged sweep against an unsharded run: scripts/cluster/slurm_check.sh).
     Same(SameArgs),
+    /// Rebuild the results folder's index (<results>/README.md: every table with its device,
+    /// date, commit, and whether its config file today still describes its run); with --check,
+    /// write nothing and fail naming each line that is out of date.
+    Index(IndexArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct IndexArgs {
+    /// Results folder: the index is <results>/README.md.
+    #[arg(long, default_value = "results")]
+    pub results: PathBuf,
+    /// Compare the written index with what it would be now, and exit 1 if they differ.
+    #[arg(long)]
+    pub check: bool,
 }
 
 #[derive(Debug, Args)]

@@ -30,6 +30,9 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
     if let Some(BenchCommand::Same(s)) = &args.merge {
         return same(s);
     }
+    if let Some(BenchCommand::Index(i)) = &args.merge {
+        return index(i);
+    }
     let Some(path) = &args.config else {
         return Err(caustics::input_error!("bench: give a config file (bench_configs/*.toml) or `merge`").into());
     };
@@ -121,6 +124,30 @@ fn report(out: &bench::Outcome) {
     for f in &out.removed {
         println!("removed {} (the table's uncompressed copy: its .json.gz replaces it)", f.display());
     }
+}
+
+/// `bench index`: the results folder's index rebuilt, or with --check compared.
+fn index(i: &crate::cli::IndexArgs) -> Result<()> {
+    if !i.results.is_dir() {
+        return Err(caustics::input_error!("--results {}: not a folder", i.results.display()).into());
+    }
+    if !i.check {
+        println!("wrote {}", bench::index::write_index(&i.results)?.display());
+        return Ok(());
+    }
+    let stale = bench::index::stale_lines(&i.results)?;
+    for line in &stale {
+        println!("{line}");
+    }
+    if !stale.is_empty() {
+        anyhow::bail!(
+            "bench index --check: {} line(s) of {} are out of date: `causticlab bench index` rewrites it",
+            stale.len(),
+            i.results.join("README.md").display()
+        );
+    }
+    println!("{}: current", i.results.join("README.md").display());
+    Ok(())
 }
 
 /// `bench claims`: every page's claims against the committed tables.

@@ -40,6 +40,49 @@ fn every_number_the_pages_quote_agrees_with_its_table() {
 }
 
 #[test]
+fn the_results_index_is_current() {
+    let results = workspace().join("results").display().to_string();
+    let run = causticlab(&["bench", "index", "--check", "--results", &results]);
+    assert_eq!(run.code, Some(0), "`causticlab bench index` rewrites it: {}", run.describe());
+}
+
+#[test]
+fn the_index_says_which_tables_their_config_would_measure_otherwise() {
+    let s = common::Scratch::new("claims", "index");
+    let device = "llvmpipe-llvmpipe-llvm-15-0-6-256-bits-mesa-22-3-6-llvm-15-0-6";
+    std::fs::create_dir_all(s.join("bench_configs")).unwrap();
+    std::fs::create_dir_all(s.join("results").join(device)).unwrap();
+    let name = "wyman2008_table4";
+    let table = format!("{device}/{name}.json.gz");
+    std::fs::copy(workspace().join("results").join(&table), s.join("results").join(&table)).unwrap();
+    let config = std::fs::read_to_string(workspace().join(format!("bench_configs/{name}.toml"))).unwrap();
+    let config_file = s.join(format!("bench_configs/{name}.toml"));
+    let results = s.join("results").display().to_string();
+    let index = || std::fs::read_to_string(s.join("results/README.md")).unwrap();
+    let row = || index().lines().find(|l| l.contains(&format!("[{name}]"))).unwrap_or_default().to_string();
+    // The file as the table was measured with: `same`; then with a note: read differently.
+    std::fs::write(&config_file, &config).unwrap();
+    assert_eq!(causticlab(&["bench", "index", "--results", &results]).code, Some(0));
+    assert!(row().ends_with("| same |"), "{}", index());
+    std::fs::write(&config_file, config.replace("notes = [", "notes = [\"A note.\", ")).unwrap();
+    let run = causticlab(&["bench", "index", "--check", "--results", &results]);
+    assert_eq!(run.code, Some(1), "the index is out of date: {}", run.describe());
+    assert!(run.stdout.contains("README.md:") && run.stdout.contains("now `"), "{}", run.describe());
+    assert_eq!(causticlab(&["bench", "index", "--results", &results]).code, Some(0));
+    assert!(row().contains("| read differently: `table.notes` (`bench explain`) |"), "{}", row());
+    // Another orbit period: the table was measured otherwise.
+    assert!(config.contains("period_frames = "), "the config has an orbit period");
+    let changed = config.replace("period_frames = ", "period_frames = 1");
+    std::fs::write(&config_file, changed).unwrap();
+    assert_eq!(causticlab(&["bench", "index", "--results", &results]).code, Some(0));
+    assert!(row().contains("| **changed**: `run.period_frames` (run it again) |"), "{}", row());
+    assert_eq!(causticlab(&["bench", "index", "--check", "--results", &results]).code, Some(0));
+    // A results folder that is not there is an input error.
+    let run = causticlab(&["bench", "index", "--results", &s.join("nothing").display().to_string()]);
+    assert_eq!(run.code, Some(2), "{}", run.describe());
+}
+
+#[test]
 fn a_wrong_number_fails_with_page_line_written_and_computed() {
     let s = common::Scratch::new("claims", "page");
     let page = s.join("page.md");
