@@ -5,9 +5,10 @@
 //! same way, or needs the table run again.
 //!
 //! Compared as TOML values, so comments and layout are not differences. What `bench explain`
-//! may change after the run (the `[[plausibility.explained]]` entries, the `[[paper]]` sources,
-//! the `[front]`: `crate::explain`) is a change of how the table is read, not of what it
-//! measured, and is told apart.
+//! may change after the run (what measures nothing: the text, the layout, the papers' sources,
+//! how the cells are judged, the front; `crate::explain`) is a change of how the table is read,
+//! not of what it measured, and is told apart. Only the config file is compared: the code that
+//! ran it may have changed too (the table names its commit).
 
 use std::path::Path;
 
@@ -16,7 +17,7 @@ use std::path::Path;
 pub enum Drift {
     /// The file holds the config the table embeds.
     Same,
-    /// They differ only in what `bench explain` may change (keys named).
+    /// They differ only in what measures nothing, which `bench explain` may change (keys named).
     Reading(Vec<String>),
     /// They differ in what was measured (keys named): the table needs running again.
     Measured(Vec<String>),
@@ -43,17 +44,10 @@ pub fn drift(embedded: &str, file: &str, roots: &[&Path], quick: bool) -> Drift 
     if all.is_empty() {
         return Drift::Same;
     }
-    let measured = match (
-        crate::explain::what_was_measured(embedded, "the table's config", quick),
-        crate::explain::what_was_measured(&today, file, quick),
-    ) {
-        (Ok(a), Ok(b)) => differences(&a, &b),
-        _ => return Drift::Unknown(format!("`{file}` or the table's copy does not parse")),
-    };
-    if measured.is_empty() {
-        Drift::Reading(all)
-    } else {
-        Drift::Measured(measured)
+    match crate::explain::measured_differences(embedded, &today, file, quick) {
+        Ok(measured) if measured.is_empty() => Drift::Reading(all),
+        Ok(measured) => Drift::Measured(measured),
+        Err(_) => Drift::Unknown(format!("`{file}` or the table's copy does not parse")),
     }
 }
 
@@ -125,10 +119,12 @@ fn labelled(v: &[toml::Value]) -> bool {
         && labels.iter().collect::<std::collections::BTreeSet<_>>().len() == labels.len()
 }
 
-/// The index's cell for `d`: at most `shown` keys, then how many more.
+/// The index's cell for `d`: at most `shown` keys, the papers' values last (a re-run does not
+/// change them), then how many more.
 pub fn describe(d: &Drift, shown: usize) -> String {
     let keys = |k: &[String]| {
-        let mut s = k.iter().take(shown).map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ");
+        let (ours, papers): (Vec<&String>, Vec<&String>) = k.iter().partition(|k| !k.starts_with("paper"));
+        let mut s = ours.into_iter().chain(papers).take(shown).map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ");
         if k.len() > shown {
             s.push_str(&format!(" and {} more", k.len() - shown));
         }
@@ -136,7 +132,7 @@ pub fn describe(d: &Drift, shown: usize) -> String {
     };
     match d {
         Drift::Same => "same".into(),
-        Drift::Reading(k) => format!("read differently: {} (`bench explain`)", keys(k)),
+        Drift::Reading(k) => format!("reading changed: {} (`bench explain` rewrites it)", keys(k)),
         Drift::Measured(k) => format!("**changed**: {} (run it again)", keys(k)),
         Drift::Unknown(why) => why.clone(),
     }
@@ -167,6 +163,12 @@ mod tests {
         let a_metrics =
             v("[[metric]]\nlabel = \"fps\"\nkind = \"fps\"\n[[metric]]\nlabel = \"Gather\"\nkind = \"pass_ms\"\n");
         assert_eq!(differences(&a_metrics, &d), ["metric (order)"]);
+        // Labels that do not name every entry once: by position, or the whole array.
+        let twice = v("[[metric]]\nlabel = \"x\"\nkind = \"a\"\n[[metric]]\nlabel = \"x\"\nkind = \"b\"\n");
+        let twice_b = v("[[metric]]\nlabel = \"x\"\nkind = \"a\"\n[[metric]]\nlabel = \"x\"\nkind = \"c\"\n");
+        assert_eq!(differences(&twice, &twice_b), ["metric[1].kind"]);
+        assert_eq!(differences(&p, &v("[[paper]]\nfps = 1.0\n")), ["paper"]);
+        assert_eq!(differences(&v("x = [1, 2]"), &v("x = [1, 3]")), ["x"]);
     }
 
     #[test]
@@ -194,6 +196,11 @@ mod tests {
         );
         let many = Drift::Measured((0..5).map(|i| format!("k{i}")).collect());
         assert_eq!(describe(&many, 2), "**changed**: `k0`, `k1` and 3 more (run it again)");
+        let papers_first = Drift::Measured(vec!["paper[0].fps".into(), "run.period_frames".into()]);
+        assert_eq!(describe(&papers_first, 1), "**changed**: `run.period_frames` and 1 more (run it again)");
+        let reading = Drift::Reading(vec!["table.notes".into()]);
+        assert_eq!(describe(&reading, 3), "reading changed: `table.notes` (`bench explain` rewrites it)");
+        assert_eq!(describe(&Drift::Same, 3), "same");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -24,8 +24,9 @@ use caustics::input_error;
 use std::path::Path;
 
 /// What a metric's entry may change after the run: how its cells are judged (`independent_of`,
-/// `not_monotonic`, `bytes_per_photon`) and why some may read n/a (`absent`; a run that
-/// recorded no such pass failed without it, so a table that exists has none to read).
+/// `not_monotonic`, `bytes_per_photon`) and why some may read n/a (`absent`, once added: a run
+/// that recorded no such pass failed without it, so the table has none to read; taken away, it
+/// would have failed a run that the table's n/a cells show passed, and is a difference).
 const METRIC_READING: [&str; 4] = ["independent_of", "not_monotonic", "absent", "bytes_per_photon"];
 
 /// The config's TOML without what measures nothing (see the module): what must not change after
@@ -46,14 +47,33 @@ pub(crate) fn what_was_measured(text: &str, what: &str, quick: bool) -> Result<t
             e.remove("source");
         }
     }
-    if let Some(entries) = v.get_mut("metric").and_then(|p| p.as_array_mut()) {
-        for e in entries.iter_mut().filter_map(|e| e.as_table_mut()) {
-            for key in METRIC_READING {
-                e.remove(key);
-            }
+    for e in metrics(&mut v) {
+        for key in METRIC_READING {
+            e.remove(key);
         }
     }
     Ok(v)
+}
+
+fn metrics(v: &mut toml::Value) -> impl Iterator<Item = &mut toml::Table> {
+    v.get_mut("metric").and_then(|p| p.as_array_mut()).into_iter().flatten().filter_map(|e| e.as_table_mut())
+}
+
+/// The keys (`crate::drift::differences`) where `today`'s config differs from `measured`'s, the
+/// table's, in what was measured: empty when `bench explain` may read the table with it.
+pub(crate) fn measured_differences(measured: &str, today: &str, what: &str, quick: bool) -> Result<Vec<String>> {
+    let (a, b) = (what_was_measured(measured, "the table's config", quick)?, what_was_measured(today, what, quick)?);
+    let mut keys = crate::drift::differences(&a, &b);
+    let absent = |text: &str| -> Result<Vec<String>> {
+        let mut v: toml::Value = toml::from_str(text).map_err(|e| input_error!("{what}: does not parse: {e}"))?;
+        let label = |e: &toml::Table| e.get("label").and_then(|l| l.as_str()).unwrap_or_default().to_string();
+        Ok(metrics(&mut v).filter(|e| e.contains_key("absent")).map(|e| label(e)).collect())
+    };
+    let now = absent(today)?;
+    for label in absent(measured)?.into_iter().filter(|l| !now.contains(l)) {
+        keys.push(format!("metric[{label:?}].absent (taken away)"));
+    }
+    Ok(keys)
 }
 
 /// Judges `table` (a `<config>.json.gz` the bench wrote) again with `config`'s explanations and
@@ -75,10 +95,8 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
         )
         .into());
     }
-    let measured = what_was_measured(&r.config.toml, &format!("{t}: the embedded config"), r.run.quick)?;
-    let today = what_was_measured(&config.text, &config.path.display().to_string(), r.run.quick)?;
-    if today != measured {
-        let keys = crate::drift::differences(&measured, &today);
+    let keys = measured_differences(&r.config.toml, &config.text, &config.path.display().to_string(), r.run.quick)?;
+    if !keys.is_empty() {
         return Err(input_error!(
             "{}: differs from the config {t} was measured with (hash {}) in what it measures ({}): run the table again",
             config.path.display(),
@@ -124,4 +142,75 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
         (table.paper.clone(), table.number.clone(), table.caption.clone());
     let dir = device_dir(root, &r);
     write_table(&config.config, &r, &dir, root)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::measured_differences;
+
+    const RUN: &str = r#"
+[table]
+paper = "P"
+number = "1"
+caption = "C"
+
+[run]
+warmup_frames = 2
+
+[layout]
+rows = ["photons"]
+
+[[paper]]
+photons = 256
+values = { Gather = 5.0 }
+
+[[metric]]
+label = "Gather"
+kind = "pass_ms"
+passes = ["splat.*"]
+
+[[metric]]
+label = "Copy"
+kind = "pass_ms"
+passes = ["copy"]
+absent = "no copy on this path"
+
+[quick]
+photons = [64]
+"#;
+
+    fn keys(today: &str, quick: bool) -> Vec<String> {
+        measured_differences(RUN, today, "today.toml", quick).expect("both parse")
+    }
+
+    #[test]
+    fn what_measures_nothing_may_change_and_the_rest_is_named() {
+        let gather = "passes = [\"splat.*\"]\n";
+        // Each of these measures nothing: no key is named.
+        let reading = [
+            RUN.replace("caption = \"C\"", "caption = \"D\"\nnotes = [\"n\"]\nplot_log_y = true"),
+            RUN.replace("rows = [\"photons\"]", "rows = [\"photons\"]\ncolumns = [\"metric\"]"),
+            RUN.replace("values = { Gather = 5.0 }", "values = { Gather = 5.0 }\nsource = \"Table 1\""),
+            RUN.replace(gather, &format!("{gather}independent_of = [\"photons\"]\nnot_monotonic = \"why\"")),
+            RUN.replace(gather, &format!("{gather}bytes_per_photon = 16\nabsent = \"why\"")),
+            format!("{RUN}\n[plausibility]\nwork_grows_with = [\"photons\"]\n"),
+            format!("{RUN}\n[front]\nx = 1\n"),
+            RUN.replace("photons = [64]", "photons = [32]"),
+        ];
+        for today in &reading {
+            assert_eq!(keys(today, false), Vec::<String>::new(), "{today}");
+        }
+        // The [quick] sizes made a --quick table.
+        assert_eq!(keys(&reading[7], true), ["quick.photons"]);
+        // What was measured, and the papers' values (cells of the table), are named.
+        assert_eq!(keys(&RUN.replace("warmup_frames = 2", "warmup_frames = 3"), false), ["run.warmup_frames"]);
+        assert_eq!(keys(&RUN.replace("Gather = 5.0", "Gather = 6.0"), false), ["paper[0].values.Gather"]);
+        assert_eq!(keys(&RUN.replace(gather, "passes = [\"splat\"]\n"), false), ["metric[\"Gather\"].passes"]);
+        // `absent` taken away: the table's n/a cells show a run that config would fail.
+        assert_eq!(
+            keys(&RUN.replace("absent = \"no copy on this path\"\n", ""), false),
+            ["metric[\"Copy\"].absent (taken away)"]
+        );
+        assert!(measured_differences(RUN, "[run", "today.toml", false).is_err());
+    }
 }

@@ -19,12 +19,14 @@ rebuilt after each run. One folder per device (`<driver>-<device>` slug); in eac
 `.svg` (the plot). lavapipe numbers are serialized CPU
 time: compare techniques within one device, never lavapipe against a GPU.
 
-*config today* compares the config each table embeds with its file in `bench_configs/` today:
-`same`; `read differently` where only what `causticlab bench explain` may change differs (the
-explanations of implausible cells, the papers' sources, the front's drawing); **changed** where
-the table was measured with settings the file no longer has (the keys named): its numbers are
-still that run's, but today's config would measure them differently, so run it again before
-comparing it with a table of today's.
+*config today* compares the config each table embeds with its file in `bench_configs/` today
+(the file only: the code may have changed since, and each table names its commit): `same`;
+`reading changed` where only what measures nothing differs (the table's text and layout, the
+papers' sources, how the cells are judged, the front's drawing), which `causticlab bench
+explain` writes into the table; **changed** where the table was measured with settings the file
+no longer has (the keys named, the papers' values last): its numbers are still that run's, but
+today's config would measure them otherwise, so run it again before comparing it with a table of
+today's.
 ";
 
 /// What else the repository's results folder holds, each named only where it is there (a
@@ -84,7 +86,12 @@ pub fn index_text(root: &Path) -> String {
             let Ok(r) = serde_json::from_str::<Results>(&text) else { continue };
             let folder = d.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
             let md = format!("{folder}/{}.md", r.config.name);
-            let today = crate::drift::drift(&r.config.toml, &r.config.file, &[above, here], r.run.quick);
+            // As the bench was given it, or where it keeps it when that was an absolute path.
+            let file = match Path::new(&r.config.file).is_absolute() {
+                true => format!("bench_configs/{}.toml", r.config.name),
+                false => r.config.file.clone(),
+            };
+            let today = crate::drift::drift(&r.config.toml, &file, &[above, here], r.run.quick);
             let line = format!(
                 "| {} | [{}]({md}) | {} ({}) | {} | {} | {} | {} |",
                 crate::config::title(&r.config.paper, &r.config.table),

@@ -50,7 +50,8 @@ pub fn markdown(config: &Config, results: &Results) -> String {
             "- **Explained after the run:** read again with its config as it was at commit {} ({}): its \
              `[[plausibility.explained]]` entries and rules applied{front} by `causticlab bench explain`, which \
              times nothing; the config was hash {} when measured and differs from it at most in what measures \
-             nothing (its text, layout, `[[paper]]` sources, how its cells are judged, its `[front]`)",
+             nothing (its text, layout, `[[paper]]` sources, how its cells are judged, its `[front]`, and the \
+             `[quick]` sizes a full table did not use)",
             e.commit, e.date, e.measured_config_hash
         );
     }

@@ -73,12 +73,14 @@ pub struct RunInfo {
     /// suite cut off by its time budget): they read `not run`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub not_run: Vec<usize>,
-    /// Explanations added after the run (`bench explain`); the timings are the run's.
+    /// Read again after the run with its config's explanations, text and judging
+    /// (`bench explain`); the timings are the run's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub explained: Option<Explained>,
 }
 
-/// When a table was judged again with explanations its config gained after the run.
+/// When a table was read again (`bench explain`) with what its config changed after the run in
+/// what measures nothing: explanations, text, layout, judging.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct Explained {
     /// The commit whose `causticlab bench explain` did it.

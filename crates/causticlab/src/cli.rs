@@ -246,7 +246,8 @@ pub struct ClaimsArgs {
 
 #[derive(Debug, Args)]
 pub struct ExplainArgs {
-    /// The bench config (bench_configs/*.toml) with the explanations.
+    /// The bench config (bench_configs/*.toml) as it is now: the same as the table's in what
+    /// it measures.
     pub config: PathBuf,
     /// The table's JSON (results/<device>/<config>.json.gz).
     pub table: PathBuf,
