@@ -7,6 +7,9 @@
 //!   technique axis, in the config's order, where its entries add work, e.g. more batches),
 //!   beyond both cells' interquartile ranges (and 1%).
 //! - **b** Dynamic beats static: a `dynamic` cell faster than its `static` twin, likewise.
+//!
+//!   Rules a and b compare times the device took: an entry that rule c, e or f finds (it reads
+//!   `not measured`: the device's clock missed the work) is in no pair of theirs.
 //! - **c** Faster than memory: a copy whose bytes (`bytes_per_photon`) over its time exceed what
 //!   the device can copy: its copy bandwidth, measured at the start of the run, plus 10% (the
 //!   two are measured apart) for copies of at least 64 MiB; ten times that below 64 MiB, where
@@ -173,7 +176,7 @@ fn same_passes(a: &[String], b: &[String]) -> bool {
 pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
     let matrix = Matrix::new(config, results.run.quick.then_some(&config.quick));
     let mut out = vec![];
-    let mut add = |rule: &str, m: &MetricSpec, c: &CellResult, text: String| {
+    let add = |out: &mut Vec<Finding>, rule: &str, m: &MetricSpec, c: &CellResult, text: String| {
         out.push(Finding {
             rule: rule.into(),
             metric: m.label.clone(),
@@ -185,40 +188,6 @@ pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
     };
     for m in config.metrics.iter().filter(|m| is_timing(&m.kind)) {
         let kind = m.kind.as_str();
-        // a: more work, less time.
-        if m.not_monotonic.is_none() {
-            for (c, d, axis, here, next) in more_work_pairs(config, &matrix, results, m) {
-                if let (Some(a), Some(b)) = (spread(c, &m.label), spread(d, &m.label)) {
-                    if clearly_faster(kind, a, b) {
-                        add(
-                            "a",
-                            m,
-                            d,
-                            format!(
-                                "more work, less time: `{}` {axis} {here} → {next}: {} → {}",
-                                m.label,
-                                fmt(a.1),
-                                fmt(b.1)
-                            ),
-                        );
-                    }
-                }
-            }
-        }
-        // b: dynamic beats static.
-        for d in results.cells.iter().filter(|c| c.cell.lighting == "dynamic") {
-            let Some(s) = twin(results, &d.cell, "lighting", "static") else { continue };
-            if let (Some(a), Some(b)) = (spread(s, &m.label), spread(d, &m.label)) {
-                if clearly_faster(kind, a, b) {
-                    add(
-                        "b",
-                        m,
-                        d,
-                        format!("dynamic beats static: `{}` {} static, {} dynamic", m.label, fmt(a.1), fmt(b.1)),
-                    );
-                }
-            }
-        }
         // c: faster than the device's memory; f: photons faster than the device can write them.
         if let (Some(bpp), Some(gbs)) = (&m.bytes_per_photon, results.run.copy_bandwidth_gbs) {
             for c in &results.cells {
@@ -236,6 +205,7 @@ pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
                     let rate = v * 1e6 * per / 1e9;
                     if rate > bound {
                         add(
+                            &mut out,
                             "f",
                             m,
                             c,
@@ -250,6 +220,7 @@ pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
                     let rate = bytes / (v * 1e-3) / 1e9;
                     if rate > bound {
                         add(
+                            &mut out,
                             "c",
                             m,
                             c,
@@ -283,6 +254,7 @@ pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
                             format!("`{}` is a rate of `{}`: ", m.label, gpu_metric.label)
                         };
                         add(
+                            &mut out,
                             "e",
                             m,
                             c,
@@ -296,6 +268,55 @@ pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
                             ),
                         );
                     }
+                }
+            }
+        }
+        // a and b compare what the device timed: not an entry c, e or f found (`not measured`).
+        let unmeasured: std::collections::BTreeSet<usize> = out
+            .iter()
+            .filter(|f| f.metric == m.label && UNMEASURED_RULES.contains(&f.rule.as_str()))
+            .map(|f| f.cell)
+            .collect();
+        let measured = |c: &CellResult| !unmeasured.contains(&c.cell.index);
+        // a: more work, less time.
+        if m.not_monotonic.is_none() {
+            for (c, d, axis, here, next) in more_work_pairs(config, &matrix, results, m) {
+                if !measured(c) || !measured(d) {
+                    continue;
+                }
+                if let (Some(a), Some(b)) = (spread(c, &m.label), spread(d, &m.label)) {
+                    if clearly_faster(kind, a, b) {
+                        add(
+                            &mut out,
+                            "a",
+                            m,
+                            d,
+                            format!(
+                                "more work, less time: `{}` {axis} {here} → {next}: {} → {}",
+                                m.label,
+                                fmt(a.1),
+                                fmt(b.1)
+                            ),
+                        );
+                    }
+                }
+            }
+        }
+        // b: dynamic beats static.
+        for d in results.cells.iter().filter(|c| c.cell.lighting == "dynamic") {
+            let Some(s) = twin(results, &d.cell, "lighting", "static") else { continue };
+            if !measured(s) || !measured(d) {
+                continue;
+            }
+            if let (Some(a), Some(b)) = (spread(s, &m.label), spread(d, &m.label)) {
+                if clearly_faster(kind, a, b) {
+                    add(
+                        &mut out,
+                        "b",
+                        m,
+                        d,
+                        format!("dynamic beats static: `{}` {} static, {} dynamic", m.label, fmt(a.1), fmt(b.1)),
+                    );
                 }
             }
         }
@@ -316,6 +337,7 @@ pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
                 let Some(min) = values.iter().map(|(v, _)| *v).reduce(f64::min) else { continue };
                 for (v, c) in values.iter().filter(|(v, _)| *v > 2.0 * min) {
                     add(
+                        &mut out,
                         "d",
                         m,
                         c,
@@ -336,7 +358,13 @@ pub fn check(config: &Config, results: &Results) -> Vec<Finding> {
         for (c, d, axis, here, next) in more_work_pairs(config, &matrix, results, m) {
             if let (Some(a), Some(b)) = (value_of(c, &m.label), value_of(d, &m.label)) {
                 if b < a {
-                    add("g", m, d, format!("fewer with more work: `{}` {axis} {here} → {next}: {a} → {b}", m.label));
+                    add(
+                        &mut out,
+                        "g",
+                        m,
+                        d,
+                        format!("fewer with more work: `{}` {axis} {here} → {next}: {a} → {b}", m.label),
+                    );
                 }
             }
         }

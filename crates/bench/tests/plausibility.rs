@@ -393,6 +393,37 @@ fn e_a_pass_far_below_its_host_time_is_not_measured() {
 }
 
 #[test]
+fn a_and_b_leave_out_entries_the_device_did_not_measure() {
+    // a: the trace at 4096² reads 0.05 ms on the device's clock against 900 ms on the host
+    // (rule e): not a time, so not "more work, less time" against 256²'s 50 ms.
+    let text = format!("{HEADER}{TRACE}");
+    let trace = |gpu4096: f64, host4096: f64| {
+        grid(&text, &["trace"], &[256, 4096], move |_, p| {
+            vec![
+                ("Trace", if p == 256 { 50.0 } else { gpu4096 }),
+                ("Trace (host)", if p == 256 { 55.0 } else { host4096 }),
+            ]
+        })
+    };
+    let (c, r) = trace(0.05, 900.0);
+    assert_eq!(rules(&check(&c, &r)), vec![("e".into(), "Trace".into(), 1)]);
+    // Timed by the device (10 ms, 56 on the host): faster with more photons, rule a speaks.
+    let (c, r) = trace(10.0, 56.0);
+    assert_eq!(rules(&check(&c, &r)), vec![("a".into(), "Trace".into(), 1)]);
+    // b: the dynamic 1024² Gather (6 ms) beats its static twin (12 ms), but moves 33.5 MB at
+    // 5.6 GB/s, over rule c's bound (0.4 GB/s measured, ten times it from caches, and 10%:
+    // 4.4 GB/s): not measured, so not faster than anything. At 1 GB/s (bound 11) it is a time.
+    let gather = [12.0, 6.0, 30.0, 35.0];
+    let (c, r) = table(CONFIG, gather, QUIET_EYE, Some(0.4));
+    let found = check(&c, &r);
+    assert!(found.iter().any(|f| f.rule == "c" && f.cell == 1) && found.iter().all(|f| f.rule != "b"), "{found:?}");
+    let (c, r) = table(CONFIG, gather, QUIET_EYE, Some(1.0));
+    let found = check(&c, &r);
+    assert!(found.iter().any(|f| f.rule == "b" && f.cell == 1 && f.metric == "Gather"), "{found:?}");
+    assert!(found.iter().all(|f| f.rule != "c" || f.cell >= 2), "{found:?}");
+}
+
+#[test]
 fn f_a_photon_rate_beyond_what_the_device_can_write_is_flagged() {
     let text = format!("{HEADER}{TRACE}");
     // 256² x 48 B = 3.1 MB, under 64 MiB: bound 10 x 20 GB/s x 1.1 = 220 GB/s, 4583 M photons/s.
