@@ -168,6 +168,12 @@ mod tests {
         let twice_b = v("[[metric]]\nlabel = \"x\"\nkind = \"a\"\n[[metric]]\nlabel = \"x\"\nkind = \"c\"\n");
         assert_eq!(differences(&twice, &twice_b), ["metric[1].kind"]);
         assert_eq!(differences(&p, &v("[[paper]]\nfps = 1.0\n")), ["paper"]);
+        // Labelled on one side only: by position.
+        let one_unlabelled = v("[[metric]]\nlabel = \"fps\"\nkind = \"fps\"\n[[metric]]\nkind = \"pass_ms\"\n");
+        let both =
+            v("[[metric]]\nlabel = \"fps\"\nkind = \"fps\"\n[[metric]]\nlabel = \"Gather\"\nkind = \"pass_ms\"\n");
+        assert_eq!(differences(&both, &one_unlabelled), ["metric[1].label"]);
+        assert_eq!(differences(&one_unlabelled, &both), ["metric[1].label"]);
         assert_eq!(differences(&v("x = [1, 2]"), &v("x = [1, 3]")), ["x"]);
     }
 
@@ -201,6 +207,8 @@ mod tests {
         let reading = Drift::Reading(vec!["table.notes".into()]);
         assert_eq!(describe(&reading, 3), "reading changed: `table.notes` (`bench explain` rewrites it)");
         assert_eq!(describe(&Drift::Same, 3), "same");
+        let exactly = Drift::Measured(vec!["a".into(), "b".into()]);
+        assert_eq!(describe(&exactly, 2), "**changed**: `a`, `b` (run it again)", "no `and 0 more`");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

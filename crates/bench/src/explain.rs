@@ -16,7 +16,6 @@
 //! hash when measured.
 
 use crate::config::LoadedConfig;
-use crate::plausibility::Finding;
 use crate::results::Explained;
 use crate::run::{device_dir, write_table, Outcome};
 use anyhow::Result;
@@ -116,14 +115,13 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
         )
         .into());
     }
-    // The rules must be the run's: judged with the config it embeds, the table must give the
-    // findings it has (explanations aside). Then the new config judges it (`write_table`).
-    let unexplained =
-        |f: &[Finding]| -> Vec<Finding> { f.iter().cloned().map(|x| Finding { explained: None, ..x }).collect() };
+    // The rules must be the run's: judged with the config it embeds (which wrote its findings,
+    // their explanations too), the table must give the findings it has. Then the new config
+    // judges it (`write_table`).
     let embedded: crate::config::Config =
         toml::from_str(&r.config.toml).map_err(|e| input_error!("{t}: the embedded config does not parse: {e}"))?;
     let now = crate::plausibility::check(&embedded, &crate::results::rounded(&r)?);
-    if unexplained(&now) != unexplained(&r.plausibility) {
+    if now != r.plausibility {
         return Err(input_error!(
             "{t}: this causticlab's plausibility rules find {} entries where the run's found {}: the rules changed since the run; run the table again",
             now.len(),
