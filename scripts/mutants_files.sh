@@ -17,6 +17,7 @@ declare -A TESTS=(
     [crates/bench/src/same.rs]="-p bench --lib"
     [crates/bench/src/front_curves.rs]="-p bench --lib --test front_curves"
     [crates/bench/src/drift.rs]="-p bench --lib"
+    [crates/bench/src/one_cpu.rs]="-p bench --test tables"
     [crates/bench/src/explain.rs]="-p bench --lib --test plausibility --test front_curves"
     [crates/caustics/src/reference/optics.rs]="-p caustics --lib"
     [crates/caustics/src/compare.rs]="-p caustics --lib"

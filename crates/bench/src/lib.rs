@@ -23,6 +23,7 @@ pub mod index;
 pub mod measure;
 pub mod meta;
 pub mod metrics;
+pub mod one_cpu;
 pub mod paper;
 pub mod plan;
 pub mod plausibility;

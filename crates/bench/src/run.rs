@@ -29,6 +29,9 @@ pub struct BenchOptions {
     pub spread_retries: u32,
     /// Refuse to write a table with busy cells (a timing run into the repository's results/).
     pub refuse_busy: bool,
+    /// Refuse to run into a device folder whose other tables another CPU measured (a timing run
+    /// into the repository's results/: `crate::one_cpu`).
+    pub refuse_other_cpu: bool,
 }
 
 /// Seconds to wait before measuring a busy cell again.
@@ -134,6 +137,14 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
     let cells = selected(&all, &filter, shard.as_ref());
     if cells.is_empty() {
         return Err(input_error!("{}: --filter/--shard selects no cell", lc.path.display()).into());
+    }
+    if opts.refuse_other_cpu {
+        let dir = opts.results_root.join(crate::meta::results_slug(ctx.info()));
+        let cpu = crate::meta::cpu_model();
+        let others = crate::one_cpu::other_cpus(&dir, &lc.name, &cpu);
+        if let Some(why) = crate::one_cpu::refusal(&lc.path, &dir, &cpu, &others) {
+            return Err(input_error!("{why}").into());
+        }
     }
     let plan = c.frame_plan(opts.quick);
     let (warmup, measured) = (plan.warmup, plan.min);

@@ -542,3 +542,42 @@ fn parts_merge_into_one_table_and_mismatched_parts_are_refused() {
         assert!(format!("{err:#}").contains(&format!("{what} `")), "{what}: {err:#}");
     }
 }
+
+#[test]
+fn a_device_folder_measured_on_another_cpu_is_named() {
+    let dir = caustics::scratch::ScratchDir::new("causticlab", "one-cpu");
+    let (_, r) = synthetic();
+    let write = |name: &str, cpu: &str| {
+        let mut t = r.clone();
+        t.config.name = name.into();
+        t.meta.cpu = cpu.into();
+        let text = bench::results::to_json(&t).unwrap();
+        std::fs::write(dir.join(format!("{name}.json.gz")), bench::results::gzip(&text).unwrap()).unwrap();
+    };
+    let here = "AMD EPYC";
+    write("a", here);
+    write("b", here);
+    std::fs::write(dir.join("notes.json.gz"), b"not a table").unwrap();
+    assert!(bench::one_cpu::other_cpus(&dir, "c", here).is_empty(), "one CPU: nothing to say");
+    assert_eq!(bench::one_cpu::refusal(std::path::Path::new("c.toml"), &dir, here, &[]), None);
+    // Another CPU measured `b`: named, unless `b` is the table being replaced.
+    write("b", "Intel(R) Xeon(R) Processor");
+    let others = bench::one_cpu::other_cpus(&dir, "c", here);
+    assert_eq!(others, [("b.json.gz".to_string(), "Intel(R) Xeon(R) Processor".to_string())]);
+    assert!(bench::one_cpu::other_cpus(&dir, "b", here).is_empty(), "the table the run replaces is not another's");
+    let why = bench::one_cpu::refusal(std::path::Path::new("c.toml"), &dir, here, &others).unwrap();
+    assert!(
+        why.starts_with("c.toml: 1 of the tables in ")
+            && why.contains("(Intel(R) Xeon(R) Processor: b.json.gz)")
+            && why.contains("this machine's is AMD EPYC")
+            && why.contains("--allow-other-cpu"),
+        "{why}"
+    );
+    write("a", "Intel(R) Xeon(R) Processor");
+    let others = bench::one_cpu::other_cpus(&dir, "c", here);
+    assert_eq!(others.len(), 2);
+    let why = bench::one_cpu::refusal(std::path::Path::new("c.toml"), &dir, here, &others).unwrap();
+    assert!(why.contains("2 of the tables") && why.contains(": a.json.gz, ...)"), "{why}");
+    // No folder yet: nothing to compare with.
+    assert!(bench::one_cpu::other_cpus(&dir.join("none"), "c", here).is_empty());
+}

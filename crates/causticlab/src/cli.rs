@@ -153,6 +153,10 @@ pub struct BenchArgs {
     /// committed tables come from a quiet machine).
     #[arg(long)]
     pub allow_busy: bool,
+    /// Run into a device folder of the repository's results/ whose other tables another CPU
+    /// measured (it is refused: a folder's tables compare only if one CPU measured them all).
+    #[arg(long)]
+    pub allow_other_cpu: bool,
 }
 
 fn parse_cores(s: &str) -> Result<f64, String> {

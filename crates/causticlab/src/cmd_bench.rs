@@ -65,6 +65,7 @@ pub fn run(g: &GlobalOpts, args: &BenchArgs, validation: &mut Option<Arc<Validat
         busy_retries: args.busy_retries,
         spread_retries: args.spread_retries,
         refuse_busy: !args.quick && !args.allow_busy && bench::meta::in_work_tree(&args.results),
+        refuse_other_cpu: !args.quick && !args.allow_other_cpu && bench::meta::in_work_tree(&args.results),
     };
     let out = bench::run(&ctx, &shaders, &config, &bench_opts)?;
     report(&out);
