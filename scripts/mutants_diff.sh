@@ -51,6 +51,8 @@ start=$(date +%s)
 for f in "${changed[@]}"; do
     judge_of "$f"
     out=target/mutants/diff/$(basename "$f" .rs)
+    # A run that finds no mutant writes no mutants.out: an earlier run's must not be read as its.
+    rm -rf "$out"
     mkdir -p "$out"
     # Exit 2: mutants missed, 3: some timed out (counted below); anything else but 0 is a failed run.
     # A run that fails for another reason (its unmutated baseline did not build or pass: a

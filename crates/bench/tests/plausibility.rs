@@ -421,6 +421,12 @@ fn a_and_b_leave_out_entries_the_device_did_not_measure() {
     let found = check(&c, &r);
     assert!(found.iter().any(|f| f.rule == "b" && f.cell == 1 && f.metric == "Gather"), "{found:?}");
     assert!(found.iter().all(|f| f.rule != "c" || f.cell >= 2), "{found:?}");
+    // Only the metric the device did not time leaves its pairs: Gather's rule c at 4096² leaves
+    // Eye's dynamic 5 ms against static 9 ms there a finding of rule b.
+    let (c, r) = table(CONFIG, gather, [5.0, 5.1, 9.0, 5.0], Some(1.0));
+    let found = check(&c, &r);
+    assert!(found.iter().any(|f| f.rule == "c" && f.cell == 3 && f.metric == "Gather"), "{found:?}");
+    assert!(found.iter().any(|f| f.rule == "b" && f.cell == 3 && f.metric == "Eye"), "{found:?}");
 }
 
 #[test]
