@@ -44,10 +44,11 @@ pub fn drift(embedded: &str, file: &str, roots: &[&Path], quick: bool) -> Drift 
     if all.is_empty() {
         return Drift::Same;
     }
-    match crate::explain::measured_differences(embedded, &today, file, quick) {
-        Ok(measured) if measured.is_empty() => Drift::Reading(all),
-        Ok(measured) => Drift::Measured(measured),
-        Err(_) => Drift::Unknown(format!("`{file}` or the table's copy does not parse")),
+    let measured = crate::explain::measured_differences(&then, &now, quick);
+    if measured.is_empty() {
+        Drift::Reading(all)
+    } else {
+        Drift::Measured(measured)
     }
 }
 
@@ -179,11 +180,11 @@ mod tests {
 
     #[test]
     fn what_explain_may_change_is_a_reading_and_the_rest_a_measurement() {
-        let dir = std::env::temp_dir().join(format!("causticlab-drift-{}", std::process::id()));
+        let dir = caustics::scratch::ScratchDir::new("causticlab", "drift");
         std::fs::create_dir_all(dir.join("bench_configs")).expect("a temp folder");
         let then = "[run]\nperiod_frames = 40\n";
         let write = |text: &str| std::fs::write(dir.join("bench_configs/t.toml"), text).expect("config");
-        let roots = [Path::new("/nonexistent-root"), dir.as_path()];
+        let roots = [Path::new("/nonexistent-root"), &dir];
         write("# a comment\n[run]\nperiod_frames   = 40\n");
         assert_eq!(drift(then, "bench_configs/t.toml", &roots, false), Drift::Same);
         write("[run]\nperiod_frames = 40\n[[plausibility.explained]]\nrule = \"a\"\nmetric = \"fps\"\nwhy = \"x\"\n");
@@ -209,6 +210,5 @@ mod tests {
         assert_eq!(describe(&Drift::Same, 3), "same");
         let exactly = Drift::Measured(vec!["a".into(), "b".into()]);
         assert_eq!(describe(&exactly, 2), "**changed**: `a`, `b` (run it again)", "no `and 0 more`");
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -28,10 +28,14 @@ use std::path::Path;
 /// would have failed a run that the table's n/a cells show passed, and is a difference).
 const METRIC_READING: [&str; 4] = ["independent_of", "not_monotonic", "absent", "bytes_per_photon"];
 
-/// The config's TOML without what measures nothing (see the module): what must not change after
-/// the run. `quick`: the table is a `--quick` run's, which the `[quick]` sizes made.
-pub(crate) fn what_was_measured(text: &str, what: &str, quick: bool) -> Result<toml::Value> {
-    let mut v: toml::Value = toml::from_str(text).map_err(|e| input_error!("{what}: does not parse: {e}"))?;
+/// A config's text as a TOML value; `what` names it in the error.
+pub(crate) fn parse(text: &str, what: &str) -> Result<toml::Value> {
+    Ok(toml::from_str(text).map_err(|e| input_error!("{what}: does not parse: {e}"))?)
+}
+
+/// The config without what measures nothing (see the module): what must not change after the
+/// run. `quick`: the table is a `--quick` run's, which the `[quick]` sizes made.
+fn what_was_measured(mut v: toml::Value, quick: bool) -> toml::Value {
     if let Some(t) = v.as_table_mut() {
         for key in ["table", "layout", "plausibility", "front"] {
             t.remove(key);
@@ -46,33 +50,37 @@ pub(crate) fn what_was_measured(text: &str, what: &str, quick: bool) -> Result<t
             e.remove("source");
         }
     }
-    for e in metrics(&mut v) {
-        for key in METRIC_READING {
-            e.remove(key);
+    if let Some(entries) = v.get_mut("metric").and_then(|p| p.as_array_mut()) {
+        for e in entries.iter_mut().filter_map(|e| e.as_table_mut()) {
+            for key in METRIC_READING {
+                e.remove(key);
+            }
         }
     }
-    Ok(v)
+    v
 }
 
-fn metrics(v: &mut toml::Value) -> impl Iterator<Item = &mut toml::Table> {
-    v.get_mut("metric").and_then(|p| p.as_array_mut()).into_iter().flatten().filter_map(|e| e.as_table_mut())
+/// The labels of the metrics of `v` that say why they may read n/a (`absent`).
+fn absent(v: &toml::Value) -> Vec<&str> {
+    let entries = v.get("metric").and_then(|p| p.as_array()).into_iter().flatten();
+    entries
+        .filter(|e| e.get("absent").is_some())
+        .map(|e| e.get("label").and_then(|l| l.as_str()).unwrap_or_default())
+        .collect()
 }
 
 /// The keys (`crate::drift::differences`) where `today`'s config differs from `measured`'s, the
 /// table's, in what was measured: empty when `bench explain` may read the table with it.
-pub(crate) fn measured_differences(measured: &str, today: &str, what: &str, quick: bool) -> Result<Vec<String>> {
-    let (a, b) = (what_was_measured(measured, "the table's config", quick)?, what_was_measured(today, what, quick)?);
-    let mut keys = crate::drift::differences(&a, &b);
-    let absent = |text: &str| -> Result<Vec<String>> {
-        let mut v: toml::Value = toml::from_str(text).map_err(|e| input_error!("{what}: does not parse: {e}"))?;
-        let label = |e: &toml::Table| e.get("label").and_then(|l| l.as_str()).unwrap_or_default().to_string();
-        Ok(metrics(&mut v).filter(|e| e.contains_key("absent")).map(|e| label(e)).collect())
-    };
-    let now = absent(today)?;
-    for label in absent(measured)?.into_iter().filter(|l| !now.contains(l)) {
+pub(crate) fn measured_differences(measured: &toml::Value, today: &toml::Value, quick: bool) -> Vec<String> {
+    let mut keys = crate::drift::differences(
+        &what_was_measured(measured.clone(), quick),
+        &what_was_measured(today.clone(), quick),
+    );
+    let now = absent(today);
+    for label in absent(measured).into_iter().filter(|l| !now.contains(l)) {
         keys.push(format!("metric[{label:?}].absent (taken away)"));
     }
-    Ok(keys)
+    keys
 }
 
 /// Judges `table` (a `<config>.json.gz` the bench wrote) again with `config`'s explanations and
@@ -94,7 +102,11 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
         )
         .into());
     }
-    let keys = measured_differences(&r.config.toml, &config.text, &config.path.display().to_string(), r.run.quick)?;
+    let keys = measured_differences(
+        &parse(&r.config.toml, &format!("{t}: the embedded config"))?,
+        &parse(&config.text, &config.path.display().to_string())?,
+        r.run.quick,
+    );
     if !keys.is_empty() {
         return Err(input_error!(
             "{}: differs from the config {t} was measured with (hash {}) in what it measures ({}): run the table again",
@@ -144,7 +156,7 @@ pub fn explain(config: &LoadedConfig, table: &Path, root: &Path, commit: &str) -
 
 #[cfg(test)]
 mod tests {
-    use super::measured_differences;
+    use super::{measured_differences, parse};
 
     const RUN: &str = r#"
 [table]
@@ -178,7 +190,8 @@ photons = [64]
 "#;
 
     fn keys(today: &str, quick: bool) -> Vec<String> {
-        measured_differences(RUN, today, "today.toml", quick).expect("both parse")
+        let v = |text: &str| parse(text, "a config").expect("both parse");
+        measured_differences(&v(RUN), &v(today), quick)
     }
 
     #[test]
@@ -209,6 +222,6 @@ photons = [64]
             keys(&RUN.replace("absent = \"no copy on this path\"\n", ""), false),
             ["metric[\"Copy\"].absent (taken away)"]
         );
-        assert!(measured_differences(RUN, "[run", "today.toml", false).is_err());
+        assert!(format!("{:#}", parse("[run", "today.toml").unwrap_err()).contains("today.toml: does not parse"));
     }
 }
