@@ -56,10 +56,14 @@ fi
 # reported by malloc, and a SIGSEGV, each while recording a small upload or readback, never
 # on Mesa 22.3, and valgrind's memcheck finds no invalid access of ours in a whole run) is run
 # once more, after printing its crash report; a second death, or any failing test, fails.
+# ARGS select test targets of the whole workspace (`--workspace --test NAME`), never `-p PKG`:
+# a package alone resolves its dependencies' features differently (cargo's feature
+# unification), so `-p` would build each package's dependency tree a second time (about three
+# minutes a package on two cores) instead of running the binaries scripts/test.sh just built.
 mesa25_test() {
     local log=$out/cargo-test.log
     for attempt in 1 2; do
-        if CAUSTICLAB_TEST_DEVICE="$device" cargo test -q "$@" >"$log" 2>&1; then
+        if CAUSTICLAB_TEST_DEVICE="$device" cargo test -q --workspace "$@" >"$log" 2>&1; then
             cat "$log"
             return 0
         fi
@@ -73,14 +77,14 @@ mesa25_test() {
 }
 
 echo "mesa25_check: vkcore's GPU tests on $device"
-mesa25_test -p vkcore --test statistics --test rendering --test compaction --test passes --test ring
+mesa25_test --test statistics --test rendering --test compaction --test passes --test ring
 
 echo "mesa25_check: photon-trace's ray queries against its compute traversal on $device"
-CAUSTICLAB_REQUIRE_RAY_QUERY=1 mesa25_test -p caustics --test photon_trace_ray_query
+CAUSTICLAB_REQUIRE_RAY_QUERY=1 mesa25_test --test photon_trace_ray_query
 
 echo "mesa25_check: the registry rows needing features Mesa 22.3 lacks (photon-trace-ray-query) on $device"
-CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test -p caustics --test conformance conformance_beyond_the_papers
-CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test -p caustics --test frame_graph_stages --test pass_table
+CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test --test conformance conformance_beyond_the_papers
+CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test --test frame_graph_stages --test pass_table
 
 failed=()
 skipped=()

@@ -14,13 +14,20 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# Each step says how long it took (CI keeps its total under 45 minutes: docs/testing.md).
+step() {
+    local start=$SECONDS
+    "$@"
+    echo "test.sh: $* took $((SECONDS - start)) s"
+}
+
 bash scripts/setup.sh
 unset VK_LOADER_DEBUG
-cargo test --workspace --no-fail-fast "$@"
+step cargo test --workspace --no-fail-fast "$@"
 if [ $# -eq 0 ]; then
-    bash scripts/gpu_dry_run.sh target/debug/causticlab
-    bash scripts/mesa25_check.sh target/debug/causticlab
-    bash scripts/cluster/slurm_check.sh target/debug/causticlab
-    bash scripts/cluster/k8s_check.sh
-    bash scripts/mutants_diff.sh
+    step bash scripts/gpu_dry_run.sh target/debug/causticlab
+    step bash scripts/mesa25_check.sh target/debug/causticlab
+    step bash scripts/cluster/slurm_check.sh target/debug/causticlab
+    step bash scripts/cluster/k8s_check.sh
+    step bash scripts/mutants_diff.sh
 fi

@@ -587,6 +587,10 @@ pub struct QuickSpec {
     pub caustic_map_resolution: u32,
     #[serde(default = "quick_reference")]
     pub reference_photons: u64,
+    /// The scenes a quick run uses, some of `matrix.scenes` (default: all of them): a config
+    /// whose scenes repeat one costly mesh can smoke-test its techniques on fewer.
+    #[serde(default)]
+    pub scenes: Option<Vec<String>>,
 }
 
 fn quick_photons() -> Vec<u32> {
@@ -616,6 +620,7 @@ impl Default for QuickSpec {
             resolution: quick_resolution(),
             caustic_map_resolution: quick_caustic_map(),
             reference_photons: quick_reference(),
+            scenes: None,
         }
     }
 }

@@ -82,7 +82,7 @@ impl Matrix {
         let or = |v: &Vec<u32>| if v.is_empty() { vec![0] } else { v.clone() };
         let res = |v: &Vec<[u32; 2]>| if v.is_empty() { vec![[0, 0]] } else { v.clone() };
         Matrix {
-            scenes: m.scenes.clone(),
+            scenes: quick.and_then(|q| q.scenes.clone()).unwrap_or_else(|| m.scenes.clone()),
             photons: quick.map(|q| q.photons.clone()).unwrap_or_else(|| m.photons.clone()),
             lights: or(&m.lights),
             resolution: quick.map(|q| res(&q.resolution)).unwrap_or_else(|| res(&m.resolution)),
@@ -269,6 +269,24 @@ mod tests {
         let want = [("hier".to_string(), 4096, 0), ("adaptive".into(), 4096, 1), ("adaptive".into(), 16384, 2)];
         assert_eq!(got, want);
         assert!(!c.runs(0, 16384) && c.runs(0, 4096) && c.runs(1, 16384));
+    }
+
+    #[test]
+    fn a_quick_run_uses_its_scenes_and_sizes_and_a_full_run_the_matrix() {
+        fn scenes(c: &Config, quick: bool) -> Vec<(String, u32)> {
+            let m = Matrix::new(c, quick.then_some(&c.quick));
+            m.cells(c).iter().map(|x| (x.scene.clone(), x.photons)).collect()
+        }
+        let mut c = mixed();
+        c.matrix.scenes = vec!["a.toml".into(), "b.toml".into(), "c.toml".into()];
+        c.quick.scenes = Some(vec!["c.toml".into(), "a.toml".into()]);
+        // Two techniques run at the quick photon counts, on the quick scenes in their order.
+        let want: Vec<(String, u32)> =
+            ["c.toml", "a.toml"].iter().flat_map(|s| [64, 128, 64, 128].map(|p| (s.to_string(), p))).collect();
+        assert_eq!(scenes(&c, true), want);
+        assert_eq!(scenes(&c, false).len(), 3 * 3, "a full run: every scene, both photon counts for adaptive");
+        c.quick.scenes = None;
+        assert_eq!(scenes(&c, true).len(), 3 * 2 * 2, "no quick.scenes: every scene");
     }
 
     #[test]

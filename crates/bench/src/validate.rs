@@ -303,6 +303,18 @@ pub fn validate(lc: &LoadedConfig) -> Result<()> {
         return Err(bad("quick.warmup_frames", format!("must be at most {MAX_FRAMES}")));
     }
     check_budget(&bad, "quick", q.time_budget_s, q.measured_frames, q.max_frames)?;
+    if let Some(scenes) = &q.scenes {
+        if scenes.is_empty() {
+            return Err(bad(
+                "quick.scenes",
+                "empty: name some of `matrix.scenes`, or leave the key out for all".into(),
+            ));
+        }
+        if let Some(s) = scenes.iter().find(|s| !c.matrix.scenes.contains(s)) {
+            return Err(bad("quick.scenes", format!("`{s}` is not one of `matrix.scenes`")));
+        }
+        unique("quick.scenes", scenes.clone())?;
+    }
     if !(16..=8192).contains(&q.caustic_map_resolution) {
         return Err(bad(
             "quick.caustic_map_resolution",

@@ -73,6 +73,12 @@ fn config_errors_name_the_file_and_key() {
             SMALL.replace("kind = \"splats_drawn\"", "kind = \"pass_host_ms\""),
             "metric[1].passes",
         ),
+        (
+            "quick_scene_elsewhere.toml",
+            format!("{SMALL}\n[quick]\nscenes = [\"SCENES/sphere_on_plane.toml\", \"SCENES/pool.toml\"]\n"),
+            "quick.scenes",
+        ),
+        ("quick_no_scene.toml", format!("{SMALL}\n[quick]\nscenes = []\n"), "quick.scenes"),
         ("few_max_frames.toml", SMALL.replace("[run]", "[run]\nmax_frames = 0"), "run.max_frames"),
         (
             "bytes_on_a_count.toml",

@@ -589,5 +589,8 @@ pub fn vertex_thickness(positions: &[Vec3], normals: &[Vec3], indices: &[u32]) -
     out
 }
 
+mod memo;
+pub use memo::vertex_thickness_memo;
+
 #[cfg(test)]
 mod tests;

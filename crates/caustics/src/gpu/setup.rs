@@ -3,7 +3,7 @@
 
 use super::push::MeshConstants;
 use super::structs::*;
-use crate::bvh::vertex_thickness;
+use crate::bvh::vertex_thickness_memo;
 use crate::scene::{LightKind, MaterialKind, Scene};
 use anyhow::{Context as _, Result};
 use glam::{Mat4, Vec3};
@@ -17,7 +17,7 @@ pub struct GpuMesh {
     pub index_count: u32,
     pub constants: MeshConstants,
     /// Wyman 2005 thickness per vertex (unchanged by rigid motion, kept for re-uploads).
-    pub thickness: Vec<f32>,
+    pub thickness: std::sync::Arc<[f32]>,
 }
 
 /// The GPU vertices of `m` with the given per-vertex thickness.
@@ -64,9 +64,9 @@ pub fn upload_meshes(ctx: &Context, scene: &Scene) -> Result<Vec<GpuMesh>> {
             MaterialKind::Reflective { specular } => (MATERIAL_REFLECTIVE, *specular, Vec3::ONE),
         };
         let thickness = if kind == MATERIAL_REFRACTIVE {
-            vertex_thickness(&m.positions, &m.normals, &m.indices)
+            vertex_thickness_memo(&m.positions, &m.normals, &m.indices)
         } else {
-            vec![0.0; m.positions.len()]
+            vec![0.0; m.positions.len()].into()
         };
         let vertices = mesh_vertices(m, &thickness);
         let vb = ctx
