@@ -86,36 +86,54 @@ echo "mesa25_check: the registry rows needing features Mesa 22.3 lacks (photon-t
 CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test --test conformance conformance_beyond_the_papers
 CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test --test frame_graph_stages --test pass_table
 
+# The renders run in two lanes, every other scene each (two processes at a time: a render's
+# fixed costs, instance, validation layer and shader compiles, keep one process near a single
+# core); each lane writes what it found to its own files, read after both have finished.
+render_lane() {   # lane: renders scenes lane, lane + 2, ... ; writes $out/lane$lane.{ok,skipped,failed}
+    local lane=$1 i=0 scene stem t status missing log=$out/lane$1.log
+    : >"$out/lane$lane.ok"; : >"$out/lane$lane.skipped"; : >"$out/lane$lane.failed"
+    for scene in scenes/*.toml; do
+        i=$((i + 1))
+        [ $((i % 2)) -eq "$lane" ] || continue
+        stem=$(basename "$scene" .toml)
+        local techniques=(shah hcm adaptive photon-trace)
+        grep -q '^\[pool\]' "$scene" && techniques=(pool-convolution)
+        for t in "${techniques[@]}"; do
+            status=0
+            "$bin" --device "$device" --validate render --scene "$scene" --technique "$t" --photons 64 \
+                --out "$out/$stem-$t" >"$log" 2>&1 || status=$?
+            if [ "$status" -ne 0 ] && missing=$(grep -m1 'not found; searched:' "$log"); then
+                echo "mesa25_check: skipped $stem: ${missing#error: }"
+                echo "$stem" >>"$out/lane$lane.skipped"
+                break
+            fi
+            if [ "$status" -ne 0 ]; then
+                cat "$log" >&2
+                echo "mesa25_check: FAILED $stem with $t (exit $status)" >&2
+                echo "$stem/$t" >>"$out/lane$lane.failed"
+            elif ! grep -q "$device" "$log"; then
+                echo "mesa25_check: $stem/$t did not run on $device:" >&2
+                head -1 "$log" >&2
+                echo "$stem/$t" >>"$out/lane$lane.failed"
+            else
+                echo "$stem/$t" >>"$out/lane$lane.ok"
+            fi
+            rm -rf "${out:?}/$stem-$t"
+        done
+    done
+}
+render_lane 0 &
+lane0=$!
+render_lane 1 &
+lane1=$!
+wait "$lane0" || { echo "mesa25_check: render lane 0 stopped early" >&2; exit 1; }
+wait "$lane1" || { echo "mesa25_check: render lane 1 stopped early" >&2; exit 1; }
 failed=()
 skipped=()
-renders=0
-for scene in scenes/*.toml; do
-    stem=$(basename "$scene" .toml)
-    techniques=(shah hcm adaptive photon-trace)
-    grep -q '^\[pool\]' "$scene" && techniques=(pool-convolution)
-    for t in "${techniques[@]}"; do
-        status=0
-        "$bin" --device "$device" --validate render --scene "$scene" --technique "$t" --photons 64 \
-            --out "$out/$stem-$t" >"$out/log" 2>&1 || status=$?
-        if [ "$status" -ne 0 ] && missing=$(grep -m1 'not found; searched:' "$out/log"); then
-            echo "mesa25_check: skipped $stem: ${missing#error: }"
-            skipped+=("$stem")
-            break
-        fi
-        if [ "$status" -ne 0 ]; then
-            cat "$out/log" >&2
-            echo "mesa25_check: FAILED $stem with $t (exit $status)" >&2
-            failed+=("$stem/$t")
-        elif ! grep -q "$device" "$out/log"; then
-            echo "mesa25_check: $stem/$t did not run on $device:" >&2
-            head -1 "$out/log" >&2
-            failed+=("$stem/$t")
-        else
-            renders=$((renders + 1))
-        fi
-        rm -rf "${out:?}/$stem-$t"
-    done
-done
+mapfile -t -O 0 failed < <(cat "$out"/lane[01].failed)
+mapfile -t -O 0 skipped < <(cat "$out"/lane[01].skipped)
+renders=$(cat "$out"/lane[01].ok | wc -l)
+[ "$renders" -gt 0 ] || { echo "mesa25_check: no render ran" >&2; exit 1; }
 echo "mesa25_check: $renders renders on $device, validation clean"
 
 echo "mesa25_check: bench --quick wyman2008_table1 on $device"

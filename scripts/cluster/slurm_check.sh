@@ -20,7 +20,7 @@
 # Slurm 22.05 (Debian 12) without systemd or cgroup delegation: proctrack/linuxproc, task/none,
 # no accounting, select/cons_tres over the machine's cores, root as SlurmUser, munged on a
 # private socket with a fresh key (AuthInfo=socket=...). CONFIG picks the config (default
-# wyman2008_fig7: its quick run has 16 cells of times, relative RMSE, flux, peak ratio and FLIP).
+# wyman2008_fig7: its quick run has 8 cells of times, relative RMSE, flux, peak ratio and FLIP).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 repo=$(pwd)

@@ -42,7 +42,7 @@ fn config_errors_name_the_file_and_key() {
             format!("{SMALL}\n[[paper]]\nscene = \"sphere_on_plane\"\ntechnique = \"points\"\nphotons = 80\nvalues = {{ bogus = 1.0 }}\n"),
             "paper[0].values",
         ),
-        ("negative_budget.toml", SMALL.replace("[run]", "[run]\ntime_budget_s = -1.0"), "run.time_budget_s"),
+        ("negative_budget.toml", SMALL.replace("time_budget_s = 0", "time_budget_s = -1.0"), "run.time_budget_s"),
         (
             "front_unknown_x.toml",
             format!("{SMALL}\n[front]\nx = [\"splat ms\", \"frame ms\"]\ny = \"splats\"\nlevels = [0.1]\n"),

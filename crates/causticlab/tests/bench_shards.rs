@@ -108,7 +108,8 @@ fn an_interrupted_run_leaves_the_previous_table_untouched() {
     let files = ["small.md", "small.json.gz", "small.csv", "small.svg", "small.png"];
     let before: Vec<Vec<u8>> = files.iter().map(|f| std::fs::read(dev.join(f)).expect("table file")).collect();
 
-    // The same sweep again, killed (SIGKILL: no chance to clean up) once two cells are done.
+    // The same sweep again, killed (SIGKILL: no chance to clean up) once two cells are done (the
+    // six left take seconds: the kill comes first).
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_causticlab"))
         .args(["bench".as_ref(), cfg.as_os_str(), "--results".as_ref(), root.as_os_str()])
         .current_dir(workspace())
