@@ -86,15 +86,16 @@ echo "mesa25_check: the registry rows needing features Mesa 22.3 lacks (photon-t
 CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test --test conformance conformance_beyond_the_papers
 CAUSTICLAB_REQUIRE_FEATURES=1 mesa25_test --test frame_graph_stages --test pass_table
 
-# The renders run in two lanes, every other scene each (two processes at a time: a render's
-# fixed costs, instance, validation layer and shader compiles, keep one process near a single
-# core); each lane writes what it found to its own files, read after both have finished.
-render_lane() {   # lane: renders scenes lane, lane + 2, ... ; writes $out/lane$lane.{ok,skipped,failed}
+# The renders run in $lanes lanes, every lanes-th scene each ($lanes processes at a time: a
+# render's fixed costs, instance, validation layer and shader compiles, keep one process near a
+# single core); each lane writes what it found to its own files, read after all have finished.
+lanes=2
+render_lane() {   # lane: renders scenes lane, lane + lanes, ... ; writes $out/lane$lane.{ok,skipped,failed}
     local lane=$1 i=0 scene stem t status missing log=$out/lane$1.log
     : >"$out/lane$lane.ok"; : >"$out/lane$lane.skipped"; : >"$out/lane$lane.failed"
     for scene in scenes/*.toml; do
         i=$((i + 1))
-        [ $((i % 2)) -eq "$lane" ] || continue
+        [ $((i % lanes)) -eq "$lane" ] || continue
         stem=$(basename "$scene" .toml)
         local techniques=(shah hcm adaptive photon-trace)
         grep -q '^\[pool\]' "$scene" && techniques=(pool-convolution)
@@ -122,17 +123,17 @@ render_lane() {   # lane: renders scenes lane, lane + 2, ... ; writes $out/lane$
         done
     done
 }
-render_lane 0 &
-lane0=$!
-render_lane 1 &
-lane1=$!
-wait "$lane0" || { echo "mesa25_check: render lane 0 stopped early" >&2; exit 1; }
-wait "$lane1" || { echo "mesa25_check: render lane 1 stopped early" >&2; exit 1; }
-failed=()
-skipped=()
-mapfile -t -O 0 failed < <(cat "$out"/lane[01].failed)
-mapfile -t -O 0 skipped < <(cat "$out"/lane[01].skipped)
-renders=$(cat "$out"/lane[01].ok | wc -l)
+pids=()
+for ((lane = 0; lane < lanes; lane++)); do
+    render_lane "$lane" &
+    pids+=($!)
+done
+for lane in "${!pids[@]}"; do
+    wait "${pids[$lane]}" || { echo "mesa25_check: render lane $lane stopped early" >&2; exit 1; }
+done
+mapfile -t failed < <(cat "$out"/lane*.failed)
+mapfile -t skipped < <(cat "$out"/lane*.skipped)
+renders=$(cat "$out"/lane*.ok | wc -l)
 [ "$renders" -gt 0 ] || { echo "mesa25_check: no render ran" >&2; exit 1; }
 echo "mesa25_check: $renders renders on $device, validation clean"
 

@@ -242,17 +242,16 @@ fn quick_fig8_at_the_batched_sizes_keeps_the_memory_limit_and_the_photons() {
             4,
             "{config}: 4 batch counts at the quick run's one photon count"
         );
-        for photons in [128u64] {
-            let two = cell(&r, "2 batches", photons);
-            for n in [2u32, 4, 8, 16] {
-                let label = format!("{n} batches");
-                let c = cell(&r, &label, photons);
-                assert!(metric(c, "batches").is_some_and(|b| b >= n as f64), "{config} {label} {photons}");
-                assert!(metric(c, "caustic map").unwrap_or(-1.0) > 0.0, "{config} {label} {photons}: not timed");
-                let s = metric(c, "storage").expect("storage");
-                assert!(s <= 96.0, "{config} {label} {photons}: {s} MiB over the limit");
-                assert_eq!(c["list_sizes"], two["list_sizes"], "{config} {label} {photons}: other photons");
-            }
+        let photons = 128u64;
+        let two = cell(&r, "2 batches", photons);
+        for n in [2u32, 4, 8, 16] {
+            let label = format!("{n} batches");
+            let c = cell(&r, &label, photons);
+            assert!(metric(c, "batches").is_some_and(|b| b >= n as f64), "{config} {label} {photons}");
+            assert!(metric(c, "caustic map").unwrap_or(-1.0) > 0.0, "{config} {label} {photons}: not timed");
+            let s = metric(c, "storage").expect("storage");
+            assert!(s <= 96.0, "{config} {label} {photons}: {s} MiB over the limit");
+            assert_eq!(c["list_sizes"], two["list_sizes"], "{config} {label} {photons}: other photons");
         }
     }
 }
@@ -456,25 +455,24 @@ fn quick_photon_trace_reconstructions_time_and_judge_every_reconstruction() {
     let (_, r) = quick_run("photon_trace_reconstructions.toml");
     let value = |c: &Value, m: &str| c["metrics"][m]["value"].as_f64();
     for scene in ["sphere_on_plane.toml", "ring_cardioid.toml", "bunny_in_room.toml"] {
-        for photons in [64u64] {
-            for t in [
-                "wd-points",
-                "wd-quads light Eq. 4",
-                "hcm varying multi-res",
-                "photon-trace",
-                "differentials",
-                "binned",
-                "wd-eye-points Eq. 10",
-                "screen-space",
-            ] {
-                let c = cell_in(&r, scene, t, photons);
-                assert!(value(c, "Caustic map").is_some_and(|ms| ms > 0.0), "{scene} {t} {photons}: no time");
-                assert!(value(c, "rel. RMSE").is_some_and(|e| e.is_finite()), "{scene} {t} {photons}: no error");
-            }
-            for t in ["photon-trace", "differentials", "binned", "screen-space"] {
-                let flux = value(cell_in(&r, scene, t, photons), "flux ratio").expect("a flux ratio");
-                assert!((flux - 1.0).abs() < 0.05, "{scene} {t} {photons}: flux ratio {flux}");
-            }
+        let photons = 64u64;
+        for t in [
+            "wd-points",
+            "wd-quads light Eq. 4",
+            "hcm varying multi-res",
+            "photon-trace",
+            "differentials",
+            "binned",
+            "wd-eye-points Eq. 10",
+            "screen-space",
+        ] {
+            let c = cell_in(&r, scene, t, photons);
+            assert!(value(c, "Caustic map").is_some_and(|ms| ms > 0.0), "{scene} {t} {photons}: no time");
+            assert!(value(c, "rel. RMSE").is_some_and(|e| e.is_finite()), "{scene} {t} {photons}: no error");
+        }
+        for t in ["photon-trace", "differentials", "binned", "screen-space"] {
+            let flux = value(cell_in(&r, scene, t, photons), "flux ratio").expect("a flux ratio");
+            assert!((flux - 1.0).abs() < 0.05, "{scene} {t} {photons}: flux ratio {flux}");
         }
     }
 }
