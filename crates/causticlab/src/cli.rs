@@ -21,7 +21,8 @@ pub struct Cli {
 /// Options every subcommand accepts, before or after the subcommand name.
 #[derive(Debug, Args, Clone, Default)]
 pub struct GlobalOpts {
-    /// Device to use: an index from `causticlab devices` or a case-insensitive name substring.
+    /// Device to use: an index from `causticlab devices`, or a case-insensitive substring of its
+    /// name or driver (`llvmpipe`, `Mesa 25`).
     #[arg(long, global = true, value_name = "INDEX|NAME", help_heading = "Device")]
     pub device: Option<String>,
     /// Enable Khronos validation with synchronization validation, print every message and exit
@@ -71,7 +72,7 @@ pub enum Command {
 
 #[derive(Debug, Args)]
 pub struct VariantsArgs {
-    /// One line per row, `name|label|scenes|flags`, for scripts (default: a Markdown table).
+    /// One line per row, `name|label|scenes|flags|needs`, for scripts (default: a Markdown table).
     #[arg(long)]
     pub lines: bool,
     /// Only the rows in the quality tables (scripts/quality_table.sh).
@@ -326,10 +327,12 @@ pub struct ReferenceArgs {
     #[arg(long = "final", conflicts_with_all = ["photons", "threads", "facet_normals", "direct", "grid", "kernel"])]
     pub final_image: bool,
     /// With --final: the refinement, 0 to 4: a 256·2^L caustic map, 1024²·8^L photons per light
-    /// (the default, 1, is the one every table's FLIP is against).
-    #[arg(long, requires = "final_image", default_value_t = caustics::final_reference::TABLE_LEVEL,
+    /// (the default, 1, is the one every table's FLIP is against). Without a default here:
+    /// clap drops `requires` when the arg it requires conflicts with one given (`--photons`), so
+    /// `cmd_reference` refuses a --level without --final itself.
+    #[arg(long, requires = "final_image",
           value_parser = clap::value_parser!(u32).range(0..=caustics::final_reference::MAX_LEVEL as i64))]
-    pub level: u32,
+    pub level: Option<u32>,
     /// Output directory (receiver.exr, reference.json; with --final final.exr, final.png,
     /// reference.json).
     #[arg(long)]
@@ -436,7 +439,7 @@ pub struct ViewArgs {
     #[arg(long, value_name = "all|NAME,...", help_heading = "Output")]
     pub dump: Option<String>,
     /// Timed actions, one a line: `<frame> key NAME|set KEY VALUE|screenshot DIR|dump DIR
-    /// [NAMES]|resize W H|exit` (docs/viewer.md).
+    /// [NAMES]|resize W H|reload|await PATH|exit` (docs/viewer.md).
     #[arg(long, value_name = "FILE", help_heading = "Driving")]
     pub script: Option<PathBuf>,
     /// Exit after this many frames.

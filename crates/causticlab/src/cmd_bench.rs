@@ -158,7 +158,22 @@ fn claims(c: &crate::cli::ClaimsArgs) -> Result<()> {
         let _ = std::io::stdout().lock().write_all(bench::claims::list(table)?.as_bytes());
         return Ok(());
     }
+    // A root or page that is not there is the user's to fix (exit 2), and a check that read no
+    // page has checked nothing: neither passes.
+    if !c.root.is_dir() {
+        return Err(caustics::input_error!("bench claims: --root {}: no such folder", c.root.display()).into());
+    }
     let pages = if c.pages.is_empty() { bench::claims::pages(&c.root)? } else { c.pages.clone() };
+    if pages.is_empty() {
+        return Err(caustics::input_error!(
+            "bench claims: no page under {} (README.md, docs/, results/): nothing to check",
+            c.root.display()
+        )
+        .into());
+    }
+    if let Some(p) = pages.iter().find(|p| !p.is_file()) {
+        return Err(caustics::input_error!("bench claims: {}: no such page", p.display()).into());
+    }
     let checked = bench::claims::check(&c.root, &pages)?;
     let (mut claims, mut problems, mut unread) = (0, 0, 0);
     let mut out = std::io::stdout().lock();

@@ -23,6 +23,7 @@ pub fn run(args: &DiffArgs) -> Result<u8> {
             return Err(input_error!("{}: no such file or folder", p.display()).into());
         }
     }
+    check_names(args)?;
     let differing = match (args.a.is_dir(), args.b.is_dir()) {
         (true, true) => diff_dirs(&args.a, &args.b, args)?,
         (false, false) => usize::from(!diff_file(&args.a, &args.b, args)?),
@@ -41,6 +42,26 @@ pub fn run(args: &DiffArgs) -> Result<u8> {
     }
     println!("same");
     Ok(exit::OK)
+}
+
+/// `--unordered` and `--ignore` name dumps (or `final`, or one of two files compared): a
+/// misspelt name would switch its option off without a word.
+fn check_names(args: &DiffArgs) -> Result<()> {
+    let stems: Vec<String> = [&args.a, &args.b]
+        .iter()
+        .filter(|p| p.is_file())
+        .filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned()))
+        .collect();
+    let dumps = caustics::render::all_dump_names();
+    let known = |n: &str| n == "final" || dumps.contains(&n) || stems.iter().any(|s| s == n);
+    for (flag, names) in [("--unordered", &args.unordered), ("--ignore", &args.ignore)] {
+        if let Some(n) = names.iter().find(|n| !known(n)) {
+            return Err(
+                input_error!("{flag} {n}: no dump of that name (`final`, or a name `causticlab dumps` lists)").into()
+            );
+        }
+    }
+    Ok(())
 }
 
 /// Every EXR file of either folder, then the counts of their timings.json; the number of files

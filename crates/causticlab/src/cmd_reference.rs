@@ -38,6 +38,11 @@ pub fn run(g: &GlobalOpts, args: &ReferenceArgs, validation: &mut Option<Arc<Val
     if args.final_image {
         return crate::cmd_reference_final::run(g, args, scene, validation);
     }
+    if args.level.is_some() {
+        return Err(
+            caustics::input_error!("--level: only with --final (the reference final image's refinement)").into()
+        );
+    }
     if scene.pool.is_some() {
         return crate::cmd_pool_reference::run(args, &scene);
     }

@@ -50,7 +50,7 @@ pub fn run(
     c.fresnel = args.fresnel.unwrap_or(c.fresnel);
     c.max_bounces = args.max_bounces;
     c.outside_reflection = args.outside_reflection;
-    let r = Refinement::at(args.level, BASE)?;
+    let r = Refinement::at(args.level.unwrap_or(caustics::final_reference::TABLE_LEVEL), BASE)?;
     // Every setting checked before the device opens.
     r.scene(&scene, seed, 0)?;
     let out = OutputDir::create(&args.out).context("--out")?;

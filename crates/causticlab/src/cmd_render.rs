@@ -36,6 +36,15 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         .into());
     }
     if let Some(n) = dumps.iter().find(|d| named_in(&own, d).is_none() && !dump_all(args.dump.as_deref())) {
+        if !technique.renders_meshes() && named_in(render::EYE_DUMPS, n).is_some() {
+            let names: Vec<&str> = own.iter().map(|d| d.name).collect();
+            return Err(input_error!(
+                "--dump: `{n}` is a buffer of the mesh renderer, which `{technique}` does not use (it renders \
+                 the pool alone); its buffers: {}",
+                names.join(", ")
+            )
+            .into());
+        }
         if let Some(r) = Refraction::ALL.iter().find(|r| named_in(render::dumps::refraction_dumps(**r), n).is_some()) {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of --refraction {r}, not of `{}`",

@@ -11,6 +11,9 @@ pub const DIFFERENT: u8 = 1;
 pub const INPUT: u8 = 2;
 /// `--validate` and the validation layer reported at least one warning or error.
 pub const VALIDATION: u8 = 3;
+/// Standard output was closed by its reader (`| head`): 128 + SIGPIPE (13), as the shell reports a
+/// program that signal stopped.
+pub const CLOSED_STDOUT: u8 = 141;
 
 /// `INPUT` when anything in the chain is the user's to fix, else `FAILURE`.
 pub fn code_for(err: &anyhow::Error) -> u8 {

@@ -31,6 +31,7 @@ fn main() -> ExitCode {
     // `log` warnings (gpu-allocator's leak report among them) go to stderr; RUST_LOG sets the
     // level (e.g. RUST_LOG=info, RUST_LOG=gpu_allocator=trace).
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).format_timestamp(None).init();
+    exit_quietly_when_stdout_closes();
     let cli = Cli::parse();
     let mut validation: Option<Arc<ValidationLog>> = None;
     let ok = |r: Result<()>| r.map(|()| exit::OK);
@@ -78,6 +79,21 @@ fn main() -> ExitCode {
         }
     }
     ExitCode::from(code)
+}
+
+/// A reader that stops early (`causticlab variants | head -1`) closes our stdout, and `println!`
+/// then panics ("failed printing to stdout: Broken pipe"). Exit instead as a program killed by
+/// SIGPIPE does (`exit::CLOSED_STDOUT`, 128 + 13), quietly: the reader already has what it wanted.
+/// (Rust ignores SIGPIPE, and restoring it takes `unsafe`, which this crate forbids.)
+fn exit_quietly_when_stdout_closes() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info.payload_as_str().unwrap_or_default();
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(exit::CLOSED_STDOUT.into());
+        }
+        default(info)
+    }));
 }
 
 /// The device options shared by every subcommand; unknown `--without-feature` names are input

@@ -106,3 +106,23 @@ fn a_table_that_is_not_a_bench_result_is_named() {
     assert_eq!(run.code, Some(2), "{}", run.describe());
     assert!(run.stderr.contains("Cargo.toml"), "{}", run.describe());
 }
+
+/// A root or page that is not there is an input error naming it, and a root with no page fails:
+/// a check that read nothing must not pass.
+#[test]
+fn a_missing_root_or_page_or_no_page_at_all_is_an_input_error() {
+    let s = common::Scratch::new("claims", "missing");
+    let nowhere = s.join("nowhere").display().to_string();
+    let run = causticlab(&["bench", "claims", "--root", &nowhere]);
+    assert_eq!(run.code, Some(2), "{}", run.describe());
+    assert!(run.stderr.contains(&nowhere) && run.stderr.contains("--root"), "{}", run.describe());
+    let empty = s.join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    let empty = empty.display().to_string();
+    let run = causticlab(&["bench", "claims", "--root", &empty]);
+    assert_eq!(run.code, Some(2), "{}", run.describe());
+    assert!(run.stderr.contains("no page") && run.stderr.contains(&empty), "{}", run.describe());
+    let run = causticlab(&["bench", "claims", "no_such_page.md"]);
+    assert_eq!(run.code, Some(2), "{}", run.describe());
+    assert!(run.stderr.contains("no_such_page.md"), "{}", run.describe());
+}

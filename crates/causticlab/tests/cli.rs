@@ -186,6 +186,30 @@ fn caustic_dump_without_a_caustic_technique() {
     );
 }
 
+/// The pool's technique does not render meshes: the eye renderer's buffers are refused saying
+/// so and naming the pool's own, not as a buffer of some other technique.
+#[test]
+fn mesh_renderer_dumps_on_a_pool_scene() {
+    let pool = scene("pool_overhead");
+    for n in ["shadow_map", "eye_gbuffer", "refractor_front_faces"] {
+        expect_input_error(
+            &["render", "--scene", &pool, "--dump", n],
+            &[n, "mesh renderer", "pool-convolution", "receiver"],
+        );
+    }
+}
+
+/// `adaptive` past 4096² photons needs a memory limit: `--max-level` alone says so under its own
+/// name (it sets the photons), not under a `--photons` the user never gave.
+#[test]
+fn adaptive_levels_past_4096_name_the_memory_limit() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(
+        &["render", "--scene", &s, "--technique", "adaptive", "--max-level", "7"],
+        &["--max-level", "8192²", "--photon-memory-limit"],
+    );
+}
+
 #[test]
 fn caustic_setting_out_of_range() {
     expect_input_error(
@@ -301,6 +325,27 @@ fn usage_errors_exit_2() {
 
 // ---------------------------------------------------------------------------------------------
 // devices
+
+/// `causticlab variants | head -1`: a reader that closes the pipe early ends the program as
+/// SIGPIPE would (141), without a panic or a message. The pipe's read end is closed before the
+/// program starts, so its first line already meets a closed pipe.
+#[test]
+fn a_closed_stdout_ends_the_program_quietly() {
+    for args in [&["variants"][..], &["dumps"]] {
+        let (reader, writer) = std::io::pipe().expect("a pipe");
+        drop(reader);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_causticlab"))
+            .args(args)
+            .current_dir(workspace())
+            .stdout(writer)
+            .stderr(std::process::Stdio::piped())
+            .output()
+            .expect("running causticlab");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(141), "{args:?}\n{stderr}");
+        assert!(stderr.is_empty(), "{args:?}: said something\n{stderr}");
+    }
+}
 
 #[test]
 fn devices_lists_features() {

@@ -94,6 +94,12 @@ fn renders_that_differ_are_told_apart_by_file_channel_and_count() {
     let records = diff(&a, &reordered, &["--unordered-records"]);
     assert_eq!(records.code, Some(0), "{}", records.describe());
     assert!(records.stdout.contains("splats.exr (unordered)"), "{}", records.describe());
+    // A misspelt name is refused, not an option silently off.
+    for flag in ["--unordered", "--ignore"] {
+        let typo = diff(&a, &reordered, &[flag, "splat"]);
+        assert_eq!(typo.code, Some(2), "{flag}\n{}", typo.describe());
+        assert!(typo.stderr.contains(flag) && typo.stderr.contains("splat:"), "{}", typo.describe());
+    }
     // An image is not a list: receiver texels swapped still differ under --unordered-records.
     let swapped = dir.join("swapped");
     copy_dir(&b, &swapped);

@@ -450,7 +450,31 @@ impl CausticSettings {
         };
         let most = self.most_photons();
         if !(64..=most).contains(&self.photons) {
-            bad("photons", format!("must be between 64 and {most} (photons per side), got {}", self.photons))?;
+            let adaptive = self.technique == Technique::Adaptive;
+            let hint = if adaptive && self.photon_memory_limit == 0 && self.photons > most {
+                let name = |k: &str| if key == "--" { format!("--{}", k.replace('_', "-")) } else { k.to_string() };
+                format!(
+                    "; technique `adaptive` goes up to {}² ({} {}) with a {}, its photons then made in \
+                     batches (Wyman & Nichols 2009 Sec. 4.3)",
+                    wn2009::TOP_PHOTONS << wn2009::MAX_LEVEL,
+                    name("max_level"),
+                    wn2009::MAX_LEVEL,
+                    name("photon_memory_limit")
+                )
+            } else {
+                String::new()
+            };
+            // `max_level` alone sets the photons (`apply_derived`): name the key that was given.
+            match self.max_level {
+                Some(l) if adaptive && l <= wn2009::MAX_LEVEL && self.photons == wn2009::TOP_PHOTONS << l => bad(
+                    "max_level",
+                    format!("{l} means {}² photons, and photons must be 64 to {most} per side{hint}", self.photons),
+                )?,
+                _ => bad(
+                    "photons",
+                    format!("must be between 64 and {most} (photons per side), got {}{hint}", self.photons),
+                )?,
+            }
         }
         if !(self.splat_radius > 0.0 && self.splat_radius <= 32.0) {
             bad("splat_radius", format!("must be in (0, 32] caustic-map texels, got {}", self.splat_radius))?;
@@ -561,6 +585,71 @@ mod tests {
         }
         let ok = CausticSettings { technique: Technique::PhotonTrace, max_bounces: 64, ..Default::default() };
         ok.validate("test.toml", "caustics.").expect("64 bounces");
+    }
+
+    /// scenes/README.md's `[caustics]` table has a row for every key, with its default as a scene
+    /// file writes it (a fraction such as `2/3` is read as one).
+    #[test]
+    fn the_scene_files_readme_has_a_row_for_every_key_with_its_default() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/README.md");
+        let readme = std::fs::read_to_string(path).expect("scenes/README.md");
+        let section = readme.split("## `[caustics]`").nth(1).expect("its [caustics] section");
+        let section = section.split("\n## ").next().unwrap_or_default();
+        let rows: std::collections::HashMap<&str, &str> = section
+            .lines()
+            .filter_map(|l| {
+                let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+                (cells.len() > 4 && cells[1].starts_with('`')).then(|| (cells[1].trim_matches('`'), cells[3]))
+            })
+            .collect();
+        let number = |w: &str| match w.split_once('/') {
+            Some((a, b)) => Some(a.parse::<f64>().ok()? / b.parse::<f64>().ok()?),
+            None => w.parse::<f64>().ok(),
+        };
+        let defaults = toml::Value::try_from(CausticSettings::default()).expect("the defaults as TOML");
+        for (key, value) in defaults.as_table().expect("a table") {
+            let cell = rows.get(key.as_str()).unwrap_or_else(|| panic!("scenes/README.md has no row for `{key}`"));
+            let written = cell.trim_matches('`');
+            let same = match value {
+                toml::Value::String(v) => written == format!("\"{v}\""),
+                toml::Value::Boolean(v) => written == v.to_string(),
+                toml::Value::Integer(v) => number(written) == Some(*v as f64),
+                toml::Value::Float(v) => number(written).is_some_and(|w| (w - v).abs() < 1e-6),
+                other => panic!("`{key}`: a default of another kind, {other}"),
+            };
+            assert!(same, "scenes/README.md gives `{key}` the default {cell}; it is {value}");
+        }
+        // The keys unset by default (no value to serialize) have their rows too.
+        for key in ["intersect", "max_level"] {
+            assert!(rows.contains_key(key), "scenes/README.md has no row for `{key}`");
+        }
+    }
+
+    /// Past 4096² photons `adaptive` needs a memory limit: the refusal says so, under the key the
+    /// user gave (`max_level` alone sets the photons), and the other techniques get no such hint.
+    #[test]
+    fn too_many_photons_for_adaptive_names_the_memory_limit_and_the_key_given() {
+        let deep =
+            CausticSettings { technique: Technique::Adaptive, max_level: Some(7), photons: 8192, ..Default::default() };
+        let err = deep.validate("test", "--").expect_err("level 7 without a limit").to_string();
+        assert!(err.contains("--max-level") && err.contains("8192²") && err.contains("--photon-memory-limit"), "{err}");
+        let photons = CausticSettings { max_level: None, ..deep.clone() };
+        let err = photons.validate("test", "--").expect_err("8192 without a limit").to_string();
+        assert!(
+            err.contains("--photons") && err.contains("got 8192") && err.contains("--photon-memory-limit"),
+            "{err}"
+        );
+        // A max_level that does not give these photons (both set, disagreeing) is about photons.
+        let both = CausticSettings { max_level: Some(6), ..deep.clone() };
+        let err = both.validate("test", "--").expect_err("8192 and level 6").to_string();
+        assert!(err.contains("--photons") && err.contains("got 8192"), "{err}");
+        CausticSettings { photon_memory_limit: 64, ..deep }.validate("test", "--").expect("level 7 under a limit");
+        let shah = CausticSettings { technique: Technique::Shah, photons: 8192, ..Default::default() };
+        let err = shah.validate("test", "--").expect_err("shah at 8192").to_string();
+        assert!(err.contains("--photons") && !err.contains("memory"), "{err}");
+        let file = CausticSettings { max_level: None, ..deep.clone() };
+        let err = file.validate("scene.toml", "caustics.").expect_err("8192 in a file").to_string();
+        assert!(err.contains("caustics.photons") && err.contains("a photon_memory_limit"), "{err}");
     }
 
     /// Screen-space photon mapping deposits into the eye's view: the caustic map's progressive
