@@ -46,11 +46,13 @@ done
 # A quick quality table of shah, shah-vertex, wd-points and hcm (not every technique) on
 # sphere_on_plane: 2M reference photons instead of the committed tables' 16M; written to
 # out/quality/sphere_on_plane.md.
+echo '=== quality table: the variants "causticlab variants --quality" lists, against the CPU reference, on sphere_on_plane -> out/quality/'
 if ! REF_PHOTONS=2000000 WORK=out/quality RESULTS=out/quality bash scripts/quality_table.sh sphere_on_plane; then
     failed+=("quality table")
 fi
 
 # A quick table: Wyman 2008 Table 1 at small sizes (the committed tables: bash scripts/bench_all.sh).
+echo "=== quick bench table: Wyman 2008 Table 1 at small sizes -> out/results/<device>/quick/"
 if ! "$bin" bench bench_configs/wyman2008_table1.toml --quick --results out/results; then
     failed+=("quick bench table")
 fi

@@ -63,7 +63,8 @@ impl Progress {
         if self.tty {
             let _ = writeln!(err);
         }
-        let _ = writeln!(err, "{} cells in {}", self.done, duration(self.start.elapsed().as_secs_f64()));
+        let cells = if self.done == 1 { "cell" } else { "cells" };
+        let _ = writeln!(err, "{} {cells} in {}", self.done, duration(self.start.elapsed().as_secs_f64()));
     }
 }
 

@@ -19,8 +19,11 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     let _ = writeln!(s, "# {}\n", config.table.title());
     let _ = writeln!(s, "> {}\n", config.table.caption);
     if r.quick {
-        let _ =
-            writeln!(s, "**Quick run (`--quick`): small sizes and few frames, a smoke test, not a measurement.**\n");
+        let _ = writeln!(
+            s,
+            "**Quick run (`--quick`): small sizes and few frames, a smoke test, not a measurement: its spreads \
+             (`!`) and plausibility findings (`?`) come from those few frames and say nothing of the techniques.**\n"
+        );
     }
     if r.validation {
         let _ = writeln!(s, "**Validation layers were on: these times are not measurements.**\n");

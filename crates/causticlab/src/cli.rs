@@ -284,27 +284,28 @@ pub struct ReferenceArgs {
     /// Scene file with a [receiver_map].
     #[arg(long)]
     pub scene: PathBuf,
-    /// Photons per light.
-    #[arg(long, default_value_t = 1 << 22, value_parser = clap::value_parser!(u64).range(1..=(1u64 << 36)))]
-    pub photons: u64,
-    /// Random seed (the result is deterministic for a seed, whatever the thread count).
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
+    /// Photons per light (default 4194304, 2^22). The photon options (this to
+    /// --facet-normals) are refused on a pool scene, whose reference traces no photons.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=(1u64 << 36)))]
+    pub photons: Option<u64>,
+    /// Random seed (default 1; the result is deterministic for a seed, whatever the thread count).
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Exact Fresnel and internal bounces (true), or what image-space techniques approximate:
     /// two refractions, all power transmitted (false). Default: the scene's `caustics.fresnel`.
     #[arg(long)]
     pub fresnel: Option<bool>,
-    /// Most specular interactions per photon (with --fresnel true).
-    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
-    pub max_bounces: u32,
+    /// Most specular interactions per photon (with --fresnel true; default 8).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub max_bounces: Option<u32>,
     /// With --fresnel true: trace the light a refractive object reflects off its outside (true),
     /// or leave it out (false), keeping only the light that enters the object, the only light
-    /// the image-space techniques draw.
-    #[arg(long, default_value_t = true, action = clap::ArgAction::Set)]
-    pub outside_reflection: bool,
-    /// Worker threads (0 = all cores), at most 1024.
-    #[arg(long, default_value_t = 0, value_parser = parse_threads)]
-    pub threads: usize,
+    /// the image-space techniques draw. Default true.
+    #[arg(long, action = clap::ArgAction::Set)]
+    pub outside_reflection: Option<bool>,
+    /// Worker threads (0, the default: all cores), at most 1024.
+    #[arg(long, value_parser = parse_threads)]
+    pub threads: Option<usize>,
     /// Scatter about the facets' geometric normals instead of the interpolated vertex normals
     /// (the smooth surface the mesh stands for, as the renderer shades it).
     #[arg(long)]

@@ -44,6 +44,24 @@ pub fn run(g: &GlobalOpts, args: &ReferenceArgs, validation: &mut Option<Arc<Val
         );
     }
     if scene.pool.is_some() {
+        // Passes 1-6 in f64 trace no photons: a photon option given here would be ignored.
+        let photon_options = [
+            (args.photons.is_some(), "--photons"),
+            (args.seed.is_some(), "--seed"),
+            (args.fresnel.is_some(), "--fresnel"),
+            (args.max_bounces.is_some(), "--max-bounces"),
+            (args.outside_reflection.is_some(), "--outside-reflection"),
+            (args.threads.is_some(), "--threads"),
+            (args.facet_normals, "--facet-normals"),
+        ];
+        if let Some((_, flag)) = photon_options.iter().find(|(given, _)| *given) {
+            return Err(caustics::input_error!(
+                "{flag}: a photon option, and {} is a pool scene, whose reference traces no photons (its options: \
+                 --direct, --grid, --kernel)",
+                args.scene.display()
+            )
+            .into());
+        }
         return crate::cmd_pool_reference::run(args, &scene);
     }
     for (set, flag) in [(args.direct, "--direct"), (args.grid.is_some(), "--grid"), (args.kernel.is_some(), "--kernel")]
@@ -56,13 +74,14 @@ pub fn run(g: &GlobalOpts, args: &ReferenceArgs, validation: &mut Option<Arc<Val
             .into());
         }
     }
+    let defaults = ReferenceOptions::default();
     let opts = ReferenceOptions {
-        photons: args.photons,
-        seed: args.seed,
+        photons: args.photons.unwrap_or(defaults.photons),
+        seed: args.seed.unwrap_or(defaults.seed),
         fresnel: args.fresnel.unwrap_or(scene.caustics.fresnel),
-        max_bounces: args.max_bounces,
-        outside_reflection: args.outside_reflection,
-        threads: args.threads,
+        max_bounces: args.max_bounces.unwrap_or(defaults.max_bounces),
+        outside_reflection: args.outside_reflection.unwrap_or(defaults.outside_reflection),
+        threads: args.threads.unwrap_or(defaults.threads),
         smooth_normals: !args.facet_normals,
     };
     let out = OutputDir::create(&args.out).context("--out")?;

@@ -43,13 +43,15 @@ pub fn run(
         )
         .into());
     }
-    let seed = u32::try_from(args.seed).map_err(|_| {
-        input_error!("--seed {}: with --final the seed is a photon-trace seed, at most {}", args.seed, u32::MAX)
+    let defaults = caustics::reference::ReferenceOptions::default();
+    let seed = args.seed.unwrap_or(defaults.seed);
+    let seed = u32::try_from(seed).map_err(|_| {
+        input_error!("--seed {seed}: with --final the seed is a photon-trace seed, at most {}", u32::MAX)
     })?;
     let c = &mut scene.caustics;
     c.fresnel = args.fresnel.unwrap_or(c.fresnel);
-    c.max_bounces = args.max_bounces;
-    c.outside_reflection = args.outside_reflection;
+    c.max_bounces = args.max_bounces.unwrap_or(defaults.max_bounces);
+    c.outside_reflection = args.outside_reflection.unwrap_or(defaults.outside_reflection);
     let r = Refinement::at(args.level.unwrap_or(caustics::final_reference::TABLE_LEVEL), BASE)?;
     // Every setting checked before the device opens.
     r.scene(&scene, seed, 0)?;

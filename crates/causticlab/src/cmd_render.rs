@@ -87,6 +87,17 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         }
         let owners: Vec<&str> =
             Technique::ALL.iter().filter(|t| named_in(&t.dumps(), n).is_some()).map(|t| t.name()).collect();
+        if technique.renders_meshes()
+            && Technique::ALL.iter().filter(|t| named_in(&t.dumps(), n).is_some()).all(|t| !t.renders_meshes())
+        {
+            return Err(input_error!(
+                "--dump: `{n}` is a buffer of technique {}, which renders pool scenes ([pool]) only, and {} is a \
+                 mesh scene",
+                owners.join(", "),
+                args.scene.display()
+            )
+            .into());
+        }
         return Err(input_error!(
             "--dump: `{n}` is a buffer of technique {}, not of `{technique}`; add --technique {}",
             owners.join(", "),
@@ -251,6 +262,10 @@ fn dump_all(arg: Option<&str>) -> bool {
 pub(crate) fn parse_dumps(arg: Option<&str>) -> Result<Vec<String>> {
     let all = render::all_dump_names();
     let mut dumps: Vec<String> = vec![];
+    // `--dump ''` (or `--dump ,`) names nothing: said, rather than a render without the dumps asked for.
+    if arg.is_some_and(|a| a.split(',').all(|s| s.trim().is_empty())) {
+        return Err(input_error!("--dump: no buffer named; give `all` or names such as {}", all[..2].join(",")).into());
+    }
     for name in arg.unwrap_or("").split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let names: Vec<&str> = if name == "all" {
             all.clone()
@@ -360,6 +375,10 @@ mod tests {
         assert_eq!(parse_dumps(Some("all")).expect("all").len(), render::all_dump_names().len());
         let two = parse_dumps(Some("receiver, shadow_map,receiver")).expect("two names");
         assert_eq!(two, vec!["receiver".to_string(), "shadow_map".to_string()]);
+        for empty in ["", " , "] {
+            let err = parse_dumps(Some(empty)).err().map(|e| e.to_string()).unwrap_or_default();
+            assert!(err.contains("--dump") && err.contains("no buffer named"), "{empty:?}: {err}");
+        }
         let err = parse_dumps(Some("receiver,bogus")).err().map(|e| e.to_string()).unwrap_or_default();
         assert!(err.contains("bogus") && err.contains("shadow_map"), "{err}");
     }

@@ -199,6 +199,40 @@ fn mesh_renderer_dumps_on_a_pool_scene() {
     }
 }
 
+/// A light inside the specular objects' bounding sphere is refused for the light-space
+/// techniques, its position written as the scene file writes one.
+#[test]
+fn a_light_inside_the_refractors_bounds() {
+    let file = edited_scene("light_inside", "position = [0.0, 6.0, 0.0]", "position = [0.0, 1.25, 0.0]");
+    let s = file.display().to_string();
+    expect_input_error(
+        &["render", "--scene", &s, "--technique", "shah"],
+        &["scene.toml", "light 0 at [0, 1.25, 0]", "inside the bounding sphere"],
+    );
+}
+
+/// The pool's reference traces no photons: a photon option on a pool scene is refused, naming
+/// it, not ignored.
+#[test]
+fn photon_options_on_a_pool_reference() {
+    let pool = scene("pool_overhead");
+    for (flag, value) in [("--photons", "5"), ("--seed", "3"), ("--fresnel", "false"), ("--threads", "1")] {
+        expect_input_error(&["reference", "--scene", &pool, flag, value], &[flag, "pool scene", "pool_overhead.toml"]);
+    }
+    expect_input_error(&["reference", "--scene", &pool, "--facet-normals"], &["--facet-normals", "pool scene"]);
+}
+
+/// `--dump` that names nothing, and a pool technique's buffer asked of a mesh scene.
+#[test]
+fn dumps_that_name_nothing_or_a_pool_buffer_on_a_mesh_scene() {
+    let s = scene("sphere_on_plane");
+    expect_input_error(&["render", "--scene", &s, "--dump", ""], &["--dump", "no buffer named"]);
+    expect_input_error(
+        &["render", "--scene", &s, "--technique", "shah", "--dump", "height_field"],
+        &["height_field", "pool-convolution", "pool scenes", "sphere_on_plane.toml"],
+    );
+}
+
 /// `adaptive` past 4096² photons needs a memory limit: `--max-level` alone says so under its own
 /// name (it sets the photons), not under a `--photons` the user never gave.
 #[test]

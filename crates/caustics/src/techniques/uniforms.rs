@@ -130,9 +130,10 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
         let d = light.position.distance(centre);
         if d <= radius * 1.01 {
             return Err(crate::input_error!(
-                "{}: light {l} at {:?} is inside the bounding sphere of the specular objects (centre {centre:?}, radius {radius}); the light-space caustic techniques need the light outside it",
+                "{}: light {l} at {} is inside the bounding sphere of the specular objects (centre {}, radius {radius}); the light-space caustic techniques need the light outside it",
                 scene.path.display(),
-                light.position
+                point(light.position),
+                point(centre)
             )
             .into());
         }
@@ -178,6 +179,11 @@ pub fn caustic_uniforms(scene: &Scene, settings: &CausticSettings) -> Result<Cau
     }
     u.settings[0] = scene.lights.len().min(MAX_LIGHTS) as u32;
     Ok(u)
+}
+
+/// A point as a scene file writes it, `[x, y, z]`, for messages.
+fn point(p: glam::Vec3) -> String {
+    format!("[{}, {}, {}]", p.x, p.y, p.z)
 }
 
 #[cfg(test)]
