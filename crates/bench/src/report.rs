@@ -11,7 +11,9 @@ use crate::table::grid;
 use crate::text_table::Style;
 use std::fmt::Write as _;
 
-pub fn markdown(config: &Config, results: &Results) -> String {
+/// The table's Markdown; `root` is the results folder it is written under (its "Regenerate"
+/// line names it where it is not the default `results`).
+pub fn markdown(config: &Config, results: &Results, root: &std::path::Path) -> String {
     let g = grid(config, results);
     let m = &results.meta;
     let r = &results.run;
@@ -133,16 +135,30 @@ pub fn markdown(config: &Config, results: &Results) -> String {
     }
     let name = &results.config.name;
     let _ = writeln!(s, "![plot]({name}.png)\n\nThe plot as SVG: [{name}.svg]({name}.svg).\n");
-    let _ = writeln!(
-        s,
-        "Regenerate: `causticlab bench {}{}`; raw samples in `{name}.json.gz` (gzip-compressed JSON), one row \
-         per cell and metric in `{name}.csv`; redraw this table from the JSON with `causticlab bench merge` of \
-         its `{name}.json.gz`, `--results` naming the results folder it was written under (`results/`, the \
-         default, from the repository's root: `causticlab bench merge {}/{name}.json.gz`).",
-        results.config.file,
-        if r.quick { " --quick" } else { "" },
-        crate::run::device_dir(std::path::Path::new("results"), results).display(),
-    );
+    let quick = if r.quick { " --quick" } else { "" };
+    let default_root = std::path::Path::new("results");
+    if root.components().eq(default_root.components()) {
+        let _ = writeln!(
+            s,
+            "Regenerate: `causticlab bench {}{quick}`; raw samples in `{name}.json.gz` (gzip-compressed JSON), \
+             one row per cell and metric in `{name}.csv`; redraw this table from the JSON with `causticlab bench \
+             merge` of its `{name}.json.gz`, `--results` naming the results folder it was written under \
+             (`results/`, the default, from the repository's root: `causticlab bench merge {}/{name}.json.gz`).",
+            results.config.file,
+            crate::run::device_dir(default_root, results).display(),
+        );
+    } else {
+        let _ = writeln!(
+            s,
+            "Regenerate: `causticlab bench {}{quick} --results {}`; raw samples in `{name}.json.gz` \
+             (gzip-compressed JSON), one row per cell and metric in `{name}.csv`; redraw this table from the JSON: \
+             `causticlab bench merge {}/{name}.json.gz --results {}`.",
+            results.config.file,
+            root.display(),
+            crate::run::device_dir(root, results).display(),
+            root.display(),
+        );
+    }
     s
 }
 

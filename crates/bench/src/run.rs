@@ -311,7 +311,8 @@ pub fn run(ctx: &Context, shaders: &ShaderCompiler, lc: &LoadedConfig, opts: &Be
         let part = dir.join("parts").join(format!("{}.{tag}.json", lc.name));
         let results = crate::results::rounded(&results)?;
         write_json(&part, &results)?;
-        let (markdown, summary) = (crate::report::markdown(c, &results), crate::report::summary(c, &results));
+        let (markdown, summary) =
+            (crate::report::markdown(c, &results, &opts.results_root), crate::report::summary(c, &results));
         Ok(Outcome { written: vec![part], removed: vec![], markdown, summary })
     }
 }
@@ -372,7 +373,7 @@ pub fn write_table(c: &Config, results: &Results, dir: &Path, root: &Path) -> Re
     results.front_curves = crate::front_curves::load(c, &results, dir);
     let results = &results;
     let name = &results.config.name;
-    let md = crate::report::markdown(c, results);
+    let md = crate::report::markdown(c, results, root);
     let plot = match &c.front {
         Some(spec) => crate::front_plot::render(c, results, spec)?,
         None if crate::curve_plot::has_curves(results) => crate::curve_plot::render(c, results)?,

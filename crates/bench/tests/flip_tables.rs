@@ -89,7 +89,7 @@ fn synthetic() -> (Config, Results) {
 #[test]
 fn the_header_states_the_reference_the_size_and_the_pixels_per_degree() {
     let (config, r) = synthetic();
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     let line = md.lines().find(|l| l.starts_with("- **FLIP:**")).unwrap_or_else(|| panic!("no FLIP line in\n{md}"));
     for needle in [
         "level 1: a 512² caustic map of 2 × 2048² exact photons",
@@ -103,13 +103,13 @@ fn the_header_states_the_reference_the_size_and_the_pixels_per_degree() {
     // Without a FLIP, no line.
     let mut none = r.clone();
     none.cells.iter_mut().for_each(|c| c.final_flip = None);
-    assert!(!bench::report::markdown(&config, &none).contains("**FLIP:**"));
+    assert!(!bench::report::markdown(&config, &none, std::path::Path::new("results")).contains("**FLIP:**"));
 }
 
 #[test]
 fn the_front_has_a_section_and_a_panel_per_error_metric() {
     let (config, r) = synthetic();
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     let section = |y: &str| -> &str {
         let s = md.split(&format!("## {y} against Gather\n")).nth(1).unwrap_or_else(|| panic!("no {y} front in\n{md}"));
         s.split("\n## ").next().unwrap_or_default()

@@ -76,7 +76,7 @@ fn row<'a>(md: &'a str, label: &str, skip: usize) -> Vec<&'a str> {
 #[test]
 fn a_noisy_cell_is_flagged_and_a_steady_one_is_not() {
     let (config, r) = synthetic();
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     // Columns: photons, base, fast.
     let r256 = row(&md, "256²", 0);
     assert!(r256[1].starts_with("10.0 ±1% (10.0)") && !r256[1].contains('!'), "steady cell: {r256:?}");
@@ -93,10 +93,10 @@ fn a_noisy_cell_is_flagged_and_a_steady_one_is_not() {
 #[test]
 fn cells_measured_again_for_their_spread_are_counted_under_the_table() {
     let (config, mut r) = synthetic();
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     assert!(!md.contains("measured again because"), "{md}");
     r.cells[1].spread_attempts = vec![0.31, 0.04];
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     assert!(md.contains("1 timed entries come from cells measured again because"), "{md}");
 }
 
@@ -105,15 +105,15 @@ fn cells_measured_again_for_their_spread_are_counted_under_the_table() {
 #[test]
 fn the_header_gives_the_host_speed_and_warns_when_it_drifted() {
     let (config, mut r) = synthetic();
-    assert!(!bench::report::markdown(&config, &r).contains("Host speed"));
+    assert!(!bench::report::markdown(&config, &r, std::path::Path::new("results")).contains("Host speed"));
     for (c, ms) in r.cells.iter_mut().zip([5.0, 5.1, 5.2, 5.5]) {
         c.host_probe_ms = Some(ms);
     }
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     let line = md.lines().find(|l| l.contains("**Host speed**")).unwrap_or_else(|| panic!("no host speed line:\n{md}"));
     assert!(line.contains("fastest 5.00, slowest 5.50 (1.10x)") && !line.contains("drifted"), "{line}");
     r.cells[3].host_probe_ms = Some(6.0);
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     let line = md.lines().find(|l| l.contains("**Host speed**")).expect("host speed line");
     assert!(line.contains("(1.20x): the host's speed drifted"), "{line}");
 }
@@ -121,7 +121,7 @@ fn the_header_gives_the_host_speed_and_warns_when_it_drifted() {
 #[test]
 fn a_not_comparable_paper_value_is_marked_and_gets_no_ratio() {
     let (config, r) = synthetic();
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     assert!(row(&md, "512²", 0)[2].ends_with("(8.0¹)"), "{md}");
     assert!(md.contains("¹ The paper's value measures other work: the paper's fast gather skips the copy"), "{md}");
     // One ratio grid: photons x the techniques other than the baseline.
@@ -138,7 +138,7 @@ fn a_paper_value_from_another_scene_names_it_and_gets_no_ratio() {
     let text = CONFIG.replace("not_comparable = \"the paper's fast gather skips the copy\"", "scene_note = \"Buddha\"");
     let config: Config = toml::from_str(&text).expect("parses");
     let (_, r) = synthetic();
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     assert!(row(&md, "512²", 0)[1].ends_with("(20.0, Buddha)"), "{md}");
     let ratios = &md[md.find("## Ratios").expect("ratio section")..];
     assert_eq!(row(ratios, "512²", 0)[1], "1.00", "{ratios}");
@@ -159,7 +159,9 @@ fn every_line_of_a_wide_table_fits_a_terminal() {
         }
     }
     let r = results(&config, CONFIG, cells);
-    for out in [bench::report::markdown(&config, &r), bench::report::summary(&config, &r)] {
+    for out in
+        [bench::report::markdown(&config, &r, std::path::Path::new("results")), bench::report::summary(&config, &r)]
+    {
         let table_lines =
             out.lines().filter(|l| l.starts_with('|') || l.starts_with("photons") || l.starts_with("256"));
         for l in table_lines {
@@ -378,7 +380,7 @@ fn a_technique_that_cannot_run_at_a_photon_count_reads_na() {
     let cells =
         vec![cell(0, 0, "base", 4096, &STEADY), cell(1, 1, "fast", 4096, &STEADY), cell(2, 1, "fast", 16384, &NOISY)];
     let r = results(&config, CONFIG, cells);
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     let big = row(&md, "16384²", 0);
     assert!(big[1].starts_with("N/A (20.0"), "wd-points at 16384²: {big:?}\n{md}");
     assert!(big[2].starts_with("10.0"), "adaptive at 16384² measured: {big:?}");
@@ -392,7 +394,26 @@ fn a_figures_data_is_not_titled_a_table() {
     assert_eq!(bench::config::title("Wyman & Nichols 2009", "Fig. 10 (data)"), "Wyman & Nichols 2009, Fig. 10 (data)");
     assert_eq!(bench::config::title("Wyman 2008", "3"), "Wyman 2008, Table 3");
     let (config, r) = synthetic();
-    assert!(bench::report::markdown(&config, &r).starts_with("# Synthetic, Table S\n"));
+    assert!(bench::report::markdown(&config, &r, std::path::Path::new("results")).starts_with("# Synthetic, Table S\n"));
+}
+
+/// The "Regenerate" line names the results folder a table was written under: nothing more for
+/// the default `results` (the committed tables), `--results DIR` and DIR's path otherwise.
+#[test]
+fn the_regenerate_line_names_a_results_folder_other_than_the_default() {
+    let (config, r) = synthetic();
+    for default in ["results", "results/"] {
+        let md = bench::report::markdown(&config, &r, std::path::Path::new(default));
+        assert!(!md.contains("--results results"), "{default}: {md}");
+        assert!(md.contains("`causticlab bench merge results/"), "{default}: {md}");
+    }
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("/tmp/elsewhere"));
+    let line = md.lines().find(|l| l.starts_with("Regenerate:")).expect("a Regenerate line");
+    assert!(line.contains(" --results /tmp/elsewhere`"), "{line}");
+    assert!(
+        line.contains("`causticlab bench merge /tmp/elsewhere/") && line.contains(" --results /tmp/elsewhere`."),
+        "{line}"
+    );
 }
 
 /// The model files behind a table: listed by checksum; a file other than docs/scenes.md's is
@@ -401,7 +422,10 @@ fn a_figures_data_is_not_titled_a_table() {
 fn the_header_names_the_models_and_says_when_one_is_not_the_listed_file() {
     use caustics::scene::models::{ModelFile, KNOWN};
     let (config, mut r) = synthetic();
-    assert!(!bench::report::markdown(&config, &r).contains("odel"), "no models, no line");
+    assert!(
+        !bench::report::markdown(&config, &r, std::path::Path::new("results")).contains("odel"),
+        "no models, no line"
+    );
     let listed = ModelFile {
         file: "stanford-bunny.obj".into(),
         sha256: KNOWN[0].sha256.into(),
@@ -410,13 +434,13 @@ fn the_header_names_the_models_and_says_when_one_is_not_the_listed_file() {
     for c in &mut r.cells {
         c.models = vec![listed.clone()];
     }
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     let line = md.lines().find(|l| l.contains("**Models:**")).unwrap_or_else(|| panic!("{md}"));
     assert!(line.contains("stanford-bunny.obj (SHA-256 1eb35d1e21ce…, as docs/scenes.md lists)"), "{line}");
     assert_eq!(line.matches("stanford-bunny").count(), 1, "each file once: {line}");
     let other = ModelFile { sha256: "0".repeat(64), ..listed };
     r.cells[2].models.push(other);
-    let md = bench::report::markdown(&config, &r);
+    let md = bench::report::markdown(&config, &r, std::path::Path::new("results"));
     assert!(!md.contains("**Models:**"), "{md}");
     let line = md.lines().find(|l| l.contains("**Made with another model:**")).unwrap_or_else(|| panic!("{md}"));
     assert!(line.contains("000000000000…: NOT the file docs/scenes.md lists, 1eb35d1e21ce…"), "{line}");
