@@ -79,7 +79,10 @@ for entry in "${configs[@]}"; do
         fi
         merge_args=(--partial)
     fi
-    if out=$("$bin" bench merge "${merge_args[@]}" --results "$shared/results" "${parts[@]}" 2>&1); then
+    # From the shared folder into `results` (submit.sh makes every path here absolute): the tables
+    # are copied into the repository's results/, and a table's Regenerate line names its results
+    # folder only where it is not `results` (crates/bench/src/report.rs).
+    if out=$(cd "$shared" && "$bin" bench merge "${merge_args[@]}" --results results "${parts[@]}" 2>&1); then
         md=$(grep -o "^wrote .*/$config\.md\$" <<<"$out" | tail -n 1 | sed 's/^wrote //')
         echo "merge: $config: ${md:-merged} (${#parts[@]} of $shards shards)"
         summary+=("$config: ${md#"$shared/"}")

@@ -113,6 +113,11 @@ CAUSTICLAB_COMMIT=$(cat "$tmp/pack/COMMIT") "$bin" bench "bench_configs/$config.
     || { tail -n 20 "$tmp/direct.log"; fail "the unsharded run failed"; }
 direct=$(find "$tmp/direct" -path "*/quick/$config.json.gz")
 "$bin" bench same "$direct" "$merged" || fail "the merged table differs from the unsharded run"
+# The tables are copied into the repository's results/: their Regenerate line must be that
+# folder's, not name the shared folder they were merged in.
+regenerate=$(grep "^Regenerate: " "${merged%.json.gz}.md")
+[[ $regenerate == *"causticlab bench merge results/"* && $regenerate != *"$tmp"* ]] \
+    || { echo "$regenerate"; fail "the merged table's Regenerate line names the shared folder"; }
 echo "slurm_check: 1 ok ($(($(date +%s) - t0)) s so far)"
 
 echo "== 2. the same sweep with task 2 killed while it runs"

@@ -8,8 +8,8 @@ use std::path::PathBuf;
     name = "causticlab",
     version,
     about = "Raw-Vulkan caustics research renderer",
-    after_help = "Exit codes: 0 ok, 1 failure, 2 input error, 3 validation messages under --validate; \
-                  diff: 0 same, 1 different, 2 cannot compare."
+    after_help = "Exit codes: 0 ok, 1 failure, 2 input error, 3 validation messages under --validate, 141 \
+                  stdout closed by its reader (| head); diff: 0 same, 1 different, 2 cannot compare."
 )]
 pub struct Cli {
     #[command(flatten)]

@@ -44,16 +44,22 @@ pub fn run(args: &DiffArgs) -> Result<u8> {
     Ok(exit::OK)
 }
 
-/// `--unordered` and `--ignore` name dumps (or `final`, or one of two files compared): a
-/// misspelt name would switch its option off without a word.
+/// `--unordered` and `--ignore` name dumps (or `final`; comparing two files, `--unordered` may
+/// name B's stem, which is what it is matched against): a misspelt name would switch its option
+/// off without a word. `--ignore` leaves out files of folders, so beside two files it is refused.
 fn check_names(args: &DiffArgs) -> Result<()> {
-    let stems: Vec<String> = [&args.a, &args.b]
-        .iter()
-        .filter(|p| p.is_file())
-        .filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned()))
-        .collect();
+    let files = !args.a.is_dir() && !args.b.is_dir();
+    if files && !args.ignore.is_empty() {
+        return Err(input_error!(
+            "--ignore: leaves out files of two folders, and {} and {} are files",
+            args.a.display(),
+            args.b.display()
+        )
+        .into());
+    }
+    let b_stem = files.then(|| args.b.file_stem().map(|s| s.to_string_lossy().into_owned())).flatten();
     let dumps = caustics::render::all_dump_names();
-    let known = |n: &str| n == "final" || dumps.contains(&n) || stems.iter().any(|s| s == n);
+    let known = |n: &str| n == "final" || dumps.contains(&n) || b_stem.as_deref() == Some(n);
     for (flag, names) in [("--unordered", &args.unordered), ("--ignore", &args.ignore)] {
         if let Some(n) = names.iter().find(|n| !known(n)) {
             return Err(

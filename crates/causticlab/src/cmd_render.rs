@@ -36,11 +36,13 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         .into());
     }
     if let Some(n) = dumps.iter().find(|d| named_in(&own, d).is_none() && !dump_all(args.dump.as_deref())) {
-        if !technique.renders_meshes() && named_in(render::EYE_DUMPS, n).is_some() {
+        // The pool's technique renders the pool alone: no mesh renderer, no photons.
+        if !technique.renders_meshes() {
             let names: Vec<&str> = own.iter().map(|d| d.name).collect();
+            let whose = if named_in(render::EYE_DUMPS, n).is_some() { "the mesh renderer" } else { "a mesh technique" };
             return Err(input_error!(
-                "--dump: `{n}` is a buffer of the mesh renderer, which `{technique}` does not use (it renders \
-                 the pool alone); its buffers: {}",
+                "--dump: `{n}` is a buffer of {whose}, which `{technique}` does not use (it renders the pool \
+                 alone); its buffers: {}",
                 names.join(", ")
             )
             .into());
@@ -88,6 +90,7 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
         let owners: Vec<&str> =
             Technique::ALL.iter().filter(|t| named_in(&t.dumps(), n).is_some()).map(|t| t.name()).collect();
         if technique.renders_meshes()
+            && scene.pool.is_none()
             && Technique::ALL.iter().filter(|t| named_in(&t.dumps(), n).is_some()).all(|t| !t.renders_meshes())
         {
             return Err(input_error!(

@@ -197,6 +197,10 @@ fn mesh_renderer_dumps_on_a_pool_scene() {
             &[n, "mesh renderer", "pool-convolution", "receiver"],
         );
     }
+    expect_input_error(
+        &["render", "--scene", &pool, "--dump", "caustic_map"],
+        &["caustic_map", "a mesh technique", "pool-convolution", "height_field"],
+    );
 }
 
 /// A light inside the specular objects' bounding sphere is refused for the light-space
@@ -230,6 +234,12 @@ fn dumps_that_name_nothing_or_a_pool_buffer_on_a_mesh_scene() {
     expect_input_error(
         &["render", "--scene", &s, "--technique", "shah", "--dump", "height_field"],
         &["height_field", "pool-convolution", "pool scenes", "sphere_on_plane.toml"],
+    );
+    // On a pool scene with a mesh technique the advice is the technique, not "a mesh scene".
+    let pool = scene("pool_overhead");
+    expect_input_error(
+        &["render", "--scene", &pool, "--technique", "shah", "--dump", "height_field"],
+        &["height_field", "add --technique pool-convolution"],
     );
 }
 

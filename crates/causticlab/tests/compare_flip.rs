@@ -172,6 +172,8 @@ fn reference_final_refuses_the_cpu_references_flags_and_pool_scenes() {
         (vec!["--final", "--photons", "1000"], "--photons"),
         (vec!["--final", "--threads", "2"], "--threads"),
         (vec!["--level", "1"], "--final"),
+        // Beside --photons, which --final refuses, clap lets --level through: causticlab refuses it.
+        (vec!["--level", "1", "--photons", "5"], "--level"),
         (vec!["--final", "--level", "9"], "--level"),
     ] {
         let mut full = vec!["reference", "--scene", &s, "--out", &out];

@@ -100,6 +100,16 @@ fn renders_that_differ_are_told_apart_by_file_channel_and_count() {
         assert_eq!(typo.code, Some(2), "{flag}\n{}", typo.describe());
         assert!(typo.stderr.contains(flag) && typo.stderr.contains("splat:"), "{}", typo.describe());
     }
+    // Two files: --unordered may name B's stem (here a dump's too), and --ignore, which leaves out
+    // files of folders, is refused.
+    let (fa, fb) = (a.join("splats.exr"), reordered.join("splats.exr"));
+    assert_eq!(diff(&fa, &fb, &["--unordered", "splats"]).code, Some(0));
+    let renamed = dir.join("renamed_splats.exr");
+    std::fs::copy(&fb, &renamed).unwrap();
+    assert_eq!(diff(&fa, &renamed, &["--unordered", "renamed_splats"]).code, Some(0));
+    let ignore = diff(&fa, &fb, &["--ignore", "splats"]);
+    assert_eq!(ignore.code, Some(2), "{}", ignore.describe());
+    assert!(ignore.stderr.contains("--ignore") && ignore.stderr.contains("folders"), "{}", ignore.describe());
     // An image is not a list: receiver texels swapped still differ under --unordered-records.
     let swapped = dir.join("swapped");
     copy_dir(&b, &swapped);
