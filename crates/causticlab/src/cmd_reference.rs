@@ -33,6 +33,21 @@ struct Record {
     lost_other_w: [f64; 3],
 }
 
+/// The photon options in effect: each one given, else `ReferenceOptions`' default (Fresnel: the
+/// scene's). `reference --final` reads its seed, bounces, outside reflection and Fresnel here too.
+pub fn options(args: &ReferenceArgs, scene: &Scene) -> ReferenceOptions {
+    let defaults = ReferenceOptions::default();
+    ReferenceOptions {
+        photons: args.photons.unwrap_or(defaults.photons),
+        seed: args.seed.unwrap_or(defaults.seed),
+        fresnel: args.fresnel.unwrap_or(scene.caustics.fresnel),
+        max_bounces: args.max_bounces.unwrap_or(defaults.max_bounces),
+        outside_reflection: args.outside_reflection.unwrap_or(defaults.outside_reflection),
+        threads: args.threads.unwrap_or(defaults.threads),
+        smooth_normals: !args.facet_normals,
+    }
+}
+
 pub fn run(g: &GlobalOpts, args: &ReferenceArgs, validation: &mut Option<Arc<ValidationLog>>) -> Result<()> {
     let scene = Scene::load(&args.scene)?;
     if args.final_image {
@@ -74,16 +89,7 @@ pub fn run(g: &GlobalOpts, args: &ReferenceArgs, validation: &mut Option<Arc<Val
             .into());
         }
     }
-    let defaults = ReferenceOptions::default();
-    let opts = ReferenceOptions {
-        photons: args.photons.unwrap_or(defaults.photons),
-        seed: args.seed.unwrap_or(defaults.seed),
-        fresnel: args.fresnel.unwrap_or(scene.caustics.fresnel),
-        max_bounces: args.max_bounces.unwrap_or(defaults.max_bounces),
-        outside_reflection: args.outside_reflection.unwrap_or(defaults.outside_reflection),
-        threads: args.threads.unwrap_or(defaults.threads),
-        smooth_normals: !args.facet_normals,
-    };
+    let opts = options(args, &scene);
     let out = OutputDir::create(&args.out).context("--out")?;
     let start = std::time::Instant::now();
     let r =

@@ -43,15 +43,14 @@ pub fn run(
         )
         .into());
     }
-    let defaults = caustics::reference::ReferenceOptions::default();
-    let seed = args.seed.unwrap_or(defaults.seed);
-    let seed = u32::try_from(seed).map_err(|_| {
-        input_error!("--seed {seed}: with --final the seed is a photon-trace seed, at most {}", u32::MAX)
+    let opts = crate::cmd_reference::options(args, &scene);
+    let seed = u32::try_from(opts.seed).map_err(|_| {
+        input_error!("--seed {}: with --final the seed is a photon-trace seed, at most {}", opts.seed, u32::MAX)
     })?;
     let c = &mut scene.caustics;
-    c.fresnel = args.fresnel.unwrap_or(c.fresnel);
-    c.max_bounces = args.max_bounces.unwrap_or(defaults.max_bounces);
-    c.outside_reflection = args.outside_reflection.unwrap_or(defaults.outside_reflection);
+    c.fresnel = opts.fresnel;
+    c.max_bounces = opts.max_bounces;
+    c.outside_reflection = opts.outside_reflection;
     let r = Refinement::at(args.level.unwrap_or(caustics::final_reference::TABLE_LEVEL), BASE)?;
     // Every setting checked before the device opens.
     r.scene(&scene, seed, 0)?;

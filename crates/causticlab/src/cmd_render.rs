@@ -87,12 +87,11 @@ pub fn run(g: &GlobalOpts, args: &RenderArgs, validation: &mut Option<Arc<Valida
             )
             .into());
         }
-        let owners: Vec<&str> =
-            Technique::ALL.iter().filter(|t| named_in(&t.dumps(), n).is_some()).map(|t| t.name()).collect();
-        if technique.renders_meshes()
-            && scene.pool.is_none()
-            && Technique::ALL.iter().filter(|t| named_in(&t.dumps(), n).is_some()).all(|t| !t.renders_meshes())
-        {
+        let having: Vec<Technique> =
+            Technique::ALL.iter().copied().filter(|t| named_in(&t.dumps(), n).is_some()).collect();
+        let owners: Vec<&str> = having.iter().map(|t| t.name()).collect();
+        // (`technique` renders meshes here: the pool's returned above.)
+        if scene.pool.is_none() && having.iter().all(|t| !t.renders_meshes()) {
             return Err(input_error!(
                 "--dump: `{n}` is a buffer of technique {}, which renders pool scenes ([pool]) only, and {} is a \
                  mesh scene",
